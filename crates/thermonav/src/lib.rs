@@ -1,0 +1,28 @@
+//! # thermonav
+//!
+//! Temperature-dependent stochastic modelling of MEMS inertial sensor errors, after
+//! El-Diasty & Pagiatakis (2009), and the GNSS/INS filters that use those models.
+//!
+//! This crate is the numerical core: it reads no files, draws no plots and holds no global
+//! state. File formats live in `thermonav-io`; the command line in `thermonav-cli`.
+//!
+//! ## Primer
+//! - Time is integer nanoseconds ([`time::Timestamp`]); seconds as `f64` only for arithmetic.
+//! - Every quantity is SI inside the crate (rad/s, m/s², s); other units appear only at the
+//!   edges, through the named conversions in [`units`].
+//! - Choices are types (enums), never strings or booleans.
+//! - Estimators state their equation, assumptions and reference in their docs, and each is
+//!   tested against an independent oracle (SciPy, statsmodels, allantools, Stable32, R, MATLAB).
+//!
+//! ## Modules
+//! - [`time`]: exact timestamps and durations.
+//! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
+//! - [`imu`]: IMU samples and series (rates or increments), channel names.
+//! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
+//! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance.
+
+pub mod imu;
+pub mod signal;
+pub mod stoch;
+pub mod time;
+pub mod units;

@@ -1,0 +1,1 @@
+//! Timestamp checks: nominal rate, jitter, gaps, duplicates and reversals.

@@ -1,0 +1,2 @@
+//! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
+//! models, Gauss-Markov models and Allan variance.
