@@ -1,0 +1,607 @@
+//! The temperature model bank: one entry per temperature point, per channel, saved as JSON.
+//!
+//! An entry records how the static record was pre-processed (filter, decimation), the Allan
+//! curve and its noise terms (from the unfiltered data), the chosen AR model, and the three
+//! Gauss-Markov models: AR-based (the paper's), exact maximum likelihood on the irregular
+//! timestamps, and the classical fit to the autocorrelation. The bank is a file-format contract:
+//! its types are plain summaries, independent of the estimators' internal types, and carry a
+//! `version`.
+//!
+//! Selecting a model for an operating temperature: [`Selection::Nearest`] takes the entry whose
+//! temperature is closest (ties go to the colder point); [`Selection::Linear`] interpolates
+//! the correlation time and sigma linearly in temperature between the two bracketing entries and
+//! holds the end value outside the covered range (reported as [`Placement::Clamped`]).
+
+use crate::imu::Channel;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Version of the bank's JSON layout written by this build.
+pub const BANK_VERSION: u32 = 1;
+
+/// A whole bank: entries sorted by temperature, no two at the same temperature.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelBank {
+    /// Layout version ([`BANK_VERSION`]).
+    pub version: u32,
+    /// Entries, strictly increasing in temperature.
+    pub entries: Vec<TemperatureEntry>,
+}
+
+/// The models of one temperature point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TemperatureEntry {
+    /// Temperature of the static record, °C.
+    pub temperature_c: f64,
+    /// Where the record came from (file name), for the report.
+    pub source: String,
+    /// How the record was conditioned before AR / Gauss-Markov modelling.
+    pub preprocessing: Preprocessing,
+    /// Models per channel.
+    pub channels: BTreeMap<Channel, ChannelModel>,
+}
+
+/// Conditioning applied before AR and Gauss-Markov modelling (Allan uses the raw data).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Preprocessing {
+    /// Nominal rate of the raw record, Hz.
+    pub input_rate_hz: f64,
+    /// Low-pass filter, when one was applied.
+    pub filter: Option<FilterSummary>,
+    /// Keep-every-n-th factor after filtering (1 = none).
+    pub decimation_factor: usize,
+    /// Nominal rate of the modelled series, Hz.
+    pub modelling_rate_hz: f64,
+}
+
+/// A Kaiser low-pass filter as applied.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FilterSummary {
+    /// Pass-band edge, Hz.
+    pub cutoff_hz: f64,
+    /// Transition width, Hz.
+    pub transition_hz: f64,
+    /// Ripple / attenuation, dB.
+    pub ripple_db: f64,
+    /// Number of taps.
+    pub num_taps: usize,
+    /// Kaiser window beta.
+    pub beta: f64,
+    /// Zero-phase mode (`zero-phase` or `filtfilt`).
+    pub mode: String,
+}
+
+/// Every model of one channel at one temperature. Values are SI: rad/s for gyros, m/s² for
+/// accelerometers (the `unit` field says which).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChannelModel {
+    /// Unit of `sigma` and of the Allan deviations (`rad/s` or `m/s^2`).
+    pub unit: String,
+    /// Allan deviation curve of the raw data and its noise terms.
+    pub allan: AllanSummary,
+    /// The chosen AR model of the conditioned series.
+    pub ar: ArSummary,
+    /// The three Gauss-Markov models.
+    pub gauss_markov: GaussMarkovModels,
+}
+
+/// An Allan deviation curve and the IEEE Std 952 noise terms fitted to it (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AllanSummary {
+    /// Averaging times, s.
+    pub tau_s: Vec<f64>,
+    /// Overlapping Allan deviation at each tau, channel unit.
+    pub adev: Vec<f64>,
+    /// White-noise density N (ARW rad/√s or VRW m/s/√s), when identified.
+    pub white_noise_density: Option<f64>,
+    /// Bias instability B (rad/s or m/s²), when identified.
+    pub bias_instability: Option<f64>,
+    /// Rate random walk K (rad/s/√s or m/s²/√s), when identified.
+    pub rate_random_walk: Option<f64>,
+}
+
+/// An AR model of the conditioned series (paper sign: x_k = Σ c_i x_{k−i} + w_k).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ArSummary {
+    /// Estimator (`yule-walker`, `burg`, `covariance`, `modified-covariance`).
+    pub method: String,
+    /// Coefficients c_1..c_p.
+    pub coefficients: Vec<f64>,
+    /// Innovation variance, channel unit squared.
+    pub noise_variance: f64,
+    /// Sampling interval the model was fitted at, s.
+    pub dt_s: f64,
+}
+
+/// The Gauss-Markov models of one channel.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GaussMarkovModels {
+    /// AR(1)-based (the paper's equations 8-10).
+    pub ar_based: GaussMarkovEstimate,
+    /// Exact maximum likelihood with each step's own dt.
+    pub irregular_ml: GaussMarkovEstimate,
+    /// Classical fit of σ² exp(−τ/Tc) to the autocorrelation.
+    pub acf_fit: GaussMarkovEstimate,
+}
+
+/// Which of the three Gauss-Markov models to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GaussMarkovSource {
+    /// AR(1)-based (the paper's).
+    ArBased,
+    /// Exact maximum likelihood on the irregular timestamps.
+    IrregularMl,
+    /// Fit to the autocorrelation.
+    AcfFit,
+}
+
+/// A Gauss-Markov estimate, or the reason there is none.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "status", rename_all = "snake_case")]
+pub enum GaussMarkovEstimate {
+    /// A first-order Gauss-Markov model.
+    Model {
+        /// Correlation time Tc, s.
+        correlation_time_s: f64,
+        /// Standard deviation σ, channel unit.
+        sigma: f64,
+        /// 95 % interval of Tc, s; `None` for an unbounded side.
+        ci95_correlation_time_s: [Option<f64>; 2],
+    },
+    /// No Gauss-Markov equivalent (e.g. AR c₁ ≥ 1: random walk or drift).
+    NoEquivalent {
+        /// Why, in words.
+        reason: String,
+    },
+}
+
+/// How to pick a model for an operating temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Selection {
+    /// The entry at the nearest temperature.
+    Nearest,
+    /// Linear interpolation of Tc and σ between the bracketing entries.
+    Linear,
+}
+
+/// Where the operating temperature fell relative to the bank.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "placement", rename_all = "snake_case")]
+pub enum Placement {
+    /// One entry was used as it is.
+    Entry {
+        /// Its temperature, °C.
+        temperature_c: f64,
+    },
+    /// Interpolated between two entries with weight `weight` on the upper one.
+    Between {
+        /// Lower entry's temperature, °C.
+        lower_c: f64,
+        /// Upper entry's temperature, °C.
+        upper_c: f64,
+        /// Weight of the upper entry, in [0, 1].
+        weight: f64,
+    },
+    /// Outside the covered range: the end entry's model is held.
+    Clamped {
+        /// The end entry's temperature, °C.
+        temperature_c: f64,
+    },
+}
+
+/// A Gauss-Markov model selected for an operating temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SelectedModel {
+    /// Correlation time Tc, s.
+    pub correlation_time_s: f64,
+    /// Standard deviation σ, channel unit.
+    pub sigma: f64,
+    /// Which entries it came from.
+    pub placement: Placement,
+}
+
+/// Why a bank cannot be used or a model cannot be selected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BankError {
+    /// The bank has no entry.
+    #[error("the model bank has no temperature entry")]
+    Empty,
+    /// Written by a newer thermonav.
+    #[error(
+        "model bank version {found} is not supported (this build reads version {BANK_VERSION})"
+    )]
+    Version {
+        /// Version in the file.
+        found: u32,
+    },
+    /// Entries not strictly increasing in temperature.
+    #[error(
+        "model bank entries must be strictly increasing in temperature: {previous_c} °C is followed by {next_c} °C"
+    )]
+    Order {
+        /// Earlier entry's temperature.
+        previous_c: f64,
+        /// Later entry's temperature.
+        next_c: f64,
+    },
+    /// A temperature that is not a finite number.
+    #[error("temperature {temperature_c} °C is not a finite number")]
+    Temperature {
+        /// The value.
+        temperature_c: f64,
+    },
+    /// An entry lacks a channel.
+    #[error("the entry at {temperature_c} °C has no model for channel {channel}")]
+    MissingChannel {
+        /// Entry temperature.
+        temperature_c: f64,
+        /// Channel name.
+        channel: &'static str,
+    },
+    /// The requested Gauss-Markov model does not exist for an entry.
+    #[error(
+        "the entry at {temperature_c} °C has no Gauss-Markov model for channel {channel}: {reason}"
+    )]
+    NoModel {
+        /// Entry temperature.
+        temperature_c: f64,
+        /// Channel name.
+        channel: &'static str,
+        /// The recorded reason.
+        reason: String,
+    },
+}
+
+impl ModelBank {
+    /// A bank from entries in any order.
+    ///
+    /// # Errors
+    /// [`BankError`] when there is no entry, a temperature is not finite, or two entries share
+    /// a temperature.
+    pub fn new(mut entries: Vec<TemperatureEntry>) -> Result<Self, BankError> {
+        entries.sort_by(|a, b| a.temperature_c.total_cmp(&b.temperature_c));
+        let bank = Self {
+            version: BANK_VERSION,
+            entries,
+        };
+        bank.validate()?;
+        Ok(bank)
+    }
+
+    /// Checks a bank read from a file: version, non-empty, finite and strictly increasing
+    /// temperatures.
+    ///
+    /// # Errors
+    /// The first [`BankError`] found.
+    pub fn validate(&self) -> Result<(), BankError> {
+        if self.version != BANK_VERSION {
+            return Err(BankError::Version {
+                found: self.version,
+            });
+        }
+        if self.entries.is_empty() {
+            return Err(BankError::Empty);
+        }
+        if let Some(bad) = self.entries.iter().find(|e| !e.temperature_c.is_finite()) {
+            return Err(BankError::Temperature {
+                temperature_c: bad.temperature_c,
+            });
+        }
+        match self
+            .entries
+            .windows(2)
+            .find(|w| w[0].temperature_c >= w[1].temperature_c)
+        {
+            Some(w) => Err(BankError::Order {
+                previous_c: w[0].temperature_c,
+                next_c: w[1].temperature_c,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Temperatures of the entries, °C, increasing.
+    pub fn temperatures_c(&self) -> Vec<f64> {
+        self.entries.iter().map(|e| e.temperature_c).collect()
+    }
+
+    /// Index of the entry nearest to `temperature_c` (ties to the colder entry).
+    pub fn nearest_index(&self, temperature_c: f64) -> usize {
+        let distance = |e: &TemperatureEntry| (e.temperature_c - temperature_c).abs();
+        (0..self.entries.len())
+            .min_by(|&a, &b| distance(&self.entries[a]).total_cmp(&distance(&self.entries[b])))
+            .unwrap_or(0)
+    }
+
+    /// The Gauss-Markov model of `channel` for an operating temperature.
+    ///
+    /// # Errors
+    /// [`BankError`] when the temperature is not finite, an entry involved lacks the channel,
+    /// or its model of that `source` has no Gauss-Markov equivalent.
+    pub fn select(
+        &self,
+        temperature_c: f64,
+        channel: Channel,
+        source: GaussMarkovSource,
+        selection: Selection,
+    ) -> Result<SelectedModel, BankError> {
+        if !temperature_c.is_finite() {
+            return Err(BankError::Temperature { temperature_c });
+        }
+        self.validate()?;
+        let placement = self.placement(temperature_c, selection);
+        match placement {
+            Placement::Entry { temperature_c: t } | Placement::Clamped { temperature_c: t } => {
+                let (tc, sigma) = self.model_at(self.index_of(t), channel, source)?;
+                Ok(SelectedModel {
+                    correlation_time_s: tc,
+                    sigma,
+                    placement,
+                })
+            }
+            Placement::Between {
+                lower_c,
+                upper_c,
+                weight,
+            } => {
+                let (tc_lo, s_lo) = self.model_at(self.index_of(lower_c), channel, source)?;
+                let (tc_hi, s_hi) = self.model_at(self.index_of(upper_c), channel, source)?;
+                Ok(SelectedModel {
+                    correlation_time_s: lerp(tc_lo, tc_hi, weight),
+                    sigma: lerp(s_lo, s_hi, weight),
+                    placement,
+                })
+            }
+        }
+    }
+
+    /// Where `temperature_c` falls, for the chosen selection.
+    pub fn placement(&self, temperature_c: f64, selection: Selection) -> Placement {
+        let temps = self.temperatures_c();
+        let (first, last) = (temps[0], temps[temps.len() - 1]);
+        match selection {
+            Selection::Nearest => Placement::Entry {
+                temperature_c: temps[self.nearest_index(temperature_c)],
+            },
+            Selection::Linear if temperature_c <= first => Placement::Clamped {
+                temperature_c: first,
+            },
+            Selection::Linear if temperature_c >= last => Placement::Clamped {
+                temperature_c: last,
+            },
+            Selection::Linear => bracket(&temps, temperature_c),
+        }
+    }
+
+    fn index_of(&self, temperature_c: f64) -> usize {
+        self.entries
+            .iter()
+            .position(|e| e.temperature_c == temperature_c)
+            .unwrap_or(0)
+    }
+
+    fn model_at(
+        &self,
+        index: usize,
+        channel: Channel,
+        source: GaussMarkovSource,
+    ) -> Result<(f64, f64), BankError> {
+        let entry = &self.entries[index];
+        let model = entry
+            .channels
+            .get(&channel)
+            .ok_or(BankError::MissingChannel {
+                temperature_c: entry.temperature_c,
+                channel: channel.name(),
+            })?;
+        match model.gauss_markov.get(source) {
+            GaussMarkovEstimate::Model {
+                correlation_time_s,
+                sigma,
+                ..
+            } => Ok((*correlation_time_s, *sigma)),
+            GaussMarkovEstimate::NoEquivalent { reason } => Err(BankError::NoModel {
+                temperature_c: entry.temperature_c,
+                channel: channel.name(),
+                reason: reason.clone(),
+            }),
+        }
+    }
+}
+
+impl GaussMarkovModels {
+    /// The estimate of one source.
+    pub fn get(&self, source: GaussMarkovSource) -> &GaussMarkovEstimate {
+        match source {
+            GaussMarkovSource::ArBased => &self.ar_based,
+            GaussMarkovSource::IrregularMl => &self.irregular_ml,
+            GaussMarkovSource::AcfFit => &self.acf_fit,
+        }
+    }
+}
+
+/// The two temperatures around `t` (strictly inside the range) and the upper weight.
+fn bracket(temps: &[f64], t: f64) -> Placement {
+    let upper = temps.partition_point(|&x| x <= t).min(temps.len() - 1);
+    let (lower_c, upper_c) = (temps[upper - 1], temps[upper]);
+    if t == lower_c {
+        return Placement::Entry {
+            temperature_c: lower_c,
+        };
+    }
+    Placement::Between {
+        lower_c,
+        upper_c,
+        weight: (t - lower_c) / (upper_c - lower_c),
+    }
+}
+
+fn lerp(a: f64, b: f64, weight: f64) -> f64 {
+    a + (b - a) * weight
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gm(tc: f64, sigma: f64) -> GaussMarkovEstimate {
+        GaussMarkovEstimate::Model {
+            correlation_time_s: tc,
+            sigma,
+            ci95_correlation_time_s: [Some(tc * 0.9), None],
+        }
+    }
+
+    fn entry(temperature_c: f64, tc: f64, sigma: f64) -> TemperatureEntry {
+        let model = ChannelModel {
+            unit: "rad/s".into(),
+            allan: AllanSummary {
+                tau_s: vec![1.0],
+                adev: vec![1e-3],
+                white_noise_density: Some(1e-3),
+                bias_instability: None,
+                rate_random_walk: None,
+            },
+            ar: ArSummary {
+                method: "burg".into(),
+                coefficients: vec![0.9],
+                noise_variance: 1e-6,
+                dt_s: 0.1,
+            },
+            gauss_markov: GaussMarkovModels {
+                ar_based: gm(tc, sigma),
+                irregular_ml: gm(tc * 2.0, sigma),
+                acf_fit: GaussMarkovEstimate::NoEquivalent {
+                    reason: "c1 >= 1".into(),
+                },
+            },
+        };
+        TemperatureEntry {
+            temperature_c,
+            source: format!("{temperature_c}.csv"),
+            preprocessing: Preprocessing {
+                input_rate_hz: 200.0,
+                filter: None,
+                decimation_factor: 1,
+                modelling_rate_hz: 200.0,
+            },
+            channels: BTreeMap::from([(Channel::Gx, model)]),
+        }
+    }
+
+    fn bank() -> ModelBank {
+        ModelBank::new(vec![
+            entry(20.0, 200.0, 2.0),
+            entry(-20.0, 100.0, 1.0),
+            entry(60.0, 50.0, 4.0),
+        ])
+        .unwrap()
+    }
+
+    fn pick(t: f64, selection: Selection) -> Result<SelectedModel, BankError> {
+        bank().select(t, Channel::Gx, GaussMarkovSource::ArBased, selection)
+    }
+
+    #[test]
+    fn entries_are_sorted_and_duplicates_refused() {
+        assert_eq!(bank().temperatures_c(), vec![-20.0, 20.0, 60.0]);
+        let twice = ModelBank::new(vec![entry(20.0, 1.0, 1.0), entry(20.0, 2.0, 1.0)]);
+        assert!(matches!(twice, Err(BankError::Order { .. })));
+        assert_eq!(ModelBank::new(vec![]), Err(BankError::Empty));
+    }
+
+    #[test]
+    fn nearest_picks_the_closest_entry_and_ties_go_colder() {
+        assert_eq!(
+            pick(17.0, Selection::Nearest).unwrap().correlation_time_s,
+            200.0
+        );
+        assert_eq!(
+            pick(0.0, Selection::Nearest).unwrap().correlation_time_s,
+            100.0
+        );
+        assert_eq!(
+            pick(100.0, Selection::Nearest).unwrap().correlation_time_s,
+            50.0
+        );
+    }
+
+    #[test]
+    fn linear_interpolates_tc_and_sigma_between_neighbours() {
+        // 30 °C is a quarter of the way from 20 to 60: Tc = 200 + 0.25 (50 − 200) = 162.5,
+        // sigma = 2 + 0.25 (4 − 2) = 2.5.
+        let m = pick(30.0, Selection::Linear).unwrap();
+        assert!((m.correlation_time_s - 162.5).abs() < 1e-12);
+        assert!((m.sigma - 2.5).abs() < 1e-12);
+        assert_eq!(
+            m.placement,
+            Placement::Between {
+                lower_c: 20.0,
+                upper_c: 60.0,
+                weight: 0.25
+            }
+        );
+        assert_eq!(
+            pick(20.0, Selection::Linear).unwrap().placement,
+            Placement::Entry {
+                temperature_c: 20.0
+            }
+        );
+    }
+
+    #[test]
+    fn linear_holds_the_end_value_outside_the_range() {
+        let m = pick(-40.0, Selection::Linear).unwrap();
+        assert_eq!(
+            (m.correlation_time_s, m.placement),
+            (
+                100.0,
+                Placement::Clamped {
+                    temperature_c: -20.0
+                }
+            )
+        );
+        assert_eq!(
+            pick(80.0, Selection::Linear).unwrap().correlation_time_s,
+            50.0
+        );
+    }
+
+    #[test]
+    fn missing_models_and_bad_temperatures_are_errors() {
+        let b = bank();
+        let acf = b.select(
+            20.0,
+            Channel::Gx,
+            GaussMarkovSource::AcfFit,
+            Selection::Nearest,
+        );
+        assert!(matches!(acf, Err(BankError::NoModel { .. })));
+        let gy = b.select(
+            20.0,
+            Channel::Gy,
+            GaussMarkovSource::ArBased,
+            Selection::Nearest,
+        );
+        assert!(matches!(gy, Err(BankError::MissingChannel { .. })));
+        assert!(matches!(
+            pick(f64::NAN, Selection::Linear),
+            Err(BankError::Temperature { .. })
+        ));
+    }
+
+    #[test]
+    fn json_round_trip_keeps_everything_and_names_the_status() {
+        let b = bank();
+        let text = serde_json::to_string(&b).unwrap();
+        assert!(text.contains("\"version\":1") && text.contains("\"status\":\"no_equivalent\""));
+        assert!(text.contains("\"gx\""));
+        let back: ModelBank = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, b);
+        let newer = text.replace("\"version\":1", "\"version\":9");
+        let newer: ModelBank = serde_json::from_str(&newer).unwrap();
+        assert_eq!(newer.validate(), Err(BankError::Version { found: 9 }));
+    }
+}
