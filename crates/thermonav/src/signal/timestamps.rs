@@ -119,7 +119,11 @@ fn record_interval(
     gap_threshold: Option<i128>,
 ) {
     let dt = time.since(previous);
-    let fault = OrderFault { index, time, previous };
+    let fault = OrderFault {
+        index,
+        time,
+        previous,
+    };
     if dt.as_nanos() == 0 {
         report.duplicate_count += 1;
         push_listed(&mut report.duplicates, fault);
@@ -128,7 +132,11 @@ fn record_interval(
         push_listed(&mut report.reversals, fault);
     } else if gap_threshold.is_some_and(|limit| 2 * i128::from(dt.as_nanos()) > limit) {
         report.gap_count += 1;
-        let gap = Gap { index, start: previous, length: dt };
+        let gap = Gap {
+            index,
+            start: previous,
+            length: dt,
+        };
         push_listed(&mut report.gaps, gap);
     }
 }
@@ -198,14 +206,23 @@ mod tests {
 
     #[test]
     fn regular_axis_has_exact_rate_and_no_faults() {
-        let times: Vec<_> = (0..1000).map(|k| Timestamp::from_nanos(k * 5_000_000)).collect();
+        let times: Vec<_> = (0..1000)
+            .map(|k| Timestamp::from_nanos(k * 5_000_000))
+            .collect();
         let report = check_timestamps(&times);
         let stats = report.intervals.unwrap();
         assert_eq!(stats.median.as_nanos(), 5_000_000);
         assert_eq!(stats.nominal_rate_hz(), 200.0);
         assert_eq!(stats.std_s, 0.0);
         assert_eq!(report.duration.unwrap().as_nanos(), 999 * 5_000_000);
-        assert_eq!((report.gap_count, report.duplicate_count, report.reversal_count), (0, 0, 0));
+        assert_eq!(
+            (
+                report.gap_count,
+                report.duplicate_count,
+                report.reversal_count
+            ),
+            (0, 0, 0)
+        );
     }
 
     #[test]
@@ -238,6 +255,9 @@ mod tests {
     fn too_few_samples_give_no_interval_statistics() {
         assert!(check_timestamps(&[]).intervals.is_none());
         assert!(check_timestamps(&axis(&[7])).intervals.is_none());
-        assert_eq!(check_timestamps(&axis(&[7])).duration.unwrap().as_nanos(), 0);
+        assert_eq!(
+            check_timestamps(&axis(&[7])).duration.unwrap().as_nanos(),
+            0
+        );
     }
 }
