@@ -17,12 +17,17 @@
 //! ## Modules
 //! - [`time`]: exact timestamps and durations.
 //! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
+//! - [`geo`]: WGS84, normal gravity, Earth rate.
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
-//! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance.
+//! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
+//!   temperature model bank.
+//! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
+pub mod geo;
 pub mod imu;
 pub mod signal;
+pub mod sim;
 pub mod stoch;
 pub mod time;
 pub mod units;

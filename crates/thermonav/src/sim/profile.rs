@@ -1,0 +1,460 @@
+//! Sensor error profiles whose Gauss-Markov bias depends on temperature.
+//!
+//! A profile gives, per channel, the white-noise density, a table of Gauss-Markov bias
+//! parameters (Tc, σ) at several temperatures, an optional bias random walk, the turn-on bias
+//! spread, deterministic bias and scale-factor temperature coefficients, an optional
+//! Gauss-Markov scale-factor error and the quantisation step. Values are SI: gyros in rad/s
+//! (densities rad/√s), accelerometers in m/s² (densities m/s/√s).
+//!
+//! Between table points, ln Tc and ln σ are interpolated with a monotone cubic (Fritsch &
+//! Carlson 1980): smooth, never overshooting a neighbour, always positive. Outside the table
+//! the end value is held.
+
+use crate::imu::{Channel, Sensor};
+use crate::units::{
+    arw_deg_per_sqrt_h_to_rad_per_sqrt_s, deg_to_rad, mg_to_m_per_s2,
+    vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s,
+};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Gauss-Markov bias parameters measured at one temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GaussMarkovPoint {
+    /// Temperature, °C.
+    pub temperature_c: f64,
+    /// Correlation time Tc, s.
+    pub correlation_time_s: f64,
+    /// Standard deviation σ, rad/s or m/s².
+    pub sigma: f64,
+}
+
+/// A Gauss-Markov scale-factor error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ScaleFactorGaussMarkov {
+    /// Correlation time, s.
+    pub correlation_time_s: f64,
+    /// Standard deviation, ppm.
+    pub sigma_ppm: f64,
+}
+
+/// Error model of one channel.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChannelProfile {
+    /// White-noise density N (ARW rad/√s, VRW m/s/√s).
+    pub white_noise_density: f64,
+    /// Gauss-Markov bias table, strictly increasing in temperature.
+    pub bias_gauss_markov: Vec<GaussMarkovPoint>,
+    /// Bias random-walk density K (rad/s/√s or m/s²/√s); 0 for none.
+    pub bias_random_walk_density: f64,
+    /// Standard deviation of the turn-on bias, drawn once per run (rad/s or m/s²).
+    pub turn_on_bias_sigma: f64,
+    /// Deterministic bias change per °C away from the reference temperature.
+    pub bias_temperature_coefficient_per_c: f64,
+    /// Deterministic scale-factor change per °C away from the reference temperature, ppm/°C.
+    pub scale_factor_temperature_coefficient_ppm_per_c: f64,
+    /// Gauss-Markov scale-factor error, when modelled.
+    pub scale_factor_gauss_markov: Option<ScaleFactorGaussMarkov>,
+    /// Quantisation step (one LSB), rad/s or m/s²; 0 for none.
+    pub quantization_step: f64,
+}
+
+/// A whole sensor profile.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SensorProfile {
+    /// Name shown in reports.
+    pub name: String,
+    /// Temperature at which the deterministic temperature terms vanish, °C.
+    pub reference_temperature_c: f64,
+    /// One profile per channel; all six are required.
+    pub channels: BTreeMap<Channel, ChannelProfile>,
+}
+
+/// The Gauss-Markov bias of a channel at one temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BiasAt {
+    /// Correlation time Tc, s.
+    pub correlation_time_s: f64,
+    /// Standard deviation σ, rad/s or m/s².
+    pub sigma: f64,
+}
+
+/// Why a profile is unusable.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProfileError {
+    /// A channel is missing.
+    #[error("sensor profile has no entry for channel {0}")]
+    MissingChannel(&'static str),
+    /// A channel has no Gauss-Markov point.
+    #[error("channel {0}: bias_gauss_markov needs at least one point")]
+    EmptyTable(&'static str),
+    /// Table temperatures not strictly increasing.
+    #[error(
+        "channel {channel}: bias_gauss_markov temperatures must increase strictly ({previous_c} °C then {next_c} °C)"
+    )]
+    TableOrder {
+        /// Channel name.
+        channel: &'static str,
+        /// Earlier temperature.
+        previous_c: f64,
+        /// Later temperature.
+        next_c: f64,
+    },
+    /// A value that must be finite and positive (or non-negative) is not.
+    #[error("channel {channel}: {field} = {value} must be finite and {expected}")]
+    Value {
+        /// Channel name.
+        channel: &'static str,
+        /// Field name.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+}
+
+impl SensorProfile {
+    /// Checks every channel: all six present, tables non-empty and increasing, values finite
+    /// with the right sign.
+    ///
+    /// # Errors
+    /// The first [`ProfileError`] found.
+    pub fn validate(&self) -> Result<(), ProfileError> {
+        for channel in Channel::ALL {
+            let profile = self
+                .channels
+                .get(&channel)
+                .ok_or(ProfileError::MissingChannel(channel.name()))?;
+            profile.validate(channel.name())?;
+        }
+        Ok(())
+    }
+
+    /// The profile of one channel (present after [`SensorProfile::validate`]).
+    pub fn channel(&self, channel: Channel) -> Option<&ChannelProfile> {
+        self.channels.get(&channel)
+    }
+}
+
+fn check(
+    channel: &'static str,
+    field: &'static str,
+    value: f64,
+    positive: bool,
+) -> Result<(), ProfileError> {
+    let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
+    if ok {
+        return Ok(());
+    }
+    let expected = if positive { "positive" } else { "non-negative" };
+    Err(ProfileError::Value {
+        channel,
+        field,
+        value,
+        expected,
+    })
+}
+
+impl ChannelProfile {
+    fn validate(&self, channel: &'static str) -> Result<(), ProfileError> {
+        check(
+            channel,
+            "white_noise_density",
+            self.white_noise_density,
+            false,
+        )?;
+        check(
+            channel,
+            "bias_random_walk_density",
+            self.bias_random_walk_density,
+            false,
+        )?;
+        check(
+            channel,
+            "turn_on_bias_sigma",
+            self.turn_on_bias_sigma,
+            false,
+        )?;
+        check(channel, "quantization_step", self.quantization_step, false)?;
+        check(
+            channel,
+            "|bias_temperature_coefficient_per_c|",
+            self.bias_temperature_coefficient_per_c.abs(),
+            false,
+        )?;
+        let sf_tempco = self.scale_factor_temperature_coefficient_ppm_per_c.abs();
+        check(
+            channel,
+            "|scale_factor_temperature_coefficient_ppm_per_c|",
+            sf_tempco,
+            false,
+        )?;
+        if let Some(sf) = self.scale_factor_gauss_markov {
+            check(
+                channel,
+                "scale_factor_gauss_markov.correlation_time_s",
+                sf.correlation_time_s,
+                true,
+            )?;
+            check(
+                channel,
+                "scale_factor_gauss_markov.sigma_ppm",
+                sf.sigma_ppm,
+                false,
+            )?;
+        }
+        self.validate_table(channel)
+    }
+
+    fn validate_table(&self, channel: &'static str) -> Result<(), ProfileError> {
+        if self.bias_gauss_markov.is_empty() {
+            return Err(ProfileError::EmptyTable(channel));
+        }
+        for point in &self.bias_gauss_markov {
+            check(
+                channel,
+                "bias_gauss_markov.temperature_c",
+                point.temperature_c.abs(),
+                false,
+            )?;
+            check(
+                channel,
+                "bias_gauss_markov.correlation_time_s",
+                point.correlation_time_s,
+                true,
+            )?;
+            check(channel, "bias_gauss_markov.sigma", point.sigma, true)?;
+        }
+        match self
+            .bias_gauss_markov
+            .windows(2)
+            .find(|w| w[0].temperature_c >= w[1].temperature_c)
+        {
+            Some(w) => Err(ProfileError::TableOrder {
+                channel,
+                previous_c: w[0].temperature_c,
+                next_c: w[1].temperature_c,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// The Gauss-Markov bias at `temperature_c` (monotone cubic in ln Tc and ln σ).
+    pub fn bias_at(&self, temperature_c: f64) -> BiasAt {
+        let temps: Vec<f64> = self
+            .bias_gauss_markov
+            .iter()
+            .map(|p| p.temperature_c)
+            .collect();
+        let ln_tc: Vec<f64> = self
+            .bias_gauss_markov
+            .iter()
+            .map(|p| p.correlation_time_s.ln())
+            .collect();
+        let ln_sigma: Vec<f64> = self
+            .bias_gauss_markov
+            .iter()
+            .map(|p| p.sigma.ln())
+            .collect();
+        BiasAt {
+            correlation_time_s: monotone_cubic(&temps, &ln_tc, temperature_c).exp(),
+            sigma: monotone_cubic(&temps, &ln_sigma, temperature_c).exp(),
+        }
+    }
+}
+
+/// Fritsch-Carlson monotone cubic Hermite interpolation of (xs, ys) at `x`; the end values are
+/// held outside [xs₀, xsₙ]. `xs` strictly increasing and non-empty.
+pub fn monotone_cubic(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let n = xs.len();
+    if n == 1 || x <= xs[0] {
+        return ys[0];
+    }
+    if x >= xs[n - 1] {
+        return ys[n - 1];
+    }
+    let k = xs.partition_point(|&v| v <= x) - 1;
+    let slopes = hermite_slopes(xs, ys);
+    let h = xs[k + 1] - xs[k];
+    let t = (x - xs[k]) / h;
+    let (t2, t3) = (t * t, t * t * t);
+    (2.0 * t3 - 3.0 * t2 + 1.0) * ys[k]
+        + (t3 - 2.0 * t2 + t) * h * slopes[k]
+        + (-2.0 * t3 + 3.0 * t2) * ys[k + 1]
+        + (t3 - t2) * h * slopes[k + 1]
+}
+
+/// Tangents at the knots: zero at local extrema, the harmonic-mean form elsewhere (Fritsch &
+/// Butland 1984, the variant used by PCHIP), one-sided at the ends.
+fn hermite_slopes(xs: &[f64], ys: &[f64]) -> Vec<f64> {
+    let secants: Vec<f64> = xs
+        .windows(2)
+        .zip(ys.windows(2))
+        .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+        .collect();
+    let n = xs.len();
+    let mut slopes = vec![0.0; n];
+    slopes[0] = secants[0];
+    slopes[n - 1] = secants[n - 2];
+    for k in 1..n - 1 {
+        let (a, b) = (secants[k - 1], secants[k]);
+        if a * b > 0.0 {
+            let (h0, h1) = (xs[k] - xs[k - 1], xs[k + 1] - xs[k]);
+            let (w1, w2) = (2.0 * h1 + h0, h1 + 2.0 * h0);
+            slopes[k] = (w1 + w2) / (w1 / a + w2 / b);
+        }
+    }
+    slopes
+}
+
+/// The temperatures of the default chamber campaign, °C.
+pub const DEFAULT_TEMPERATURES_C: [f64; 6] = [-40.0, -20.0, 0.0, 20.0, 40.0, 60.0];
+
+/// Gyro bias correlation times at the default temperatures, s (x axis; y ×0.8, z ×1.25).
+/// Not monotonic in temperature, spanning tens of seconds to half an hour, as reported for
+/// MEMS gyros.
+const GYRO_TC_S: [f64; 6] = [40.0, 110.0, 300.0, 150.0, 700.0, 1800.0];
+/// Gyro bias σ at the default temperatures, as multiples of the datasheet figure.
+const GYRO_SIGMA_SCALE: [f64; 6] = [1.5, 1.2, 0.9, 1.0, 1.25, 1.7];
+/// Accelerometer bias correlation times, s (x axis; y ×0.8, z ×1.25).
+const ACCEL_TC_S: [f64; 6] = [60.0, 25.0, 180.0, 400.0, 250.0, 900.0];
+/// Accelerometer bias σ, multiples of the datasheet figure.
+const ACCEL_SIGMA_SCALE: [f64; 6] = [1.4, 1.1, 1.0, 0.9, 1.2, 1.6];
+/// Per-axis multipliers of Tc and σ (x, y, z).
+const AXIS_TC_SCALE: [f64; 3] = [1.0, 0.8, 1.25];
+const AXIS_SIGMA_SCALE: [f64; 3] = [1.0, 1.1, 0.9];
+
+/// Ratio of the Allan-deviation peak of a first-order Gauss-Markov process to its σ (≈ 0.62 at
+/// τ ≈ 1.89 Tc); used to turn a datasheet "in-run bias stability" into a Gauss-Markov σ.
+pub const GAUSS_MARKOV_ADEV_PEAK_RATIO: f64 = 0.62;
+
+/// The built-in ADIS16364-like profile, from the datasheet figures quoted by the paper
+/// (method.md): gyro ARW 2 deg/√h, in-run bias stability 0.007 deg/s, initial bias ±3 deg/s
+/// (3σ), bias tempco ±0.01 deg/s/°C, LSB 0.05 deg/s; accelerometer VRW 0.12 m/s/√h, in-run
+/// bias stability 0.1 mg, initial bias ±8 mg (3σ), bias tempco ±0.05 mg/°C, LSB 1 mg.
+/// Correlation times vary with temperature, not monotonically (see the tables above).
+pub fn adis16364_like() -> SensorProfile {
+    let channels = Channel::ALL
+        .iter()
+        .map(|&c| (c, default_channel(c)))
+        .collect();
+    SensorProfile {
+        name: "ADIS16364-like (built-in)".into(),
+        reference_temperature_c: 25.0,
+        channels,
+    }
+}
+
+fn default_channel(channel: Channel) -> ChannelProfile {
+    let axis = channel.index() % 3;
+    let tempco_sign = [1.0, -0.6, 0.8][axis];
+    match channel.sensor() {
+        Sensor::Gyro => ChannelProfile {
+            white_noise_density: arw_deg_per_sqrt_h_to_rad_per_sqrt_s(2.0),
+            bias_gauss_markov: table(&GYRO_TC_S, &GYRO_SIGMA_SCALE, deg_to_rad(0.007), axis),
+            bias_random_walk_density: 0.0,
+            turn_on_bias_sigma: deg_to_rad(1.0),
+            bias_temperature_coefficient_per_c: tempco_sign * deg_to_rad(0.01),
+            scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 40.0,
+            scale_factor_gauss_markov: None,
+            quantization_step: deg_to_rad(0.05),
+        },
+        Sensor::Accelerometer => ChannelProfile {
+            white_noise_density: vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(0.12),
+            bias_gauss_markov: table(&ACCEL_TC_S, &ACCEL_SIGMA_SCALE, mg_to_m_per_s2(0.1), axis),
+            bias_random_walk_density: 0.0,
+            turn_on_bias_sigma: mg_to_m_per_s2(8.0 / 3.0),
+            bias_temperature_coefficient_per_c: tempco_sign * mg_to_m_per_s2(0.05),
+            scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 25.0,
+            scale_factor_gauss_markov: None,
+            quantization_step: mg_to_m_per_s2(1.0),
+        },
+    }
+}
+
+fn table(
+    tc_s: &[f64; 6],
+    sigma_scale: &[f64; 6],
+    stability: f64,
+    axis: usize,
+) -> Vec<GaussMarkovPoint> {
+    let sigma = stability / GAUSS_MARKOV_ADEV_PEAK_RATIO;
+    (0..6)
+        .map(|k| GaussMarkovPoint {
+            temperature_c: DEFAULT_TEMPERATURES_C[k],
+            correlation_time_s: tc_s[k] * AXIS_TC_SCALE[axis],
+            sigma: sigma * sigma_scale[k] * AXIS_SIGMA_SCALE[axis],
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_profile_is_valid_and_hits_its_table_points() {
+        let profile = adis16364_like();
+        profile.validate().unwrap();
+        let gy = profile.channel(Channel::Gy).unwrap();
+        let at = gy.bias_at(20.0);
+        assert!((at.correlation_time_s - 150.0 * 0.8).abs() < 1e-9);
+        let sigma = deg_to_rad(0.007) / 0.62 * 1.1;
+        assert!((at.sigma - sigma).abs() < 1e-15);
+    }
+
+    #[test]
+    fn interpolation_stays_between_neighbours_and_is_continuous() {
+        let gx = adis16364_like().channels[&Channel::Gx].clone();
+        for k in 0..5 {
+            let (a, b) = (gx.bias_gauss_markov[k], gx.bias_gauss_markov[k + 1]);
+            let (lo, hi) = (
+                a.correlation_time_s.min(b.correlation_time_s),
+                a.correlation_time_s.max(b.correlation_time_s),
+            );
+            for step in 0..=20 {
+                let t = a.temperature_c + (b.temperature_c - a.temperature_c) * step as f64 / 20.0;
+                let tc = gx.bias_at(t).correlation_time_s;
+                assert!(
+                    tc >= lo * (1.0 - 1e-12) && tc <= hi * (1.0 + 1e-12),
+                    "{t} °C: {tc}"
+                );
+            }
+        }
+        // Continuity across a knot (Hermite pieces share the knot value).
+        let left = gx.bias_at(20.0 - 1e-9).correlation_time_s;
+        let right = gx.bias_at(20.0 + 1e-9).correlation_time_s;
+        assert!((left - right).abs() < 1e-6);
+        // End values held outside the table.
+        assert_eq!(gx.bias_at(-60.0).correlation_time_s, 40.0);
+    }
+
+    #[test]
+    fn monotone_cubic_reproduces_a_straight_line_exactly() {
+        // On collinear data all secants equal the slope, so the Hermite cubic is that line.
+        let xs = [0.0, 1.0, 3.0, 4.0];
+        let ys: Vec<f64> = xs.iter().map(|x| 2.0 * x - 1.0).collect();
+        for x in [0.5, 1.7, 2.9, 3.3] {
+            assert!((monotone_cubic(&xs, &ys, x) - (2.0 * x - 1.0)).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn invalid_profiles_are_named() {
+        let mut profile = adis16364_like();
+        profile.channels.remove(&Channel::Az);
+        assert_eq!(profile.validate(), Err(ProfileError::MissingChannel("az")));
+        let mut profile = adis16364_like();
+        profile
+            .channels
+            .get_mut(&Channel::Gx)
+            .unwrap()
+            .bias_gauss_markov[1]
+            .correlation_time_s = -1.0;
+        assert!(matches!(
+            profile.validate(),
+            Err(ProfileError::Value { channel: "gx", .. })
+        ));
+    }
+}
