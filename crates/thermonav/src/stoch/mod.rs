@@ -1,3 +1,4 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
 //! models, Gauss-Markov models and Allan variance.
 pub mod bank;
+pub mod noisy_gauss_markov;
