@@ -1,7 +1,6 @@
-//! The Earth model: WGS84 ellipsoid, normal gravity and Earth rate.
-//!
-//! Radii of curvature, transport rate and the geodetic/ECEF/NED conversions join this module
-//! with the strapdown navigation.
+//! The Earth model: WGS84 ellipsoid, normal gravity, Earth and transport rates, radii of
+//! curvature and the geodetic / ECEF / NED conversions.
 
 pub mod gravity;
+pub mod position;
 pub mod wgs84;

@@ -1,0 +1,25 @@
+//! Integration tests of the thermonav library against independent oracles.
+
+mod geo;
+
+use std::path::PathBuf;
+
+/// Path of a file under `../shared/data` (the repository sits beside `shared/`).
+pub fn shared_data(relative: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data")
+        .join(relative)
+}
+
+/// Path of a committed oracle file under `tests/data`.
+pub fn oracle_data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// Parses a committed oracle JSON file.
+pub fn oracle_json(name: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(oracle_data(name)).expect("oracle file exists");
+    serde_json::from_str(&text).expect("oracle file is JSON")
+}
