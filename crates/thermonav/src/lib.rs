@@ -20,6 +20,7 @@
 //! - [`frames`]: vectors and rotations typed by frame (body FRD, NED, ECEF).
 //! - [`geo`]: WGS84, normal gravity, Earth rate.
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
+//! - [`ins`]: strapdown mechanization in NED.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
@@ -28,6 +29,7 @@
 pub mod frames;
 pub mod geo;
 pub mod imu;
+pub mod ins;
 pub mod signal;
 pub mod sim;
 pub mod stoch;
