@@ -96,7 +96,10 @@ fn update_velocity(
     Vector::from_raw(state.velocity.raw() + specific_force_part + (gravity - coriolis) * dt)
 }
 
-fn update_position(
+/// The position update of [`mechanize`]: latitude, longitude and height from the mean of the
+/// old and new NED velocity, with the radii at mid-interval. Trajectory generators integrate
+/// positions with this same rule so that the ideal IMU inverts the mechanization exactly.
+pub fn update_position(
     position: &Geodetic,
     v_old: &Vector<Ned>,
     v_new: &Vector<Ned>,

@@ -14,13 +14,12 @@
 //! the actual dt_k of its sample.
 
 use super::clock::{ClockError, SampleClock};
+use super::errors::{ChannelErrors, gauss_markov_step, standard_normal};
 use super::profile::{ChannelProfile, ProfileError, SensorProfile};
 use super::rng::{SimRng, named_rng};
 use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::time::Timestamp;
-use rand::Rng;
-use rand_distr::{Distribution, StandardNormal};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -165,18 +164,23 @@ pub fn simulate_chamber_run(
     for channel in Channel::ALL {
         let p = &profile.channels[&channel];
         let mut rng = stream(channel.name());
+        let mut errors = ChannelErrors::new(
+            p,
+            profile.reference_temperature_c,
+            run.set_point_c,
+            &mut rng,
+        );
         let truth = channel_truth(
             p,
+            &errors,
             profile.reference_temperature_c,
             run.set_point_c,
             signal[channel.index()],
             channel,
-            &mut rng,
         );
         series.channels[channel.index()] = channel_values(
-            p,
-            &truth,
-            profile.reference_temperature_c,
+            &mut errors,
+            truth.true_signal,
             &temperature_c,
             &dt_s,
             &mut rng,
@@ -224,25 +228,15 @@ fn intervals_s(time: &[Timestamp]) -> Vec<f64> {
     dt
 }
 
-fn normal(rng: &mut impl Rng) -> f64 {
-    StandardNormal.sample(rng)
-}
-
-/// One exact Gauss-Markov step: x_k = φ x_{k−1} + √(σ²(1 − φ²)) z, φ = exp(−dt/Tc).
-fn gauss_markov_step(previous: f64, dt_s: f64, correlation_time_s: f64, sigma: f64, z: f64) -> f64 {
-    let phi = (-dt_s / correlation_time_s).exp();
-    phi * previous + sigma * (1.0 - phi * phi).max(0.0).sqrt() * z
-}
-
 /// Set point plus a stationary Gauss-Markov wander.
 fn chamber_temperature(run: &ChamberRun, dt_s: &[f64], rng: &mut SimRng) -> Vec<f64> {
     let w = run.wander;
-    let mut x = w.sigma_c * normal(rng);
+    let mut x = w.sigma_c * standard_normal(rng);
     dt_s.iter()
         .enumerate()
         .map(|(k, &dt)| {
             if k > 0 {
-                x = gauss_markov_step(x, dt, w.correlation_time_s, w.sigma_c, normal(rng));
+                x = gauss_markov_step(x, dt, w.correlation_time_s, w.sigma_c, standard_normal(rng));
             }
             run.set_point_c + x
         })
@@ -251,13 +245,13 @@ fn chamber_temperature(run: &ChamberRun, dt_s: &[f64], rng: &mut SimRng) -> Vec<
 
 fn channel_truth(
     p: &ChannelProfile,
+    errors: &ChannelErrors<'_>,
     reference_c: f64,
     set_point_c: f64,
     true_signal: f64,
     channel: Channel,
-    rng: &mut SimRng,
 ) -> ChannelTruth {
-    let bias = p.bias_at(set_point_c);
+    let bias = errors.bias_parameters();
     ChannelTruth {
         unit: channel.si_unit(SampleKind::Rates),
         gauss_markov: TrueGaussMarkov {
@@ -266,61 +260,26 @@ fn channel_truth(
         },
         white_noise_density: p.white_noise_density,
         rate_random_walk: p.bias_random_walk_density,
-        turn_on_bias: p.turn_on_bias_sigma * normal(rng),
+        turn_on_bias: errors.turn_on_bias(),
         temperature_bias: p.bias_temperature_coefficient_per_c * (set_point_c - reference_c),
         true_signal,
         quantization_step: p.quantization_step,
     }
 }
 
-/// The measured values of one channel. The Gauss-Markov processes start from their stationary
-/// distribution, so the record has no warm-up transient.
+/// The measured values of one channel (the Gauss-Markov processes start stationary, so the
+/// record has no warm-up transient).
 fn channel_values(
-    p: &ChannelProfile,
-    truth: &ChannelTruth,
-    reference_c: f64,
+    errors: &mut ChannelErrors<'_>,
+    u: f64,
     temperature_c: &[f64],
     dt_s: &[f64],
     rng: &mut SimRng,
 ) -> Vec<f64> {
-    let gm = truth.gauss_markov;
-    let sf_gm = p.scale_factor_gauss_markov;
-    let mut bias_gm = gm.sigma * normal(rng);
-    let mut sf_gm_ppm = sf_gm.map_or(0.0, |s| s.sigma_ppm * normal(rng));
-    let mut bias_rw = 0.0;
-    let mut values = Vec::with_capacity(dt_s.len());
-    for (k, (&dt, &temp)) in dt_s.iter().zip(temperature_c).enumerate() {
-        if k > 0 {
-            bias_gm = gauss_markov_step(bias_gm, dt, gm.correlation_time_s, gm.sigma, normal(rng));
-            bias_rw += p.bias_random_walk_density * dt.sqrt() * normal(rng);
-            if let Some(s) = sf_gm {
-                sf_gm_ppm = gauss_markov_step(
-                    sf_gm_ppm,
-                    dt,
-                    s.correlation_time_s,
-                    s.sigma_ppm,
-                    normal(rng),
-                );
-            }
-        }
-        let delta_t = temp - reference_c;
-        let scale_ppm = p.scale_factor_temperature_coefficient_ppm_per_c * delta_t + sf_gm_ppm;
-        let bias =
-            truth.turn_on_bias + p.bias_temperature_coefficient_per_c * delta_t + bias_gm + bias_rw;
-        let white = p.white_noise_density / dt.sqrt() * normal(rng);
-        let value = (1.0 + scale_ppm * 1e-6) * truth.true_signal + bias + white;
-        values.push(quantize(value, p.quantization_step));
-    }
-    values
-}
-
-/// Rounds to the nearest multiple of `step` (no change for step 0).
-fn quantize(value: f64, step: f64) -> f64 {
-    if step > 0.0 {
-        (value / step).round() * step
-    } else {
-        value
-    }
+    dt_s.iter()
+        .zip(temperature_c)
+        .map(|(&dt, &temp)| errors.measure(u, dt, temp, rng))
+        .collect()
 }
 
 #[cfg(test)]

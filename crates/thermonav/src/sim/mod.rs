@@ -12,5 +12,6 @@
 
 pub mod chamber;
 pub mod clock;
+pub mod errors;
 pub mod profile;
 pub mod rng;

@@ -1,0 +1,134 @@
+//! The error process of one inertial channel, stepped sample by sample with the actual dt.
+//!
+//! y_k = (1 + s_k·1e-6) u_k + b_on + c (T_k − T_ref) + b_GM,k + b_RW,k + n_k, then quantised,
+//! where s_k is the scale-factor error in ppm (temperature term plus an optional Gauss-Markov
+//! term), b_on the turn-on bias, c the bias temperature coefficient, b_GM the Gauss-Markov bias
+//! (exact step φ_k = exp(−dt_k/Tc), driving variance σ²(1 − φ_k²)), b_RW a random walk
+//! (variance K² dt_k per step) and n_k white noise of density N averaged over dt_k (variance
+//! N²/dt_k). The Gauss-Markov processes start from their stationary distributions.
+
+use super::profile::{BiasAt, ChannelProfile};
+use rand::Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+/// Draws a standard normal variate.
+pub fn standard_normal(rng: &mut impl Rng) -> f64 {
+    StandardNormal.sample(rng)
+}
+
+/// One exact Gauss-Markov step: x_k = φ x_{k−1} + √(σ²(1 − φ²)) z, φ = exp(−dt/Tc).
+pub fn gauss_markov_step(
+    previous: f64,
+    dt_s: f64,
+    correlation_time_s: f64,
+    sigma: f64,
+    z: f64,
+) -> f64 {
+    let phi = (-dt_s / correlation_time_s).exp();
+    phi * previous + sigma * (1.0 - phi * phi).max(0.0).sqrt() * z
+}
+
+/// Rounds to the nearest multiple of `step` (no change for step 0).
+pub fn quantize(value: f64, step: f64) -> f64 {
+    if step > 0.0 {
+        (value / step).round() * step
+    } else {
+        value
+    }
+}
+
+/// The running error state of one channel.
+#[derive(Debug, Clone)]
+pub struct ChannelErrors<'a> {
+    profile: &'a ChannelProfile,
+    bias: BiasAt,
+    reference_temperature_c: f64,
+    turn_on_bias: f64,
+    bias_gm: f64,
+    bias_rw: f64,
+    scale_gm_ppm: f64,
+    started: bool,
+}
+
+impl<'a> ChannelErrors<'a> {
+    /// A channel at operating temperature `temperature_c` (which sets Tc and σ of the bias),
+    /// with its turn-on bias and the initial Gauss-Markov states drawn from `rng`.
+    pub fn new(
+        profile: &'a ChannelProfile,
+        reference_temperature_c: f64,
+        temperature_c: f64,
+        rng: &mut impl Rng,
+    ) -> Self {
+        let bias = profile.bias_at(temperature_c);
+        let turn_on_bias = profile.turn_on_bias_sigma * standard_normal(rng);
+        let bias_gm = bias.sigma * standard_normal(rng);
+        let scale_gm_ppm = profile
+            .scale_factor_gauss_markov
+            .map_or(0.0, |s| s.sigma_ppm * standard_normal(rng));
+        Self {
+            profile,
+            bias,
+            reference_temperature_c,
+            turn_on_bias,
+            bias_gm,
+            bias_rw: 0.0,
+            scale_gm_ppm,
+            started: false,
+        }
+    }
+
+    /// The Gauss-Markov bias parameters in force.
+    pub fn bias_parameters(&self) -> BiasAt {
+        self.bias
+    }
+
+    /// The turn-on bias drawn for this run.
+    pub fn turn_on_bias(&self) -> f64 {
+        self.turn_on_bias
+    }
+
+    /// The measurement of true value `u` over an interval of `dt_s` at temperature
+    /// `temperature_c`; the processes step first (except for the very first sample).
+    pub fn measure(&mut self, u: f64, dt_s: f64, temperature_c: f64, rng: &mut impl Rng) -> f64 {
+        let p = self.profile;
+        if self.started {
+            self.step(dt_s, rng);
+        }
+        self.started = true;
+        let delta_t = temperature_c - self.reference_temperature_c;
+        let scale_ppm =
+            p.scale_factor_temperature_coefficient_ppm_per_c * delta_t + self.scale_gm_ppm;
+        let bias = self.turn_on_bias
+            + p.bias_temperature_coefficient_per_c * delta_t
+            + self.bias_gm
+            + self.bias_rw;
+        let white = p.white_noise_density / dt_s.sqrt() * standard_normal(rng);
+        quantize(
+            (1.0 + scale_ppm * 1e-6) * u + bias + white,
+            p.quantization_step,
+        )
+    }
+
+    fn step(&mut self, dt_s: f64, rng: &mut impl Rng) {
+        let p = self.profile;
+        self.bias_gm = gauss_markov_step(
+            self.bias_gm,
+            dt_s,
+            self.bias.correlation_time_s,
+            self.bias.sigma,
+            standard_normal(rng),
+        );
+        if p.bias_random_walk_density > 0.0 {
+            self.bias_rw += p.bias_random_walk_density * dt_s.sqrt() * standard_normal(rng);
+        }
+        if let Some(s) = p.scale_factor_gauss_markov {
+            self.scale_gm_ppm = gauss_markov_step(
+                self.scale_gm_ppm,
+                dt_s,
+                s.correlation_time_s,
+                s.sigma_ppm,
+                standard_normal(rng),
+            );
+        }
+    }
+}
