@@ -13,5 +13,7 @@
 pub mod chamber;
 pub mod clock;
 pub mod errors;
+pub mod ideal_imu;
+pub mod motion;
 pub mod profile;
 pub mod rng;

@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav library against independent oracles.
 
 mod geo;
+mod ideal_imu;
 mod ins;
 
 use std::path::PathBuf;
