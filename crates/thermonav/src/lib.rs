@@ -17,6 +17,7 @@
 //! ## Modules
 //! - [`time`]: exact timestamps and durations.
 //! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
+//! - [`filter`]: generic UKF and EKF steps, sigma points, chi-square gating.
 //! - [`frames`]: vectors and rotations typed by frame (body FRD, NED, ECEF).
 //! - [`geo`]: WGS84, normal gravity, Earth rate.
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
@@ -26,6 +27,7 @@
 //!   temperature model bank.
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
+pub mod filter;
 pub mod frames;
 pub mod geo;
 pub mod imu;
