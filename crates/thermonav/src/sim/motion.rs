@@ -284,7 +284,7 @@ pub struct Trajectory {
     pub states: Vec<NavState>,
 }
 
-/// Samples `motion` at `rate_hz` over its whole duration.
+/// Samples `motion` at `rate_hz` over its whole duration (a regular grid from time zero).
 ///
 /// # Errors
 /// [`MotionError`] for an invalid definition or rate.
@@ -292,7 +292,6 @@ pub fn generate_trajectory(
     motion: &MotionDefinition,
     rate_hz: f64,
 ) -> Result<Trajectory, MotionError> {
-    motion.validate()?;
     if !(rate_hz.is_finite() && rate_hz > 0.0 && rate_hz <= 1e5) {
         return Err(MotionError::Value {
             what: "rate_hz".into(),
@@ -301,26 +300,44 @@ pub fn generate_trajectory(
         });
     }
     let n = (motion.duration_s() * rate_hz).floor() as usize + 1;
+    let times: Vec<Timestamp> = (0..n)
+        .map(|k| Timestamp::from_nanos((k as f64 * 1e9 / rate_hz).round() as i64))
+        .collect();
+    generate_trajectory_at(motion, &times)
+}
+
+/// Samples `motion` at the given times (seconds from the motion's start, strictly increasing;
+/// jittered logger times are fine). Positions are integrated from the first time on.
+///
+/// # Errors
+/// [`MotionError`] for an invalid definition or times that do not increase.
+pub fn generate_trajectory_at(
+    motion: &MotionDefinition,
+    times: &[Timestamp],
+) -> Result<Trajectory, MotionError> {
+    motion.validate()?;
+    if let Some(w) = times.windows(2).find(|w| w[1] <= w[0]) {
+        return Err(MotionError::Value {
+            what: "sample time".into(),
+            value: w[1].as_seconds(),
+            expected: "strictly increasing",
+        });
+    }
     let start =
         Geodetic::from_degrees(motion.start.lat_deg, motion.start.lon_deg, motion.start.h_m);
-    let mut states = Vec::with_capacity(n);
-    let mut position = start;
-    let mut previous_velocity = None;
-    for k in 0..n {
-        let nanos = (k as f64 * 1e9 / rate_hz).round() as i64;
-        let time = Timestamp::from_nanos(nanos);
+    let mut states: Vec<NavState> = Vec::with_capacity(times.len());
+    for &time in times {
         let kin = motion.kinematics(time.as_seconds());
         let velocity = velocity_of(&kin);
-        if let (Some(v_old), Some(prev)) = (previous_velocity, states.last()) {
-            let prev: &NavState = prev;
-            position = update_position(
+        let position = match states.last() {
+            Some(prev) => update_position(
                 &prev.position,
-                &v_old,
+                &prev.velocity,
                 &velocity,
                 time.since(prev.time).as_seconds(),
-            );
-        }
-        previous_velocity = Some(velocity);
+            ),
+            None => start,
+        };
         let attitude =
             Rotation::<Body, Ned>::from_euler_zyx(kin.roll_rad, kin.pitch_rad, kin.heading_rad);
         states.push(NavState {
