@@ -4,4 +4,53 @@
 //! Wavelet de-noising, the paper's named alternative, belongs here as a sibling module when it
 //! comes; it would take the same `&[f64]` in and give the same length out.
 
+pub mod convolution;
+pub mod decimate;
+pub mod kaiser;
 pub mod timestamps;
+pub mod zero_phase;
+
+/// Why a signal-conditioning step cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SignalError {
+    /// An invalid filter specification.
+    #[error("{message}")]
+    Spec {
+        /// What is wrong.
+        message: String,
+    },
+    /// The signal is too short for the edge extension.
+    #[error(
+        "{samples} samples are too few for a {taps}-tap zero-phase filter: at least {needed} are needed"
+    )]
+    TooShort {
+        /// Samples given.
+        samples: usize,
+        /// Samples needed.
+        needed: usize,
+        /// Taps of the filter.
+        taps: usize,
+    },
+    /// The one-pass mode needs an odd number of taps.
+    #[error("delay-compensated filtering needs an odd number of taps, the filter has {taps}")]
+    EvenTaps {
+        /// Taps of the filter.
+        taps: usize,
+    },
+    /// A NaN or infinite sample.
+    #[error("sample {index} is not a finite number")]
+    NonFinite {
+        /// Index of the sample.
+        index: usize,
+    },
+    /// Decimation impossible.
+    #[error("cannot decimate {input_rate_hz} Hz to {target_rate_hz} Hz: {reason}")]
+    Decimation {
+        /// Input rate.
+        input_rate_hz: f64,
+        /// Requested rate.
+        target_rate_hz: f64,
+        /// Why.
+        reason: String,
+    },
+}

@@ -3,6 +3,7 @@
 mod geo;
 mod ideal_imu;
 mod ins;
+mod signal;
 mod ukf;
 
 use std::path::PathBuf;

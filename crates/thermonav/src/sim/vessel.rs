@@ -1,0 +1,261 @@
+//! A harbour survey vessel: survey lines and turns at 1-6 m/s with wave-induced roll, pitch and
+//! heave; the true trajectory, the IMU (ideal increments through the sensor's error model at
+//! the operating temperature) and 1 Hz differential GNSS with dual-antenna heading.
+
+use super::clock::SampleClock;
+use super::errors::{ChannelErrors, standard_normal};
+use super::ideal_imu::ideal_increments;
+use super::motion::{Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory, WaveMotion, generate_trajectory_at};
+use super::profile::{ProfileError, SensorProfile};
+use super::rng::{SimRng, named_rng};
+use crate::frames::{Body, Vector};
+use crate::geo::position::Geodetic;
+use crate::gnss::{GnssFix, HeadingObservation};
+use crate::imu::{Channel, ImuSeries, SampleKind};
+use crate::ins::state::NavState;
+use crate::time::{NANOS_PER_SECOND, Timestamp};
+use serde::Serialize;
+
+/// GNSS receiver and antenna set-up.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GnssSettings {
+    /// Fix rate, Hz.
+    pub rate_hz: f64,
+    /// Position noise (white), north/east/down standard deviations, m.
+    pub position_sd_ned_m: [f64; 3],
+    /// Primary antenna position in the body frame relative to the IMU, m.
+    pub lever_arm_body_m: [f64; 3],
+    /// Secondary antenna relative to the primary, body frame, m (the heading baseline).
+    pub baseline_body_m: [f64; 3],
+    /// Carrier-phase position noise of each antenna across the baseline, m.
+    pub baseline_noise_m: f64,
+}
+
+impl Default for GnssSettings {
+    /// Differential code (DGPS) positions at 0.5 m horizontal / 1.0 m vertical, antenna 2.5 m
+    /// above the IMU, and the paper's 2.37 m fore-aft baseline with 5 mm carrier-phase noise
+    /// per antenna (heading sd = √2 · 5 mm / 2.37 m ≈ 0.17°).
+    fn default() -> Self {
+        Self {
+            rate_hz: 1.0,
+            position_sd_ned_m: [0.5, 0.5, 1.0],
+            lever_arm_body_m: [0.3, 0.0, -2.5],
+            baseline_body_m: [2.37, 0.0, 0.0],
+            baseline_noise_m: 0.005,
+        }
+    }
+}
+
+impl GnssSettings {
+    /// Heading standard deviation implied by the baseline: √2 σ / |b_horizontal|, rad.
+    pub fn heading_sd_rad(&self) -> f64 {
+        let b = self.baseline_body_m;
+        std::f64::consts::SQRT_2 * self.baseline_noise_m / b[0].hypot(b[1])
+    }
+}
+
+/// Everything a vessel run produces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VesselRecord {
+    /// True trajectory at the IMU times (the first state is the start, before the first IMU
+    /// sample).
+    pub reference: Trajectory,
+    /// IMU rates with errors, one sample per trajectory interval.
+    pub imu: ImuSeries,
+    /// GNSS fixes at the primary antenna.
+    pub gnss: Vec<GnssFix>,
+}
+
+/// Why a vessel run cannot be simulated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum VesselError {
+    /// The motion is invalid.
+    #[error(transparent)]
+    Motion(#[from] MotionError),
+    /// The profile is invalid.
+    #[error(transparent)]
+    Profile(#[from] ProfileError),
+    /// The clock or duration is invalid.
+    #[error(transparent)]
+    Clock(#[from] super::clock::ClockError),
+    /// A GNSS setting is invalid.
+    #[error("GNSS setting {what} = {value} must be finite and positive")]
+    Gnss {
+        /// Which setting.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
+}
+
+/// The built-in harbour survey: a 300 s transit at 5-6 m/s, then survey lines of 240 s at
+/// 2.5 m/s joined by 30 s U-turns (6°/s, alternately to starboard and port), until
+/// `duration_s`; roll 3° (6 s) + 1.5° (9.3 s), pitch 1.5° (5.1 s), heave 0.3 m (7 s).
+pub fn harbour_survey(duration_s: f64) -> MotionDefinition {
+    let seg = |duration_s: f64, acceleration_m_s2: f64, turn_deg_s: f64| MotionSegment {
+        duration_s,
+        acceleration_m_s2,
+        turn_rate_rad_s: turn_deg_s.to_radians(),
+        climb_rate_m_s: 0.0,
+    };
+    let mut segments = vec![seg(40.0, 0.1, 0.0), seg(60.0, 0.0, 0.5), seg(200.0, 0.005, 0.0), seg(30.0, -0.116, 0.0)];
+    let mut elapsed: f64 = segments.iter().map(|s| s.duration_s).sum();
+    let mut k = 0;
+    while elapsed < duration_s {
+        let line = seg(240.0_f64.min(duration_s - elapsed), 0.0, 0.0);
+        elapsed += line.duration_s;
+        segments.push(line);
+        if elapsed < duration_s {
+            let turn = seg(30.0_f64.min(duration_s - elapsed), 0.0, if k % 2 == 0 { 6.0 } else { -6.0 });
+            elapsed += turn.duration_s;
+            segments.push(turn);
+        }
+        k += 1;
+    }
+    let h = |amplitude: f64, period_s: f64, phase_rad: f64| Harmonic { amplitude, period_s, phase_rad };
+    MotionDefinition {
+        start: StartPoint { lat_deg: 44.6488, lon_deg: -63.5752, h_m: 5.0 },
+        initial_speed_m_s: 1.0,
+        initial_heading_rad: 40f64.to_radians(),
+        segments,
+        waves: WaveMotion {
+            roll: vec![h(3f64.to_radians(), 6.0, 0.0), h(1.5f64.to_radians(), 9.3, 1.1)],
+            pitch: vec![h(1.5f64.to_radians(), 5.1, 0.4)],
+            heave: vec![h(0.3, 7.0, 0.2)],
+        },
+        pitch: PitchModel::Level,
+    }
+}
+
+/// A vessel run: motion, operating temperature, IMU clock, GNSS set-up, seed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VesselRun {
+    /// The motion.
+    pub motion: MotionDefinition,
+    /// Sensor temperature during the run, °C.
+    pub temperature_c: f64,
+    /// IMU sampling clock.
+    pub clock: SampleClock,
+    /// GNSS set-up.
+    pub gnss: GnssSettings,
+    /// User seed.
+    pub seed: u64,
+}
+
+/// Simulates a vessel run.
+///
+/// # Errors
+/// [`VesselError`] for an invalid motion, profile, clock or GNSS setting.
+pub fn simulate_vessel(profile: &SensorProfile, run: &VesselRun) -> Result<VesselRecord, VesselError> {
+    profile.validate()?;
+    validate_gnss(&run.gnss)?;
+    let times = run.clock.timestamps(run.motion.duration_s(), &mut named_rng(run.seed, "vessel/clock"))?;
+    let reference = generate_trajectory_at(&run.motion, &times)?;
+    let imu = measured_imu(profile, run, &reference);
+    let gnss = gnss_fixes(&reference, &run.gnss, &mut named_rng(run.seed, "vessel/gnss"));
+    Ok(VesselRecord { reference, imu, gnss })
+}
+
+fn validate_gnss(g: &GnssSettings) -> Result<(), VesselError> {
+    let positive = |what: &'static str, value: f64| {
+        if value.is_finite() && value > 0.0 { Ok(()) } else { Err(VesselError::Gnss { what, value }) }
+    };
+    positive("rate_hz", g.rate_hz)?;
+    positive("baseline_noise_m", g.baseline_noise_m)?;
+    positive("baseline length", g.baseline_body_m[0].hypot(g.baseline_body_m[1]))?;
+    for (k, sd) in g.position_sd_ned_m.iter().enumerate() {
+        positive(["position_sd_n_m", "position_sd_e_m", "position_sd_d_m"][k], *sd)?;
+    }
+    Ok(())
+}
+
+/// IMU rates through each channel's error model at the run's temperature.
+fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory) -> ImuSeries {
+    let increments = ideal_increments(reference);
+    let mut series = ImuSeries::new(SampleKind::Rates);
+    series.time = increments.iter().map(|i| i.time).collect();
+    series.temperature_c = Some(vec![run.temperature_c; increments.len()]);
+    for channel in Channel::ALL {
+        let mut rng: SimRng = named_rng(run.seed, &format!("vessel/{}", channel.name()));
+        let p = &profile.channels[&channel];
+        let mut errors = ChannelErrors::new(p, profile.reference_temperature_c, run.temperature_c, &mut rng);
+        let axis = channel.index() % 3;
+        series.channels[channel.index()] = increments
+            .iter()
+            .map(|inc| {
+                let delta = if channel.index() < 3 { inc.delta_angle } else { inc.delta_velocity };
+                errors.measure(delta.to_array()[axis] / inc.dt_s, inc.dt_s, run.temperature_c, &mut rng)
+            })
+            .collect();
+    }
+    series
+}
+
+/// The state at time `t` from the nearest earlier state, moved along its velocity.
+fn state_at(reference: &Trajectory, t: Timestamp) -> Option<NavState> {
+    let k = reference.states.partition_point(|s| s.time <= t).checked_sub(1)?;
+    let s = reference.states[k];
+    let dt = t.since(s.time).as_seconds();
+    let rates = s.position.rates(&s.velocity);
+    let position = Geodetic {
+        latitude_rad: s.position.latitude_rad + rates[0] * dt,
+        longitude_rad: s.position.longitude_rad + rates[1] * dt,
+        height_m: s.position.height_m + rates[2] * dt,
+    };
+    Some(NavState { time: t, position, ..s })
+}
+
+/// Fixes at whole multiples of the GNSS interval within the reference.
+fn gnss_fixes(reference: &Trajectory, g: &GnssSettings, rng: &mut SimRng) -> Vec<GnssFix> {
+    let (Some(first), Some(last)) = (reference.states.first(), reference.states.last()) else {
+        return Vec::new();
+    };
+    let step_ns = (NANOS_PER_SECOND as f64 / g.rate_hz).round() as i64;
+    let mut fixes = Vec::new();
+    let mut t = Timestamp::from_nanos((first.time.as_nanos() / step_ns + 1) * step_ns);
+    while t <= last.time {
+        if let Some(state) = state_at(reference, t) {
+            fixes.push(gnss_fix(&state, g, rng));
+        }
+        t = Timestamp::from_nanos(t.as_nanos() + step_ns);
+    }
+    fixes
+}
+
+fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
+    let lever_n = state.attitude * Vector::<Body>::from_array(g.lever_arm_body_m);
+    let noise = g.position_sd_ned_m.map(|sd| sd * standard_normal(rng));
+    let offset_n = lever_n.to_array();
+    let antenna = displaced(&state.position, [offset_n[0] + noise[0], offset_n[1] + noise[1], offset_n[2] + noise[2]]);
+    let baseline_n = (state.attitude * Vector::<Body>::from_array(g.baseline_body_m)).to_array();
+    let across = g.baseline_noise_m * std::f64::consts::SQRT_2 * standard_normal(rng);
+    let length = baseline_n[0].hypot(baseline_n[1]);
+    let heading = baseline_n[1].atan2(baseline_n[0]) + across / length;
+    GnssFix {
+        time: state.time,
+        latitude_rad: antenna.latitude_rad,
+        longitude_rad: antenna.longitude_rad,
+        height_m: antenna.height_m,
+        position_sd_ned_m: Some(g.position_sd_ned_m),
+        velocity_ned_m_s: None,
+        heading: Some(HeadingObservation { heading_rad: wrap_pi(heading), sd_rad: g.heading_sd_rad() }),
+    }
+}
+
+/// The position `offset_ned_m` away from `p` (small offsets: curvature terms neglected,
+/// error ≪ 1 µm for metres).
+fn displaced(p: &Geodetic, offset_ned_m: [f64; 3]) -> Geodetic {
+    let rn = crate::geo::position::meridian_radius_m(p.latitude_rad) + p.height_m;
+    let re = crate::geo::position::transverse_radius_m(p.latitude_rad) + p.height_m;
+    Geodetic {
+        latitude_rad: p.latitude_rad + offset_ned_m[0] / rn,
+        longitude_rad: p.longitude_rad + offset_ned_m[1] / (re * p.latitude_rad.cos()),
+        height_m: p.height_m - offset_ned_m[2],
+    }
+}
+
+/// An angle wrapped to (−π, π].
+pub fn wrap_pi(angle_rad: f64) -> f64 {
+    let wrapped = angle_rad.rem_euclid(std::f64::consts::TAU);
+    if wrapped > std::f64::consts::PI { wrapped - std::f64::consts::TAU } else { wrapped }
+}
