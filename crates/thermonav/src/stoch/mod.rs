@@ -1,4 +1,6 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
 //! models, Gauss-Markov models and Allan variance.
+pub mod acf;
+pub mod ar;
 pub mod bank;
 pub mod noisy_gauss_markov;

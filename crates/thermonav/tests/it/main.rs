@@ -1,5 +1,6 @@
 //! Integration tests of the thermonav library against independent oracles.
 
+mod ar;
 mod geo;
 mod ideal_imu;
 mod ins;
