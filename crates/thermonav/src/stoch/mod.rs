@@ -3,4 +3,5 @@
 pub mod acf;
 pub mod ar;
 pub mod bank;
+pub mod gauss_markov;
 pub mod noisy_gauss_markov;

@@ -180,23 +180,32 @@ impl Bounds {
     }
 
     fn at_edge(&self, p: [f64; 2]) -> Option<&'static str> {
-        let near = |v: f64, b: f64| (v - b).abs() < 0.05;
-        if near(p[0], self.ln_tc[1]) {
+        if near_bound(p[0], self.ln_tc[1]) {
             Some(
                 "the likelihood keeps rising as Tc grows past twice the record length: the bias behaves as a random walk or drift over this record",
             )
-        } else if near(p[0], self.ln_tc[0]) {
+        } else if near_bound(p[0], self.ln_tc[0]) {
             Some(
                 "the likelihood peaks at Tc below the sampling interval: no correlation is visible, the channel looks white",
             )
-        } else if near(p[1], self.ln_rho[0]) || near(p[1], self.ln_rho[1]) {
+        } else if near_bound(p[1], self.ln_rho[1]) {
             Some(
-                "the white-noise share is at the edge of its search range: the Gauss-Markov and white parts cannot be separated",
+                "the white-noise share is at the top of its search range: the Gauss-Markov part cannot be separated from it",
             )
         } else {
             None
         }
     }
+
+    /// True when the white-noise share sits at the bottom of its range: the record is a pure
+    /// Gauss-Markov process as far as the data can tell.
+    fn white_negligible(&self, p: [f64; 2]) -> bool {
+        near_bound(p[1], self.ln_rho[0])
+    }
+}
+
+fn near_bound(value: f64, bound: f64) -> bool {
+    (value - bound).abs() < 0.05
 }
 
 /// Unit-scale Kalman pass: Σ v²/S and Σ ln S for Tc = e^{p0}, ρ = e^{p1}.
@@ -387,18 +396,29 @@ fn interval(record: &Record, bounds: &Bounds, p: [f64; 2]) -> [Option<f64>; 2] {
     let f = |a: f64, b: f64| concentrated(record, bounds, [p[0] + a, p[1] + b]);
     let f0 = f(0.0, 0.0);
     let h00 = (f(h, 0.0) - 2.0 * f0 + f(-h, 0.0)) / (h * h);
+    if bounds.white_negligible(p) {
+        // ρ sits on its lower bound (pure Gauss-Markov): the interval is the one-dimensional
+        // curvature in ln Tc.
+        return log_interval(p[0], -1.0 / h00, bounds);
+    }
     let h11 = (f(0.0, h) - 2.0 * f0 + f(0.0, -h)) / (h * h);
     let h01 = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4.0 * h * h);
     let det = h00 * h11 - h01 * h01;
-    let variance = -h11 / det;
-    let tc = p[0].exp();
-    if !(det > 0.0 && h00 < 0.0 && variance.is_finite() && variance > 0.0) {
+    if !(det > 0.0 && h00 < 0.0) {
+        return [None, None];
+    }
+    log_interval(p[0], -h11 / det, bounds)
+}
+
+/// exp(ln Tc ± 1.96 √variance), the upper side `None` past the search box.
+fn log_interval(ln_tc: f64, variance: f64, bounds: &Bounds) -> [Option<f64>; 2] {
+    if !(variance.is_finite() && variance > 0.0) {
         return [None, None];
     }
     let half = 1.959_963_984_540_054 * variance.sqrt();
-    let upper = p[0] + half;
+    let upper = ln_tc + half;
     [
-        Some(tc * (-half).exp()),
+        Some((ln_tc - half).exp()),
         (upper < bounds.ln_tc[1]).then(|| upper.exp()),
     ]
 }

@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav library against independent oracles.
 
 mod ar;
+mod gauss_markov;
 mod geo;
 mod ideal_imu;
 mod ins;
