@@ -1,7 +1,9 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
 //! models, Gauss-Markov models and Allan variance.
 pub mod acf;
+pub mod allan;
 pub mod ar;
 pub mod bank;
 pub mod gauss_markov;
+pub mod noise_terms;
 pub mod noisy_gauss_markov;

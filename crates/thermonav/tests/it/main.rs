@@ -1,5 +1,6 @@
 //! Integration tests of the thermonav library against independent oracles.
 
+mod allan;
 mod ar;
 mod gauss_markov;
 mod geo;

@@ -1,0 +1,290 @@
+//! Overlapping Allan deviation against allantools (real ADIS16405 data), Stable32 and the
+//! published NBS14 values; confidence limits against Stable32; noise terms against closed forms.
+
+use crate::shared_data;
+use rand_distr::{Distribution, StandardNormal};
+use thermonav::sim::rng::named_rng;
+use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
+use thermonav::stoch::noise_terms::{
+    avar_gauss_markov, avar_random_walk, avar_white, fit_noise_terms,
+};
+
+fn read_column(path: &str) -> Vec<f64> {
+    std::fs::read_to_string(shared_data(path))
+        .expect("shared data present")
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.trim().parse().expect("number"))
+        .collect()
+}
+
+/// Stable32 rows: (AF, #, alpha, min, sigma, max).
+fn stable32(path: &str) -> Vec<(usize, usize, i32, f64, f64, f64)> {
+    std::fs::read_to_string(shared_data(path))
+        .expect("shared data present")
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            (
+                f[0].parse().unwrap(),
+                f[2].parse().unwrap(),
+                f[3].parse().unwrap(),
+                f[4].parse().unwrap(),
+                f[5].parse().unwrap(),
+                f[6].parse().unwrap(),
+            )
+        })
+        .collect()
+}
+
+/// The slow, obviously correct definition: each second difference of phase,
+/// x_{i+2m} − 2x_{i+m} + x_i = Σ_j (y_{i+m+j} − y_{i+j}), summed sample by sample, O(N m) per τ.
+fn slow_oadev(y: &[f64], m: usize) -> f64 {
+    let n = y.len() + 1 - 2 * m;
+    let mut total = 0.0;
+    for i in 0..n {
+        let mut d = 0.0;
+        for j in 0..m {
+            d += y[i + m + j] - y[i + j];
+        }
+        total += d * d;
+    }
+    (total / (2.0 * (m * m) as f64 * n as f64)).sqrt()
+}
+
+#[test]
+fn fast_oadev_equals_the_slow_definition() {
+    // Same quantity: the slow version sums the second differences sample by sample. 1e-12
+    // relative is rounding.
+    let mut rng = named_rng(4, "allan-slow");
+    let y: Vec<f64> = (0..3000)
+        .map(|_| 1.0 + <StandardNormal as Distribution<f64>>::sample(&StandardNormal, &mut rng))
+        .collect();
+    let curve = overlapping_adev(
+        &y,
+        10.0,
+        &TauGrid::Explicit(vec![1, 2, 3, 7, 50, 300, 1500]),
+    )
+    .unwrap();
+    for (i, &m) in curve.averaging_factor.iter().enumerate() {
+        let slow = slow_oadev(&y, m);
+        assert!(
+            (curve.adev[i] / slow - 1.0).abs() < 1e-12,
+            "m {m}: {} vs {slow}",
+            curve.adev[i]
+        );
+        assert_eq!(curve.n_terms[i], 3000 - 2 * m + 1);
+    }
+}
+
+#[test]
+fn matches_allantools_on_the_real_adis16405_run() {
+    // allantools 2024.6 oadev(y, rate=100, data_type='freq') on all six channels, octave grid,
+    // printed with 10 significant digits: agreement to 1e-9 relative, identical term counts.
+    use std::io::{BufRead, BufReader};
+    let file =
+        std::fs::File::open(shared_data("smac-imudata/adis_16405_imu1.csv.gz")).expect("ADIS data");
+    let mut columns = vec![Vec::with_capacity(1_000_000); 6];
+    for line in BufReader::new(flate2::read::GzDecoder::new(file))
+        .lines()
+        .skip(1)
+    {
+        for (c, v) in line.expect("text").split(',').enumerate() {
+            columns[c].push(v.parse::<f64>().expect("number"));
+        }
+    }
+    let peer = std::fs::read_to_string(shared_data(
+        "peer-results-on-real-data/adis_16405_imu1_oadev_allantools.csv",
+    ))
+    .expect("peer");
+    let names = [
+        "Gyro_X", "Gyro_Y", "Gyro_Z", "Accel_X", "Accel_Y", "Accel_Z",
+    ];
+    for (c, name) in names.iter().enumerate() {
+        let curve = overlapping_adev(&columns[c], 100.0, &TauGrid::Octave).unwrap();
+        let rows: Vec<Vec<&str>> = peer
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect())
+            .filter(|f: &Vec<&str>| f[0] == *name)
+            .collect();
+        assert_eq!(rows.len(), curve.adev.len(), "{name}: number of taus");
+        for (i, row) in rows.iter().enumerate() {
+            assert_eq!(curve.averaging_factor[i], row[1].parse::<usize>().unwrap());
+            assert_eq!(curve.n_terms[i], row[3].parse::<usize>().unwrap());
+            let expected: f64 = row[4].parse().unwrap();
+            assert!(
+                (curve.adev[i] / expected - 1.0).abs() < 1e-9,
+                "{name} m {}: {} vs {expected}",
+                row[1],
+                curve.adev[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn matches_published_nbs14_values() {
+    // NIST SP 1065 pp. 107-108 (Stable32), 7 significant digits: 1e-6 relative.
+    let y = read_column("allantools/nbs14/nbs14_1000_frequency.txt");
+    let curve = overlapping_adev(&y, 1.0, &TauGrid::Explicit(vec![1, 10, 100])).unwrap();
+    for (got, expected) in curve.adev.iter().zip([0.2922319, 0.09159953, 0.03241343]) {
+        assert!((got / expected - 1.0).abs() < 1e-6, "{got} vs {expected}");
+    }
+    let ten = [
+        892.0, 809.0, 823.0, 798.0, 671.0, 644.0, 883.0, 903.0, 677.0,
+    ];
+    let curve = overlapping_adev(&ten, 1.0, &TauGrid::Explicit(vec![1, 2])).unwrap();
+    assert!(
+        (curve.adev[0] / 91.22945 - 1.0).abs() < 1e-6
+            && (curve.adev[1] / 85.95287 - 1.0).abs() < 1e-6
+    );
+}
+
+#[test]
+fn matches_stable32_on_pink_frequency_noise_with_tau0_42_s() {
+    // Stable32 prints 5 significant digits: 1e-4 relative (allantools' tolerance); τ = AF·42 s
+    // (its printed τ column has only 5 digits). Octave grid and '#' column identical.
+    let y = read_column("allantools/pink_frequency/pink_frequency.txt");
+    let rows = stable32("allantools/pink_frequency/s32_oadev_octave.txt");
+    let curve = overlapping_adev(&y, 1.0 / 42.0, &TauGrid::Octave).unwrap();
+    for (af, n, _, _, sigma, _) in rows.iter().take_while(|r| r.0 <= 2048) {
+        let i = curve
+            .averaging_factor
+            .iter()
+            .position(|m| m == af)
+            .expect("octave factor present");
+        assert_eq!(curve.n_terms[i], *n);
+        assert!((curve.tau_s[i] - *af as f64 * 42.0).abs() < 1e-9);
+        assert!(
+            (curve.adev[i] / sigma - 1.0).abs() < 1e-4,
+            "AF {af}: {} vs {sigma}",
+            curve.adev[i]
+        );
+    }
+}
+
+#[test]
+fn confidence_limits_follow_stable32_on_the_ocxo() {
+    // Stable32's OCXO octave table (0.683 confidence). Its deviations differ from ours by up to
+    // 1.3e-3 (Stable32 normalises the raw frequency differently), so the limits are compared
+    // relative to each program's own deviation. Stable32 uses Greenhall's EDF; our closed-form
+    // EDF gives limits within 0.5 % of its (see the module docs); the identified noise types
+    // must equal Stable32's wherever at least 30 averages exist (lag-1 autocorrelation method);
+    // below that both use the B1 ratio, which agrees at AF 1024 (19 averages).
+    let f = read_column("allantools/ocxo/ocxo_frequency.txt");
+    let y: Vec<f64> = f.iter().map(|v| v / 1e7 - 1.0).collect();
+    let rows = stable32("allantools/ocxo/oadev_octave.txt");
+    let factors: Vec<usize> = rows.iter().map(|r| r.0).collect();
+    let curve = overlapping_adev(&y, 1.0, &TauGrid::Explicit(factors)).unwrap();
+    let ci = confidence_intervals(&y, &curve, 0.683);
+    for (i, (af, _, alpha, low, sigma, high)) in rows.iter().enumerate() {
+        if y.len() / af >= 30 {
+            assert_eq!(ci.alpha[i], *alpha, "AF {af}: noise type");
+        }
+        if ci.alpha[i] != *alpha {
+            // With 9 and 4 averages (AF 2048, 4096) our B1 reading says random-walk FM where
+            // Stable32 says white FM; the limits then differ by design. Known gap, in the notes.
+            assert!(
+                y.len() / af < 10,
+                "AF {af}: noise types may differ only with very few averages"
+            );
+            continue;
+        }
+        let ours = (ci.low[i] / curve.adev[i], ci.high[i] / curve.adev[i]);
+        let theirs = (low / sigma, high / sigma);
+        assert!(
+            (ours.0 / theirs.0 - 1.0).abs() < 5e-3,
+            "AF {af}: low {ours:?} vs {theirs:?}"
+        );
+        assert!(
+            (ours.1 / theirs.1 - 1.0).abs() < 5e-3,
+            "AF {af}: high {ours:?} vs {theirs:?}"
+        );
+        assert!(ci.low[i] < curve.adev[i] && curve.adev[i] < ci.high[i]);
+    }
+}
+
+fn white_plus_walk(n: usize, rate: f64, white: f64, walk: f64, seed: u64) -> Vec<f64> {
+    let mut rng = named_rng(seed, "allan-terms");
+    let dt = 1.0 / rate;
+    let mut b = 0.0;
+    (0..n)
+        .map(|_| {
+            let z1: f64 = StandardNormal.sample(&mut rng);
+            let z2: f64 = StandardNormal.sample(&mut rng);
+            b += walk * dt.sqrt() * z2;
+            b + white / dt.sqrt() * z1
+        })
+        .collect()
+}
+
+#[test]
+fn noise_terms_recover_white_noise_and_rate_random_walk_densities() {
+    // N = 1e-3, K = 1e-5 at 100 Hz for 2e6 samples: the white region (slope −½) spans
+    // τ ≲ 10 s and the walk (slope +½) τ ≳ 1000 s. Each reading averages many τ whose
+    // individual relative errors are ~1/√(2 n_terms/m) ≤ 10 %; 10 % on N and 25 % on K (few
+    // long-τ points carry it) are three to four standard errors.
+    let y = white_plus_walk(2_000_000, 100.0, 1e-3, 1e-5, 5);
+    let curve = overlapping_adev(&y, 100.0, &TauGrid::Octave).unwrap();
+    let terms = fit_noise_terms(&curve);
+    let n = terms.random_walk.expect("white region");
+    assert!((n.value / 1e-3 - 1.0).abs() < 0.10, "N {}", n.value);
+    let k = terms.rate_random_walk.expect("walk region");
+    assert!((k.value / 1e-5 - 1.0).abs() < 0.25, "K {}", k.value);
+    assert!(
+        terms.bias_instability.is_some(),
+        "the floor between them reads as bias instability"
+    );
+}
+
+#[test]
+fn curve_of_white_gauss_markov_and_walk_follows_theory() {
+    // The simulated sum's curve against the closed-form sum of the three Allan variances; the
+    // estimate's relative error at τ is about 1/√(edf/2); 4 standard errors or at least 3 %.
+    let (white, sigma, tc, walk) = (2e-3, 5e-4, 20.0, 2e-6);
+    let rate = 50.0;
+    let n = 1_500_000;
+    let mut rng = named_rng(8, "allan-theory");
+    let (dt, mut gm, mut rw) = (1.0 / rate, 0.0, 0.0);
+    let phi = f64::exp(-dt / tc);
+    let y: Vec<f64> = (0..n)
+        .map(|_| {
+            let z: [f64; 3] = [0, 1, 2].map(|_| StandardNormal.sample(&mut rng));
+            gm = phi * gm + sigma * (1.0 - phi * phi).sqrt() * z[0];
+            rw += walk * dt.sqrt() * z[1];
+            gm + rw + white / dt.sqrt() * z[2]
+        })
+        .collect();
+    let curve: AllanCurve = overlapping_adev(&y, rate, &TauGrid::Octave).unwrap();
+    let ci = confidence_intervals(&y, &curve, 0.683);
+    for i in 0..curve.tau_s.len() {
+        let tau = curve.tau_s[i];
+        if tau > 2000.0 {
+            break;
+        }
+        let theory = (avar_white(white, tau)
+            + avar_gauss_markov(sigma, tc, tau)
+            + avar_random_walk(walk, tau))
+        .sqrt();
+        let relative_se = (2.0 / ci.edf[i]).sqrt() / 2.0;
+        let tolerance = (4.0 * relative_se).max(0.03);
+        assert!(
+            (curve.adev[i] / theory - 1.0).abs() < tolerance,
+            "τ {tau}: {} vs {theory} (tol {tolerance})",
+            curve.adev[i]
+        );
+    }
+}
+
+#[test]
+fn bad_input_is_refused() {
+    assert!(overlapping_adev(&[1.0, 2.0], 1.0, &TauGrid::Octave).is_err());
+    assert!(overlapping_adev(&[1.0, f64::NAN, 3.0, 4.0], 1.0, &TauGrid::Octave).is_err());
+    assert!(overlapping_adev(&[1.0, 2.0, 3.0, 4.0], 0.0, &TauGrid::Octave).is_err());
+    assert!(overlapping_adev(&[1.0, 2.0, 3.0, 4.0], 1.0, &TauGrid::Explicit(vec![10])).is_err());
+    // A constant series has zero deviation, not NaN.
+    let flat = overlapping_adev(&[2.5; 100], 1.0, &TauGrid::Octave).unwrap();
+    assert!(flat.adev.iter().all(|&v| v == 0.0));
+}
