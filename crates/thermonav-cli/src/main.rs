@@ -1,8 +1,35 @@
-//! The `thermonav` command.
+//! The `thermonav` command: arguments are parsed once, resolved into validated settings, and
+//! handed to one function per subcommand.
 
+mod args;
+mod commands;
+mod failure;
+mod report;
+
+use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    println!("thermonav");
-    ExitCode::SUCCESS
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => return print_clap_error(&error),
+    };
+    match commands::run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            eprintln!("error: {failure}");
+            failure.exit_code()
+        }
+    }
+}
+
+/// Help and version go to stdout with success; real usage errors exit with 2.
+fn print_clap_error(error: &clap::Error) -> ExitCode {
+    // Printing can only fail when the stream is closed; nothing useful is left to do then.
+    let _ = error.print();
+    if error.use_stderr() {
+        ExitCode::from(failure::USAGE_EXIT_CODE)
+    } else {
+        ExitCode::SUCCESS
+    }
 }
