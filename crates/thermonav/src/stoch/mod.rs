@@ -7,3 +7,4 @@ pub mod bank;
 pub mod gauss_markov;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
+pub mod characterize;
