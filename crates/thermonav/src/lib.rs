@@ -18,11 +18,15 @@
 //! - [`time`]: exact timestamps and durations.
 //! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
+//! - [`gnss`]: GNSS fixes: position, optional velocity, precision and dual-antenna heading.
+//! - [`trajectory`]: reference trajectory points: position, velocity, attitude.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance.
 
+pub mod gnss;
 pub mod imu;
 pub mod signal;
 pub mod stoch;
 pub mod time;
+pub mod trajectory;
 pub mod units;
