@@ -1,5 +1,6 @@
-//! Parsing speed of the canonical IMU CSV: a 3-hour 200 Hz log (2.16 M rows, 8 columns) of
-//! full-precision noisy values, as the writer would produce them.
+//! Parsing speed of the canonical IMU CSV: a 3-hour 200 Hz log (2.16 M rows, 8 columns), once
+//! with full-precision noisy values as the writer produces them (~160 bytes a row, the worst
+//! case), once at a sensor's resolution as loggers write them (~75 bytes a row).
 //!
 //! Run with `cargo bench -p thermonav-io --bench csv`; throughput is reported in bytes/s, and
 //! rows/s follows from the row count printed at start.
@@ -15,9 +16,31 @@ use thermonav_io::{ImuReader, Strictness, read_imu_file};
 /// 3 h at 200 Hz.
 const ROWS: u64 = 3 * 3600 * 200;
 
+/// How many digits the values of a bench file carry.
+#[derive(Debug, Clone, Copy)]
+enum Digits {
+    /// Shortest round-trip form of a random `f64` (`{}`): 16-17 significant digits.
+    Full,
+    /// Fixed decimals at a MEMS sensor's resolution: 1e-6 rad/s, 1e-4 m/s², 0.01 °C.
+    SensorResolution,
+}
+
+fn write_values(out: &mut impl Write, values: &[f64; 7], digits: Digits) -> std::io::Result<()> {
+    match digits {
+        Digits::Full => values.iter().try_for_each(|v| write!(out, ",{v}")),
+        Digits::SensorResolution => {
+            let [gx, gy, gz, ax, ay, az, t] = values;
+            write!(
+                out,
+                ",{gx:.6},{gy:.6},{gz:.6},{ax:.4},{ay:.4},{az:.4},{t:.2}"
+            )
+        }
+    }
+}
+
 /// Writes a rate file with gyro noise of ~0.01 rad/s, accelerometer noise of ~0.05 m/s² about
-/// gravity on z, and a slowly drifting temperature; every value printed with `{}`.
-fn generate(path: &Path) -> std::io::Result<()> {
+/// gravity on z, and a slowly drifting temperature.
+fn generate(path: &Path, digits: Digits) -> std::io::Result<()> {
     let mut rng = ChaCha8Rng::seed_from_u64(2009);
     let mut out = BufWriter::new(std::fs::File::create(path)?);
     writeln!(
@@ -42,22 +65,26 @@ fn generate(path: &Path) -> std::io::Result<()> {
             -9.80665 + noise(0.1),
             20.0 + row as f64 * 1e-6 + noise(0.01),
         ];
-        for value in values {
-            write!(out, ",{value}")?;
-        }
+        write_values(&mut out, &values, digits)?;
         writeln!(out)?;
     }
     out.flush()
 }
 
 fn imu_csv(c: &mut Criterion) {
+    for digits in [Digits::Full, Digits::SensorResolution] {
+        bench_file(c, digits);
+    }
+}
+
+fn bench_file(c: &mut Criterion, digits: Digits) {
     let dir = tempfile::tempdir().expect("temporary directory");
     let path = dir.path().join("imu.csv");
-    generate(&path).expect("bench file written");
+    generate(&path, digits).expect("bench file written");
     let bytes = std::fs::metadata(&path).expect("bench file size").len();
-    eprintln!("bench file: {ROWS} rows, {bytes} bytes");
+    eprintln!("bench file {digits:?}: {ROWS} rows, {bytes} bytes");
 
-    let mut group = c.benchmark_group("imu_csv");
+    let mut group = c.benchmark_group(format!("imu_csv_{digits:?}"));
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(20));
     group.throughput(Throughput::Bytes(bytes));

@@ -215,3 +215,30 @@ mod tests {
         assert_eq!(text(f64::NEG_INFINITY), "-inf");
     }
 }
+
+#[cfg(test)]
+mod degree_tests {
+    use super::*;
+
+    /// Degree values spread over ±720° and many magnitudes, from a fixed linear congruential
+    /// sequence (Knuth's MMIX constants).
+    fn degree_values(count: usize) -> impl Iterator<Item = f64> {
+        let mut state = 0x2009_u64;
+        (0..count).map(move |_| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let unit = (state >> 11) as f64 / (1_u64 << 53) as f64;
+            (unit - 0.5) * 1440.0 * 10f64.powi(-((state % 7) as i32))
+        })
+    }
+
+    #[test]
+    fn every_radian_value_from_degrees_finds_a_degree_value_giving_its_bits() {
+        for deg in degree_values(200_000) {
+            let rad = deg_to_rad(deg);
+            let found = degrees_reading_back_exactly(rad);
+            assert_eq!(deg_to_rad(found).to_bits(), rad.to_bits(), "{deg}");
+        }
+    }
+}
