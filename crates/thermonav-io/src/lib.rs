@@ -2,3 +2,92 @@
 //!
 //! File formats of thermonav. Readers take `impl BufRead` (plus a display name used in error
 //! messages) and return library types; writers never leave a partial file behind.
+//!
+//! ## Canonical CSVs
+//! One header line of unit-suffixed names, then one comma-separated line per record. Columns
+//! are found by name, in any order; unknown names are errors. Values are converted to SI once,
+//! as they are read, through [`thermonav::units`]; writers use the SI (or degree) names below
+//! and print every number so that it reads back to the same bits.
+//! - IMU ([`imu`]): `t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2[,temp_c]`, or the
+//!   increments `dthx_rad,…,dvz_m_s`; other units accepted on reading.
+//! - GNSS ([`gnss`]): `t_s,lat_deg,lon_deg,h_m` plus optional groups
+//!   `sd_n_m,sd_e_m,sd_u_m`, `vn_m_s,ve_m_s,vd_m_s`, `heading_deg,sd_heading_deg`.
+//! - Reference trajectory ([`trajectory`]):
+//!   `t_s,lat_deg,lon_deg,h_m,vn_m_s,ve_m_s,vd_m_s,roll_deg,pitch_deg,yaw_deg`.
+//!
+//! Lines may end in `\n` or `\r\n`. Blank lines are skipped wherever they are, but counted, so
+//! the line numbers in errors are those an editor shows. Times in `t_s` are read digit by digit
+//! into integer nanoseconds and written back with nine decimals: no time is ever rounded
+//! through an `f64` (except one written in scientific notation, which is rare for times).
+//!
+//! ## Streaming
+//! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
+//! holding a single line buffer; `read_*` functions collect whole files.
+//!
+//! ## Atomic output
+//! [`write_atomically`], [`AtomicFile`] and [`write_json_atomically`] write through a temporary
+//! file renamed into place on success.
+
+pub mod atomic;
+pub mod error;
+pub mod gnss;
+pub mod imu;
+mod layout;
+mod lines;
+mod rows;
+mod text;
+pub mod trajectory;
+
+pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
+pub use error::{ReadError, ReadErrorKind, WriteError};
+pub use gnss::{GnssReader, read_gnss, read_gnss_file, write_gnss, write_gnss_file};
+pub use imu::{
+    ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu, write_imu_file,
+};
+pub use trajectory::{
+    TrajectoryReader, read_trajectory, read_trajectory_file, write_trajectory,
+    write_trajectory_file,
+};
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::Path;
+
+/// How readers treat values that parse but are suspect.
+///
+/// Text that is not a number, a wrong number of fields and header problems are errors under
+/// both policies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Strictness {
+    /// Reject NaN and infinite values, times that do not increase strictly, and values out of
+    /// their physical range (latitude beyond ±90°, negative standard deviation); the error
+    /// names the line (and, for times, both times).
+    Strict,
+    /// Keep such values as they are, for tools that count and report them (`inspect`).
+    Lenient,
+}
+
+/// Read buffer of file readers, bytes.
+const FILE_BUFFER_BYTES: usize = 1 << 18;
+
+/// Opens `path` for reading, with the path as the input's name.
+fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
+    let input = path.display().to_string();
+    match File::open(path) {
+        Ok(file) => Ok((BufReader::with_capacity(FILE_BUFFER_BYTES, file), input)),
+        Err(error) => Err(ReadError::new(input, None, ReadErrorKind::Open(error))),
+    }
+}
+
+/// Strict check that a latitude lies within ±90°.
+fn check_latitude(latitude_rad: f64) -> Result<(), ReadErrorKind> {
+    let limit_rad = thermonav::units::deg_to_rad(90.0);
+    match latitude_rad.abs() <= limit_rad {
+        true => Ok(()),
+        false => Err(ReadErrorKind::OutOfRange {
+            column: "lat_deg",
+            found: text::degrees_reading_back_exactly(latitude_rad),
+            expected: "-90 to 90",
+        }),
+    }
+}

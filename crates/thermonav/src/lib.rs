@@ -22,6 +22,8 @@
 //! - [`geo`]: WGS84, normal gravity, Earth rate.
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
 //! - [`ins`]: strapdown mechanization in NED.
+//! - [`gnss`]: GNSS fixes: position, optional velocity, precision and dual-antenna heading.
+//! - [`trajectory`]: reference trajectory points: position, velocity, attitude.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
@@ -30,10 +32,12 @@
 pub mod filter;
 pub mod frames;
 pub mod geo;
+pub mod gnss;
 pub mod imu;
 pub mod ins;
 pub mod signal;
 pub mod sim;
 pub mod stoch;
 pub mod time;
+pub mod trajectory;
 pub mod units;

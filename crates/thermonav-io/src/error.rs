@@ -1,0 +1,244 @@
+//! Errors of the readers and writers.
+
+use crate::text::SecondsText;
+use std::io;
+use thermonav::time::Timestamp;
+
+/// A file (or stream) that could not be read, with where and why.
+///
+/// Displays as `input:line: what`, e.g.
+/// `data/imu.csv:17: expected 8 fields (t_s,gx_rad_s,…,temp_c), found 6`, or as `input: what`
+/// when the problem is not tied to one line (`data/imu.csv: header only, no data rows`).
+/// Line numbers are 1-based and count every physical line: header, data and blank lines.
+#[derive(Debug, thiserror::Error)]
+#[error("{input}{}: {kind}", LineSuffix(*.line))]
+pub struct ReadError {
+    /// Name of the input, as given to the reader (usually the file path).
+    pub input: String,
+    /// 1-based line number, when the problem is on one line.
+    pub line: Option<u64>,
+    /// What went wrong.
+    pub kind: ReadErrorKind,
+}
+
+impl ReadError {
+    /// A new error about `input`, at `line` when known.
+    pub fn new(input: impl Into<String>, line: Option<u64>, kind: ReadErrorKind) -> Self {
+        Self {
+            input: input.into(),
+            line,
+            kind,
+        }
+    }
+}
+
+/// Prints `:17` for a line number and nothing otherwise.
+struct LineSuffix(Option<u64>);
+
+impl std::fmt::Display for LineSuffix {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            Some(line) => write!(f, ":{line}"),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Why an input could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadErrorKind {
+    /// The file could not be opened.
+    #[error("cannot open: {0}")]
+    Open(io::Error),
+    /// Reading failed part-way.
+    #[error("read failed: {0}")]
+    Read(io::Error),
+    /// No line at all (or only blank lines).
+    #[error("file is empty (expected a header line)")]
+    Empty,
+    /// A header line and nothing else.
+    #[error("header only, no data rows")]
+    HeaderOnly,
+    /// The header line is not UTF-8 text.
+    #[error("header line is not valid UTF-8")]
+    HeaderNotUtf8,
+    /// A line has no end within the limit (not a text file, or a broken one).
+    #[error("line longer than {limit_bytes} bytes")]
+    LineTooLong {
+        /// The longest line accepted, bytes.
+        limit_bytes: u64,
+    },
+    /// A header name that the format does not know.
+    #[error("unknown column \"{name}\" (expected one of {expected})")]
+    UnknownColumn {
+        /// The name found in the header.
+        name: String,
+        /// The names the format accepts.
+        expected: &'static str,
+    },
+    /// Two header names give the same quantity (`gx_rad_s` and `gx_deg_s`, or `t_s` twice).
+    #[error("columns {first} and {second} give the same quantity")]
+    DuplicateColumn {
+        /// The first of the two names.
+        first: String,
+        /// The second of the two names.
+        second: String,
+    },
+    /// A required column is absent from the header.
+    #[error("missing column {name}{alternatives}")]
+    MissingColumn {
+        /// Canonical name of the column.
+        name: &'static str,
+        /// Other accepted names, as ` (or …)`, or empty.
+        alternatives: &'static str,
+    },
+    /// An IMU header mixes rate and increment columns.
+    #[error(
+        "column {rate_column} is a rate but {increment_column} is an increment (one file holds one kind)"
+    )]
+    MixedKinds {
+        /// A rate column of the header.
+        rate_column: String,
+        /// An increment column of the header.
+        increment_column: String,
+    },
+    /// An optional group of columns is only partly present.
+    #[error("incomplete column group {group}: has {present} but not {missing}")]
+    PartialGroup {
+        /// The group's columns.
+        group: &'static str,
+        /// One column of the group that is present.
+        present: String,
+        /// One column of the group that is absent.
+        missing: &'static str,
+    },
+    /// A data line has more or fewer fields than the header.
+    #[error("expected {expected} fields ({header}), found {found}")]
+    FieldCount {
+        /// Number of header columns.
+        expected: usize,
+        /// The header line.
+        header: String,
+        /// Number of fields on the line.
+        found: usize,
+    },
+    /// A field is not a number.
+    #[error("column {column}: expected a number, found \"{found}\"")]
+    NotANumber {
+        /// Header name of the column.
+        column: String,
+        /// The field's text.
+        found: String,
+    },
+    /// A time field is not a finite number of seconds within ±9.2e9 s.
+    #[error(
+        "column {column}: expected a finite time in seconds within ±9.2e9 s, found \"{found}\""
+    )]
+    BadTime {
+        /// Header name of the column.
+        column: String,
+        /// The field's text.
+        found: String,
+    },
+    /// A NaN or infinite value, rejected under [`crate::Strictness::Strict`].
+    #[error("column {column}: value \"{found}\" is not finite (strict reading)")]
+    NonFinite {
+        /// Header name of the column.
+        column: String,
+        /// The field's text.
+        found: String,
+    },
+    /// A value outside its physical range, rejected under [`crate::Strictness::Strict`].
+    #[error("column {column}: value {found} is out of range (expected {expected}; strict reading)")]
+    OutOfRange {
+        /// Header name of the column.
+        column: &'static str,
+        /// The value, in the file's unit.
+        found: f64,
+        /// The accepted range.
+        expected: &'static str,
+    },
+    /// A time not after the previous one, rejected under [`crate::Strictness::Strict`].
+    #[error(
+        "time {} s does not increase after {} s on line {previous_line} (strict reading)",
+        SecondsText(*.current), SecondsText(*.previous)
+    )]
+    NonIncreasingTime {
+        /// Time on the previous data line.
+        previous: Timestamp,
+        /// Line number of the previous data line.
+        previous_line: u64,
+        /// Time on this line.
+        current: Timestamp,
+    },
+}
+
+/// Why a file or stream could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    /// The temporary file beside the target could not be created.
+    #[error("{path}: cannot create a temporary file beside it: {source}")]
+    CreateTemporary {
+        /// The target path.
+        path: String,
+        /// The system's reason.
+        source: io::Error,
+    },
+    /// The finished temporary file could not be flushed, synced or renamed onto the target.
+    #[error("{path}: cannot move the finished temporary file into place: {source}")]
+    Commit {
+        /// The target path.
+        path: String,
+        /// The system's reason.
+        source: io::Error,
+    },
+    /// Writing a given file failed; the target was left untouched.
+    #[error("{path}: {source}")]
+    InFile {
+        /// The target path.
+        path: String,
+        /// What went wrong.
+        source: Box<WriteError>,
+    },
+    /// The underlying writer failed.
+    #[error("write failed: {0}")]
+    Io(#[from] io::Error),
+    /// JSON encoding failed.
+    #[error("JSON encoding failed: {0}")]
+    Json(#[from] serde_json::Error),
+    /// Nothing to write: a file with a header and no rows could not be read back.
+    #[error("nothing to write: no {what}")]
+    Empty {
+        /// What there is none of (`samples`, `fixes`, `points`).
+        what: &'static str,
+    },
+    /// An IMU series whose kind (rates or increments) is not set.
+    #[error("IMU series has no sample kind (rates or increments)")]
+    UnknownKind,
+    /// A column of a series whose length differs from the time axis.
+    #[error("column {column} has {len} values but the time axis has {expected}")]
+    RaggedColumn {
+        /// Name of the column.
+        column: &'static str,
+        /// Its length.
+        len: usize,
+        /// Length of the time axis.
+        expected: usize,
+    },
+    /// A sample without temperature written to a file with a `temp_c` column.
+    #[error("sample {index} has no temperature but the file has a temp_c column")]
+    MissingTemperature {
+        /// 0-based index of the sample.
+        index: usize,
+    },
+    /// GNSS fixes that do not all carry the same optional groups.
+    #[error("fix {index} {presence} the {group} group, unlike fix 0")]
+    InconsistentGroup {
+        /// The group's columns.
+        group: &'static str,
+        /// 0-based index of the first fix that differs.
+        index: usize,
+        /// `has` or `lacks`.
+        presence: &'static str,
+    },
+}

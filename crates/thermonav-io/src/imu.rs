@@ -1,0 +1,396 @@
+//! The canonical IMU CSV.
+//!
+//! ```text
+//! t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c
+//! 12.005000000,0.0012,-0.0003,0.0001,0.02,-0.01,-9.80665,21.5
+//! ```
+//! Columns are found by name, in any order. Rates may also be given as `g?_deg_s` or
+//! `g?_deg_h` (gyros) and `a?_g` or `a?_mg` (accelerometers); increments as `dth?_rad` or
+//! `dth?_deg` (angle) and `dv?_m_s` (velocity). Every value is converted to SI as it is read;
+//! a file holds rates or increments, never both. `temp_c` is optional. The writer always uses
+//! the SI names.
+
+use crate::Strictness;
+use crate::atomic::write_atomically;
+use crate::error::{ReadError, ReadErrorKind, WriteError};
+use crate::layout::{ColumnSpec, Layout, Schema, Unit};
+use crate::rows::Rows;
+use crate::text::{write_time, write_value};
+use std::fs::File;
+use std::io::{BufRead, BufReader, Write};
+use std::path::Path;
+use thermonav::imu::{Channel, ImuSample, ImuSeries, SampleKind};
+
+/// First slot of the rate columns (gx..az), then of the increment columns (dthx..dvz).
+const RATE_SLOT: usize = 0;
+const INCREMENT_SLOT: usize = 6;
+const TEMPERATURE_SLOT: usize = 12;
+
+const fn spec(name: &'static str, slot: usize, unit: Unit) -> ColumnSpec {
+    ColumnSpec { name, slot, unit }
+}
+
+/// Every accepted IMU column name.
+const COLUMNS: [ColumnSpec; 28] = [
+    spec("gx_rad_s", 0, Unit::Si),
+    spec("gy_rad_s", 1, Unit::Si),
+    spec("gz_rad_s", 2, Unit::Si),
+    spec("gx_deg_s", 0, Unit::DegPerS),
+    spec("gy_deg_s", 1, Unit::DegPerS),
+    spec("gz_deg_s", 2, Unit::DegPerS),
+    spec("gx_deg_h", 0, Unit::DegPerH),
+    spec("gy_deg_h", 1, Unit::DegPerH),
+    spec("gz_deg_h", 2, Unit::DegPerH),
+    spec("ax_m_s2", 3, Unit::Si),
+    spec("ay_m_s2", 4, Unit::Si),
+    spec("az_m_s2", 5, Unit::Si),
+    spec("ax_g", 3, Unit::G),
+    spec("ay_g", 4, Unit::G),
+    spec("az_g", 5, Unit::G),
+    spec("ax_mg", 3, Unit::MilliG),
+    spec("ay_mg", 4, Unit::MilliG),
+    spec("az_mg", 5, Unit::MilliG),
+    spec("dthx_rad", 6, Unit::Si),
+    spec("dthy_rad", 7, Unit::Si),
+    spec("dthz_rad", 8, Unit::Si),
+    spec("dthx_deg", 6, Unit::Deg),
+    spec("dthy_deg", 7, Unit::Deg),
+    spec("dthz_deg", 8, Unit::Deg),
+    spec("dvx_m_s", 9, Unit::Si),
+    spec("dvy_m_s", 10, Unit::Si),
+    spec("dvz_m_s", 11, Unit::Si),
+    spec("temp_c", TEMPERATURE_SLOT, Unit::Si),
+];
+
+const SCHEMA: Schema = Schema {
+    columns: &COLUMNS,
+    expected: "t_s, g{x,y,z}_{rad_s,deg_s,deg_h}, a{x,y,z}_{m_s2,g,mg}, \
+               dth{x,y,z}_{rad,deg}, dv{x,y,z}_m_s, temp_c",
+};
+
+/// Canonical names of the six channels, with the other accepted names, per kind.
+const RATE_NAMES: [(&str, &str); 6] = [
+    ("gx_rad_s", " (or gx_deg_s, gx_deg_h)"),
+    ("gy_rad_s", " (or gy_deg_s, gy_deg_h)"),
+    ("gz_rad_s", " (or gz_deg_s, gz_deg_h)"),
+    ("ax_m_s2", " (or ax_g, ax_mg)"),
+    ("ay_m_s2", " (or ay_g, ay_mg)"),
+    ("az_m_s2", " (or az_g, az_mg)"),
+];
+const INCREMENT_NAMES: [(&str, &str); 6] = [
+    ("dthx_rad", " (or dthx_deg)"),
+    ("dthy_rad", " (or dthy_deg)"),
+    ("dthz_rad", " (or dthz_deg)"),
+    ("dvx_m_s", ""),
+    ("dvy_m_s", ""),
+    ("dvz_m_s", ""),
+];
+const TEMPERATURE_NAME: &str = "temp_c";
+
+/// Streaming reader of the canonical IMU CSV: an iterator of SI samples.
+///
+/// Holds one line buffer whatever the file size. After an error the iterator ends.
+///
+/// # Example
+/// ```
+/// use thermonav_io::{ImuReader, Strictness};
+/// let text = "t_s,gx_deg_s,gy_deg_s,gz_deg_s,ax_g,ay_g,az_g\n0.005,1,0,0,0,0,-1\n";
+/// let mut reader = ImuReader::new(text.as_bytes(), "example", Strictness::Strict)?;
+/// let sample = reader.next().unwrap()?;
+/// assert_eq!(sample.gyro[0], std::f64::consts::PI / 180.0);
+/// assert_eq!(sample.accel[2], -9.80665);
+/// # Ok::<(), thermonav_io::ReadError>(())
+/// ```
+pub struct ImuReader<R> {
+    rows: Rows<R>,
+    kind: SampleKind,
+    temperature: bool,
+}
+
+impl ImuReader<BufReader<File>> {
+    /// Opens `path` and reads its header.
+    ///
+    /// # Errors
+    /// As [`ImuReader::new`], plus [`ReadErrorKind::Open`].
+    pub fn open(path: impl AsRef<Path>, strictness: Strictness) -> Result<Self, ReadError> {
+        let (file, input) = crate::open_file(path.as_ref())?;
+        Self::new(file, input, strictness)
+    }
+}
+
+impl<R: BufRead> ImuReader<R> {
+    /// Reads the header of `reader`; `input` names it in errors (usually the file path).
+    ///
+    /// # Errors
+    /// [`ReadErrorKind::Empty`], an unknown, repeated or missing column, rate and increment
+    /// columns together, or a read failure.
+    pub fn new(
+        reader: R,
+        input: impl Into<String>,
+        strictness: Strictness,
+    ) -> Result<Self, ReadError> {
+        let rows = Rows::open(reader, input.into(), &SCHEMA, strictness)?;
+        let kind = sample_kind(rows.layout()).map_err(|kind| rows.header_error(kind))?;
+        let temperature = rows.layout().has(TEMPERATURE_SLOT);
+        Ok(Self {
+            rows,
+            kind,
+            temperature,
+        })
+    }
+
+    /// Whether the file holds rates or increments.
+    pub fn kind(&self) -> SampleKind {
+        self.kind
+    }
+
+    /// Whether the file has a `temp_c` column.
+    pub fn has_temperature(&self) -> bool {
+        self.temperature
+    }
+}
+
+impl<R: BufRead> Iterator for ImuReader<R> {
+    type Item = Result<ImuSample, ReadError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let first = match self.kind {
+            SampleKind::Rates => RATE_SLOT,
+            SampleKind::Increments => INCREMENT_SLOT,
+        };
+        let temperature = self.temperature;
+        Some(self.rows.next_row()?.map(|(time, values)| ImuSample {
+            time,
+            gyro: [values[first], values[first + 1], values[first + 2]],
+            accel: [values[first + 3], values[first + 4], values[first + 5]],
+            temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
+        }))
+    }
+}
+
+/// The kind of the header's channel columns, which must be all six of one kind.
+fn sample_kind(layout: &Layout) -> Result<SampleKind, ReadErrorKind> {
+    let rate = (RATE_SLOT..RATE_SLOT + 6).find_map(|slot| layout.name_of(slot));
+    let increment = (INCREMENT_SLOT..INCREMENT_SLOT + 6).find_map(|slot| layout.name_of(slot));
+    let (kind, first, names) = match (rate, increment) {
+        (Some(rate), Some(increment)) => {
+            return Err(ReadErrorKind::MixedKinds {
+                rate_column: rate.to_owned(),
+                increment_column: increment.to_owned(),
+            });
+        }
+        (None, Some(_)) => (SampleKind::Increments, INCREMENT_SLOT, INCREMENT_NAMES),
+        _ => (SampleKind::Rates, RATE_SLOT, RATE_NAMES),
+    };
+    for (offset, (name, alternatives)) in names.into_iter().enumerate() {
+        layout.require(first + offset, name, alternatives)?;
+    }
+    Ok(kind)
+}
+
+/// Reads a whole IMU CSV from `reader` (named `input` in errors) into a series.
+///
+/// # Errors
+/// Any [`ReadError`] of [`ImuReader`], and [`ReadErrorKind::HeaderOnly`] for a file without
+/// data rows.
+pub fn read_imu(
+    reader: impl BufRead,
+    input: impl Into<String>,
+    strictness: Strictness,
+) -> Result<ImuSeries, ReadError> {
+    collect_series(ImuReader::new(reader, input, strictness)?, None)
+}
+
+/// Reads a whole IMU CSV file into a series.
+///
+/// # Errors
+/// As [`read_imu`], plus [`ReadErrorKind::Open`].
+pub fn read_imu_file(
+    path: impl AsRef<Path>,
+    strictness: Strictness,
+) -> Result<ImuSeries, ReadError> {
+    let reader = ImuReader::open(path.as_ref(), strictness)?;
+    let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
+    collect_series(reader, file_bytes)
+}
+
+/// Collects samples; with the input's size, reserves room for all rows once the first is read.
+fn collect_series<R: BufRead>(
+    mut reader: ImuReader<R>,
+    input_bytes: Option<u64>,
+) -> Result<ImuSeries, ReadError> {
+    let mut series = ImuSeries::new(reader.kind());
+    let Some(first) = reader.next() else {
+        return Ok(series);
+    };
+    series.push(&first?);
+    if let Some(bytes) = input_bytes {
+        reserve_rows(&mut series, bytes / reader.rows.line_bytes().max(1));
+    }
+    for sample in reader {
+        series.push(&sample?);
+    }
+    Ok(series)
+}
+
+/// Reserves room for about `rows` more samples (plus 3 % for rows longer than the first).
+fn reserve_rows(series: &mut ImuSeries, rows: u64) {
+    let additional = usize::try_from(rows + rows / 32).unwrap_or(0);
+    series.time.reserve(additional);
+    for column in series.channels.iter_mut().chain(&mut series.temperature_c) {
+        column.reserve(additional);
+    }
+}
+
+/// Whether an IMU file gets a `temp_c` column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TemperatureColumn {
+    /// Write `temp_c`; every sample must carry a temperature.
+    Written,
+    /// No `temp_c` column; sample temperatures are ignored.
+    Omitted,
+}
+
+/// Streaming writer of the canonical IMU CSV (SI column names).
+///
+/// Values are written in their shortest round-trip form and times as exact seconds with nine
+/// decimals, so reading the file back gives the same bits.
+pub struct ImuWriter<W: Write> {
+    out: W,
+    temperature: TemperatureColumn,
+    rows: usize,
+}
+
+impl<W: Write> ImuWriter<W> {
+    /// Writes the header for `kind` samples to `out`.
+    ///
+    /// # Errors
+    /// [`WriteError::Io`] when `out` fails.
+    pub fn new(
+        mut out: W,
+        kind: SampleKind,
+        temperature: TemperatureColumn,
+    ) -> Result<Self, WriteError> {
+        out.write_all(header(kind, temperature).as_bytes())?;
+        Ok(Self {
+            out,
+            temperature,
+            rows: 0,
+        })
+    }
+
+    /// Writes one sample as a line.
+    ///
+    /// # Errors
+    /// [`WriteError::MissingTemperature`] when the file has `temp_c` and the sample has none;
+    /// [`WriteError::Io`] when `out` fails.
+    pub fn write_sample(&mut self, sample: &ImuSample) -> Result<(), WriteError> {
+        let temperature = match (self.temperature, sample.temperature_c) {
+            (TemperatureColumn::Written, None) => {
+                return Err(WriteError::MissingTemperature { index: self.rows });
+            }
+            (TemperatureColumn::Written, Some(t)) => Some(t),
+            (TemperatureColumn::Omitted, _) => None,
+        };
+        write_time(&mut self.out, sample.time)?;
+        for &value in sample.gyro.iter().chain(&sample.accel).chain(&temperature) {
+            self.out.write_all(b",")?;
+            write_value(&mut self.out, value)?;
+        }
+        self.out.write_all(b"\n")?;
+        self.rows += 1;
+        Ok(())
+    }
+
+    /// Flushes and returns the underlying writer.
+    ///
+    /// # Errors
+    /// [`WriteError::Io`] when flushing fails.
+    pub fn finish(mut self) -> Result<W, WriteError> {
+        self.out.flush()?;
+        Ok(self.out)
+    }
+}
+
+/// The header line for a kind, with `temp_c` when written.
+fn header(kind: SampleKind, temperature: TemperatureColumn) -> String {
+    let names = match kind {
+        SampleKind::Rates => RATE_NAMES,
+        SampleKind::Increments => INCREMENT_NAMES,
+    };
+    let mut line = String::from(crate::layout::TIME_COLUMN);
+    for (name, _) in names {
+        line.push(',');
+        line.push_str(name);
+    }
+    if temperature == TemperatureColumn::Written {
+        line.push(',');
+        line.push_str(TEMPERATURE_NAME);
+    }
+    line.push('\n');
+    line
+}
+
+/// Writes a whole series as a canonical IMU CSV, with `temp_c` when the series has temperatures.
+///
+/// # Errors
+/// [`WriteError::Empty`], [`WriteError::UnknownKind`], [`WriteError::RaggedColumn`] for a
+/// malformed series, and [`WriteError::Io`].
+pub fn write_imu(out: impl Write, series: &ImuSeries) -> Result<(), WriteError> {
+    let kind = check_series(series)?;
+    let temperature = match series.temperature_c {
+        Some(_) => TemperatureColumn::Written,
+        None => TemperatureColumn::Omitted,
+    };
+    let mut writer = ImuWriter::new(out, kind, temperature)?;
+    for index in 0..series.len() {
+        writer.write_sample(&sample_at(series, index))?;
+    }
+    writer.finish()?;
+    Ok(())
+}
+
+/// Writes a whole series to `path` atomically (see [`write_atomically`]).
+///
+/// # Errors
+/// As [`write_imu`], wrapped with the path, plus the errors of [`write_atomically`].
+pub fn write_imu_file(path: impl AsRef<Path>, series: &ImuSeries) -> Result<(), WriteError> {
+    write_atomically(path, |file| write_imu(file, series))
+}
+
+/// The series' kind, after checking it has samples and columns of equal length.
+fn check_series(series: &ImuSeries) -> Result<SampleKind, WriteError> {
+    let expected = series.len();
+    if expected == 0 {
+        return Err(WriteError::Empty { what: "samples" });
+    }
+    let channels = Channel::ALL
+        .iter()
+        .map(|c| (c.name(), series.channel(*c).len()));
+    let temperature = series
+        .temperature_c
+        .iter()
+        .map(|t| (TEMPERATURE_NAME, t.len()));
+    if let Some((column, len)) = channels
+        .chain(temperature)
+        .find(|&(_, len)| len != expected)
+    {
+        return Err(WriteError::RaggedColumn {
+            column,
+            len,
+            expected,
+        });
+    }
+    series.kind.ok_or(WriteError::UnknownKind)
+}
+
+/// Sample `index` of a checked series.
+fn sample_at(series: &ImuSeries, index: usize) -> ImuSample {
+    let value = |channel: Channel| series.channel(channel)[index];
+    ImuSample {
+        time: series.time[index],
+        gyro: [value(Channel::Gx), value(Channel::Gy), value(Channel::Gz)],
+        accel: [value(Channel::Ax), value(Channel::Ay), value(Channel::Az)],
+        temperature_c: series.temperature_c.as_ref().map(|t| t[index]),
+    }
+}

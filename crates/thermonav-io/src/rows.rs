@@ -1,0 +1,263 @@
+//! Data rows of a canonical CSV: fields split, parsed, converted to SI and checked.
+
+use crate::Strictness;
+use crate::error::{ReadError, ReadErrorKind};
+use crate::layout::{Layout, MAX_SLOTS, Schema, Target};
+use crate::lines::Lines;
+use crate::text::{parse_time_prefix, parse_value_prefix};
+use std::io::BufRead;
+use thermonav::time::Timestamp;
+
+/// Byte-order mark some editors put before the header.
+const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// Decoded rows of one input: a time and an array of SI values indexed by slot.
+pub(crate) struct Rows<R> {
+    lines: Lines<R>,
+    layout: Layout,
+    strictness: Strictness,
+    values: [f64; MAX_SLOTS],
+    previous: Option<(Timestamp, u64)>,
+    state: State,
+}
+
+/// Where a row reader is in its input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum State {
+    /// Header read, no data row yet.
+    BeforeFirstRow,
+    /// At least one data row read.
+    InRows,
+    /// End reached or an error given: yields nothing more.
+    Done,
+}
+
+impl<R: BufRead> Rows<R> {
+    /// Reads the header of `reader` (called `input` in errors) and maps it with `schema`.
+    ///
+    /// # Errors
+    /// [`ReadErrorKind::Empty`], a read failure, or a header error from [`Layout::from_header`].
+    pub(crate) fn open(
+        reader: R,
+        input: String,
+        schema: &Schema,
+        strictness: Strictness,
+    ) -> Result<Self, ReadError> {
+        let mut lines = Lines::new(reader, input);
+        if !lines.advance()? {
+            return Err(lines.error_in_input(ReadErrorKind::Empty));
+        }
+        let bytes = lines.current();
+        let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
+        let header = std::str::from_utf8(bytes)
+            .map_err(|_| lines.error_here(ReadErrorKind::HeaderNotUtf8))?;
+        let layout = Layout::from_header(header, schema).map_err(|kind| lines.error_here(kind))?;
+        Ok(Self {
+            lines,
+            layout,
+            strictness,
+            values: [0.0; MAX_SLOTS],
+            previous: None,
+            state: State::BeforeFirstRow,
+        })
+    }
+
+    /// The header's columns.
+    pub(crate) fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// The reading policy.
+    pub(crate) fn strictness(&self) -> Strictness {
+        self.strictness
+    }
+
+    /// Length of the current line in bytes, its line end included.
+    pub(crate) fn line_bytes(&self) -> u64 {
+        self.lines.current().len() as u64 + 1
+    }
+
+    /// An error about the header line (for format-specific header checks).
+    pub(crate) fn header_error(&self, kind: ReadErrorKind) -> ReadError {
+        self.lines.error_here(kind)
+    }
+
+    /// An error about the current data line (for format-specific value checks); ends reading.
+    pub(crate) fn row_error(&mut self, kind: ReadErrorKind) -> ReadError {
+        self.state = State::Done;
+        self.lines.error_here(kind)
+    }
+
+    /// The next row's time and values (indexed by slot; unfilled slots hold stale numbers),
+    /// `None` after the last row or after an error. A header with no row after it is an error.
+    pub(crate) fn next_row(&mut self) -> Option<Result<(Timestamp, &[f64; MAX_SLOTS]), ReadError>> {
+        if self.state == State::Done {
+            return None;
+        }
+        match self.advance_and_decode() {
+            Ok(Some(time)) => Some(Ok((time, &self.values))),
+            Ok(None) => None,
+            Err(error) => {
+                self.state = State::Done;
+                Some(Err(error))
+            }
+        }
+    }
+
+    fn advance_and_decode(&mut self) -> Result<Option<Timestamp>, ReadError> {
+        if !self.lines.advance()? {
+            let first = self.state == State::BeforeFirstRow;
+            self.state = State::Done;
+            return match first {
+                true => Err(self.lines.error_in_input(ReadErrorKind::HeaderOnly)),
+                false => Ok(None),
+            };
+        }
+        self.state = State::InRows;
+        let time = decode_line(
+            self.lines.current(),
+            &self.layout,
+            self.strictness,
+            &mut self.values,
+        )
+        .map_err(|kind| self.lines.error_here(kind))?;
+        self.check_time_order(time)?;
+        Ok(Some(time))
+    }
+
+    /// Under [`Strictness::Strict`], times must increase strictly from row to row.
+    fn check_time_order(&mut self, time: Timestamp) -> Result<(), ReadError> {
+        let line = self.lines.number();
+        let previous = self.previous.replace((time, line));
+        match (self.strictness, previous) {
+            (Strictness::Strict, Some((previous, previous_line))) if time <= previous => {
+                Err(self.lines.error_here(ReadErrorKind::NonIncreasingTime {
+                    previous,
+                    previous_line,
+                    current: time,
+                }))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Splits `line` into the layout's fields, parses each into `values` (SI) and returns the time.
+/// A wrong number of fields is reported before any bad field.
+fn decode_line(
+    line: &[u8],
+    layout: &Layout,
+    strictness: Strictness,
+    values: &mut [f64; MAX_SLOTS],
+) -> Result<Timestamp, ReadErrorKind> {
+    decode_fields(line, layout, strictness, values).map_err(|kind| {
+        match count_fields(line) == layout.targets.len() {
+            true => kind,
+            false => field_count_error(line, layout),
+        }
+    })
+}
+
+fn decode_fields(
+    line: &[u8],
+    layout: &Layout,
+    strictness: Strictness,
+    values: &mut [f64; MAX_SLOTS],
+) -> Result<Timestamp, ReadErrorKind> {
+    let mut time = Timestamp::from_nanos(0);
+    let mut position = 0;
+    let last = layout.targets.len() - 1;
+    for (column, target) in layout.targets.iter().enumerate() {
+        let start = position + leading_blanks(&line[position..]);
+        let field = &line[start..];
+        let len = match *target {
+            Target::Time => parse_time_prefix(field).map(|(t, len)| {
+                time = t;
+                len
+            }),
+            Target::Value { slot, unit } => parse_value_prefix(field).map(|(value, len)| {
+                values[slot] = unit.to_si(value);
+                len
+            }),
+        };
+        let end = len.and_then(|len| field_end(line, start + len, column == last));
+        let Some(end) = end else {
+            return Err(field_error(line, column, layout));
+        };
+        if let (Target::Value { slot, .. }, Strictness::Strict) = (*target, strictness) {
+            if !values[slot].is_finite() {
+                return Err(non_finite_error(&line[start..end], &layout.names[column]));
+            }
+        }
+        position = end + 1;
+    }
+    Ok(time)
+}
+
+/// Number of spaces and tabs at the start of `text`.
+#[inline]
+fn leading_blanks(text: &[u8]) -> usize {
+    text.iter()
+        .take_while(|&&b| b == b' ' || b == b'\t')
+        .count()
+}
+
+/// Where a field whose number ends at `number_end` ends (before its comma or the line end),
+/// when only blanks follow the number; `None` otherwise, or when a comma follows the last field
+/// or none follows another.
+#[inline]
+fn field_end(line: &[u8], number_end: usize, last: bool) -> Option<usize> {
+    let end = number_end + leading_blanks(&line[number_end..]);
+    match (line.get(end), last) {
+        (None, true) | (Some(b','), false) => Some(end),
+        _ => None,
+    }
+}
+
+/// The error for a field that is not a number (or a time), or for a line with too few fields.
+fn field_error(line: &[u8], column: usize, layout: &Layout) -> ReadErrorKind {
+    let Some(field) = line.split(|&b| b == b',').nth(column) else {
+        return field_count_error(line, layout);
+    };
+    let field = field.trim_ascii();
+    let name = layout.names[column].clone();
+    match layout.targets[column] {
+        Target::Time => ReadErrorKind::BadTime {
+            column: name,
+            found: shown(field),
+        },
+        Target::Value { .. } => ReadErrorKind::NotANumber {
+            column: name,
+            found: shown(field),
+        },
+    }
+}
+
+fn field_count_error(line: &[u8], layout: &Layout) -> ReadErrorKind {
+    ReadErrorKind::FieldCount {
+        expected: layout.targets.len(),
+        header: layout.header.clone(),
+        found: count_fields(line),
+    }
+}
+
+fn count_fields(line: &[u8]) -> usize {
+    line.iter().filter(|&&b| b == b',').count() + 1
+}
+
+fn non_finite_error(field: &[u8], column: &str) -> ReadErrorKind {
+    ReadErrorKind::NonFinite {
+        column: column.to_owned(),
+        found: shown(field),
+    }
+}
+
+/// A field's text for an error message, cut to 40 characters.
+fn shown(field: &[u8]) -> String {
+    const LIMIT: usize = 40;
+    let text = String::from_utf8_lossy(field);
+    match text.char_indices().nth(LIMIT) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.into_owned(),
+    }
+}
