@@ -20,6 +20,9 @@
 //! into integer nanoseconds and written back with nine decimals: no time is ever rounded
 //! through an `f64` (except one written in scientific notation, which is rare for times).
 //!
+//! ## Sensor profiles
+//! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
+//!
 //! ## Streaming
 //! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
 //! holding a single line buffer; `read_*` functions collect whole files.
@@ -33,6 +36,7 @@ pub mod error;
 pub mod gnss;
 pub mod imu;
 mod layout;
+pub mod profile;
 mod lines;
 mod rows;
 mod text;

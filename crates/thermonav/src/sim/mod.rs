@@ -17,3 +17,4 @@ pub mod ideal_imu;
 pub mod motion;
 pub mod profile;
 pub mod rng;
+pub mod vessel;

@@ -5,7 +5,10 @@
 use super::clock::SampleClock;
 use super::errors::{ChannelErrors, standard_normal};
 use super::ideal_imu::ideal_increments;
-use super::motion::{Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory, WaveMotion, generate_trajectory_at};
+use super::motion::{
+    Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory,
+    WaveMotion, generate_trajectory_at,
+};
 use super::profile::{ProfileError, SensorProfile};
 use super::rng::{SimRng, named_rng};
 use crate::frames::{Body, Vector};
@@ -98,7 +101,12 @@ pub fn harbour_survey(duration_s: f64) -> MotionDefinition {
         turn_rate_rad_s: turn_deg_s.to_radians(),
         climb_rate_m_s: 0.0,
     };
-    let mut segments = vec![seg(40.0, 0.1, 0.0), seg(60.0, 0.0, 0.5), seg(200.0, 0.005, 0.0), seg(30.0, -0.116, 0.0)];
+    let mut segments = vec![
+        seg(40.0, 0.1, 0.0),
+        seg(60.0, 0.0, 0.5),
+        seg(200.0, 0.005, 0.0),
+        seg(30.0, -0.116, 0.0),
+    ];
     let mut elapsed: f64 = segments.iter().map(|s| s.duration_s).sum();
     let mut k = 0;
     while elapsed < duration_s {
@@ -106,20 +114,35 @@ pub fn harbour_survey(duration_s: f64) -> MotionDefinition {
         elapsed += line.duration_s;
         segments.push(line);
         if elapsed < duration_s {
-            let turn = seg(30.0_f64.min(duration_s - elapsed), 0.0, if k % 2 == 0 { 6.0 } else { -6.0 });
+            let turn = seg(
+                30.0_f64.min(duration_s - elapsed),
+                0.0,
+                if k % 2 == 0 { 6.0 } else { -6.0 },
+            );
             elapsed += turn.duration_s;
             segments.push(turn);
         }
         k += 1;
     }
-    let h = |amplitude: f64, period_s: f64, phase_rad: f64| Harmonic { amplitude, period_s, phase_rad };
+    let h = |amplitude: f64, period_s: f64, phase_rad: f64| Harmonic {
+        amplitude,
+        period_s,
+        phase_rad,
+    };
     MotionDefinition {
-        start: StartPoint { lat_deg: 44.6488, lon_deg: -63.5752, h_m: 5.0 },
+        start: StartPoint {
+            lat_deg: 44.6488,
+            lon_deg: -63.5752,
+            h_m: 5.0,
+        },
         initial_speed_m_s: 1.0,
         initial_heading_rad: 40f64.to_radians(),
         segments,
         waves: WaveMotion {
-            roll: vec![h(3f64.to_radians(), 6.0, 0.0), h(1.5f64.to_radians(), 9.3, 1.1)],
+            roll: vec![
+                h(3f64.to_radians(), 6.0, 0.0),
+                h(1.5f64.to_radians(), 9.3, 1.1),
+            ],
             pitch: vec![h(1.5f64.to_radians(), 5.1, 0.4)],
             heave: vec![h(0.3, 7.0, 0.2)],
         },
@@ -146,25 +169,49 @@ pub struct VesselRun {
 ///
 /// # Errors
 /// [`VesselError`] for an invalid motion, profile, clock or GNSS setting.
-pub fn simulate_vessel(profile: &SensorProfile, run: &VesselRun) -> Result<VesselRecord, VesselError> {
+pub fn simulate_vessel(
+    profile: &SensorProfile,
+    run: &VesselRun,
+) -> Result<VesselRecord, VesselError> {
     profile.validate()?;
     validate_gnss(&run.gnss)?;
-    let times = run.clock.timestamps(run.motion.duration_s(), &mut named_rng(run.seed, "vessel/clock"))?;
+    let times = run.clock.timestamps(
+        run.motion.duration_s(),
+        &mut named_rng(run.seed, "vessel/clock"),
+    )?;
     let reference = generate_trajectory_at(&run.motion, &times)?;
     let imu = measured_imu(profile, run, &reference);
-    let gnss = gnss_fixes(&reference, &run.gnss, &mut named_rng(run.seed, "vessel/gnss"));
-    Ok(VesselRecord { reference, imu, gnss })
+    let gnss = gnss_fixes(
+        &reference,
+        &run.gnss,
+        &mut named_rng(run.seed, "vessel/gnss"),
+    );
+    Ok(VesselRecord {
+        reference,
+        imu,
+        gnss,
+    })
 }
 
 fn validate_gnss(g: &GnssSettings) -> Result<(), VesselError> {
     let positive = |what: &'static str, value: f64| {
-        if value.is_finite() && value > 0.0 { Ok(()) } else { Err(VesselError::Gnss { what, value }) }
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(VesselError::Gnss { what, value })
+        }
     };
     positive("rate_hz", g.rate_hz)?;
     positive("baseline_noise_m", g.baseline_noise_m)?;
-    positive("baseline length", g.baseline_body_m[0].hypot(g.baseline_body_m[1]))?;
+    positive(
+        "baseline length",
+        g.baseline_body_m[0].hypot(g.baseline_body_m[1]),
+    )?;
     for (k, sd) in g.position_sd_ned_m.iter().enumerate() {
-        positive(["position_sd_n_m", "position_sd_e_m", "position_sd_d_m"][k], *sd)?;
+        positive(
+            ["position_sd_n_m", "position_sd_e_m", "position_sd_d_m"][k],
+            *sd,
+        )?;
     }
     Ok(())
 }
@@ -178,13 +225,27 @@ fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory
     for channel in Channel::ALL {
         let mut rng: SimRng = named_rng(run.seed, &format!("vessel/{}", channel.name()));
         let p = &profile.channels[&channel];
-        let mut errors = ChannelErrors::new(p, profile.reference_temperature_c, run.temperature_c, &mut rng);
+        let mut errors = ChannelErrors::new(
+            p,
+            profile.reference_temperature_c,
+            run.temperature_c,
+            &mut rng,
+        );
         let axis = channel.index() % 3;
         series.channels[channel.index()] = increments
             .iter()
             .map(|inc| {
-                let delta = if channel.index() < 3 { inc.delta_angle } else { inc.delta_velocity };
-                errors.measure(delta.to_array()[axis] / inc.dt_s, inc.dt_s, run.temperature_c, &mut rng)
+                let delta = if channel.index() < 3 {
+                    inc.delta_angle
+                } else {
+                    inc.delta_velocity
+                };
+                errors.measure(
+                    delta.to_array()[axis] / inc.dt_s,
+                    inc.dt_s,
+                    run.temperature_c,
+                    &mut rng,
+                )
             })
             .collect();
     }
@@ -193,7 +254,10 @@ fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory
 
 /// The state at time `t` from the nearest earlier state, moved along its velocity.
 fn state_at(reference: &Trajectory, t: Timestamp) -> Option<NavState> {
-    let k = reference.states.partition_point(|s| s.time <= t).checked_sub(1)?;
+    let k = reference
+        .states
+        .partition_point(|s| s.time <= t)
+        .checked_sub(1)?;
     let s = reference.states[k];
     let dt = t.since(s.time).as_seconds();
     let rates = s.position.rates(&s.velocity);
@@ -202,7 +266,11 @@ fn state_at(reference: &Trajectory, t: Timestamp) -> Option<NavState> {
         longitude_rad: s.position.longitude_rad + rates[1] * dt,
         height_m: s.position.height_m + rates[2] * dt,
     };
-    Some(NavState { time: t, position, ..s })
+    Some(NavState {
+        time: t,
+        position,
+        ..s
+    })
 }
 
 /// Fixes at whole multiples of the GNSS interval within the reference.
@@ -226,7 +294,14 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
     let lever_n = state.attitude * Vector::<Body>::from_array(g.lever_arm_body_m);
     let noise = g.position_sd_ned_m.map(|sd| sd * standard_normal(rng));
     let offset_n = lever_n.to_array();
-    let antenna = displaced(&state.position, [offset_n[0] + noise[0], offset_n[1] + noise[1], offset_n[2] + noise[2]]);
+    let antenna = displaced(
+        &state.position,
+        [
+            offset_n[0] + noise[0],
+            offset_n[1] + noise[1],
+            offset_n[2] + noise[2],
+        ],
+    );
     let baseline_n = (state.attitude * Vector::<Body>::from_array(g.baseline_body_m)).to_array();
     let across = g.baseline_noise_m * std::f64::consts::SQRT_2 * standard_normal(rng);
     let length = baseline_n[0].hypot(baseline_n[1]);
@@ -238,7 +313,10 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
         height_m: antenna.height_m,
         position_sd_ned_m: Some(g.position_sd_ned_m),
         velocity_ned_m_s: None,
-        heading: Some(HeadingObservation { heading_rad: wrap_pi(heading), sd_rad: g.heading_sd_rad() }),
+        heading: Some(HeadingObservation {
+            heading_rad: wrap_pi(heading),
+            sd_rad: g.heading_sd_rad(),
+        }),
     }
 }
 
@@ -257,5 +335,9 @@ fn displaced(p: &Geodetic, offset_ned_m: [f64; 3]) -> Geodetic {
 /// An angle wrapped to (−π, π].
 pub fn wrap_pi(angle_rad: f64) -> f64 {
     let wrapped = angle_rad.rem_euclid(std::f64::consts::TAU);
-    if wrapped > std::f64::consts::PI { wrapped - std::f64::consts::TAU } else { wrapped }
+    if wrapped > std::f64::consts::PI {
+        wrapped - std::f64::consts::TAU
+    } else {
+        wrapped
+    }
 }

@@ -8,6 +8,7 @@ mod ideal_imu;
 mod ins;
 mod signal;
 mod ukf;
+mod vessel;
 
 use std::path::PathBuf;
 
