@@ -4,6 +4,7 @@
 mod args;
 mod commands;
 mod failure;
+mod noise_units;
 mod report;
 
 use clap::Parser;

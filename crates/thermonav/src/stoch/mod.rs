@@ -4,7 +4,7 @@ pub mod acf;
 pub mod allan;
 pub mod ar;
 pub mod bank;
+pub mod characterize;
 pub mod gauss_markov;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
-pub mod characterize;

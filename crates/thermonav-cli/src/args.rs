@@ -1,0 +1,351 @@
+//! Raw command-line arguments (clap). They are resolved into validated settings by each command.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+/// Temperature-dependent stochastic modelling of MEMS IMU errors and GNSS/INS filtering.
+#[derive(Debug, Parser)]
+#[command(name = "thermonav", version, about, long_about = None)]
+pub struct Cli {
+    /// The subcommand to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run the main job on built-in simulated data and write everything under --out.
+    Demo(DemoArgs),
+    /// Sanity-check a canonical IMU CSV: rate, jitter, gaps, ordering, NaN/inf, channel statistics.
+    Inspect(InspectArgs),
+    /// Design a Kaiser-window FIR low-pass filter (SciPy kaiserord + firwin).
+    Fir(FirArgs),
+    /// Low-pass filter (and optionally decimate) every channel of an IMU CSV.
+    Filter(FilterArgs),
+    /// Overlapping Allan deviation per channel, confidence limits and IEEE 952 noise terms.
+    Allan(AllanArgs),
+    /// AR model per channel and its Gauss-Markov equivalent.
+    Ar(ArArgs),
+    /// Build the temperature model bank from static records (one per temperature).
+    Characterize(CharacterizeArgs),
+    /// Read a model bank.
+    Bank(BankArgs),
+    /// Simulate thermal-chamber records, a vessel survey, or write the built-in sensor profile.
+    Simulate(SimulateArgs),
+}
+
+/// Allan τ grids.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum TausArg {
+    /// m = 1, 2, 4, 8, …
+    Octave,
+    /// m = 1, 2, 4, 10, 20, 40, …
+    Decade,
+    /// 20 log-spaced m per decade.
+    Dense,
+}
+
+/// Arguments of `allan`.
+#[derive(Debug, Args)]
+pub struct AllanArgs {
+    /// The IMU CSV (rates).
+    pub file: PathBuf,
+    /// τ grid.
+    #[arg(long, value_enum, default_value_t = TausArg::Octave)]
+    pub taus: TausArg,
+    /// Confidence level of the limits (0.683 is Stable32's).
+    #[arg(long, default_value_t = 0.683)]
+    pub confidence: f64,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// AR estimators.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ArMethodArg {
+    /// Yule-Walker (Levinson-Durbin on the biased autocovariance).
+    YuleWalker,
+    /// Burg.
+    Burg,
+    /// Covariance method (forward least squares).
+    Covariance,
+    /// Modified covariance (forward-backward least squares).
+    ModifiedCovariance,
+}
+
+/// Arguments of `ar`.
+#[derive(Debug, Args)]
+pub struct ArArgs {
+    /// The IMU CSV (rates); filter and decimate it first with `thermonav filter` as the paper does.
+    pub file: PathBuf,
+    /// Estimator.
+    #[arg(long, value_enum, default_value_t = ArMethodArg::Burg)]
+    pub method: ArMethodArg,
+    /// Order: a number, or `auto` (BIC over 1..=--max-order).
+    #[arg(long, default_value = "1")]
+    pub order: String,
+    /// Largest order tried by `--order auto`.
+    #[arg(long, default_value_t = 10)]
+    pub max_order: usize,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `characterize`.
+#[derive(Debug, Args)]
+pub struct CharacterizeArgs {
+    /// Static IMU CSVs, one per temperature point.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Temperatures of the files, °C, comma-separated (default: the mean of each file's temp_c).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub temperature_c: Vec<f64>,
+    /// Output bank (JSON).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Kaiser cut-off of the conditioning before AR modelling, Hz.
+    #[arg(long, default_value_t = 0.4)]
+    pub cutoff_hz: f64,
+    /// Kaiser transition width, Hz.
+    #[arg(long, default_value_t = 0.2)]
+    pub transition_hz: f64,
+    /// Rate of the conditioned series, Hz.
+    #[arg(long, default_value_t = 1.0)]
+    pub modelling_rate_hz: f64,
+    /// Print one JSON document (a summary) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `bank`.
+#[derive(Debug, Args)]
+pub struct BankArgs {
+    /// What to do with the bank.
+    #[command(subcommand)]
+    pub action: BankAction,
+}
+
+/// Bank actions.
+#[derive(Debug, Subcommand)]
+pub enum BankAction {
+    /// Show the bank, or the model selected for an operating temperature.
+    Show(BankShowArgs),
+}
+
+/// Model selection rules.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum SelectArg {
+    /// The entry at the nearest temperature.
+    Nearest,
+    /// Linear interpolation of Tc and sigma between the bracketing entries.
+    Linear,
+}
+
+/// Gauss-Markov model families in the bank.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum GmSourceArg {
+    /// Exact likelihood of Gauss-Markov + white noise on the irregular timestamps.
+    IrregularMl,
+    /// The paper's AR(1)-based model.
+    ArBased,
+    /// The classical fit to the autocorrelation.
+    AcfFit,
+}
+
+/// Arguments of `bank show`.
+#[derive(Debug, Args)]
+pub struct BankShowArgs {
+    /// The bank (JSON).
+    pub bank: PathBuf,
+    /// Operating temperature, °C.
+    #[arg(long, allow_negative_numbers = true)]
+    pub at_temperature_c: Option<f64>,
+    /// Selection rule for --at-temperature-c.
+    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    pub method: SelectArg,
+    /// Which Gauss-Markov family.
+    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    pub model: GmSourceArg,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// What to simulate.
+    #[command(subcommand)]
+    pub what: SimulateWhat,
+}
+
+/// Simulations.
+#[derive(Debug, Subcommand)]
+pub enum SimulateWhat {
+    /// Static records in a thermal chamber, one CSV per temperature, plus truth.json.
+    Chamber(ChamberArgs),
+    /// A harbour survey vessel: reference trajectory, IMU and GNSS CSVs.
+    Vessel(VesselArgs),
+    /// Write the built-in sensor profile as TOML (a template for your own).
+    Profile(ProfileArgs),
+}
+
+/// Arguments of `simulate chamber`.
+#[derive(Debug, Args)]
+pub struct ChamberArgs {
+    /// Output folder.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Chamber set points, °C.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        default_value = "-40,-20,0,20,40,60"
+    )]
+    pub temperatures_c: Vec<f64>,
+    /// Record length per temperature, s.
+    #[arg(long, default_value_t = 10800.0)]
+    pub duration_s: f64,
+    /// Sample rate, Hz.
+    #[arg(long, default_value_t = 200.0)]
+    pub rate_hz: f64,
+    /// Timestamp jitter (standard deviation), µs.
+    #[arg(long, default_value_t = 50.0)]
+    pub jitter_us: f64,
+    /// Probability that a sample is dropped.
+    #[arg(long, default_value_t = 0.001)]
+    pub drop_probability: f64,
+    /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
+    #[arg(long)]
+    pub profile: Option<PathBuf>,
+    /// Seed of every random draw.
+    #[arg(long, default_value_t = 2009)]
+    pub seed: u64,
+    /// Print one JSON document (the truth) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `simulate vessel`.
+#[derive(Debug, Args)]
+pub struct VesselArgs {
+    /// Output folder.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Sensor temperature during the survey, °C.
+    #[arg(long, default_value_t = 17.0, allow_negative_numbers = true)]
+    pub temperature_c: f64,
+    /// Survey length, s.
+    #[arg(long, default_value_t = 3600.0)]
+    pub duration_s: f64,
+    /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
+    #[arg(long)]
+    pub profile: Option<PathBuf>,
+    /// Seed of every random draw.
+    #[arg(long, default_value_t = 2009)]
+    pub seed: u64,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `simulate profile`.
+#[derive(Debug, Args)]
+pub struct ProfileArgs {
+    /// Output TOML file.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Arguments of `demo`.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// Output folder.
+    #[arg(long, default_value = "out/demo")]
+    pub out: PathBuf,
+    /// A shorter run (seconds instead of minutes).
+    #[arg(long)]
+    pub quick: bool,
+    /// Seed of every random draw.
+    #[arg(long, default_value_t = 2009)]
+    pub seed: u64,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `inspect`.
+#[derive(Debug, Args)]
+pub struct InspectArgs {
+    /// The IMU CSV to inspect.
+    pub file: PathBuf,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Kaiser low-pass specification shared by `fir` and `filter`.
+#[derive(Debug, Args, Clone, Copy)]
+pub struct KaiserArgs {
+    /// Pass-band edge (cut-off), Hz.
+    #[arg(long)]
+    pub cutoff_hz: f64,
+    /// Width of the transition band, Hz.
+    #[arg(long, default_value_t = 1.0)]
+    pub transition_hz: f64,
+    /// Stop-band attenuation and pass-band ripple, dB (positive).
+    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+    pub ripple_db: f64,
+}
+
+/// Arguments of `fir`.
+#[derive(Debug, Args)]
+pub struct FirArgs {
+    /// Sampling rate, Hz.
+    #[arg(long)]
+    pub fs_hz: f64,
+    /// The filter specification.
+    #[command(flatten)]
+    pub kaiser: KaiserArgs,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// How the filter's delay is removed.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ModeArg {
+    /// One forward pass with the linear-phase group delay removed.
+    ZeroPhase,
+    /// Forward-backward filtering, as SciPy's filtfilt (squared magnitude response).
+    Filtfilt,
+}
+
+/// Arguments of `filter`.
+#[derive(Debug, Args)]
+pub struct FilterArgs {
+    /// The IMU CSV to filter.
+    pub input: PathBuf,
+    /// The filter specification.
+    #[command(flatten)]
+    pub kaiser: KaiserArgs,
+    /// Zero-phase mode.
+    #[arg(long, value_enum, default_value_t = ModeArg::ZeroPhase)]
+    pub mode: ModeArg,
+    /// Decimate to this rate after filtering, Hz (must divide the input rate).
+    #[arg(long)]
+    pub decimate_to_hz: Option<f64>,
+    /// Sampling rate used for the design, Hz (default: the nominal rate of the file).
+    #[arg(long)]
+    pub fs_hz: Option<f64>,
+    /// Output CSV; a sidecar OUT.json records what was done.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print one JSON document (the sidecar) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}

@@ -1,0 +1,125 @@
+//! `thermonav allan`: overlapping Allan deviation of every channel.
+
+use crate::args::{AllanArgs, TausArg};
+use crate::failure::{Classify, Failure};
+use crate::noise_units::{TermsJson, terms_json, terms_line};
+use crate::report::print_json;
+use anyhow::anyhow;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use thermonav::imu::{Channel, SampleKind};
+use thermonav::signal::timestamps::interval_stats;
+use thermonav::stoch::allan::{TauGrid, confidence_intervals, overlapping_adev};
+use thermonav::stoch::noise_terms::fit_noise_terms;
+use thermonav_io::{Strictness, read_imu_file};
+
+/// The JSON document of `allan --json`.
+#[derive(Debug, Serialize)]
+struct AllanJson {
+    file: String,
+    sample_rate_hz: f64,
+    confidence: f64,
+    channels: BTreeMap<&'static str, ChannelJson>,
+}
+
+#[derive(Debug, Serialize)]
+struct ChannelJson {
+    unit: &'static str,
+    tau_s: Vec<f64>,
+    adev: Vec<f64>,
+    n_terms: Vec<usize>,
+    ci_low: Vec<f64>,
+    ci_high: Vec<f64>,
+    noise_type_alpha: Vec<i32>,
+    terms: TermsJson,
+}
+
+/// The grid of a `--taus` choice.
+pub fn grid_of(taus: TausArg) -> TauGrid {
+    match taus {
+        TausArg::Octave => TauGrid::Octave,
+        TausArg::Decade => TauGrid::Decade,
+        TausArg::Dense => TauGrid::Dense { per_decade: 20 },
+    }
+}
+
+/// Runs `allan`.
+pub fn run(args: &AllanArgs) -> Result<(), Failure> {
+    if !(args.confidence > 0.0 && args.confidence < 1.0) {
+        return Err(Failure::Usage(anyhow!(
+            "--confidence {} must lie strictly between 0 and 1",
+            args.confidence
+        )));
+    }
+    let series = read_imu_file(&args.file, Strictness::Strict).data()?;
+    if series.kind == Some(SampleKind::Increments) {
+        return Err(Failure::Data(anyhow!(
+            "{}: Allan deviation needs rates; the file holds increments",
+            args.file.display()
+        )));
+    }
+    let rate_hz = interval_stats(&series.time)
+        .map(|s| s.nominal_rate_hz())
+        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", args.file.display())))?;
+    let grid = grid_of(args.taus);
+    let mut channels = BTreeMap::new();
+    for channel in Channel::ALL {
+        let y = series.channel(channel);
+        let curve = overlapping_adev(y, rate_hz, &grid)
+            .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))
+            .data()?;
+        let ci = confidence_intervals(y, &curve, args.confidence);
+        let terms = terms_json(&fit_noise_terms(&curve), channel.sensor());
+        channels.insert(
+            channel.name(),
+            ChannelJson {
+                unit: channel.si_unit(SampleKind::Rates),
+                tau_s: curve.tau_s,
+                adev: curve.adev,
+                n_terms: curve.n_terms,
+                ci_low: ci.low,
+                ci_high: ci.high,
+                noise_type_alpha: ci.alpha,
+                terms,
+            },
+        );
+    }
+    let doc = AllanJson {
+        file: args.file.display().to_string(),
+        sample_rate_hz: rate_hz,
+        confidence: args.confidence,
+        channels,
+    };
+    if args.json {
+        return print_json(&doc);
+    }
+    print_text(&doc);
+    Ok(())
+}
+
+fn print_text(doc: &AllanJson) {
+    println!(
+        "{}: {:.3} Hz, overlapping Allan deviation ({:.1} % limits)",
+        doc.file,
+        doc.sample_rate_hz,
+        doc.confidence * 100.0
+    );
+    for (name, c) in &doc.channels {
+        println!("\n{name} [{}]  {}", c.unit, terms_line(&c.terms));
+        println!(
+            "{:>12} {:>14} {:>14} {:>14} {:>10} {:>6}",
+            "tau_s", "adev", "low", "high", "n_terms", "alpha"
+        );
+        for i in 0..c.tau_s.len() {
+            println!(
+                "{:>12.4} {:>14.6e} {:>14.6e} {:>14.6e} {:>10} {:>6}",
+                c.tau_s[i],
+                c.adev[i],
+                c.ci_low[i],
+                c.ci_high[i],
+                c.n_terms[i],
+                c.noise_type_alpha[i]
+            );
+        }
+    }
+}

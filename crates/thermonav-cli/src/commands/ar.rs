@@ -1,0 +1,176 @@
+//! `thermonav ar`: an AR model per channel and its Gauss-Markov equivalent.
+
+use crate::args::{ArArgs, ArMethodArg};
+use crate::failure::{Classify, Failure};
+use crate::report::print_json;
+use anyhow::anyhow;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use thermonav::imu::{Channel, SampleKind};
+use thermonav::signal::timestamps::interval_stats;
+use thermonav::stoch::ar::order::{Criterion, Order, fit_ar_order};
+use thermonav::stoch::ar::{ArMethod, fit_ar};
+use thermonav::stoch::gauss_markov::{Ar1Estimate, GaussMarkovOutcome, ar_based};
+use thermonav_io::{Strictness, read_imu_file};
+
+#[derive(Debug, Serialize)]
+struct ArJson {
+    file: String,
+    method: &'static str,
+    sample_interval_s: f64,
+    channels: BTreeMap<&'static str, ChannelJson>,
+}
+
+#[derive(Debug, Serialize)]
+struct ChannelJson {
+    unit: &'static str,
+    order: usize,
+    coefficients: Vec<f64>,
+    coefficient_std_errors: Vec<f64>,
+    noise_variance: f64,
+    /// The Gauss-Markov equivalent of the AR(1) fit by the same method (the paper's eqs 8-10).
+    gauss_markov: GaussMarkovJson,
+}
+
+#[derive(Debug, Serialize)]
+#[serde(tag = "status", rename_all = "snake_case")]
+enum GaussMarkovJson {
+    Model {
+        correlation_time_s: f64,
+        sigma: f64,
+        ci95_correlation_time_s: [Option<f64>; 2],
+        c1: f64,
+    },
+    NoEquivalent {
+        reason: String,
+        c1: f64,
+    },
+}
+
+/// The library method of a `--method` choice.
+pub fn method_of(m: ArMethodArg) -> ArMethod {
+    match m {
+        ArMethodArg::YuleWalker => ArMethod::YuleWalker,
+        ArMethodArg::Burg => ArMethod::Burg,
+        ArMethodArg::Covariance => ArMethod::Covariance,
+        ArMethodArg::ModifiedCovariance => ArMethod::ModifiedCovariance,
+    }
+}
+
+fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
+    if text == "auto" {
+        return Ok(Order::Auto {
+            criterion: Criterion::Bic,
+            max_order,
+        });
+    }
+    match text.parse::<usize>() {
+        Ok(p) if p >= 1 => Ok(Order::Fixed(p)),
+        _ => Err(Failure::Usage(anyhow!(
+            "--order {text:?}: expected a positive integer or `auto`"
+        ))),
+    }
+}
+
+/// Runs `ar`.
+pub fn run(args: &ArArgs) -> Result<(), Failure> {
+    let order = order_of(&args.order, args.max_order)?;
+    let method = method_of(args.method);
+    let series = read_imu_file(&args.file, Strictness::Strict).data()?;
+    if series.kind == Some(SampleKind::Increments) {
+        return Err(Failure::Data(anyhow!(
+            "{}: AR modelling needs rates; the file holds increments",
+            args.file.display()
+        )));
+    }
+    let dt_s = interval_stats(&series.time)
+        .map(|s| s.median.as_seconds())
+        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", args.file.display())))?;
+    let mut channels = BTreeMap::new();
+    for channel in Channel::ALL {
+        let x = series.channel(channel);
+        let context = |e: thermonav::stoch::ar::ArError| {
+            anyhow!("{}: channel {}: {e}", args.file.display(), channel.name())
+        };
+        let model = fit_ar_order(x, order, method).map_err(context).data()?;
+        let ar1 = fit_ar(x, 1, method).map_err(context).data()?;
+        let c1 = ar1.coefficients[0];
+        let gm = match ar_based(&Ar1Estimate {
+            c1,
+            c1_std_error: ar1.std_errors[0],
+            innovation_variance: ar1.noise_variance,
+            dt_s,
+        }) {
+            GaussMarkovOutcome::Model {
+                model,
+                ci95_correlation_time_s,
+            } => GaussMarkovJson::Model {
+                correlation_time_s: model.correlation_time_s,
+                sigma: model.sigma,
+                ci95_correlation_time_s,
+                c1,
+            },
+            GaussMarkovOutcome::NoEquivalent { reason } => {
+                GaussMarkovJson::NoEquivalent { reason, c1 }
+            }
+        };
+        channels.insert(
+            channel.name(),
+            ChannelJson {
+                unit: channel.si_unit(SampleKind::Rates),
+                order: model.order(),
+                coefficients: model.coefficients,
+                coefficient_std_errors: model.std_errors,
+                noise_variance: model.noise_variance,
+                gauss_markov: gm,
+            },
+        );
+    }
+    let doc = ArJson {
+        file: args.file.display().to_string(),
+        method: method.name(),
+        sample_interval_s: dt_s,
+        channels,
+    };
+    if args.json {
+        return print_json(&doc);
+    }
+    println!(
+        "{}: AR by {}, dt {:.6} s (median interval)",
+        doc.file, doc.method, dt_s
+    );
+    println!(
+        "{:<4} {:>5} {:>34} {:>14} {:>14} {:>26}",
+        "ch", "order", "coefficients c_1..c_p", "noise var", "GM Tc s", "95 % interval s"
+    );
+    for (name, c) in &doc.channels {
+        let coefficients = c
+            .coefficients
+            .iter()
+            .map(|v| format!("{v:.5}"))
+            .collect::<Vec<_>>()
+            .join(" ");
+        let (tc, ci) = match &c.gauss_markov {
+            GaussMarkovJson::Model {
+                correlation_time_s,
+                ci95_correlation_time_s: [lo, hi],
+                ..
+            } => {
+                let show =
+                    |v: &Option<f64>| v.map_or("unbounded".to_string(), |v| format!("{v:.3}"));
+                (
+                    format!("{correlation_time_s:.3}"),
+                    format!("[{}, {}]", show(lo), show(hi)),
+                )
+            }
+            GaussMarkovJson::NoEquivalent { c1, .. } => {
+                (format!("none (c1 {c1:.4})"), String::new())
+            }
+        };
+        println!(
+            "{name:<4} {:>5} {coefficients:>34} {:>14.6e} {tc:>14} {ci:>26}",
+            c.order, c.noise_variance
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,183 @@
+//! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
+
+use super::fir::{FirDesign, describe, design};
+use crate::args::{FilterArgs, ModeArg};
+use crate::failure::{Classify, Failure};
+use crate::report::{print_json, print_rows};
+use anyhow::anyhow;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use thermonav::imu::ImuSeries;
+use thermonav::signal::decimate::{decimate, decimation_factor};
+use thermonav::signal::kaiser::FirFilter;
+use thermonav::signal::timestamps::check_timestamps;
+use thermonav::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
+use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
+
+/// The sidecar JSON written next to the output (and printed by `--json`).
+#[derive(Debug, Serialize)]
+pub struct FilterRecord {
+    input: String,
+    output: String,
+    thermonav_version: &'static str,
+    rows_in: usize,
+    rows_out: usize,
+    input_nominal_rate_hz: f64,
+    input_gap_count: usize,
+    mode: &'static str,
+    filter: FirDesign,
+    decimation_factor: usize,
+    output_rate_hz: f64,
+    temperature_column: &'static str,
+}
+
+/// Runs `filter`.
+pub fn run(args: &FilterArgs) -> Result<(), Failure> {
+    let series = read_imu_file(&args.input, Strictness::Strict).data()?;
+    let timing = check_timestamps(&series.time);
+    let nominal_rate_hz = timing
+        .intervals
+        .map(|s| s.nominal_rate_hz())
+        .ok_or_else(|| {
+            Failure::Data(anyhow!("{}: fewer than two samples", args.input.display()))
+        })?;
+    let design_rate_hz = args.fs_hz.unwrap_or(nominal_rate_hz);
+    let (spec, designed) = design(design_rate_hz, &args.kaiser)?;
+    let mode = zero_phase_mode(args.mode);
+    // One-pass zero phase needs a whole-sample delay: an even design gets one more tap.
+    let filter = match mode {
+        ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(&spec),
+        ZeroPhaseMode::ForwardBackward => designed,
+    };
+    let factor = resolve_decimation(args, &filter)?;
+    let filtered = filter_series(&series, &filter, mode, factor).data()?;
+    let record = FilterRecord {
+        input: args.input.display().to_string(),
+        output: args.out.display().to_string(),
+        thermonav_version: env!("CARGO_PKG_VERSION"),
+        rows_in: series.len(),
+        rows_out: filtered.len(),
+        input_nominal_rate_hz: nominal_rate_hz,
+        input_gap_count: timing.gap_count,
+        mode: mode_name(args.mode),
+        filter: describe(&filter, &args.kaiser),
+        decimation_factor: factor,
+        output_rate_hz: design_rate_hz / factor as f64,
+        temperature_column: "not filtered; decimated with the samples",
+    };
+    write_outputs(&args.out, &filtered, &record)?;
+    if timing.gap_count > 0 {
+        eprintln!(
+            "warning: {} has {} gaps longer than 1.5 sampling intervals; the filter treats the samples as evenly spaced",
+            args.input.display(),
+            timing.gap_count
+        );
+    }
+    report(args.json, &record)
+}
+
+fn zero_phase_mode(mode: ModeArg) -> ZeroPhaseMode {
+    match mode {
+        ModeArg::ZeroPhase => ZeroPhaseMode::DelayCompensated,
+        ModeArg::Filtfilt => ZeroPhaseMode::ForwardBackward,
+    }
+}
+
+fn mode_name(mode: ModeArg) -> &'static str {
+    match mode {
+        ModeArg::ZeroPhase => "zero-phase",
+        ModeArg::Filtfilt => "filtfilt",
+    }
+}
+
+/// The decimation factor, checked against the filter: the cut-off must lie below the new
+/// Nyquist frequency or the decimated series aliases.
+fn resolve_decimation(args: &FilterArgs, filter: &FirFilter) -> Result<usize, Failure> {
+    let Some(target_hz) = args.decimate_to_hz else {
+        return Ok(1);
+    };
+    let factor = decimation_factor(filter.sample_rate_hz(), target_hz).usage()?;
+    let new_nyquist_hz = target_hz / 2.0;
+    if args.kaiser.cutoff_hz + args.kaiser.transition_hz > new_nyquist_hz {
+        return Err(Failure::Usage(anyhow!(
+            "--cutoff-hz {} + --transition-hz {} must not exceed the Nyquist frequency {} Hz of --decimate-to-hz {}",
+            args.kaiser.cutoff_hz,
+            args.kaiser.transition_hz,
+            new_nyquist_hz,
+            target_hz
+        )));
+    }
+    Ok(factor)
+}
+
+/// Filters every channel and keeps every `factor`-th sample; the temperature column is carried
+/// along unfiltered.
+pub fn filter_series(
+    series: &ImuSeries,
+    filter: &FirFilter,
+    mode: ZeroPhaseMode,
+    factor: usize,
+) -> Result<ImuSeries, thermonav::signal::SignalError> {
+    let mut out = ImuSeries {
+        time: decimate(&series.time, factor),
+        temperature_c: series.temperature_c.as_ref().map(|t| decimate(t, factor)),
+        kind: series.kind,
+        ..ImuSeries::default()
+    };
+    for (column, input) in out.channels.iter_mut().zip(&series.channels) {
+        *column = decimate(&filter_zero_phase(filter, input, mode)?, factor);
+    }
+    Ok(out)
+}
+
+/// The sidecar's path: the output path with `.json` appended.
+pub fn sidecar_path(out: &Path) -> PathBuf {
+    let mut name = out.as_os_str().to_owned();
+    name.push(".json");
+    PathBuf::from(name)
+}
+
+fn write_outputs(out: &Path, series: &ImuSeries, record: &FilterRecord) -> Result<(), Failure> {
+    write_imu_file(out, series).data()?;
+    write_json_atomically(sidecar_path(out), record).data()
+}
+
+fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
+    if json {
+        return print_json(record);
+    }
+    print_rows(&[
+        (
+            "input",
+            format!(
+                "{} ({} rows, {:.3} Hz)",
+                record.input, record.rows_in, record.input_nominal_rate_hz
+            ),
+        ),
+        (
+            "filter",
+            format!(
+                "Kaiser low-pass, {} taps, beta {:.4}, {}",
+                record.filter.num_taps, record.filter.beta, record.mode
+            ),
+        ),
+        (
+            "decimation",
+            format!(
+                "x{} -> {:.3} Hz",
+                record.decimation_factor, record.output_rate_hz
+            ),
+        ),
+        (
+            "output",
+            format!("{} ({} rows)", record.output, record.rows_out),
+        ),
+        (
+            "record",
+            sidecar_path(Path::new(&record.output))
+                .display()
+                .to_string(),
+        ),
+    ]);
+    Ok(())
+}

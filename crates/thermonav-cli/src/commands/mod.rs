@@ -1,0 +1,29 @@
+//! One function per subcommand.
+
+mod allan;
+mod ar;
+mod bank;
+mod characterize;
+mod demo;
+mod filter;
+mod fir;
+mod inspect;
+mod simulate;
+
+use crate::args::{Cli, Command};
+use crate::failure::Failure;
+
+/// Runs the chosen subcommand.
+pub fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Demo(args) => demo::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
+        Command::Fir(args) => fir::run(&args),
+        Command::Filter(args) => filter::run(&args),
+        Command::Allan(args) => allan::run(&args),
+        Command::Ar(args) => ar::run(&args),
+        Command::Characterize(args) => characterize::run(&args),
+        Command::Bank(args) => bank::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
+    }
+}

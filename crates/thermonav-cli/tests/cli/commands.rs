@@ -1,0 +1,159 @@
+//! Successful runs: what each command prints and writes, against closed forms.
+
+use crate::{IMU_HEADER, arg, imu_csv, outcome, thermonav, write_file};
+
+fn json_of(args: &[&str]) -> serde_json::Value {
+    let (status, stdout, stderr) = outcome(&thermonav(args));
+    assert_eq!(status, 0, "stderr: {stderr}");
+    serde_json::from_str(&stdout).expect("stdout is one JSON document")
+}
+
+#[test]
+fn inspect_reports_rate_gaps_duplicates_and_reversals() {
+    let dir = tempfile::tempdir().unwrap();
+    // 200 Hz; a gap of 3 intervals after row 10, a duplicate and a reversal at the end.
+    let mut text = format!("{IMU_HEADER},temp_c\n");
+    let times: Vec<f64> = (0..10)
+        .map(|k| k as f64 * 0.005)
+        .chain((12..20).map(|k| k as f64 * 0.005))
+        .chain([0.095, 0.09])
+        .collect();
+    for (k, t) in times.iter().enumerate() {
+        text.push_str(&format!(
+            "{t:.9},1,2,3,4,5,{},{}\n",
+            -9.8 + k as f64 * 0.01,
+            20.0 + k as f64
+        ));
+    }
+    let path = write_file(dir.path(), "imu.csv", &text);
+    let json = json_of(&["inspect", arg(&path), "--json"]);
+    assert_eq!(json["rows"], 20);
+    assert_eq!(json["nominal_rate_hz"], 200.0);
+    assert_eq!(json["gap_count"], 1);
+    // The gap runs from row 10 (file line 11) to row 11 (line 12).
+    assert_eq!(json["gaps"][0]["start_line"], 11);
+    assert!((json["gaps"][0]["length_s"].as_f64().unwrap() - 0.015).abs() < 1e-12);
+    assert_eq!(json["duplicate_count"], 1);
+    assert_eq!(json["non_monotonic_count"], 1);
+    assert_eq!(json["non_monotonic"][0]["line"], 21);
+    assert_eq!(json["temperature"]["min_c"], 20.0);
+    assert_eq!(json["temperature"]["max_c"], 39.0);
+    let gx = &json["channels"][0];
+    assert_eq!(
+        (gx["channel"].as_str(), gx["unit"].as_str()),
+        (Some("gx"), Some("rad/s"))
+    );
+    assert_eq!(gx["mean"], 1.0);
+    assert_eq!(gx["std"], 0.0);
+}
+
+#[test]
+fn inspect_text_output_names_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_file(dir.path(), "imu.csv", &imu_csv(50, 100.0, |c, _| c as f64));
+    let (status, stdout, _) = outcome(&thermonav(&["inspect", arg(&path)]));
+    assert_eq!(status, 0);
+    assert!(stdout.contains("100.000000 Hz"), "{stdout}");
+    assert!(
+        stdout.contains("m/s^2") && stdout.contains("rad/s"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn filter_keeps_a_constant_and_removes_a_tone_far_above_cut_off() {
+    let dir = tempfile::tempdir().unwrap();
+    // Channel gx: constant 0.25; channel gy: a 40 Hz tone (cut-off 5 Hz, 60 dB design).
+    let tone = |t: f64| (2.0 * std::f64::consts::PI * 40.0 * t).sin();
+    let text = imu_csv(4000, 200.0, |c, t| match c {
+        0 => 0.25,
+        1 => tone(t),
+        _ => 0.0,
+    });
+    let input = write_file(dir.path(), "in.csv", &text);
+    let out = dir.path().join("out.csv");
+    let record = json_of(&[
+        "filter",
+        arg(&input),
+        "--cutoff-hz",
+        "5",
+        "--out",
+        arg(&out),
+        "--json",
+    ]);
+    assert_eq!(record["rows_out"], 4000);
+    assert!(dir.path().join("out.csv.json").exists(), "sidecar written");
+    let filtered = std::fs::read_to_string(&out).unwrap();
+    let rows: Vec<Vec<f64>> = filtered
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    // DC gain of the design is 1 (firwin scaling), and the odd extension of a constant is the
+    // same constant, so the constant survives to rounding (1e-12).
+    assert!(rows.iter().all(|r| (r[1] - 0.25).abs() < 1e-12));
+    // A one-pass Kaiser design guarantees at least ripple_db = 60 dB (amplitude 1e-3) in the
+    // stop band; away from the edges (one filter length) the tone must be below that.
+    let taps = record["filter"]["num_taps"].as_u64().unwrap() as usize;
+    let interior = &rows[taps..rows.len() - taps];
+    let peak = interior.iter().map(|r| r[2].abs()).fold(0.0, f64::max);
+    assert!(peak < 1e-3, "residual tone {peak}");
+    // Timestamps are untouched.
+    assert_eq!(rows[1][0], 0.005);
+}
+
+#[test]
+fn decimation_keeps_every_nth_timestamp() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_file(dir.path(), "in.csv", &imu_csv(2010, 200.0, |_, _| 1.0));
+    let out = dir.path().join("out.csv");
+    let args = [
+        "filter",
+        arg(&input),
+        "--cutoff-hz",
+        "2",
+        "--transition-hz",
+        "2",
+        "--decimate-to-hz",
+        "10",
+        "--out",
+        arg(&out),
+        "--json",
+    ];
+    let record = json_of(&args);
+    assert_eq!(record["decimation_factor"], 20);
+    assert_eq!(record["output_rate_hz"], 10.0);
+    // 2010 samples, every 20th from the first: indices 0, 20, ..., 2000 -> 101 rows.
+    assert_eq!(record["rows_out"], 101);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let last_time: f64 = text
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(last_time, 10.0);
+}
+
+#[test]
+fn decimation_that_would_alias_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_file(dir.path(), "in.csv", &imu_csv(410, 200.0, |_, _| 1.0));
+    let out = dir.path().join("out.csv");
+    let args = [
+        "filter",
+        arg(&input),
+        "--cutoff-hz",
+        "5",
+        "--decimate-to-hz",
+        "10",
+        "--out",
+        arg(&out),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(!out.exists());
+}

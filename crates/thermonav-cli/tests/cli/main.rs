@@ -1,0 +1,64 @@
+//! End-to-end tests of the `thermonav` command: exit codes, error messages, outputs.
+
+mod bad_input;
+mod commands;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Runs the binary with `args`, no stdin.
+pub fn thermonav(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_thermonav"))
+        .args(args)
+        .output()
+        .expect("the thermonav binary runs")
+}
+
+/// Exit code, stdout and stderr of a run.
+pub fn outcome(output: &Output) -> (i32, String, String) {
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// Writes `text` to `dir/name` and returns the path.
+pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("temporary file is writable");
+    path
+}
+
+/// The canonical IMU header.
+pub const IMU_HEADER: &str = "t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2";
+
+/// A canonical IMU CSV at `rate_hz` whose channels are given by `value(channel, t_s)`.
+pub fn imu_csv(rows: usize, rate_hz: f64, value: impl Fn(usize, f64) -> f64) -> String {
+    let mut text = format!("{IMU_HEADER}\n");
+    for k in 0..rows {
+        let t = k as f64 / rate_hz;
+        let _ = write!(text, "{t:.9}");
+        for c in 0..6 {
+            let _ = write!(text, ",{}", value(c, t));
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// Path of a string argument.
+pub fn arg(path: &Path) -> &str {
+    path.to_str().expect("temporary paths are UTF-8")
+}
+
+/// Names of the files in `dir`.
+pub fn files_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("readable dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
