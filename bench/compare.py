@@ -60,11 +60,46 @@ def section_filter(n, tmp, rows):
                  peer_s, ours["zero_phase_s"], agree, "same data; one pass vs two"))
 
 
+def section_allan(n, tmp, rows):
+    import allantools
+    y = test_signal(n, seed=7) * 1e-3
+    path = os.path.join(tmp, "allan.f64")
+    y.astype("<f8").tofile(path)
+    ours = run_example("allan_timing", path, 200.0, os.path.join(tmp, "allan"))
+    for grid in ("octave", "decade"):
+        peer_s, res = best_of(3, lambda: allantools.oadev(y, rate=200.0, data_type="freq", taus=grid))
+        mine = np.fromfile(os.path.join(tmp, f"allan.{grid}.f64"), dtype="<f8")
+        n_common = min(len(mine), len(res[1]))
+        rel = float(np.max(np.abs(mine[:n_common] / res[1][:n_common] - 1))) if n_common else float("nan")
+        agree = n_common == len(res[1]) and rel < 1e-9
+        rows.append((f"overlapping ADEV, {grid}, {n} samples", "allantools.oadev", peer_s, ours[f"{grid}_s"], agree,
+                     f"{n_common} taus, max rel diff {rel:.1e}"))
+
+
+def section_ar(n, tmp, rows):
+    from statsmodels.regression.linear_model import burg, yule_walker
+    rng = np.random.default_rng(11)
+    e = rng.standard_normal(n)
+    x = signal.lfilter([1.0], [1.0, -0.9, 0.2], e)
+    path = os.path.join(tmp, "ar.f64")
+    x.astype("<f8").tofile(path)
+    ours = run_example("ar_timing", path)
+    peer_s, (phi, _) = best_of(3, lambda: burg(x, 4))
+    agree = np.allclose(phi, ours["burg_phi"], atol=1e-9)
+    rows.append((f"Burg AR(4), {n} samples", "statsmodels burg", peer_s, ours["burg_s"], agree, "coefficients to 1e-9"))
+    peer_s, (phi, _) = best_of(3, lambda: yule_walker(x, 4, method="mle"))
+    agree = np.allclose(phi, ours["yule_walker_phi"], atol=1e-9)
+    rows.append((f"Yule-Walker AR(4), {n} samples", "statsmodels yule_walker", peer_s, ours["yule_walker_s"], agree,
+                 "coefficients to 1e-9"))
+
+
 def main():
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 2_160_000
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         section_filter(n, tmp, rows)
+        section_allan(n, tmp, rows)
+        section_ar(n, tmp, rows)
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores; "
           f"python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}")
     print(f"{'operation':<55} {'peer':<24} {'peer s':>9} {'ours s':>9} {'ratio':>7}  agree")

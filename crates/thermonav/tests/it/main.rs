@@ -6,6 +6,7 @@ mod gauss_markov;
 mod geo;
 mod ideal_imu;
 mod ins;
+mod round_trip;
 mod signal;
 mod ukf;
 mod vessel;
