@@ -187,7 +187,7 @@ pub struct SimulateArgs {
 pub enum SimulateWhat {
     /// Static records in a thermal chamber, one CSV per temperature, plus truth.json.
     Chamber(ChamberArgs),
-    /// A harbour survey vessel: reference trajectory, IMU and GNSS CSVs.
+    /// A harbour survey vessel (or any --motion file): reference trajectory, IMU and GNSS CSVs.
     Vessel(VesselArgs),
     /// Write the built-in sensor profile as TOML (a template for your own).
     Profile(ProfileArgs),
@@ -239,9 +239,13 @@ pub struct VesselArgs {
     /// Sensor temperature during the survey, °C.
     #[arg(long, default_value_t = 17.0, allow_negative_numbers = true)]
     pub temperature_c: f64,
-    /// Survey length, s.
+    /// Survey length, s (ignored with --motion, whose segments set the length).
     #[arg(long, default_value_t = 3600.0)]
     pub duration_s: f64,
+    /// A motion-definition file (TOML: start, segments, optional waves) instead of the
+    /// built-in harbour survey: cars and other platforms (see examples/motion/car.toml).
+    #[arg(long)]
+    pub motion: Option<PathBuf>,
     /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
     #[arg(long)]
     pub profile: Option<PathBuf>,

@@ -37,6 +37,7 @@ pub mod gnss;
 pub mod imu;
 mod layout;
 mod lines;
+pub mod motion;
 pub mod profile;
 mod rows;
 mod text;

@@ -115,6 +115,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         out: args.out.join("vessel"),
         temperature_c: 17.0,
         duration_s: p.vessel_s,
+        motion: None,
         profile: None,
         seed: args.seed,
         json: false,

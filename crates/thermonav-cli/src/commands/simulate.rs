@@ -11,6 +11,7 @@ use thermonav::sim::clock::SampleClock;
 use thermonav::sim::profile::{SensorProfile, adis16364_like};
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
 use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::motion::read_motion;
 use thermonav_io::profile::{profile_to_toml, read_profile};
 use thermonav_io::{
     write_atomically, write_gnss_file, write_imu_file, write_json_atomically, write_trajectory_file,
@@ -166,14 +167,21 @@ pub struct VesselFiles {
 /// Simulates and writes a vessel survey.
 pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure> {
     let profile = load_profile(args.profile.as_deref())?;
-    if !(args.duration_s.is_finite() && args.duration_s >= 60.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--duration-s {} must be at least 60 s",
-            args.duration_s
-        )));
-    }
+    let motion = match &args.motion {
+        Some(path) => read_motion(path).usage()?,
+        None if args.duration_s.is_finite() && args.duration_s >= 60.0 => {
+            harbour_survey(args.duration_s)
+        }
+        None => {
+            return Err(Failure::Usage(anyhow!(
+                "--duration-s {} must be at least 60 s",
+                args.duration_s
+            )));
+        }
+    };
+    let duration_s = motion.duration_s();
     let run = VesselRun {
-        motion: harbour_survey(args.duration_s),
+        motion,
         temperature_c: args.temperature_c,
         clock: SampleClock::new(200.0, 50e-6, 0.0).usage()?,
         gnss: GnssSettings::default(),
@@ -196,7 +204,7 @@ pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure
         profile: profile.name,
         seed: args.seed,
         temperature_c: args.temperature_c,
-        duration_s: args.duration_s,
+        duration_s,
         imu_rate_hz: 200.0,
         gnss: run.gnss,
         heading_sd_deg: run.gnss.heading_sd_rad().to_degrees(),
