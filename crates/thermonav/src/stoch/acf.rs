@@ -56,12 +56,76 @@ fn prepare(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfErr
     Ok(x.iter().map(|v| v - mean).collect())
 }
 
-/// γ(0..=max_lag), biased, by FFT.
+/// Up to this many lags the direct sum (O(N K), vectorised) beats the FFT (O(N log N)).
+pub const DIRECT_MAX_LAG: usize = 32;
+
+/// γ(0..=max_lag), biased: by direct lagged sums for a few lags, by FFT for many.
 ///
 /// # Errors
 /// [`AcfError`] for too few samples or non-finite values.
 pub fn autocovariance(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfError> {
-    let centred = prepare(x, max_lag, demean)?;
+    if max_lag <= DIRECT_MAX_LAG {
+        check(x, max_lag)?;
+        let mean = match demean {
+            Demean::Subtract => x.iter().sum::<f64>() / x.len() as f64,
+            Demean::Keep => 0.0,
+        };
+        let n = x.len() as f64;
+        return Ok(lagged_products(x, mean, max_lag).iter().map(|v| v / n).collect());
+    }
+    autocovariance_fft(prepare(x, max_lag, demean)?, max_lag)
+}
+
+/// Rows processed per block by [`lagged_products`]: 4096 values (32 KiB) stay in L1/L2 while
+/// every lag is summed over them, so the data is read from memory once.
+const BLOCK: usize = 4096;
+
+/// Σ_t (x_t − m)(x_{t+k} − m) for k = 0..=max_lag in one blocked pass over x.
+pub fn lagged_products(x: &[f64], mean: f64, max_lag: usize) -> Vec<f64> {
+    let n = x.len();
+    let mut sums = vec![0.0; max_lag + 1];
+    let mut block = Vec::with_capacity(BLOCK + max_lag);
+    let mut start = 0;
+    while start < n {
+        let end = (start + BLOCK).min(n);
+        let reach = (end + max_lag).min(n);
+        block.clear();
+        block.extend(x[start..reach].iter().map(|v| v - mean));
+        let rows = end - start;
+        for (k, sum) in sums.iter_mut().enumerate() {
+            let valid = rows.min(block.len().saturating_sub(k));
+            *sum += lagged_dot(&block[..valid + k], k);
+        }
+        start = end;
+    }
+    sums
+}
+
+fn check(x: &[f64], max_lag: usize) -> Result<(), AcfError> {
+    if x.len() <= max_lag || x.is_empty() {
+        return Err(AcfError::TooShort { samples: x.len(), max_lag });
+    }
+    match x.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(AcfError::NonFinite { index }),
+        None => Ok(()),
+    }
+}
+
+/// Σ_t c_t c_{t+k} with four independent accumulators (lets the compiler vectorise).
+pub fn lagged_dot(c: &[f64], k: usize) -> f64 {
+    let (a, b) = (&c[..c.len() - k], &c[k..]);
+    let mut acc = [0.0_f64; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a4.remainder().iter().zip(b4.remainder()).map(|(p, q)| p * q).sum();
+    for (p, q) in a4.zip(b4) {
+        for lane in 0..4 {
+            acc[lane] += p[lane] * q[lane];
+        }
+    }
+    acc.iter().sum::<f64>() + tail
+}
+
+fn autocovariance_fft(centred: Vec<f64>, max_lag: usize) -> Result<Vec<f64>, AcfError> {
     let n = centred.len();
     let size = (2 * n).next_power_of_two();
     let mut planner = RealFftPlanner::<f64>::new();

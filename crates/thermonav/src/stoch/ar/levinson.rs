@@ -4,7 +4,7 @@
 //! c_m = k_m, E_m = E_{m−1}(1 − k_m²), E_0 = γ(0). The k_m are the partial autocorrelations.
 
 use super::{ArError, ArMethod, ArModel};
-use crate::stoch::acf::{Demean, autocovariance};
+use crate::stoch::acf::lagged_products;
 
 /// Coefficients (paper sign), reflection coefficients and final prediction-error variance of
 /// the AR(p) model with autocovariance `gamma` (γ(0..=p)).
@@ -34,8 +34,9 @@ pub fn levinson_durbin(gamma: &[f64], order: usize) -> (Vec<f64>, Vec<f64>, f64)
     (c, reflection, error)
 }
 
-pub(super) fn yule_walker(centred: &[f64], order: usize) -> Result<ArModel, ArError> {
-    let gamma = autocovariance(centred, order, Demean::Keep)?;
+pub(super) fn yule_walker(x: &[f64], mean: f64, order: usize) -> Result<ArModel, ArError> {
+    let n = x.len() as f64;
+    let gamma: Vec<f64> = lagged_products(x, mean, order).iter().map(|v| v / n).collect();
     if gamma[0] <= 0.0 {
         return Err(ArError::Constant);
     }
@@ -47,7 +48,7 @@ pub(super) fn yule_walker(centred: &[f64], order: usize) -> Result<ArModel, ArEr
         levinson_variance: Some(variance),
         reflection: Some(reflection),
         std_errors: Vec::new(),
-        n_samples: centred.len(),
+        n_samples: x.len(),
         mean: 0.0,
     })
 }

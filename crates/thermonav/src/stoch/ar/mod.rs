@@ -25,7 +25,7 @@ pub mod whiteness;
 pub use least_squares::{ConditionalOls, Intercept, conditional_ols};
 pub use levinson::levinson_durbin;
 
-use super::acf::{AcfError, Demean, autocovariance};
+use super::acf::{AcfError, Demean, lagged_products};
 use nalgebra::DMatrix;
 
 /// The four estimators.
@@ -135,31 +135,31 @@ impl From<AcfError> for ArError {
     }
 }
 
-/// Checks input and returns the (optionally) demeaned series and the mean removed.
-fn centred(x: &[f64], order: usize, demean: Demean) -> Result<(Vec<f64>, f64), ArError> {
+/// Checks input (order, length, finiteness, variance) and returns the mean to remove, in one
+/// pass and without copying the series.
+fn validated_mean(x: &[f64], order: usize, demean: Demean) -> Result<f64, ArError> {
     if order == 0 {
         return Err(ArError::ZeroOrder);
     }
     let needed = order + 2;
     if x.len() < needed {
-        return Err(ArError::TooShort {
-            samples: x.len(),
-            order,
-            needed,
-        });
+        return Err(ArError::TooShort { samples: x.len(), order, needed });
     }
-    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
-        return Err(ArError::NonFinite { index });
+    let mut sum = 0.0;
+    for (index, v) in x.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(ArError::NonFinite { index });
+        }
+        sum += v;
     }
     let mean = match demean {
-        Demean::Subtract => x.iter().sum::<f64>() / x.len() as f64,
+        Demean::Subtract => sum / x.len() as f64,
         Demean::Keep => 0.0,
     };
-    let c: Vec<f64> = x.iter().map(|v| v - mean).collect();
-    if c.iter().all(|&v| v == 0.0) {
+    if x.iter().all(|&v| v - mean == 0.0) {
         return Err(ArError::Constant);
     }
-    Ok((c, mean))
+    Ok(mean)
 }
 
 /// Fits an AR(`order`) model by `method` (sample mean removed).
@@ -182,26 +182,28 @@ pub fn fit_ar_with(
     method: ArMethod,
     demean: Demean,
 ) -> Result<ArModel, ArError> {
-    let (c, mean) = centred(x, order, demean)?;
+    let mean = validated_mean(x, order, demean)?;
+    let centred = || -> Vec<f64> { x.iter().map(|v| v - mean).collect() };
     let mut model = match method {
-        ArMethod::YuleWalker => levinson::yule_walker(&c, order)?,
-        ArMethod::Burg => burg::burg(&c, order)?,
-        ArMethod::Covariance => least_squares::covariance(&c, order, false)?,
-        ArMethod::ModifiedCovariance => least_squares::covariance(&c, order, true)?,
+        ArMethod::YuleWalker => levinson::yule_walker(x, mean, order)?,
+        ArMethod::Burg => burg::burg(x, mean, order)?,
+        ArMethod::Covariance => least_squares::covariance(&centred(), order, false)?,
+        ArMethod::ModifiedCovariance => least_squares::covariance(&centred(), order, true)?,
     };
     model.mean = mean;
     if model.std_errors.is_empty() {
-        model.std_errors = asymptotic_std_errors(&c, model.noise_variance, order)?;
+        let n = x.len() as f64;
+        let gamma: Vec<f64> = lagged_products(x, mean, order.saturating_sub(1)).iter().map(|v| v / n).collect();
+        model.std_errors = asymptotic_std_errors(&gamma, model.noise_variance, order, x.len())?;
     }
     Ok(model)
 }
 
-/// √diag(σ² Γ_p⁻¹ / N), Γ_p the Toeplitz matrix of the biased autocovariance.
-fn asymptotic_std_errors(c: &[f64], variance: f64, order: usize) -> Result<Vec<f64>, ArError> {
-    let gamma = autocovariance(c, order, Demean::Keep)?;
+/// √diag(σ² Γ_p⁻¹ / N), Γ_p the Toeplitz matrix of the biased autocovariance γ(0..p−1).
+fn asymptotic_std_errors(gamma: &[f64], variance: f64, order: usize, n: usize) -> Result<Vec<f64>, ArError> {
     let toeplitz = DMatrix::from_fn(order, order, |i, j| gamma[i.abs_diff(j)]);
     let inverse = toeplitz.try_inverse().ok_or(ArError::Singular { order })?;
-    let n = c.len() as f64;
+    let n = n as f64;
     Ok((0..order)
         .map(|i| (variance * inverse[(i, i)] / n).max(0.0).sqrt())
         .collect())
