@@ -209,9 +209,99 @@ pub fn read_imu_file(
     path: impl AsRef<Path>,
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
-    let reader = ImuReader::open(path.as_ref(), strictness)?;
+    let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
+    let split = file_bytes
+        .filter(|&b| b >= PARALLEL_MIN_BYTES)
+        .and_then(|b| split_point(path, b));
+    if let Some((header, boundary, bytes)) = split {
+        if let Some(series) = read_halves(path, strictness, &header, boundary, bytes) {
+            return Ok(series);
+        }
+    }
+    // Small files, and any file on which a half failed: one pass, which also gives the exact
+    // error (line numbers counted from the top).
+    let reader = ImuReader::open(path, strictness)?;
     collect_series(reader, file_bytes)
+}
+
+/// Files at least this large are parsed as two halves on two threads.
+const PARALLEL_MIN_BYTES: u64 = 8 << 20;
+
+/// The header line and the byte after the first newline at or after the middle of the file.
+fn split_point(path: &Path, bytes: u64) -> Option<(Vec<u8>, u64, u64)> {
+    use std::io::{Seek, SeekFrom};
+    let mut reader = BufReader::new(File::open(path).ok()?);
+    let mut header = Vec::new();
+    reader.read_until(b'\n', &mut header).ok()?;
+    let mut file = reader.into_inner();
+    file.seek(SeekFrom::Start(bytes / 2)).ok()?;
+    let mut rest = Vec::new();
+    let skipped = BufReader::new(file).read_until(b'\n', &mut rest).ok()? as u64;
+    let boundary = bytes / 2 + skipped;
+    let usable = rest.last() == Some(&b'\n') && boundary > header.len() as u64 && boundary < bytes;
+    usable.then_some((header, boundary, bytes))
+}
+
+/// Both halves parsed in parallel (the second behind a copy of the header), or `None` when
+/// either half fails or, under strict reading, time does not increase across the boundary.
+fn read_halves(
+    path: &Path,
+    strictness: Strictness,
+    header: &[u8],
+    boundary: u64,
+    bytes: u64,
+) -> Option<ImuSeries> {
+    use std::io::{Read, Seek, SeekFrom};
+    let input = path.display().to_string();
+    let (first, second) = std::thread::scope(|scope| {
+        let first = scope.spawn(|| {
+            let file = File::open(path).ok()?.take(boundary);
+            let reader = ImuReader::new(
+                BufReader::with_capacity(crate::FILE_BUFFER_BYTES, file),
+                input.clone(),
+                strictness,
+            )
+            .ok()?;
+            collect_series(reader, Some(boundary)).ok()
+        });
+        let second = scope.spawn(|| {
+            let mut file = File::open(path).ok()?;
+            file.seek(SeekFrom::Start(boundary)).ok()?;
+            let joined = std::io::Cursor::new(header.to_vec()).chain(file);
+            let reader = ImuReader::new(
+                BufReader::with_capacity(crate::FILE_BUFFER_BYTES, joined),
+                input.clone(),
+                strictness,
+            )
+            .ok()?;
+            collect_series(reader, Some(bytes - boundary)).ok()
+        });
+        (first.join().ok().flatten(), second.join().ok().flatten())
+    });
+    let (mut first, second) = (first?, second?);
+    let ordered = match (first.time.last(), second.time.first()) {
+        (Some(a), Some(b)) => strictness == Strictness::Lenient || a < b,
+        _ => true,
+    };
+    (ordered && first.kind == second.kind).then(|| {
+        append_series(&mut first, second);
+        first
+    })
+}
+
+fn append_series(first: &mut ImuSeries, second: ImuSeries) {
+    first.time.extend(second.time);
+    for (a, b) in first.channels.iter_mut().zip(second.channels) {
+        a.extend(b);
+    }
+    first.temperature_c = match (first.temperature_c.take(), second.temperature_c) {
+        (Some(mut a), Some(b)) => {
+            a.extend(b);
+            Some(a)
+        }
+        _ => None,
+    };
 }
 
 /// Collects samples; with the input's size, reserves room for all rows once the first is read.

@@ -4,6 +4,7 @@ mod atomic;
 mod gnss;
 mod imu_errors;
 mod imu_units;
+mod parallel;
 mod round_trip;
 mod support;
 mod trajectory;

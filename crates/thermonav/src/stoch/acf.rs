@@ -71,7 +71,10 @@ pub fn autocovariance(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f
             Demean::Keep => 0.0,
         };
         let n = x.len() as f64;
-        return Ok(lagged_products(x, mean, max_lag).iter().map(|v| v / n).collect());
+        return Ok(lagged_products(x, mean, max_lag)
+            .iter()
+            .map(|v| v / n)
+            .collect());
     }
     autocovariance_fft(prepare(x, max_lag, demean)?, max_lag)
 }
@@ -103,7 +106,10 @@ pub fn lagged_products(x: &[f64], mean: f64, max_lag: usize) -> Vec<f64> {
 
 fn check(x: &[f64], max_lag: usize) -> Result<(), AcfError> {
     if x.len() <= max_lag || x.is_empty() {
-        return Err(AcfError::TooShort { samples: x.len(), max_lag });
+        return Err(AcfError::TooShort {
+            samples: x.len(),
+            max_lag,
+        });
     }
     match x.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(AcfError::NonFinite { index }),
@@ -116,7 +122,12 @@ pub fn lagged_dot(c: &[f64], k: usize) -> f64 {
     let (a, b) = (&c[..c.len() - k], &c[k..]);
     let mut acc = [0.0_f64; 4];
     let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a4.remainder().iter().zip(b4.remainder()).map(|(p, q)| p * q).sum();
+    let tail: f64 = a4
+        .remainder()
+        .iter()
+        .zip(b4.remainder())
+        .map(|(p, q)| p * q)
+        .sum();
     for (p, q) in a4.zip(b4) {
         for lane in 0..4 {
             acc[lane] += p[lane] * q[lane];

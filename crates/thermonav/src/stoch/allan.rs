@@ -174,17 +174,26 @@ fn centred_cumulative_sum(y: &[f64]) -> Vec<f64> {
 /// accumulators let the compiler vectorise the sum of squared second differences.
 fn overlapping_avar_at(sums: &[f64], m: usize) -> f64 {
     let terms = sums.len() - 2 * m;
-    let (a, b, c) = (&sums[..terms], &sums[m..m + terms], &sums[2 * m..2 * m + terms]);
+    let (a, b, c) = (
+        &sums[..terms],
+        &sums[m..m + terms],
+        &sums[2 * m..2 * m + terms],
+    );
     let mut acc = [0.0_f64; 4];
-    let chunks = terms / 4;
-    for i in 0..chunks {
-        for lane in 0..4 {
-            let k = 4 * i + lane;
-            let d = c[k] - 2.0 * b[k] + a[k];
-            acc[lane] += d * d;
+    let (a4, b4, c4) = (a.chunks_exact(4), b.chunks_exact(4), c.chunks_exact(4));
+    let tail: f64 = a4
+        .remainder()
+        .iter()
+        .zip(b4.remainder())
+        .zip(c4.remainder())
+        .map(|((x, y), z)| (z - 2.0 * y + x).powi(2))
+        .sum();
+    for ((x, y), z) in a4.zip(b4).zip(c4) {
+        for (lane, slot) in acc.iter_mut().enumerate() {
+            let d = z[lane] - 2.0 * y[lane] + x[lane];
+            *slot += d * d;
         }
     }
-    let tail: f64 = (4 * chunks..terms).map(|k| (c[k] - 2.0 * b[k] + a[k]).powi(2)).sum();
     (acc.iter().sum::<f64>() + tail) / (2.0 * (m * m) as f64 * terms as f64)
 }
 

@@ -8,9 +8,10 @@
 //! - the lattice recursion below (the textbook form, kept as the reference the fast one is
 //!   tested against): at each order the reflection coefficient minimises the sum of forward and
 //!   backward prediction-error powers,
-//! k_m = 2 Σ f_{m−1}(t) b_{m−1}(t−1) / Σ (f_{m−1}(t)² + b_{m−1}(t−1)²), t = m..N−1
-//! (paper sign), then f_m(t) = f_{m−1}(t) − k_m b_{m−1}(t−1), b_m(t) = b_{m−1}(t−1) − k_m f_{m−1}(t),
-//! and the coefficients follow the Levinson update. O(N p) time, O(N) memory.
+//!   k_m = 2 Σ f_{m−1}(t) b_{m−1}(t−1) / Σ (f_{m−1}(t)² + b_{m−1}(t−1)²), t = m..N−1
+//!   (paper sign), then f_m(t) = f_{m−1}(t) − k_m b_{m−1}(t−1),
+//!   b_m(t) = b_{m−1}(t−1) − k_m f_{m−1}(t), and the coefficients follow the Levinson update.
+//!   O(N p) time, O(N) memory.
 
 use super::{ArError, ArMethod, ArModel};
 use crate::stoch::acf::lagged_products;
@@ -84,22 +85,30 @@ fn next_sums(forward: &[f64], backward: &[f64], m: usize) -> (f64, f64) {
 fn window_covariance(x: &[f64], mean: f64, r: &[f64], start: usize, size: usize) -> Vec<Vec<f64>> {
     let n = x.len();
     let y = |s: usize| x[s] - mean;
-    let mut m = vec![vec![0.0; size]; size];
-    for i in 0..size {
-        for j in i..size {
-            let k = j - i;
-            // t − j runs over [start − j, N − 1 − j]; the full range of lag k is [0, N − 1 − k].
-            let head: f64 = (0..start - j).map(|s| y(s) * y(s + k)).sum();
-            let tail: f64 = (n - j..n - k).map(|s| y(s) * y(s + k)).sum();
-            m[i][j] = r[k] - head - tail;
-            m[j][i] = m[i][j];
-        }
-    }
-    m
+    let entry = |i: usize, j: usize| {
+        let (i, j) = (i.min(j), i.max(j));
+        let k = j - i;
+        // t − j runs over [start − j, N − 1 − j]; the full range of lag k is [0, N − 1 − k].
+        let head: f64 = (0..start - j).map(|s| y(s) * y(s + k)).sum();
+        let tail: f64 = (n - j..n - k).map(|s| y(s) * y(s + k)).sum();
+        r[k] - head - tail
+    };
+    (0..size)
+        .map(|i| (0..size).map(|j| entry(i, j)).collect())
+        .collect()
 }
 
 fn quadratic(m: &[Vec<f64>], u: &[f64], v: &[f64]) -> f64 {
-    u.iter().enumerate().map(|(i, ui)| ui * v.iter().enumerate().map(|(j, vj)| m[i][j] * vj).sum::<f64>()).sum()
+    u.iter()
+        .enumerate()
+        .map(|(i, ui)| {
+            ui * v
+                .iter()
+                .enumerate()
+                .map(|(j, vj)| m[i][j] * vj)
+                .sum::<f64>()
+        })
+        .sum()
 }
 
 /// Burg's estimate from one pass over `x` (mean `mean` removed on the fly).
@@ -153,7 +162,11 @@ mod tests {
             let mut x = vec![0.0; 20_000];
             for t in 3..x.len() {
                 let z: f64 = StandardNormal.sample(&mut rng);
-                x[t] = phi[0] * x[t - 1] + phi[1] * x[t - 2] + phi[2] * x[t - 3] + z + 5.0 * (1.0 - phi.iter().sum::<f64>());
+                x[t] = phi[0] * x[t - 1]
+                    + phi[1] * x[t - 2]
+                    + phi[2] * x[t - 3]
+                    + z
+                    + 5.0 * (1.0 - phi.iter().sum::<f64>());
             }
             let mean = x.iter().sum::<f64>() / x.len() as f64;
             let centred: Vec<f64> = x.iter().map(|v| v - mean).collect();
@@ -163,8 +176,14 @@ mod tests {
                 for (a, b) in fast.coefficients.iter().zip(&slow.coefficients) {
                     assert!((a - b).abs() < 1e-9, "{name} order {order}: {a} vs {b}");
                 }
-                assert!((fast.noise_variance / slow.noise_variance - 1.0).abs() < 1e-9, "{name} variance");
-                assert!((fast.levinson_variance.unwrap() / slow.levinson_variance.unwrap() - 1.0).abs() < 1e-9);
+                assert!(
+                    (fast.noise_variance / slow.noise_variance - 1.0).abs() < 1e-9,
+                    "{name} variance"
+                );
+                assert!(
+                    (fast.levinson_variance.unwrap() / slow.levinson_variance.unwrap() - 1.0).abs()
+                        < 1e-9
+                );
             }
         }
     }

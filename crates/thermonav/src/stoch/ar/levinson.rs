@@ -36,7 +36,10 @@ pub fn levinson_durbin(gamma: &[f64], order: usize) -> (Vec<f64>, Vec<f64>, f64)
 
 pub(super) fn yule_walker(x: &[f64], mean: f64, order: usize) -> Result<ArModel, ArError> {
     let n = x.len() as f64;
-    let gamma: Vec<f64> = lagged_products(x, mean, order).iter().map(|v| v / n).collect();
+    let gamma: Vec<f64> = lagged_products(x, mean, order)
+        .iter()
+        .map(|v| v / n)
+        .collect();
     if gamma[0] <= 0.0 {
         return Err(ArError::Constant);
     }

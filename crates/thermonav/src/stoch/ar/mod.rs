@@ -143,7 +143,11 @@ fn validated_mean(x: &[f64], order: usize, demean: Demean) -> Result<f64, ArErro
     }
     let needed = order + 2;
     if x.len() < needed {
-        return Err(ArError::TooShort { samples: x.len(), order, needed });
+        return Err(ArError::TooShort {
+            samples: x.len(),
+            order,
+            needed,
+        });
     }
     let mut sum = 0.0;
     for (index, v) in x.iter().enumerate() {
@@ -193,14 +197,22 @@ pub fn fit_ar_with(
     model.mean = mean;
     if model.std_errors.is_empty() {
         let n = x.len() as f64;
-        let gamma: Vec<f64> = lagged_products(x, mean, order.saturating_sub(1)).iter().map(|v| v / n).collect();
+        let gamma: Vec<f64> = lagged_products(x, mean, order.saturating_sub(1))
+            .iter()
+            .map(|v| v / n)
+            .collect();
         model.std_errors = asymptotic_std_errors(&gamma, model.noise_variance, order, x.len())?;
     }
     Ok(model)
 }
 
 /// √diag(σ² Γ_p⁻¹ / N), Γ_p the Toeplitz matrix of the biased autocovariance γ(0..p−1).
-fn asymptotic_std_errors(gamma: &[f64], variance: f64, order: usize, n: usize) -> Result<Vec<f64>, ArError> {
+fn asymptotic_std_errors(
+    gamma: &[f64],
+    variance: f64,
+    order: usize,
+    n: usize,
+) -> Result<Vec<f64>, ArError> {
     let toeplitz = DMatrix::from_fn(order, order, |i, j| gamma[i.abs_diff(j)]);
     let inverse = toeplitz.try_inverse().ok_or(ArError::Singular { order })?;
     let n = n as f64;
