@@ -14,6 +14,7 @@
 //!   O(N p) time, O(N) memory.
 
 use super::{ArError, ArMethod, ArModel};
+#[cfg(test)]
 use crate::stoch::acf::lagged_products;
 
 #[cfg(test)]
@@ -111,15 +112,15 @@ fn quadratic(m: &[Vec<f64>], u: &[f64], v: &[f64]) -> f64 {
         .sum()
 }
 
-/// Burg's estimate from one pass over `x` (mean `mean` removed on the fly).
-pub(super) fn burg(x: &[f64], mean: f64, order: usize) -> Result<ArModel, ArError> {
+/// Burg's estimate from the lagged products r(0..=p) of `x` − `mean` (one pass over the data,
+/// done by the caller) and the first and last p samples.
+pub(super) fn burg(x: &[f64], mean: f64, r: &[f64], order: usize) -> Result<ArModel, ArError> {
     let n = x.len();
-    let r = lagged_products(x, mean, order);
     let mut a = vec![1.0]; // A-polynomial, a_0 = 1
     let mut reflection = Vec::with_capacity(order);
     let mut levinson = r[0] / n as f64;
     for m in 0..order {
-        let cov = window_covariance(x, mean, &r, m + 1, m + 2);
+        let cov = window_covariance(x, mean, r, m + 1, m + 2);
         let u: Vec<f64> = a.iter().copied().chain([0.0]).collect();
         let v: Vec<f64> = [0.0].into_iter().chain(a.iter().rev().copied()).collect();
         let den = quadratic(&cov, &u, &u) + quadratic(&cov, &v, &v);
@@ -131,7 +132,7 @@ pub(super) fn burg(x: &[f64], mean: f64, order: usize) -> Result<ArModel, ArErro
         reflection.push(-k);
         levinson *= 1.0 - k * k;
     }
-    let cov = window_covariance(x, mean, &r, order, order + 1);
+    let cov = window_covariance(x, mean, r, order, order + 1);
     let reversed: Vec<f64> = a.iter().rev().copied().collect();
     let power = quadratic(&cov, &a, &a) + quadratic(&cov, &reversed, &reversed);
     Ok(ArModel {
@@ -171,7 +172,7 @@ mod tests {
             let mean = x.iter().sum::<f64>() / x.len() as f64;
             let centred: Vec<f64> = x.iter().map(|v| v - mean).collect();
             for order in [1, 3, 8] {
-                let fast = burg(&x, mean, order).unwrap();
+                let fast = burg(&x, mean, &lagged_products(&x, mean, order), order).unwrap();
                 let slow = burg_lattice(&centred, order).unwrap();
                 for (a, b) in fast.coefficients.iter().zip(&slow.coefficients) {
                     assert!((a - b).abs() < 1e-9, "{name} order {order}: {a} vs {b}");

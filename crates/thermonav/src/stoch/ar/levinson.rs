@@ -4,7 +4,6 @@
 //! c_m = k_m, E_m = E_{m−1}(1 − k_m²), E_0 = γ(0). The k_m are the partial autocorrelations.
 
 use super::{ArError, ArMethod, ArModel};
-use crate::stoch::acf::lagged_products;
 
 /// Coefficients (paper sign), reflection coefficients and final prediction-error variance of
 /// the AR(p) model with autocovariance `gamma` (γ(0..=p)).
@@ -34,12 +33,9 @@ pub fn levinson_durbin(gamma: &[f64], order: usize) -> (Vec<f64>, Vec<f64>, f64)
     (c, reflection, error)
 }
 
-pub(super) fn yule_walker(x: &[f64], mean: f64, order: usize) -> Result<ArModel, ArError> {
-    let n = x.len() as f64;
-    let gamma: Vec<f64> = lagged_products(x, mean, order)
-        .iter()
-        .map(|v| v / n)
-        .collect();
+/// Yule-Walker from the lagged products r(0..=p) of a demeaned series of `n` samples.
+pub(super) fn yule_walker(products: &[f64], n: usize, order: usize) -> Result<ArModel, ArError> {
+    let gamma: Vec<f64> = products.iter().map(|v| v / n as f64).collect();
     if gamma[0] <= 0.0 {
         return Err(ArError::Constant);
     }
@@ -51,7 +47,7 @@ pub(super) fn yule_walker(x: &[f64], mean: f64, order: usize) -> Result<ArModel,
         levinson_variance: Some(variance),
         reflection: Some(reflection),
         std_errors: Vec::new(),
-        n_samples: x.len(),
+        n_samples: n,
         mean: 0.0,
     })
 }

@@ -188,19 +188,24 @@ pub fn fit_ar_with(
 ) -> Result<ArModel, ArError> {
     let mean = validated_mean(x, order, demean)?;
     let centred = || -> Vec<f64> { x.iter().map(|v| v - mean).collect() };
-    let mut model = match method {
-        ArMethod::YuleWalker => levinson::yule_walker(x, mean, order)?,
-        ArMethod::Burg => burg::burg(x, mean, order)?,
-        ArMethod::Covariance => least_squares::covariance(&centred(), order, false)?,
-        ArMethod::ModifiedCovariance => least_squares::covariance(&centred(), order, true)?,
+    // One pass gives the lagged products r(0..=p) that Yule-Walker, Burg and the asymptotic
+    // standard errors all start from.
+    let (mut model, products) = match method {
+        ArMethod::YuleWalker => {
+            let r = lagged_products(x, mean, order);
+            (levinson::yule_walker(&r, x.len(), order)?, Some(r))
+        }
+        ArMethod::Burg => {
+            let r = lagged_products(x, mean, order);
+            (burg::burg(x, mean, &r, order)?, Some(r))
+        }
+        ArMethod::Covariance => (least_squares::covariance(&centred(), order, false)?, None),
+        ArMethod::ModifiedCovariance => (least_squares::covariance(&centred(), order, true)?, None),
     };
     model.mean = mean;
-    if model.std_errors.is_empty() {
+    if let Some(r) = products {
         let n = x.len() as f64;
-        let gamma: Vec<f64> = lagged_products(x, mean, order.saturating_sub(1))
-            .iter()
-            .map(|v| v / n)
-            .collect();
+        let gamma: Vec<f64> = r[..order].iter().map(|v| v / n).collect();
         model.std_errors = asymptotic_std_errors(&gamma, model.noise_variance, order, x.len())?;
     }
     Ok(model)
