@@ -379,6 +379,29 @@ mod tests {
     }
 
     #[test]
+    fn gauss_markov_autocorrelation_is_exponential_over_many_lags() {
+        // Tc = 2 s sampled at 10 Hz for 40 000 s (20 000 correlation times). The sample ACF at
+        // lag τ has standard error below √(Tc/T) ≈ 0.007 (Bartlett); 0.03 is four of those,
+        // checked at τ = 0.5, 1, 2, 4 and 8 s against exp(−τ/Tc).
+        let profile = bare_profile(0.0, 2.0, 1.0);
+        let rec = simulate_chamber_run(&profile, &run(10.0, 40_000.0, 5)).unwrap();
+        let rho = crate::stoch::acf::autocorrelation(
+            rec.series.channel(Channel::Gz),
+            80,
+            crate::stoch::acf::Demean::Subtract,
+        )
+        .unwrap();
+        for lag in [5, 10, 20, 40, 80] {
+            let expected = (-(lag as f64) * 0.1 / 2.0).exp();
+            assert!(
+                (rho[lag] - expected).abs() < 0.03,
+                "lag {lag}: {} vs {expected}",
+                rho[lag]
+            );
+        }
+    }
+
+    #[test]
     fn runs_are_reproducible_and_seeds_matter() {
         let profile = adis16364_like();
         let a = simulate_chamber_run(&profile, &run(100.0, 5.0, 9)).unwrap();

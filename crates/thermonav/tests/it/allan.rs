@@ -240,25 +240,46 @@ fn noise_terms_recover_white_noise_and_rate_random_walk_densities() {
 }
 
 #[test]
-fn curve_of_white_gauss_markov_and_walk_follows_theory() {
-    // The simulated sum's curve against the closed-form sum of the three Allan variances; the
-    // estimate's relative error at τ is about 1/√(edf/2); 4 standard errors or at least 3 %.
+fn simulated_white_gauss_markov_and_walk_follow_the_theoretical_curve() {
+    // A chamber record from the simulator with white noise, a Gauss-Markov bias and a bias
+    // random walk (every other error off), against the closed-form sum of the three Allan
+    // variances. The estimate's relative error at τ is about 1/√(2 edf); 4 of those or 3 %.
+    use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
+    use thermonav::sim::clock::SampleClock;
+    use thermonav::sim::profile::{ChannelProfile, GaussMarkovPoint, adis16364_like};
     let (white, sigma, tc, walk) = (2e-3, 5e-4, 20.0, 2e-6);
-    let rate = 50.0;
-    let n = 1_500_000;
-    let mut rng = named_rng(8, "allan-theory");
-    let (dt, mut gm, mut rw) = (1.0 / rate, 0.0, 0.0);
-    let phi = f64::exp(-dt / tc);
-    let y: Vec<f64> = (0..n)
-        .map(|_| {
-            let z: [f64; 3] = [0, 1, 2].map(|_| StandardNormal.sample(&mut rng));
-            gm = phi * gm + sigma * (1.0 - phi * phi).sqrt() * z[0];
-            rw += walk * dt.sqrt() * z[1];
-            gm + rw + white / dt.sqrt() * z[2]
-        })
-        .collect();
-    let curve: AllanCurve = overlapping_adev(&y, rate, &TauGrid::Octave).unwrap();
-    let ci = confidence_intervals(&y, &curve, 0.683);
+    let mut profile = adis16364_like();
+    for p in profile.channels.values_mut() {
+        *p = ChannelProfile {
+            white_noise_density: white,
+            bias_gauss_markov: vec![GaussMarkovPoint {
+                temperature_c: 20.0,
+                correlation_time_s: tc,
+                sigma,
+            }],
+            bias_random_walk_density: walk,
+            turn_on_bias_sigma: 0.0,
+            bias_temperature_coefficient_per_c: 0.0,
+            scale_factor_temperature_coefficient_ppm_per_c: 0.0,
+            scale_factor_gauss_markov: None,
+            quantization_step: 0.0,
+        };
+    }
+    let run = ChamberRun {
+        set_point_c: 20.0,
+        duration_s: 30_000.0,
+        clock: SampleClock::new(50.0, 0.0, 0.0).unwrap(),
+        site: calgary(),
+        wander: ChamberWander {
+            sigma_c: 0.05,
+            correlation_time_s: 600.0,
+        },
+        seed: 8,
+    };
+    let record = simulate_chamber_run(&profile, &run).unwrap();
+    let y = record.series.channel(thermonav::imu::Channel::Gx);
+    let curve: AllanCurve = overlapping_adev(y, 50.0, &TauGrid::Octave).unwrap();
+    let ci = confidence_intervals(y, &curve, 0.683);
     for i in 0..curve.tau_s.len() {
         let tau = curve.tau_s[i];
         if tau > 2000.0 {
