@@ -25,7 +25,7 @@ pub mod whiteness;
 pub use least_squares::{ConditionalOls, Intercept, conditional_ols};
 pub use levinson::levinson_durbin;
 
-use super::acf::{AcfError, Demean, lagged_products};
+use super::acf::{AcfError, Demean, lagged_products_about_mean};
 use nalgebra::DMatrix;
 
 /// The four estimators.
@@ -186,29 +186,53 @@ pub fn fit_ar_with(
     method: ArMethod,
     demean: Demean,
 ) -> Result<ArModel, ArError> {
-    let mean = validated_mean(x, order, demean)?;
-    let centred = || -> Vec<f64> { x.iter().map(|v| v - mean).collect() };
-    // One pass gives the lagged products r(0..=p) that Yule-Walker, Burg and the asymptotic
-    // standard errors all start from.
+    check_order(x, order)?;
+    // Yule-Walker, Burg and the asymptotic standard errors all start from the lagged products
+    // r(0..=p) about the mean: one pass over the data, which also finds non-finite values.
     let (mut model, products) = match method {
         ArMethod::YuleWalker => {
-            let r = lagged_products(x, mean, order);
-            (levinson::yule_walker(&r, x.len(), order)?, Some(r))
+            let (r, mean) = lagged_products_about_mean(x, order, demean)?;
+            (
+                levinson::yule_walker(&r, x.len(), order)?.with_mean(mean),
+                Some(r),
+            )
         }
         ArMethod::Burg => {
-            let r = lagged_products(x, mean, order);
-            (burg::burg(x, mean, &r, order)?, Some(r))
+            let (r, mean) = lagged_products_about_mean(x, order, demean)?;
+            (burg::burg(x, mean, &r, order)?.with_mean(mean), Some(r))
         }
-        ArMethod::Covariance => (least_squares::covariance(&centred(), order, false)?, None),
-        ArMethod::ModifiedCovariance => (least_squares::covariance(&centred(), order, true)?, None),
+        ArMethod::Covariance | ArMethod::ModifiedCovariance => {
+            let mean = validated_mean(x, order, demean)?;
+            let centred: Vec<f64> = x.iter().map(|v| v - mean).collect();
+            let backward = method == ArMethod::ModifiedCovariance;
+            (
+                least_squares::covariance(&centred, order, backward)?.with_mean(mean),
+                None,
+            )
+        }
     };
-    model.mean = mean;
     if let Some(r) = products {
         let n = x.len() as f64;
         let gamma: Vec<f64> = r[..order].iter().map(|v| v / n).collect();
         model.std_errors = asymptotic_std_errors(&gamma, model.noise_variance, order, x.len())?;
     }
     Ok(model)
+}
+
+/// Order at least 1 and at least p + 2 samples.
+fn check_order(x: &[f64], order: usize) -> Result<(), ArError> {
+    if order == 0 {
+        return Err(ArError::ZeroOrder);
+    }
+    let needed = order + 2;
+    if x.len() < needed {
+        return Err(ArError::TooShort {
+            samples: x.len(),
+            order,
+            needed,
+        });
+    }
+    Ok(())
 }
 
 /// √diag(σ² Γ_p⁻¹ / N), Γ_p the Toeplitz matrix of the biased autocovariance γ(0..p−1).
@@ -227,6 +251,11 @@ fn asymptotic_std_errors(
 }
 
 impl ArModel {
+    fn with_mean(mut self, mean: f64) -> Self {
+        self.mean = mean;
+        self
+    }
+
     /// Order p.
     pub fn order(&self) -> usize {
         self.coefficients.len()
