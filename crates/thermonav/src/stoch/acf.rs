@@ -139,27 +139,43 @@ pub fn lagged_products_about_mean(
     Ok((corrected, centre + delta))
 }
 
-/// Products about `centre` for lags 0..=max_lag and the sum of x − centre, in one pass.
+/// Products about `centre` for lags 0..=max_lag and the sum of x − centre, in one pass: the
+/// data go through the cache in blocks, and every lag is summed while a block is there.
 fn lagged_products_and_sum(x: &[f64], centre: f64, max_lag: usize) -> (Vec<f64>, f64) {
     let n = x.len();
     let mut sums = vec![0.0; max_lag + 1];
     let mut total = 0.0;
-    let mut block = Vec::with_capacity(BLOCK + max_lag);
     let mut start = 0;
     while start < n {
         let end = (start + BLOCK).min(n);
-        let reach = (end + max_lag).min(n);
-        block.clear();
-        block.extend(x[start..reach].iter().map(|v| v - centre));
-        let rows = end - start;
-        total += block[..rows].iter().sum::<f64>();
+        total += x[start..end].iter().map(|v| v - centre).sum::<f64>();
         for (k, sum) in sums.iter_mut().enumerate() {
-            let valid = rows.min(block.len().saturating_sub(k));
-            *sum += lagged_dot(&block[..valid + k], k);
+            let stop = end.min(n - k);
+            if stop > start {
+                *sum += centred_dot(&x[start..stop], &x[start + k..stop + k], centre);
+            }
         }
         start = end;
     }
     (sums, total)
+}
+
+/// Σ (a_i − c)(b_i − c) with four independent accumulators.
+fn centred_dot(a: &[f64], b: &[f64], c: f64) -> f64 {
+    let mut acc = [0.0_f64; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a4
+        .remainder()
+        .iter()
+        .zip(b4.remainder())
+        .map(|(p, q)| (p - c) * (q - c))
+        .sum();
+    for (p, q) in a4.zip(b4) {
+        for (lane, slot) in acc.iter_mut().enumerate() {
+            *slot += (p[lane] - c) * (q[lane] - c);
+        }
+    }
+    acc.iter().sum::<f64>() + tail
 }
 
 fn check(x: &[f64], max_lag: usize) -> Result<(), AcfError> {
