@@ -191,25 +191,6 @@ fn check(x: &[f64], max_lag: usize) -> Result<(), AcfError> {
     }
 }
 
-/// Σ_t c_t c_{t+k} with four independent accumulators (lets the compiler vectorise).
-pub fn lagged_dot(c: &[f64], k: usize) -> f64 {
-    let (a, b) = (&c[..c.len() - k], &c[k..]);
-    let mut acc = [0.0_f64; 4];
-    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a4
-        .remainder()
-        .iter()
-        .zip(b4.remainder())
-        .map(|(p, q)| p * q)
-        .sum();
-    for (p, q) in a4.zip(b4) {
-        for lane in 0..4 {
-            acc[lane] += p[lane] * q[lane];
-        }
-    }
-    acc.iter().sum::<f64>() + tail
-}
-
 fn autocovariance_fft(centred: Vec<f64>, max_lag: usize) -> Result<Vec<f64>, AcfError> {
     let n = centred.len();
     let size = (2 * n).next_power_of_two();

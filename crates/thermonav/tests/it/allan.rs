@@ -1,22 +1,13 @@
 //! Overlapping Allan deviation against allantools (real ADIS16405 data), Stable32 and the
 //! published NBS14 values; confidence limits against Stable32; noise terms against closed forms.
 
-use crate::shared_data;
+use crate::{shared_column as read_column, shared_data};
 use rand_distr::{Distribution, StandardNormal};
 use thermonav::sim::rng::named_rng;
 use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::{
     avar_gauss_markov, avar_random_walk, avar_white, fit_noise_terms,
 };
-
-fn read_column(path: &str) -> Vec<f64> {
-    std::fs::read_to_string(shared_data(path))
-        .expect("shared data present")
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| l.trim().parse().expect("number"))
-        .collect()
-}
 
 /// Stable32 rows: (AF, #, alpha, min, sigma, max).
 fn stable32(path: &str) -> Vec<(usize, usize, i32, f64, f64, f64)> {

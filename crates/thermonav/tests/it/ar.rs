@@ -2,7 +2,7 @@
 //! (../shared/data/statsmodels, ../shared/data/spectrum, ../shared/data/peer-results-on-real-data,
 //! tools/oracles/ar_least_squares.py).
 
-use crate::{oracle_json, shared_data};
+use crate::{oracle_json, shared_column as column, shared_data};
 use serde_json::Value;
 use thermonav::stoch::acf::{Demean, autocorrelation, autocovariance, autocovariance_direct};
 use thermonav::stoch::ar::order::{Criterion, Order, fit_ar_order};
@@ -20,15 +20,6 @@ fn nums(v: &Value) -> Vec<f64> {
 fn json(path: &str) -> Value {
     serde_json::from_str(&std::fs::read_to_string(shared_data(path)).expect("shared data present"))
         .expect("JSON")
-}
-
-fn column(path: &str) -> Vec<f64> {
-    std::fs::read_to_string(shared_data(path))
-        .expect("shared data present")
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| l.trim().parse().expect("number"))
-        .collect()
 }
 
 fn sunspots() -> Vec<f64> {

@@ -32,3 +32,13 @@ pub fn oracle_json(name: &str) -> serde_json::Value {
     let text = std::fs::read_to_string(oracle_data(name)).expect("oracle file exists");
     serde_json::from_str(&text).expect("oracle file is JSON")
 }
+
+/// A one-column text file under `../shared/data` ('#' comment lines skipped).
+pub fn shared_column(relative: &str) -> Vec<f64> {
+    std::fs::read_to_string(shared_data(relative))
+        .expect("shared data present")
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.trim().parse().expect("number"))
+        .collect()
+}

@@ -138,17 +138,7 @@ impl From<AcfError> for ArError {
 /// Checks input (order, length, finiteness, variance) and returns the mean to remove, in one
 /// pass and without copying the series.
 fn validated_mean(x: &[f64], order: usize, demean: Demean) -> Result<f64, ArError> {
-    if order == 0 {
-        return Err(ArError::ZeroOrder);
-    }
-    let needed = order + 2;
-    if x.len() < needed {
-        return Err(ArError::TooShort {
-            samples: x.len(),
-            order,
-            needed,
-        });
-    }
+    check_order(x, order)?;
     let mut sum = 0.0;
     for (index, v) in x.iter().enumerate() {
         if !v.is_finite() {
