@@ -2,6 +2,7 @@
 
 mod bad_input;
 mod commands;
+mod modelling;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

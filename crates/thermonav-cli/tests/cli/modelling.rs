@@ -1,0 +1,198 @@
+//! The modelling commands end to end: simulate, characterise, read the bank, Allan, AR, FIR.
+
+use crate::{arg, outcome, thermonav};
+use std::path::Path;
+
+fn json_of(args: &[&str]) -> serde_json::Value {
+    let (status, stdout, stderr) = outcome(&thermonav(args));
+    assert_eq!(status, 0, "stderr: {stderr}");
+    serde_json::from_str(&stdout).expect("stdout is one JSON document")
+}
+
+/// Two short chamber records (0 and 20 °C, 10 min at 50 Hz) in `dir`.
+fn chamber(dir: &Path) -> serde_json::Value {
+    let out = dir.join("chamber");
+    json_of(&[
+        "simulate",
+        "chamber",
+        "--out",
+        arg(&out),
+        "--temperatures-c",
+        "0,20",
+        "--duration-s",
+        "600",
+        "--rate-hz",
+        "50",
+        "--seed",
+        "5",
+        "--json",
+    ])
+}
+
+// The CLI's fir output must be SciPy's design (tools/oracles/kaiser_fir.json, design 0 is the
+// README example): same tap count and beta, taps within 1e-12.
+#[test]
+fn fir_json_is_the_scipy_design() {
+    let oracle: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../thermonav/tests/data/kaiser_fir.json"
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    let design = &oracle["designs"][0];
+    let json = json_of(&[
+        "fir",
+        "--fs-hz",
+        "200",
+        "--cutoff-hz",
+        "5",
+        "--transition-hz",
+        "1",
+        "--ripple-db",
+        "60",
+        "--json",
+    ]);
+    assert_eq!(json["num_taps"], design["num_taps"]);
+    assert!((json["beta"].as_f64().unwrap() - design["beta"].as_f64().unwrap()).abs() < 1e-12);
+    let ours = json["taps"].as_array().unwrap();
+    for (a, b) in ours.iter().zip(design["taps"].as_array().unwrap()) {
+        assert!((a.as_f64().unwrap() - b.as_f64().unwrap()).abs() < 1e-12);
+    }
+    // Group delay (N − 1)/2 samples at 200 Hz.
+    assert!(
+        (json["group_delay_s"].as_f64().unwrap() - (ours.len() - 1) as f64 / 400.0).abs() < 1e-15
+    );
+}
+
+#[test]
+fn characterize_then_select_by_linear_interpolation() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = chamber(dir.path());
+    assert_eq!(truth["temperatures"].as_array().unwrap().len(), 2);
+    let files: Vec<String> = truth["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap().to_string())
+        .collect();
+    let bank = dir.path().join("bank.json");
+    let mut args = vec!["characterize"];
+    args.extend(files.iter().map(|f| f.as_str()));
+    args.extend(["--out", arg(&bank), "--json"]);
+    let summary = json_of(&args);
+    // Temperatures come from the temp_c columns: the set points within the 0.05 °C wander.
+    let temps: Vec<f64> = summary["temperatures_c"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    assert!(
+        (temps[0] - 0.0).abs() < 0.5 && (temps[1] - 20.0).abs() < 0.5,
+        "{temps:?}"
+    );
+    // Select at the midpoint with the AR-based family (always present here): the result is
+    // the mean of the two entries' Tc (closed form of linear interpolation at weight ½).
+    let mid = (temps[0] + temps[1]) / 2.0;
+    let shown = json_of(&[
+        "bank",
+        "show",
+        arg(&bank),
+        "--at-temperature-c",
+        &mid.to_string(),
+        "--method",
+        "linear",
+        "--model",
+        "ar-based",
+        "--json",
+    ]);
+    let full = json_of(&["bank", "show", arg(&bank), "--json"]);
+    let tc = |entry: usize| {
+        full["entries"][entry]["channels"]["gx"]["gauss_markov"]["ar_based"]["correlation_time_s"]
+            .as_f64()
+            .unwrap()
+    };
+    let selected = shown["channels"]["gx"]["correlation_time_s"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (selected - (tc(0) + tc(1)) / 2.0).abs() < 1e-9 * selected,
+        "{selected} vs {} and {}",
+        tc(0),
+        tc(1)
+    );
+    assert_eq!(full["version"], 1);
+}
+
+#[test]
+fn allan_and_ar_json_follow_the_contract() {
+    let dir = tempfile::tempdir().unwrap();
+    let truth = chamber(dir.path());
+    let file = truth["files"][0].as_str().unwrap().to_string();
+    let allan = json_of(&["allan", &file, "--json"]);
+    let gx = &allan["channels"]["gx"];
+    assert_eq!(gx["unit"], "rad/s");
+    let n_terms = gx["n_terms"].as_array().unwrap();
+    let tau = gx["tau_s"].as_array().unwrap();
+    assert_eq!(n_terms.len(), tau.len());
+    for key in ["adev", "ci_low", "ci_high"] {
+        assert!(
+            gx[key]
+                .as_array()
+                .unwrap()
+                .iter()
+                .all(|v| v.as_f64().unwrap() > 0.0),
+            "{key}"
+        );
+    }
+    let arw = &gx["terms"]["random_walk"];
+    assert_eq!(arw["unit"], "deg/sqrt(h)");
+    let ar = json_of(&[
+        "ar",
+        &file,
+        "--method",
+        "yule-walker",
+        "--order",
+        "2",
+        "--json",
+    ]);
+    let az = &ar["channels"]["az"];
+    assert_eq!(az["order"], 2);
+    assert_eq!(az["coefficients"].as_array().unwrap().len(), 2);
+    assert!(az["gauss_markov"]["status"].is_string());
+}
+
+#[test]
+fn modelling_commands_refuse_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let not_a_bank = crate::write_file(dir.path(), "bank.json", "{\"hello\": 1}");
+    let (status, _, stderr) = outcome(&thermonav(&["bank", "show", arg(&not_a_bank)]));
+    assert_eq!(status, 1);
+    assert!(
+        stderr.contains("bank.json") && stderr.contains("not a model bank"),
+        "{stderr}"
+    );
+    let imu = crate::write_file(
+        dir.path(),
+        "imu.csv",
+        &crate::imu_csv(300, 100.0, |c, t| (c as f64 + t * 37.0).sin()),
+    );
+    assert_eq!(outcome(&thermonav(&["ar", arg(&imu), "--order", "0"])).0, 2);
+    assert_eq!(
+        outcome(&thermonav(&["ar", arg(&imu), "--order", "many"])).0,
+        2
+    );
+    assert_eq!(
+        outcome(&thermonav(&["allan", arg(&imu), "--confidence", "1.5"])).0,
+        2
+    );
+    let out = dir.path().join("b.json");
+    let (status, _, stderr) = outcome(&thermonav(&["characterize", arg(&imu), "--out", arg(&out)]));
+    assert_eq!(
+        status, 2,
+        "no temp_c column and no --temperature-c: {stderr}"
+    );
+    assert!(!out.exists());
+}
