@@ -7,6 +7,9 @@ use std::path::PathBuf;
 #[derive(Debug, Parser)]
 #[command(name = "thermonav", version, about, long_about = None)]
 pub struct Cli {
+    /// No progress bars or step messages on stderr (results and errors are still printed).
+    #[arg(long, global = true)]
+    pub quiet: bool,
     /// The subcommand to run.
     #[command(subcommand)]
     pub command: Command,

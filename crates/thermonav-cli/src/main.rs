@@ -5,6 +5,7 @@ mod args;
 mod commands;
 mod failure;
 mod noise_units;
+mod progress;
 mod report;
 
 use clap::Parser;
@@ -15,6 +16,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(error) => return print_clap_error(&error),
     };
+    progress::set_quiet(cli.quiet);
     match commands::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {

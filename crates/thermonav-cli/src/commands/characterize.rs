@@ -61,11 +61,17 @@ pub fn build_bank(
     out: &Path,
 ) -> Result<ModelBank, Failure> {
     use rayon::prelude::*;
+    let progress = crate::progress::bar(files.len(), "characterising static records");
     let entries: Vec<Result<TemperatureEntry, Failure>> = files
         .par_iter()
         .enumerate()
-        .map(|(k, path)| characterize_file(path, temperatures.get(k).copied(), settings))
+        .map(|(k, path)| {
+            let entry = characterize_file(path, temperatures.get(k).copied(), settings);
+            progress.inc(1);
+            entry
+        })
         .collect();
+    progress.finish_and_clear();
     let entries = entries.into_iter().collect::<Result<Vec<_>, _>>()?;
     let bank = ModelBank::new(entries).data()?;
     write_json_atomically(out, &bank).data()?;

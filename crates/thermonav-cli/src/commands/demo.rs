@@ -151,7 +151,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
 }
 
 fn say(args: &DemoArgs, line: &str) {
-    if !args.json {
+    if !args.json && !crate::progress::is_quiet() {
         eprintln!("{line}");
     }
 }

@@ -72,6 +72,7 @@ pub fn run_chamber(args: &ChamberArgs) -> Result<ChamberTruth, Failure> {
         sigma_c: 0.05,
         correlation_time_s: 600.0,
     };
+    let progress = crate::progress::bar(args.temperatures_c.len(), "simulating chamber records");
     let results: Vec<Result<(RunTruth, PathBuf), Failure>> = args
         .temperatures_c
         .par_iter()
@@ -87,9 +88,11 @@ pub fn run_chamber(args: &ChamberArgs) -> Result<ChamberTruth, Failure> {
             let record = simulate_chamber_run(&profile, &run).usage()?;
             let path = args.out.join(chamber_file_name(t));
             write_imu_file(&path, &record.series).data()?;
+            progress.inc(1);
             Ok((record.truth, path))
         })
         .collect();
+    progress.finish_and_clear();
     let (temperatures, files) = results
         .into_iter()
         .collect::<Result<Vec<_>, _>>()?
