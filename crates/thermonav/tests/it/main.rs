@@ -2,6 +2,7 @@
 
 mod allan;
 mod ar;
+mod error_model;
 mod gauss_markov;
 mod geo;
 mod ideal_imu;
