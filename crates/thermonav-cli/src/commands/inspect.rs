@@ -8,14 +8,14 @@ use std::path::Path;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::timestamps::{OrderFault, TimingReport, check_timestamps};
 use thermonav::time::Timestamp;
-use thermonav_io::{Strictness, read_imu_file};
+use thermonav_io::{Strictness, read_gnss_file, read_imu_file, read_trajectory_file};
 
 /// The JSON document of `inspect --json`.
 #[derive(Debug, Serialize)]
 pub struct Inspection {
     file: String,
     rows: usize,
-    sample_kind: SampleKind,
+    content: &'static str,
     duration_s: f64,
     nominal_rate_hz: Option<f64>,
     median_dt_s: Option<f64>,
@@ -53,7 +53,7 @@ struct OrderRow {
 /// Statistics of one channel, over its finite values.
 #[derive(Debug, Serialize)]
 struct ChannelRow {
-    channel: &'static str,
+    channel: String,
     unit: &'static str,
     mean: Option<f64>,
     std: Option<f64>,
@@ -68,10 +68,113 @@ struct TemperatureRange {
     mean_c: f64,
 }
 
+/// A file's time axis and numeric columns, whatever its format.
+pub struct Columns {
+    content: &'static str,
+    time: Vec<Timestamp>,
+    columns: Vec<(String, &'static str, Vec<f64>)>,
+    temperature_c: Option<Vec<f64>>,
+}
+
+fn imu_columns(series: ImuSeries) -> Columns {
+    let kind = series.kind.unwrap_or(SampleKind::Rates);
+    let columns = Channel::ALL
+        .iter()
+        .map(|&c| {
+            (
+                c.name().to_string(),
+                c.si_unit(kind),
+                series.channel(c).to_vec(),
+            )
+        })
+        .collect();
+    let content = match kind {
+        SampleKind::Rates => "imu_rates",
+        SampleKind::Increments => "imu_increments",
+    };
+    Columns {
+        content,
+        time: series.time,
+        columns,
+        temperature_c: series.temperature_c,
+    }
+}
+
+fn column<T>(
+    name: &str,
+    unit: &'static str,
+    rows: &[T],
+    value: impl Fn(&T) -> f64,
+) -> (String, &'static str, Vec<f64>) {
+    (name.to_string(), unit, rows.iter().map(value).collect())
+}
+
+fn gnss_columns(fixes: Vec<thermonav::gnss::GnssFix>) -> Columns {
+    let mut columns = vec![
+        column("lat", "deg", &fixes, |f| f.latitude_rad.to_degrees()),
+        column("lon", "deg", &fixes, |f| f.longitude_rad.to_degrees()),
+        column("h", "m", &fixes, |f| f.height_m),
+    ];
+    if fixes.iter().all(|f| f.heading.is_some()) {
+        columns.push(column("heading", "deg", &fixes, |f| {
+            f.heading.map_or(f64::NAN, |h| h.heading_rad.to_degrees())
+        }));
+    }
+    Columns {
+        content: "gnss",
+        time: fixes.iter().map(|f| f.time).collect(),
+        columns,
+        temperature_c: None,
+    }
+}
+
+fn trajectory_columns(points: Vec<thermonav::trajectory::TrajectoryPoint>) -> Columns {
+    let columns = vec![
+        column("lat", "deg", &points, |p| p.latitude_rad.to_degrees()),
+        column("lon", "deg", &points, |p| p.longitude_rad.to_degrees()),
+        column("h", "m", &points, |p| p.height_m),
+        column("vn", "m/s", &points, |p| p.velocity_ned_m_s[0]),
+        column("ve", "m/s", &points, |p| p.velocity_ned_m_s[1]),
+        column("vd", "m/s", &points, |p| p.velocity_ned_m_s[2]),
+        column("roll", "deg", &points, |p| p.roll_rad.to_degrees()),
+        column("pitch", "deg", &points, |p| p.pitch_rad.to_degrees()),
+        column("yaw", "deg", &points, |p| p.yaw_rad.to_degrees()),
+    ];
+    Columns {
+        content: "reference_trajectory",
+        time: points.iter().map(|p| p.time).collect(),
+        columns,
+        temperature_c: None,
+    }
+}
+
+/// Reads any canonical file leniently, choosing the format by its header.
+fn read_columns(path: &Path) -> Result<Columns, Failure> {
+    use std::io::BufRead;
+    let mut header = String::new();
+    if let Ok(file) = std::fs::File::open(path) {
+        // A failure here is reported by the reader below, with the file name.
+        let _ = std::io::BufReader::new(file).read_line(&mut header);
+    }
+    if header.contains("lat_deg") && header.contains("roll_deg") {
+        Ok(trajectory_columns(
+            read_trajectory_file(path, Strictness::Lenient).data()?,
+        ))
+    } else if header.contains("lat_deg") {
+        Ok(gnss_columns(
+            read_gnss_file(path, Strictness::Lenient).data()?,
+        ))
+    } else {
+        Ok(imu_columns(
+            read_imu_file(path, Strictness::Lenient).data()?,
+        ))
+    }
+}
+
 /// Runs `inspect`.
 pub fn run(args: &InspectArgs) -> Result<(), Failure> {
-    let series = read_imu_file(&args.file, Strictness::Lenient).data()?;
-    let inspection = inspect(&args.file, &series);
+    let columns = read_columns(&args.file)?;
+    let inspection = inspect(&args.file, &columns);
     if args.json {
         print_json(&inspection)
     } else {
@@ -80,19 +183,19 @@ pub fn run(args: &InspectArgs) -> Result<(), Failure> {
     }
 }
 
-/// Everything `inspect` reports about a series read from `file`.
-pub fn inspect(file: &Path, series: &ImuSeries) -> Inspection {
-    let timing = check_timestamps(&series.time);
-    let kind = series.kind.unwrap_or(SampleKind::Rates);
-    let channels: Vec<ChannelRow> = Channel::ALL
+/// Everything `inspect` reports about a file's columns.
+pub fn inspect(file: &Path, data: &Columns) -> Inspection {
+    let timing = check_timestamps(&data.time);
+    let channels: Vec<ChannelRow> = data
+        .columns
         .iter()
-        .map(|&c| channel_row(c, kind, series.channel(c)))
+        .map(|(name, unit, values)| channel_row(name, unit, values))
         .collect();
     let intervals = timing.intervals;
     Inspection {
         file: file.display().to_string(),
-        rows: series.len(),
-        sample_kind: kind,
+        rows: data.time.len(),
+        content: data.content,
         duration_s: timing.duration.map_or(0.0, |d| d.as_seconds()),
         nominal_rate_hz: intervals.map(|s| s.nominal_rate_hz()),
         median_dt_s: intervals.map(|s| s.median.as_seconds()),
@@ -107,9 +210,9 @@ pub fn inspect(file: &Path, series: &ImuSeries) -> Inspection {
         non_monotonic_count: timing.reversal_count,
         non_monotonic: order_rows(&timing.reversals),
         non_finite_count: channels.iter().map(|c| c.non_finite_count).sum::<usize>()
-            + non_finite_in(series.temperature_c.as_deref().unwrap_or(&[])),
+            + non_finite_in(data.temperature_c.as_deref().unwrap_or(&[])),
         channels,
-        temperature: series.temperature_c.as_deref().and_then(temperature_range),
+        temperature: data.temperature_c.as_deref().and_then(temperature_range),
     }
 }
 
@@ -150,11 +253,11 @@ fn non_finite_in(values: &[f64]) -> usize {
     values.iter().filter(|v| !v.is_finite()).count()
 }
 
-fn channel_row(channel: Channel, kind: SampleKind, values: &[f64]) -> ChannelRow {
+fn channel_row(name: &str, unit: &'static str, values: &[f64]) -> ChannelRow {
     let (mean, std) = mean_and_sample_std(values);
     ChannelRow {
-        channel: channel.name(),
-        unit: channel.si_unit(kind),
+        channel: name.to_string(),
+        unit,
         mean,
         std,
         non_finite_count: non_finite_in(values),

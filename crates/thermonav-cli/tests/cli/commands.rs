@@ -157,3 +157,33 @@ fn decimation_that_would_alias_is_a_usage_error() {
     assert_eq!(status, 2, "{stderr}");
     assert!(!out.exists());
 }
+
+#[test]
+fn inspect_reads_gnss_and_reference_files_by_their_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let gnss =
+        "t_s,lat_deg,lon_deg,h_m\n1,51.0,-114.0,1100\n2,51.0,-114.0,1102\n4,51.0,-114.0,1104\n";
+    let path = write_file(dir.path(), "gnss.csv", gnss);
+    let json = json_of(&["inspect", arg(&path), "--json"]);
+    assert_eq!(json["content"], "gnss");
+    assert_eq!(json["rows"], 3);
+    assert_eq!(
+        json["gap_count"], 1,
+        "the 2 s interval is a gap at a 1 s nominal rate"
+    );
+    let h = json["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["channel"] == "h")
+        .unwrap();
+    assert_eq!(
+        (h["unit"].as_str(), h["mean"].as_f64()),
+        (Some("m"), Some(1102.0))
+    );
+    let reference = "t_s,lat_deg,lon_deg,h_m,vn_m_s,ve_m_s,vd_m_s,roll_deg,pitch_deg,yaw_deg\n0,51,-114,1100,1,0,0,0,0,90\n0.5,51,-114,1100,1,0,0,0,0,90\n";
+    let path = write_file(dir.path(), "ref.csv", reference);
+    let json = json_of(&["inspect", arg(&path), "--json"]);
+    assert_eq!(json["content"], "reference_trajectory");
+    assert_eq!(json["nominal_rate_hz"], 2.0);
+}
