@@ -196,12 +196,6 @@ impl Bounds {
             None
         }
     }
-
-    /// True when the white-noise share sits at the bottom of its range: the record is a pure
-    /// Gauss-Markov process as far as the data can tell.
-    fn white_negligible(&self, p: [f64; 2]) -> bool {
-        near_bound(p[1], self.ln_rho[0])
-    }
 }
 
 fn near_bound(value: f64, bound: f64) -> bool {
@@ -383,44 +377,85 @@ fn outcome(record: &Record, bounds: &Bounds, best: [f64; 2]) -> NoisyGaussMarkov
         correlation_time_s: tc,
         sigma: scale.sqrt(),
         white_noise_density: (best[1].exp() * scale).sqrt(),
-        ci95_correlation_time_s: interval(record, bounds, best),
+        ci95_correlation_time_s: likelihood_ratio_interval(record, bounds, best),
         log_likelihood: concentrated(record, bounds, best),
         n_samples: record.values.len(),
     })
 }
 
-/// 95 % interval of Tc from the observed information in (ln Tc, ln ρ): the Hessian by central
-/// differences (step 0.01 in the logs), inverted; se(ln Tc) = √[H⁻¹]₀₀.
-fn interval(record: &Record, bounds: &Bounds, p: [f64; 2]) -> [Option<f64>; 2] {
-    let h = 0.01;
-    let f = |a: f64, b: f64| concentrated(record, bounds, [p[0] + a, p[1] + b]);
-    let f0 = f(0.0, 0.0);
-    let h00 = (f(h, 0.0) - 2.0 * f0 + f(-h, 0.0)) / (h * h);
-    if bounds.white_negligible(p) {
-        // ρ sits on its lower bound (pure Gauss-Markov): the interval is the one-dimensional
-        // curvature in ln Tc.
-        return log_interval(p[0], -1.0 / h00, bounds);
+/// Half the 0.95 quantile of χ² with one degree of freedom: the drop of the profile
+/// log-likelihood that bounds a 95 % likelihood-ratio interval.
+pub const LR_DROP_95: f64 = 1.920_729_410_347_062;
+
+/// The profile log-likelihood of ln Tc (maximised over ln ρ by 20 golden-section steps on ±3
+/// around `rho_hint`, the optimum at a neighbouring Tc; within the box: ln ρ to ~1e-4) and the
+/// maximising ln ρ.
+fn profile(record: &Record, bounds: &Bounds, ln_tc: f64, rho_hint: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (
+        (rho_hint - 3.0).max(bounds.ln_rho[0]),
+        (rho_hint + 3.0).min(bounds.ln_rho[1]),
+    );
+    let golden = 0.618_033_988_749_894_9;
+    let f = |r: f64| concentrated(record, bounds, [ln_tc, r]);
+    let (mut a, mut b) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..20 {
+        if fa >= fb {
+            (hi, b, fb) = (b, a, fa);
+            a = hi - golden * (hi - lo);
+            fa = f(a);
+        } else {
+            (lo, a, fa) = (a, b, fb);
+            b = lo + golden * (hi - lo);
+            fb = f(b);
+        }
     }
-    let h11 = (f(0.0, h) - 2.0 * f0 + f(0.0, -h)) / (h * h);
-    let h01 = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4.0 * h * h);
-    let det = h00 * h11 - h01 * h01;
-    if !(det > 0.0 && h00 < 0.0) {
-        return [None, None];
-    }
-    log_interval(p[0], -h11 / det, bounds)
+    if fa >= fb { (fa, a) } else { (fb, b) }
 }
 
-/// exp(ln Tc ± 1.96 √variance), the upper side `None` past the search box.
-fn log_interval(ln_tc: f64, variance: f64, bounds: &Bounds) -> [Option<f64>; 2] {
-    if !(variance.is_finite() && variance > 0.0) {
-        return [None, None];
+/// 95 % likelihood-ratio interval of Tc: where the profile log-likelihood of ln Tc falls
+/// [`LR_DROP_95`] below its maximum (Venzon & Moolgavkar 1988), found by stepping out from the
+/// estimate and bisecting. Asymmetric where the likelihood is, which the Wald interval is not
+/// (short records, Tc comparable to the record). An upper side that never falls within the
+/// search box is `None` (unbounded); a lower side that never falls is the smallest Tc searched.
+fn likelihood_ratio_interval(record: &Record, bounds: &Bounds, best: [f64; 2]) -> [Option<f64>; 2] {
+    let target = concentrated(record, bounds, best) - LR_DROP_95;
+    let side = |direction: f64| -> Option<f64> {
+        let (mut inside, mut rho, mut step) = (best[0], best[1], 0.3);
+        loop {
+            let candidate = inside + direction * step;
+            if !(bounds.ln_tc[0]..=bounds.ln_tc[1]).contains(&candidate) {
+                return None;
+            }
+            let (value, r) = profile(record, bounds, candidate, rho);
+            if value < target {
+                return Some(bisect(record, bounds, inside, candidate, r, target).exp());
+            }
+            (inside, rho, step) = (candidate, r, step * 1.5);
+        }
+    };
+    [side(-1.0).or(Some(bounds.ln_tc[0].exp())), side(1.0)]
+}
+
+/// The ln Tc between `inside` (profile above `target`) and `outside` (below) where the profile
+/// crosses `target`, to 2e-3 in ln Tc (0.2 % of Tc).
+fn bisect(
+    record: &Record,
+    bounds: &Bounds,
+    mut inside: f64,
+    mut outside: f64,
+    rho: f64,
+    target: f64,
+) -> f64 {
+    while (outside - inside).abs() > 2e-3 {
+        let middle = 0.5 * (inside + outside);
+        if profile(record, bounds, middle, rho).0 >= target {
+            inside = middle;
+        } else {
+            outside = middle;
+        }
     }
-    let half = 1.959_963_984_540_054 * variance.sqrt();
-    let upper = ln_tc + half;
-    [
-        Some((ln_tc - half).exp()),
-        (upper < bounds.ln_tc[1]).then(|| upper.exp()),
-    ]
+    0.5 * (inside + outside)
 }
 
 #[cfg(test)]
