@@ -16,11 +16,15 @@
 //! the random-walk or white-noise end, an autocovariance that does not decay) are enum
 //! variants; faulty input is a [`GaussMarkovError`]. No function returns NaN or an infinity.
 
+mod ar_based;
 mod error;
 mod intervals;
 mod model;
 mod simulate;
 
+pub use ar_based::{
+    Ar1Estimate, ArGaussMarkov, ArGaussMarkovFit, NoGaussMarkovEquivalent, gauss_markov_from_ar1,
+};
 pub use error::GaussMarkovError;
 pub use intervals::SampleIntervals;
 pub use model::{ConfidenceLevel, CorrelationTimeInterval, GaussMarkov, UpperBound};
