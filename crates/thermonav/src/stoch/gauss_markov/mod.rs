@@ -18,14 +18,20 @@
 
 mod ar_based;
 mod error;
+mod exact_ml;
 mod intervals;
 mod model;
+mod search;
 mod simulate;
 
 pub use ar_based::{
     Ar1Estimate, ArGaussMarkov, ArGaussMarkovFit, NoGaussMarkovEquivalent, gauss_markov_from_ar1,
 };
 pub use error::GaussMarkovError;
+pub use exact_ml::{
+    ExactMlFit, ExactMlOutcome, MIN_ML_SAMPLES, MeanModel, fit_gauss_markov_exact_ml,
+    gauss_markov_log_likelihood,
+};
 pub use intervals::SampleIntervals;
 pub use model::{ConfidenceLevel, CorrelationTimeInterval, GaussMarkov, UpperBound};
 pub use simulate::simulate_gauss_markov;

@@ -3,6 +3,7 @@
 //! simulations.
 
 mod ar_based;
+mod exact_ml;
 mod model;
 mod simulate;
 
