@@ -16,6 +16,7 @@
 //! the random-walk or white-noise end, an autocovariance that does not decay) are enum
 //! variants; faulty input is a [`GaussMarkovError`]. No function returns NaN or an infinity.
 
+mod acf_fit;
 mod ar_based;
 mod error;
 mod exact_ml;
@@ -24,6 +25,10 @@ mod model;
 mod search;
 mod simulate;
 
+pub use acf_fit::{
+    AcfFit, AcfGaussMarkov, EFoldingTime, LagWindow, MIN_FIT_LAGS, ZeroLag, e_folding_time,
+    fit_gauss_markov_to_autocovariance,
+};
 pub use ar_based::{
     Ar1Estimate, ArGaussMarkov, ArGaussMarkovFit, NoGaussMarkovEquivalent, gauss_markov_from_ar1,
 };

@@ -2,6 +2,7 @@
 //! and the exact simulator, against closed forms, SciPy/statsmodels values and seeded
 //! simulations.
 
+mod acf_fit;
 mod ar_based;
 mod exact_ml;
 mod model;
