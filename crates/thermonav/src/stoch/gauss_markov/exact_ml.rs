@@ -57,7 +57,8 @@ pub enum MeanModel {
 /// A maximum-likelihood Gauss-Markov model.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ExactMlFit {
-    /// The fitted model (`sigma` is the maximum-likelihood value, divisor `n`).
+    /// The fitted model (`sigma^2` with divisor `n`, or `n - 1` under
+    /// [`MeanModel::Restricted`]).
     pub model: GaussMarkov,
     /// The fitted mean (0 under [`MeanModel::Zero`]).
     pub mean: f64,
@@ -124,24 +125,26 @@ pub fn gauss_markov_log_likelihood(
 ///
 /// Likelihood: as [`gauss_markov_log_likelihood`], each step with its own `dt_k`, so jitter,
 /// gaps and rate changes are modelled rather than averaged into a nominal `dt` (the bias of an
-/// AR(1) fit with a nominal interval). For a fixed `Tc` the mean (unless
-/// [`MeanModel::Zero`]) and `sigma^2` have closed forms and are profiled out:
+/// AR(1) fit with a nominal interval). For a fixed `Tc` the mean (unless [`MeanModel::Zero`])
+/// and `sigma^2` have closed forms and are profiled out:
 /// `mu = [x_0 + sum (x_k - phi_k x_{k-1})/(1 + phi_k)] / [1 + sum (1 - phi_k)/(1 + phi_k)]`,
 /// `sigma^2 = [(x_0 - mu)^2 + sum e_k^2 / (1 - phi_k^2)] / n` (`n - 1` under
-/// [`MeanModel::Restricted`]), `e_k = (x_k - mu) - phi_k (x_{k-1} - mu)`. The profile log-likelihood of
-/// `ln Tc` is evaluated on a grid of 8 points per decade from a tenth of the shortest interval
-/// to `1e4 x span`, and its best grid point refined between its neighbours by bisection on the
-/// analytic derivative (to 1e-12 in `ln Tc`; golden section on the values if the derivative
-/// does not change sign). A maximum on either end of the grid is reported as
-/// [`ExactMlOutcome::WhiteNoiseLike`] or [`ExactMlOutcome::RandomWalkLike`].
+/// [`MeanModel::Restricted`]), `e_k = (x_k - mu) - phi_k (x_{k-1} - mu)`.
+///
+/// Search: the profile log-likelihood of `ln Tc` is evaluated on a grid of 8 points per decade
+/// from a tenth of the shortest interval to `1e4 x span`; its best grid point is refined
+/// between its neighbours by a bracketed root search on the analytic derivative (to 1e-12 in
+/// `ln Tc`; golden section on the values if the derivative does not change sign). A maximum on
+/// either end of the grid is reported as [`ExactMlOutcome::WhiteNoiseLike`] or
+/// [`ExactMlOutcome::RandomWalkLike`].
 ///
 /// Interval: likelihood ratio, `{Tc : l_p(Tc) >= l_p(Tc_hat) - chi2_1(level)/2}` (a drop of
-/// 1.92 at 95 %), with each end found by bisection. It is preferred over a Wald interval from
-/// the observed information of `ln Tc` because the profile is skewed in `Tc` (long correlation
-/// times are always less well determined than short ones) and because it extends naturally to
-/// the unbounded case: when the profile does not drop by the threshold before `1e4 x span`,
-/// the upper end is [`UpperBound::Unbounded`]; when it does not drop before the grid's lower
-/// end, the lower end is 0.
+/// 1.92 at 95 %), each end found by a bracketed root search. It is preferred over a Wald
+/// interval from the observed information of `ln Tc` because the profile is skewed in `Tc`
+/// (long correlation times are always less well determined than short ones) and because it
+/// extends naturally to the unbounded case: when the profile does not drop by the threshold
+/// before `1e4 x span`, the upper end is [`UpperBound::Unbounded`]; when it does not drop
+/// before the grid's lower end, the lower end is 0.
 ///
 /// Numerics: the values are shifted by their sample mean (for an estimated mean) and scaled
 /// to unit RMS before the search, so results do not depend on units; the reported quantities
@@ -207,9 +210,9 @@ fn argmax(values: &[f64]) -> usize {
 }
 
 /// The peak of the profile between the grid neighbours `left` and `right` of the best grid
-/// point: the zero of its analytic slope, by bisection. Function values alone locate a flat
-/// peak only to about `sqrt(eps |l| / I)` (~1e-7 in `ln Tc`); the slope's zero is located to
-/// `LN_TC_TOLERANCE`. Golden section on the values is the fallback when the slope does not
+/// point: the zero of its analytic slope, by a bracketed root search. Function values alone
+/// locate a flat peak only to about `sqrt(eps |l| / I)` (~1e-7 in `ln Tc`); the slope's zero
+/// is located to `LN_TC_TOLERANCE`. Golden section on the values is the fallback when the slope does not
 /// change sign across the bracket.
 fn refine_peak(profile: &mut ProfileLikelihood, left: f64, right: f64) -> Peak {
     if profile.slope(left) > 0.0 && profile.slope(right) < 0.0 {

@@ -6,8 +6,10 @@
 //! - [`gauss_markov_from_ar1`]: the AR-based GM of El-Diasty & Pagiatakis (2009), eqs. 8-10,
 //!   from any AR(1) estimate, with the interval of `Tc` mapped from the interval of `c1`.
 //! - [`fit_gauss_markov_exact_ml`]: exact maximum likelihood on irregular timestamps, each step
-//!   with its own interval, with a likelihood-ratio interval of `Tc`. Unbiased under jitter and
-//!   gaps, where the AR(1) route with a nominal interval is not.
+//!   with its own interval, with a likelihood-ratio interval of `Tc`; the mean is known
+//!   ([`MeanModel::Zero`]), profiled ([`MeanModel::Estimated`]) or integrated out (REML,
+//!   [`MeanModel::Restricted`], the choice when `Tc` may approach the record length). Unbiased
+//!   under jitter and gaps, where the AR(1) route with a nominal interval is not.
 //! - [`fit_gauss_markov_to_autocovariance`] and [`e_folding_time`]: the classical fit of an
 //!   exponential to the autocovariance, and the 1/e shortcut (the methods the paper improves on).
 //! - [`simulate_gauss_markov`]: an exact path at given sampling times, with the caller's RNG.
