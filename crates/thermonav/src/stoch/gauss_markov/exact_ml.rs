@@ -146,6 +146,13 @@ pub fn gauss_markov_log_likelihood(
 /// before `1e4 x span`, the upper end is [`UpperBound::Unbounded`]; when it does not drop
 /// before the grid's lower end, the lower end is 0.
 ///
+/// Reference and peers: the exact likelihood of a continuous-time AR(1) (Ornstein-Uhlenbeck)
+/// process observed at irregular times (Jones 1981, "Fitting a continuous time autoregression
+/// to discrete data"); it is the Gaussian-process likelihood with the exponential kernel
+/// `sigma^2 exp(-|t_i - t_j|/Tc)` that `celerite`, `george` or scikit-learn's
+/// `GaussianProcessRegressor(Matern(nu=0.5))` maximise with dense or semiseparable solvers;
+/// the Markov factorisation here is O(n) per evaluation.
+///
 /// Numerics: the values are shifted by their sample mean (for an estimated mean) and scaled
 /// to unit RMS before the search, so results do not depend on units; the reported quantities
 /// are mapped back.
