@@ -1,4 +1,4 @@
-//! Causal FIR convolution with a constant history: y[n] = Σ_k h[k] x[n−k], with x[m] = c for
+//! Causal FIR convolution with a constant history: `y[n] = Σ_k h[k] x[n−k]`, with `x[m] = c` for
 //! m < 0. This is what `lfilter(h, [1], x, zi=lfilter_zi(h, 1)·c)` computes (the steady-state
 //! initial conditions of a constant input c are that constant's history).
 //!
@@ -12,7 +12,7 @@ use rustfft::num_complex::Complex;
 /// Filter length from which the FFT method is used (measured: below it the direct sum wins).
 pub const FFT_THRESHOLD_TAPS: usize = 48;
 
-/// y[n] = Σ h[k] x[n−k], x[m<0] = `history`, by the direct sum.
+/// `y[n] = Σ h[k] x[n−k]`, `x[m<0] = history`, by the direct sum.
 pub fn convolve_direct(x: &[f64], h: &[f64], history: f64) -> Vec<f64> {
     (0..x.len())
         .map(|n| {

@@ -5,9 +5,9 @@
 //! A dB and a transition width Δω (rad/sample),
 //! β = 0.1102 (A − 8.7) for A > 50, 0.5842 (A − 21)^0.4 + 0.07886 (A − 21) for 21 ≤ A ≤ 50,
 //! 0 below; N = ⌈(A − 7.95) / (2.285 Δω)⌉ + 1 taps, with Δω = π · width / (fs/2) as SciPy
-//! writes it. The taps are the ideal low-pass impulse response h[m] = c·sinc(c·m),
+//! writes it. The taps are the ideal low-pass impulse response `h[m] = c·sinc(c·m)`,
 //! m = n − (N−1)/2, c = cutoff / (fs/2), times the symmetric Kaiser window
-//! w[n] = I₀(β √(1 − (2n/(N−1) − 1)²)) / I₀(β), scaled so that the gain at DC is exactly 1.
+//! `w[n] = I₀(β √(1 − (2n/(N−1) − 1)²)) / I₀(β)`, scaled so that the gain at DC is exactly 1.
 
 use super::SignalError;
 
