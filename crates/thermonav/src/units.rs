@@ -71,6 +71,18 @@ pub fn vrw_m_per_s_per_sqrt_s_to_m_per_s_per_sqrt_h(m_per_s_per_sqrt_s: f64) -> 
     m_per_s_per_sqrt_s * SECONDS_PER_HOUR.sqrt()
 }
 
+/// Rate random walk in rad/s/√s (rad/s^1.5) to deg/h/√h.
+///
+/// 1 rad/s/√s = (180/π) deg · 3600 /h · 60 /√h.
+pub fn rrw_rad_per_s_per_sqrt_s_to_deg_per_h_per_sqrt_h(rad_per_s_per_sqrt_s: f64) -> f64 {
+    rad_per_s_to_deg_per_h(rad_per_s_per_sqrt_s) * SECONDS_PER_HOUR.sqrt()
+}
+
+/// Rate random walk in deg/h/√h to rad/s/√s.
+pub fn rrw_deg_per_h_per_sqrt_h_to_rad_per_s_per_sqrt_s(deg_per_h_per_sqrt_h: f64) -> f64 {
+    deg_per_h_to_rad_per_s(deg_per_h_per_sqrt_h) / SECONDS_PER_HOUR.sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,6 +105,13 @@ mod tests {
     fn milli_g_round_trip() {
         assert!((mg_to_m_per_s2(1000.0) - 9.80665).abs() < 1e-15);
         assert!((m_per_s2_to_mg(mg_to_m_per_s2(0.1)) - 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rrw_one_deg_per_h_per_sqrt_h_is_pi_over_38_880_000_rad_per_s_per_sqrt_s() {
+        let expected = PI / 180.0 / 3600.0 / 60.0;
+        assert!((rrw_deg_per_h_per_sqrt_h_to_rad_per_s_per_sqrt_s(1.0) - expected).abs() < 1e-21);
+        assert!((rrw_rad_per_s_per_sqrt_s_to_deg_per_h_per_sqrt_h(expected) - 1.0).abs() < 1e-12);
     }
 
     #[test]
