@@ -160,9 +160,12 @@ impl NoiseTerms {
 ///    within `slope_tolerance` of the term's slope (-1, -1/2, +1/2, +1); ties go to the
 ///    shorter taus (more averaging terms, less scatter). Fewer than `min_points` points:
 ///    the term is not identified (`None`).
-/// 3. Level: the line of fixed slope through the region's points, least squares in log space:
-///    ln C = mean(ln sigma_i - slope ln tau_i); the coefficient is that line read at the
-///    standard tau (Q at √3 s, N at 1 s, K at 3 s, R at √2 s), even if outside the region.
+/// 3. Level: the line of fixed slope through the region's points, least squares in log space
+///    with equal weights: ln C = mean(ln sigma_i - slope ln tau_i); the coefficient is that
+///    line read at the standard tau (Q at √3 s, N at 1 s, K at 3 s, R at √2 s), even if
+///    outside the region. (Weights 1/tau, the inverse variance for a pure power law, were
+///    tried: on real gyros they lean on the region's short-tau edge, where sensor filtering
+///    flattens the curve, and read the ADIS16405 ARW 7 % low against allantools at 1.28 s.)
 /// 4. Bias instability: the curve minimum / sqrt(2 ln 2 / pi), identified only if the minimum
 ///    is an interior point (the curve rises on both sides); its region is the run of
 ///    segments next to it with |slope| <= tolerance.
@@ -263,18 +266,23 @@ fn line_term(
     if n_points < settings.min_points {
         return None;
     }
-    let points = first..=last;
-    let log_level = points
-        .clone()
-        .map(|i| curve.adev[i].ln() - slope * curve.tau_s[i].ln())
-        .sum::<f64>()
-        / n_points as f64;
+    let log_level = mean_log_level(curve, first..=last, slope);
     Some(TermEstimate {
         value: kind.coefficient_from_line(log_level.exp()),
         tau_min_s: curve.tau_s[first],
         tau_max_s: curve.tau_s[last],
         n_points,
     })
+}
+
+/// ln C of the line ln sigma = ln C + slope ln tau through the points `range` (least squares
+/// with the slope fixed: the mean of ln sigma_i - slope ln tau_i).
+fn mean_log_level(curve: &AllanCurve, range: std::ops::RangeInclusive<usize>, slope: f64) -> f64 {
+    let n = range.clone().count() as f64;
+    range
+        .map(|i| curve.adev[i].ln() - slope * curve.tau_s[i].ln())
+        .sum::<f64>()
+        / n
 }
 
 fn bias_instability(

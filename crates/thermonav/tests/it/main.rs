@@ -1,0 +1,3 @@
+//! Integration tests of the thermonav library against independent oracles.
+
+mod allan;
