@@ -146,11 +146,7 @@ impl ImuSeries {
     pub fn push(&mut self, sample: &ImuSample) {
         let first = self.time.is_empty();
         self.time.push(sample.time);
-        for (column, value) in self
-            .channels
-            .iter_mut()
-            .zip(sample.gyro.iter().chain(&sample.accel))
-        {
+        for (column, value) in self.channels.iter_mut().zip(sample.gyro.iter().chain(&sample.accel)) {
             column.push(*value);
         }
         match (sample.temperature_c, first) {
@@ -169,10 +165,7 @@ impl ImuSeries {
         let Some(&start) = self.time.first() else {
             return Vec::new();
         };
-        self.time
-            .iter()
-            .map(|t| t.since(start).as_seconds())
-            .collect()
+        self.time.iter().map(|t| t.since(start).as_seconds()).collect()
     }
 }
 

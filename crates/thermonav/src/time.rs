@@ -103,10 +103,7 @@ mod tests {
     fn seconds_round_to_the_nearest_nanosecond() {
         // 0.005 s is not exact in binary; rounding must still give 5 ms exactly.
         assert_eq!(Duration::from_seconds(0.005).unwrap().as_nanos(), 5_000_000);
-        assert_eq!(
-            Timestamp::from_seconds(-1.5).unwrap().as_nanos(),
-            -1_500_000_000
-        );
+        assert_eq!(Timestamp::from_seconds(-1.5).unwrap().as_nanos(), -1_500_000_000);
     }
 
     #[test]
