@@ -1,2 +1,4 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
 //! models, Gauss-Markov models and Allan variance.
+
+pub mod acf;

@@ -1,0 +1,325 @@
+//! Sample autocovariance and autocorrelation of a uniformly sampled series.
+//!
+//! # Estimator
+//! The biased (denominator `N`) sample autocovariance
+//!
+//! ```text
+//! gamma(k) = (1/N) * sum_{t=0}^{N-1-k} (x_t - m) (x_{t+k} - m),   k = 0..=max_lag
+//! rho(k)   = gamma(k) / gamma(0)
+//! ```
+//!
+//! with `m` the sample mean ([`Demean::SampleMean`]) or zero ([`Demean::None`]). The denominator
+//! `N` for every lag (not `N - k`) keeps the autocovariance sequence positive semi-definite, which
+//! Levinson-Durbin (Yule-Walker) needs; it is Box & Jenkins' estimator and the one computed by
+//! statsmodels `acf(x, adjusted=False)`, MATLAB `autocorr` and R `acf`.
+//!
+//! # Algorithms
+//! - [`AcfAlgorithm::Direct`]: the defining sums, `O(N * max_lag)`, blocked so that each block of
+//!   the series is read once from memory for all lags.
+//! - [`AcfAlgorithm::Fft`]: Wiener-Khinchin. The centred series is zero-padded to a length
+//!   `L >= N + max_lag` (so the circular correlation does not wrap onto the lags that are kept),
+//!   transformed with a real FFT, squared in modulus and transformed back: `O(L log L)`.
+//! - [`AcfAlgorithm::Auto`]: the direct sums when `max_lag` is small compared with `log2 L`
+//!   (the usual case for AR fitting), the FFT otherwise.
+//!
+//! Both agree with a naive double loop to about `1e-15 * gamma(0)`.
+
+use std::borrow::Cow;
+
+use realfft::RealFftPlanner;
+use realfft::num_complex::Complex;
+use thiserror::Error;
+
+/// How the series is centred before the lagged products are formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Demean {
+    /// Use the samples as they are (the process is known to have zero mean).
+    None,
+    /// Subtract the sample mean `(1/N) sum x_t` (the usual choice; statsmodels' default).
+    SampleMean,
+}
+
+/// Which algorithm evaluates the lagged sums (the result is the same up to rounding).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum AcfAlgorithm {
+    /// Choose by cost: direct sums for few lags, FFT for many.
+    #[default]
+    Auto,
+    /// Direct `O(N * max_lag)` sums.
+    Direct,
+    /// Zero-padded real FFT, `O(N log N)`.
+    Fft,
+}
+
+/// Invalid input to the autocorrelation functions.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum AcfError {
+    /// The series has no samples.
+    #[error("the series is empty: at least one sample is needed")]
+    Empty,
+    /// A sample is NaN or infinite.
+    #[error("sample {index} is {value}: every sample must be finite")]
+    NonFinite {
+        /// Index of the first non-finite sample.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The requested lag range reaches beyond the series.
+    #[error("max_lag {max_lag} is too large for {n_samples} samples: it must be below n_samples")]
+    MaxLagTooLarge {
+        /// Requested largest lag.
+        max_lag: usize,
+        /// Length of the series.
+        n_samples: usize,
+    },
+    /// `gamma(0) = 0`, so the autocorrelation `gamma(k) / gamma(0)` is undefined.
+    #[error(
+        "the series has zero variance (gamma(0) = 0 over {n_samples} samples): its autocorrelation is undefined"
+    )]
+    ZeroVariance {
+        /// Length of the series.
+        n_samples: usize,
+    },
+}
+
+/// Biased sample autocovariance `gamma(0..=max_lag)` (see the module docs), algorithm chosen by
+/// cost.
+///
+/// # Errors
+/// [`AcfError::Empty`], [`AcfError::NonFinite`], or [`AcfError::MaxLagTooLarge`] when
+/// `max_lag >= x.len()`.
+///
+/// # Example
+/// ```
+/// use thermonav::stoch::acf::{autocovariance, Demean};
+/// let gamma = autocovariance(&[1.0, -1.0, 1.0, -1.0], 1, Demean::None).unwrap();
+/// assert_eq!(gamma, vec![1.0, -0.75]);
+/// ```
+pub fn autocovariance(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfError> {
+    autocovariance_with(x, max_lag, demean, AcfAlgorithm::Auto)
+}
+
+/// [`autocovariance`] with an explicit algorithm.
+///
+/// # Errors
+/// As [`autocovariance`].
+pub fn autocovariance_with(
+    x: &[f64],
+    max_lag: usize,
+    demean: Demean,
+    algorithm: AcfAlgorithm,
+) -> Result<Vec<f64>, AcfError> {
+    validate_series(x, max_lag)?;
+    let y = centred(x, demean);
+    let sums = match resolve_algorithm(algorithm, x.len(), max_lag) {
+        AcfAlgorithm::Fft => lagged_products_fft(&y, max_lag),
+        _ => lagged_products(&y, max_lag),
+    };
+    let n = x.len() as f64;
+    Ok(sums.into_iter().map(|s| s / n).collect())
+}
+
+/// Sample autocorrelation `rho(k) = gamma(k) / gamma(0)`, `k = 0..=max_lag`.
+///
+/// # Errors
+/// As [`autocovariance`], plus [`AcfError::ZeroVariance`] for a constant series (or an all-zero
+/// one with [`Demean::None`]).
+pub fn autocorrelation(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfError> {
+    let gamma = autocovariance(x, max_lag, demean)?;
+    let gamma0 = gamma[0];
+    if gamma0 <= 0.0 {
+        return Err(AcfError::ZeroVariance { n_samples: x.len() });
+    }
+    Ok(gamma.into_iter().map(|g| g / gamma0).collect())
+}
+
+/// Checks length, lag range and finiteness.
+fn validate_series(x: &[f64], max_lag: usize) -> Result<(), AcfError> {
+    if x.is_empty() {
+        return Err(AcfError::Empty);
+    }
+    if max_lag >= x.len() {
+        return Err(AcfError::MaxLagTooLarge {
+            max_lag,
+            n_samples: x.len(),
+        });
+    }
+    match first_non_finite(x) {
+        Some((index, value)) => Err(AcfError::NonFinite { index, value }),
+        None => Ok(()),
+    }
+}
+
+/// Index and value of the first NaN or infinite sample.
+pub(crate) fn first_non_finite(x: &[f64]) -> Option<(usize, f64)> {
+    x.iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
+        .map(|(i, v)| (i, *v))
+}
+
+/// The series minus its sample mean, or the series itself.
+pub(crate) fn centred(x: &[f64], demean: Demean) -> Cow<'_, [f64]> {
+    match demean {
+        Demean::None => Cow::Borrowed(x),
+        Demean::SampleMean => {
+            let mean = sample_mean(x);
+            Cow::Owned(x.iter().map(|v| v - mean).collect())
+        }
+    }
+}
+
+/// Arithmetic mean, summed block by block so the rounding error grows like
+/// `sqrt(block) + N / block` rather than `N`. Returns 0 for an empty slice.
+pub(crate) fn sample_mean(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        return 0.0;
+    }
+    let total: f64 = x.chunks(BLOCK).map(|c| c.iter().sum::<f64>()).sum();
+    total / x.len() as f64
+}
+
+/// Samples per block of the direct sums: a block and its `max_lag` look-ahead stay in cache.
+const BLOCK: usize = 2048;
+
+/// Direct sums cost about `N * (max_lag + 1)` multiply-adds; the FFT about
+/// `FFT_COST_FACTOR * L * log2(L)`, measured on this code (see `benches/ar.rs`).
+const FFT_COST_FACTOR: f64 = 3.0;
+
+/// Replaces [`AcfAlgorithm::Auto`] by the cheaper of the two algorithms.
+fn resolve_algorithm(algorithm: AcfAlgorithm, n: usize, max_lag: usize) -> AcfAlgorithm {
+    if algorithm != AcfAlgorithm::Auto {
+        return algorithm;
+    }
+    let len = fft_length(n + max_lag) as f64;
+    let direct_cost = n as f64 * (max_lag + 1) as f64;
+    if direct_cost <= FFT_COST_FACTOR * len * len.log2() {
+        AcfAlgorithm::Direct
+    } else {
+        AcfAlgorithm::Fft
+    }
+}
+
+/// Un-normalised lagged products `S(d) = sum_{t=0}^{N-1-d} y_t y_{t+d}`, `d = 0..=max_lag`,
+/// by direct summation. Requires `max_lag < y.len()`.
+pub(crate) fn lagged_products(y: &[f64], max_lag: usize) -> Vec<f64> {
+    let n = y.len();
+    let interior = n - max_lag;
+    let mut sums = vec![0.0; max_lag + 1];
+    let mut start = 0;
+    while start < interior {
+        let end = (start + BLOCK).min(interior);
+        for (lag, sum) in sums.iter_mut().enumerate() {
+            *sum += dot(&y[start..end], &y[start + lag..end + lag]);
+        }
+        start = end;
+    }
+    add_tail_products(y, interior, &mut sums);
+    sums
+}
+
+/// Adds the products `y_t y_{t+d}` for `t >= interior`, where not every lag has a partner.
+fn add_tail_products(y: &[f64], interior: usize, sums: &mut [f64]) {
+    let n = y.len();
+    for t in interior..n {
+        for (lag, sum) in sums.iter_mut().enumerate().take(n - t) {
+            *sum += y[t] * y[t + lag];
+        }
+    }
+}
+
+/// Dot product with four independent accumulators (lets the compiler vectorise).
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let chunks_a = a.chunks_exact(4);
+    let chunks_b = b.chunks_exact(4);
+    let tail: f64 = chunks_a
+        .remainder()
+        .iter()
+        .zip(chunks_b.remainder())
+        .map(|(u, v)| u * v)
+        .sum();
+    for (ca, cb) in chunks_a.zip(chunks_b) {
+        for k in 0..4 {
+            acc[k] += ca[k] * cb[k];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// The lagged products of [`lagged_products`] through a zero-padded real FFT.
+fn lagged_products_fft(y: &[f64], max_lag: usize) -> Vec<f64> {
+    let len = fft_length(y.len() + max_lag);
+    let mut planner = RealFftPlanner::<f64>::new();
+    let forward = planner.plan_fft_forward(len);
+    let inverse = planner.plan_fft_inverse(len);
+    let mut signal = forward.make_input_vec();
+    signal[..y.len()].copy_from_slice(y);
+    let mut spectrum = forward.make_output_vec();
+    forward
+        .process(&mut signal, &mut spectrum)
+        .expect("buffers were made by the same plan");
+    for bin in spectrum.iter_mut() {
+        *bin = Complex::new(bin.norm_sqr(), 0.0);
+    }
+    inverse
+        .process(&mut spectrum, &mut signal)
+        .expect("buffers were made by the same plan and the spectrum is real");
+    let scale = 1.0 / len as f64;
+    signal[..=max_lag].iter().map(|v| v * scale).collect()
+}
+
+/// Smallest even length `>= min_len` of the form `2^a 3^b 5^c` (fast for RustFFT).
+fn fft_length(min_len: usize) -> usize {
+    let target = min_len.max(2);
+    let mut best = target.next_power_of_two();
+    let mut odd_5 = 1usize;
+    while odd_5 < best {
+        let mut odd = odd_5;
+        while odd < best {
+            best = best.min(smallest_even_multiple(odd, target));
+            odd *= 3;
+        }
+        odd_5 *= 5;
+    }
+    best
+}
+
+/// Smallest `odd * 2^a >= target` with `a >= 1`.
+fn smallest_even_multiple(odd: usize, target: usize) -> usize {
+    let mut len = 2 * odd;
+    while len < target {
+        len *= 2;
+    }
+    len
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fft_length_is_smooth_even_and_large_enough() {
+        // Closed forms: 7 -> 8, 9 -> 10 (2*5), 13 -> 16 (15 is odd), 1000 -> 1000 (2^3 5^3).
+        assert_eq!(fft_length(7), 8);
+        assert_eq!(fft_length(9), 10);
+        assert_eq!(fft_length(13), 16);
+        assert_eq!(fft_length(1000), 1000);
+        assert_eq!(fft_length(1), 2);
+        for min_len in 1..3000 {
+            let len = fft_length(min_len);
+            assert!(len >= min_len && len % 2 == 0, "{min_len} -> {len}");
+        }
+    }
+
+    #[test]
+    fn sample_mean_of_blocks_covers_every_sample_once() {
+        // x_i = i: integer sums are exact in f64, so the mean is exactly (n - 1) / 2 for lengths
+        // below, at and across block boundaries.
+        for n in [1, 2, BLOCK - 1, BLOCK, BLOCK + 1, 3 * BLOCK + 17] {
+            let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
+            assert_eq!(sample_mean(&x), (n - 1) as f64 / 2.0, "n = {n}");
+        }
+    }
+}
