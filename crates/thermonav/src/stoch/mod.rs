@@ -2,3 +2,4 @@
 //! models, Gauss-Markov models and Allan variance.
 
 pub mod acf;
+pub mod ar;
