@@ -122,6 +122,11 @@ fn bad_input_gives_errors_with_the_numbers() {
         autocorrelation(&[4.0; 10], 3, Demean::SampleMean),
         Err(AcfError::ZeroVariance { n_samples: 10 })
     );
+    // Finite samples whose squares overflow f64.
+    assert_eq!(
+        autocovariance(&[1e200, -1e200, 3.0], 1, Demean::None),
+        Err(AcfError::Overflow { max_abs: 1e200 })
+    );
     // A constant has zero autocovariance, which is a valid answer (not NaN).
     assert_eq!(
         autocovariance(&[4.0; 10], 3, Demean::SampleMean).unwrap(),

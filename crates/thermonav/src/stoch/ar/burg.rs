@@ -20,15 +20,15 @@ use nalgebra::{DMatrix, DVector};
 
 use super::gram::{cancels_badly, max_diagonal, windowed_gram};
 use super::recursion::{Stages, fits_from_stages, step_up};
-use super::{ArError, Fit, backward_prediction_errors, prediction_errors};
+use super::{ArError, Centred, Fit, backward_prediction_errors, prediction_errors};
 
 /// Fits of orders `0..=lagged.len()-1` of the centred series `y`, given its lagged products.
-pub(super) fn fit_orders(y: &[f64], lagged: &[f64]) -> Result<Vec<Fit>, ArError> {
+pub(super) fn fit_orders(y: Centred<'_>, lagged: &[f64]) -> Result<Vec<Fit>, ArError> {
     fits_from_stages(&burg_stages(y, lagged), y.len())
 }
 
 /// Burg's recursion up to order `lagged.len() - 1`.
-fn burg_stages(y: &[f64], lagged: &[f64]) -> Stages {
+fn burg_stages(y: Centred<'_>, lagged: &[f64]) -> Stages {
     let n = y.len();
     let p = lagged.len() - 1;
     let power0 = lagged[0] / n as f64;
@@ -87,13 +87,14 @@ fn record_stage(stages: &mut Stages, k: f64, den: f64, window: usize) {
 /// The classical recursion on explicit forward/backward error sequences, from the model of
 /// order `stage_range.start() - 1` with `coefficients`.
 fn continue_on_error_sequences(
-    y: &[f64],
+    y: Centred<'_>,
     coefficients: &[f64],
     stage_range: std::ops::RangeInclusive<usize>,
     stages: &mut Stages,
 ) {
-    let mut forward = prediction_errors(y, coefficients, 0.0);
-    let mut backward = backward_prediction_errors(y, coefficients);
+    let y_all = y.to_vec();
+    let mut forward = prediction_errors(&y_all, coefficients, 0.0);
+    let mut backward = backward_prediction_errors(&y_all, coefficients);
     for m in stage_range {
         let (num, den) = sequence_sums(&forward, &backward);
         let k = if den > 0.0 { 2.0 * num / den } else { 0.0 };

@@ -3,7 +3,7 @@
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 use super::ArError;
-use crate::stoch::acf::{self, Demean};
+use crate::stoch::acf::{self, AcfError, Demean};
 
 /// Result of a Ljung-Box test.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,7 +27,7 @@ pub struct LjungBox {
 /// # Errors
 /// [`ArError::NonFinite`], [`ArError::InvalidLags`] unless `1 <= lags < n`,
 /// [`ArError::NoDegreesOfFreedom`] unless `lags > fitted_params`, [`ArError::ZeroVariance`] for
-/// constant residuals.
+/// constant residuals, [`ArError::Overflow`].
 pub fn ljung_box(
     residuals: &[f64],
     lags: usize,
@@ -44,10 +44,12 @@ pub fn ljung_box(
         });
     }
     let rho = acf::autocorrelation(residuals, lags, Demean::SampleMean).map_err(|e| match e {
-        acf::AcfError::NonFinite { index, value } => ArError::NonFinite { index, value },
-        _ => ArError::ZeroVariance {
-            n_samples: n_residuals,
-        },
+        AcfError::NonFinite { index, value } => ArError::NonFinite { index, value },
+        AcfError::Overflow { max_abs } => ArError::Overflow { max_abs },
+        AcfError::ZeroVariance { n_samples } => ArError::ZeroVariance { n_samples },
+        AcfError::Empty | AcfError::MaxLagTooLarge { .. } => {
+            ArError::InvalidLags { lags, n_residuals }
+        }
     })?;
     let statistic = ljung_box_statistic(&rho, n_residuals);
     let degrees_of_freedom = lags - fitted_params;

@@ -15,17 +15,20 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::Centred;
+
 /// `Phi_m` (see the module docs). Requires `m < y.len()` and `lagged.len() > m`.
-pub(super) fn windowed_gram(y: &[f64], lagged: &[f64], m: usize) -> DMatrix<f64> {
+pub(super) fn windowed_gram(y: Centred<'_>, lagged: &[f64], m: usize) -> DMatrix<f64> {
     let n = y.len();
     let mut phi = DMatrix::zeros(m + 1, m + 1);
     for i in 0..=m {
-        let before_window: f64 = (i..m).map(|t| y[t - i] * y[t]).sum();
+        let before_window: f64 = (i..m).map(|t| y.at(t - i) * y.at(t)).sum();
         phi[(i, 0)] = lagged[i] - before_window;
     }
     for j in 1..=m {
         for i in j..=m {
-            phi[(i, j)] = phi[(i - 1, j - 1)] + y[m - i] * y[m - j] - y[n - i] * y[n - j];
+            phi[(i, j)] =
+                phi[(i - 1, j - 1)] + y.at(m - i) * y.at(m - j) - y.at(n - i) * y.at(n - j);
         }
     }
     phi.fill_upper_triangle_with_lower_triangle();
@@ -34,12 +37,12 @@ pub(super) fn windowed_gram(y: &[f64], lagged: &[f64], m: usize) -> DMatrix<f64>
 
 /// Windowed sums `s_i = sum_{t=m}^{N-1} y_{t-i}`, `i = 0..=m` (the regressor sums an intercept
 /// column needs). Requires `m < y.len()`.
-pub(super) fn windowed_sums(y: &[f64], m: usize) -> DVector<f64> {
+pub(super) fn windowed_sums(y: Centred<'_>, m: usize) -> DVector<f64> {
     let n = y.len();
-    let total: f64 = y.iter().sum();
+    let total = y.sum();
     DVector::from_fn(m + 1, |i, _| {
-        let before: f64 = y[..m - i].iter().sum();
-        let after: f64 = y[n - i..].iter().sum();
+        let before: f64 = (0..m - i).map(|t| y.at(t)).sum();
+        let after: f64 = (n - i..n).map(|t| y.at(t)).sum();
         total - before - after
     })
 }

@@ -59,20 +59,20 @@ struct NormalEquations {
 
 /// Covariance method of order `p`, with or without an intercept column (first unknown).
 fn fit_covariance(data: &Prepared, intercept: bool, p: usize) -> Result<Fit, ArError> {
-    let y = &data.y;
+    let y = data.y;
     let phi = windowed_gram(y, &data.lagged[..=p], p);
     let equations = covariance_equations(&phi, intercept.then(|| windowed_sums(y, p)), y.len() - p);
     let (theta, inverse) = solve_spd(&equations, p)?;
     let (constant, coefficients) = split_intercept(&theta, intercept);
     let rss = residual_energy(&equations, &theta, &coefficients, || {
-        sum_of_squares(&prediction_errors(y, &coefficients, constant))
+        sum_of_squares(&prediction_errors(&y.to_vec(), &coefficients, constant))
     });
     let noise_variance = positive_variance(rss / (y.len() - p) as f64, p)?;
     let covariance = inverse * noise_variance;
     Ok(Fit {
         std_errors: lag_std_errors(&covariance, intercept),
         intercept: intercept
-            .then(|| intercept_in_x_units(&covariance, constant, &coefficients, data.mean)),
+            .then(|| intercept_in_x_units(&covariance, constant, &coefficients, y.mean)),
         coefficients,
         noise_variance,
         recursion_power: None,
@@ -82,20 +82,16 @@ fn fit_covariance(data: &Prepared, intercept: bool, p: usize) -> Result<Fit, ArE
 
 /// Modified covariance (forward-backward) of order `p`.
 fn fit_modified_covariance(data: &Prepared, p: usize) -> Result<Fit, ArError> {
-    let y = &data.y;
+    let y = data.y;
     let phi = windowed_gram(y, &data.lagged[..=p], p);
     let equations = forward_backward_equations(&phi);
-    let (coefficients, inverse) = solve_spd(&equations, p)?;
-    let coefficients: Vec<f64> = coefficients.iter().copied().collect();
-    let rss = residual_energy(
-        &equations,
-        &DVector::from_vec(coefficients.clone()),
-        &coefficients,
-        || {
-            sum_of_squares(&prediction_errors(y, &coefficients, 0.0))
-                + sum_of_squares(&backward_prediction_errors(y, &coefficients))
-        },
-    );
+    let (theta, inverse) = solve_spd(&equations, p)?;
+    let coefficients: Vec<f64> = theta.iter().copied().collect();
+    let rss = residual_energy(&equations, &theta, &coefficients, || {
+        let y_all = y.to_vec();
+        sum_of_squares(&prediction_errors(&y_all, &coefficients, 0.0))
+            + sum_of_squares(&backward_prediction_errors(&y_all, &coefficients))
+    });
     let noise_variance = positive_variance(rss / (2 * (y.len() - p)) as f64, p)?;
     let covariance = inverse * (2.0 * noise_variance);
     Ok(Fit {

@@ -56,7 +56,7 @@ use std::str::FromStr;
 
 use thiserror::Error;
 
-use crate::stoch::acf::{self, Demean};
+use crate::stoch::acf::{self, SeriesFault};
 
 pub use diagnostics::{LjungBox, ljung_box};
 pub use order::{Order, OrderCriterion, OrderSelection};
@@ -174,7 +174,8 @@ pub struct ArModel {
     /// - Yule-Walker, Burg: `sqrt(diag(sigma^2 Gamma_p^-1 / N))`, `Gamma_p` the `p x p` Toeplitz
     ///   autocovariance matrix of the fitted model (for Yule-Walker the sample one), `sigma^2`
     ///   the matching recursion power (Brockwell & Davis 1991, Thm 8.1.1). For AR(1) this is
-    ///   `sqrt((1 - c_1^2) / N)`.
+    ///   `sqrt((1 - c_1^2) / N)`. R's `ar.yw` `asy.var.coef` uses its `var.pred`, so its
+    ///   standard errors are larger by `sqrt(N / (N - p - 1))`.
     /// - covariance: `sqrt(diag(noise_variance (X'X)^-1))` over the regressors actually used
     ///   (statsmodels `AutoReg` `bse`, Stata's `bse`; gretl's are larger by
     ///   `sqrt((N-p) / (N-p-k))`).
@@ -215,7 +216,6 @@ impl ArModel {
     /// # Errors
     /// [`ArError::NonFinite`] or [`ArError::TooShort`] when `x.len() <= p`.
     pub fn residuals(&self, x: &[f64]) -> Result<Vec<f64>, ArError> {
-        check_finite(x)?;
         if x.len() <= self.order {
             return Err(ArError::TooShort {
                 method: self.method,
@@ -224,6 +224,7 @@ impl ArModel {
                 min_samples: self.order + 1,
             });
         }
+        validated_mean(x)?;
         let constant = self.intercept.map_or(0.0, |c| c.value);
         let y: Vec<f64> = x.iter().map(|v| v - self.mean).collect();
         Ok(prediction_errors(&y, &self.coefficients, constant))
@@ -404,17 +405,45 @@ struct Fit {
     intercept: Option<Intercept>,
 }
 
-/// Validated, centred series with its lagged products `S(0..=max_order)`.
-struct Prepared {
-    y: Vec<f64>,
+/// The series seen through its mean handling, `y_t = x_t - mean`, computed when read (the
+/// estimators read all of it once, through the lagged products, and otherwise only its ends).
+#[derive(Debug, Clone, Copy)]
+struct Centred<'a> {
+    x: &'a [f64],
     mean: f64,
+}
+
+impl Centred<'_> {
+    /// Number of samples `N`.
+    fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// `y_t`.
+    fn at(&self, t: usize) -> f64 {
+        self.x[t] - self.mean
+    }
+
+    /// All of `y`, for the rare passes that need explicit error sequences.
+    fn to_vec(self) -> Vec<f64> {
+        self.x.iter().map(|v| v - self.mean).collect()
+    }
+
+    /// `sum_t y_t`.
+    fn sum(&self) -> f64 {
+        self.x.iter().map(|v| v - self.mean).sum()
+    }
+}
+
+/// Validated series with its lagged products `S(0..=max_order)`.
+struct Prepared<'a> {
+    y: Centred<'a>,
     lagged: Vec<f64>,
 }
 
-impl Prepared {
-    /// Validates `x` for the spec and computes the centred series and lagged products.
-    fn new(x: &[f64], spec: &ArSpec) -> Result<Self, ArError> {
-        check_finite(x)?;
+impl<'a> Prepared<'a> {
+    /// Validates `x` for the spec (one pass) and computes the lagged products (one pass).
+    fn new(x: &'a [f64], spec: &ArSpec) -> Result<Self, ArError> {
         if spec.mean == MeanModel::Intercept && spec.method != ArMethod::Covariance {
             return Err(ArError::InterceptUnsupported {
                 method: spec.method,
@@ -422,21 +451,23 @@ impl Prepared {
         }
         let max_order = spec.order.max_order();
         check_length(x.len(), max_order, spec)?;
+        let sample_mean = validated_mean(x)?;
         let mean = match spec.mean {
             MeanModel::Zero => 0.0,
             // The intercept fit works on the centred series for conditioning and converts back.
-            MeanModel::SampleMean | MeanModel::Intercept => acf::sample_mean(x),
+            MeanModel::SampleMean | MeanModel::Intercept => sample_mean,
         };
-        let y: Vec<f64> = acf::centred(x, demean_of(spec.mean)).into_owned();
-        let lagged = acf::lagged_products(&y, max_order);
+        let lagged = acf::lagged_products(x, mean, max_order);
         if !lagged[0].is_finite() {
-            let max_abs = x.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            return Err(ArError::Overflow { max_abs });
+            return Err(SeriesFault::overflow(x).into());
         }
         if lagged[0] <= 0.0 {
             return Err(ArError::ZeroVariance { n_samples: x.len() });
         }
-        Ok(Prepared { y, mean, lagged })
+        Ok(Prepared {
+            y: Centred { x, mean },
+            lagged,
+        })
     }
 
     /// Fits orders `min_order..=max_order` with the spec's method.
@@ -449,7 +480,7 @@ impl Prepared {
         let n = self.y.len();
         let fits = match spec.method {
             ArMethod::YuleWalker => yule_walker::fit_orders(&self.lagged[..=max_order], n)?,
-            ArMethod::Burg => burg::fit_orders(&self.y, &self.lagged[..=max_order])?,
+            ArMethod::Burg => burg::fit_orders(self.y, &self.lagged[..=max_order])?,
             ArMethod::Covariance => {
                 return least_squares::fit_covariance_orders(self, spec.mean, min_order, max_order);
             }
@@ -463,7 +494,7 @@ impl Prepared {
     /// Wraps the chosen fit with the bookkeeping of the spec.
     fn into_model(self, fit: Fit, spec: &ArSpec, selection: Option<OrderSelection>) -> ArModel {
         let mean = match spec.mean {
-            MeanModel::SampleMean => self.mean,
+            MeanModel::SampleMean => self.y.mean,
             MeanModel::Zero | MeanModel::Intercept => 0.0,
         };
         ArModel {
@@ -483,20 +514,18 @@ impl Prepared {
     }
 }
 
-/// The acf centring that matches a mean model.
-fn demean_of(mean: MeanModel) -> Demean {
-    match mean {
-        MeanModel::Zero => Demean::None,
-        MeanModel::SampleMean | MeanModel::Intercept => Demean::SampleMean,
+impl From<SeriesFault> for ArError {
+    fn from(fault: SeriesFault) -> Self {
+        match fault {
+            SeriesFault::NonFinite { index, value } => ArError::NonFinite { index, value },
+            SeriesFault::Overflow { max_abs } => ArError::Overflow { max_abs },
+        }
     }
 }
 
-/// Rejects NaN and infinite samples.
-fn check_finite(x: &[f64]) -> Result<(), ArError> {
-    match acf::first_non_finite(x) {
-        Some((index, value)) => Err(ArError::NonFinite { index, value }),
-        None => Ok(()),
-    }
+/// The sample mean of a non-empty series, rejecting NaN, infinities and overflow.
+fn validated_mean(x: &[f64]) -> Result<f64, ArError> {
+    Ok(acf::checked_mean(x)?)
 }
 
 /// Rejects series too short for the (largest) order.
