@@ -116,34 +116,65 @@ pub fn autocovariance_with(
     demean: Demean,
     algorithm: AcfAlgorithm,
 ) -> Result<Vec<f64>, AcfError> {
-    check_lag_range(x, max_lag)?;
-    let mean = match (checked_mean(x)?, demean) {
-        (_, Demean::None) => 0.0,
-        (mean, Demean::SampleMean) => mean,
-    };
-    let sums = match resolve_algorithm(algorithm, x.len(), max_lag) {
-        AcfAlgorithm::Fft => lagged_products_fft(x, mean, max_lag),
-        _ => lagged_products(x, mean, max_lag),
-    };
-    if !sums[0].is_finite() {
-        return Err(SeriesFault::overflow(x).into());
-    }
-    let n = x.len() as f64;
-    Ok(sums.into_iter().map(|s| s / n).collect())
+    Ok(autocovariance_and_mean(x, max_lag, demean, algorithm)?.0)
 }
 
 /// Sample autocorrelation `rho(k) = gamma(k) / gamma(0)`, `k = 0..=max_lag`.
 ///
 /// # Errors
-/// As [`autocovariance`], plus [`AcfError::ZeroVariance`] for a constant series (or an all-zero
-/// one with [`Demean::None`]).
+/// As [`autocovariance`], plus [`AcfError::ZeroVariance`] for a series that is constant (or
+/// all zero with [`Demean::None`]) up to rounding: standard deviation at most `1e-15 |mean|`.
 pub fn autocorrelation(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfError> {
-    let gamma = autocovariance(x, max_lag, demean)?;
+    let (gamma, mean) = autocovariance_and_mean(x, max_lag, demean, AcfAlgorithm::Auto)?;
     let gamma0 = gamma[0];
-    if gamma0 <= 0.0 {
+    if is_constant_to_rounding(gamma0, mean) {
         return Err(AcfError::ZeroVariance { n_samples: x.len() });
     }
     Ok(gamma.into_iter().map(|g| g / gamma0).collect())
+}
+
+/// True when a variance `gamma0` around `mean` is no larger than the rounding of `mean` itself
+/// (standard deviation at most `1e-15 |mean|`, a few units in the last place): the samples are
+/// then equal up to rounding, and their "autocorrelation" would be rounding noise.
+pub(crate) fn is_constant_to_rounding(gamma0: f64, mean: f64) -> bool {
+    gamma0 <= (1e-15 * mean).powi(2)
+}
+
+/// The autocovariance and the mean that was removed.
+fn autocovariance_and_mean(
+    x: &[f64],
+    max_lag: usize,
+    demean: Demean,
+    algorithm: AcfAlgorithm,
+) -> Result<(Vec<f64>, f64), AcfError> {
+    check_lag_range(x, max_lag)?;
+    let products = match resolve_algorithm(algorithm, x.len(), max_lag) {
+        AcfAlgorithm::Fft => fft_products_checked(x, demean, max_lag)?,
+        _ => centred_lagged_products(x, demean, max_lag)?,
+    };
+    let n = x.len() as f64;
+    Ok((
+        products.sums.into_iter().map(|s| s / n).collect(),
+        products.mean,
+    ))
+}
+
+/// Lagged products by FFT after a validating mean pass.
+fn fft_products_checked(
+    x: &[f64],
+    demean: Demean,
+    max_lag: usize,
+) -> Result<CentredProducts, SeriesFault> {
+    let mean = match demean {
+        Demean::None => 0.0,
+        Demean::SampleMean => checked_mean(x)?,
+    };
+    let sums = lagged_products_fft(x, mean, max_lag);
+    if sums[0].is_finite() {
+        Ok(CentredProducts { sums, mean })
+    } else {
+        Err(locate_fault(x))
+    }
 }
 
 /// Checks that the series is not empty and longer than `max_lag`.
@@ -192,12 +223,19 @@ impl From<SeriesFault> for AcfError {
 pub(crate) fn checked_mean(x: &[f64]) -> Result<f64, SeriesFault> {
     let total = blocked_sum(x);
     if total.is_finite() {
-        return Ok(total / x.len() as f64);
+        Ok(total / x.len() as f64)
+    } else {
+        Err(locate_fault(x))
     }
-    Err(match first_non_finite(x) {
+}
+
+/// The fault of a series whose sums came out non-finite: its first non-finite sample, or else
+/// an overflow.
+fn locate_fault(x: &[f64]) -> SeriesFault {
+    match first_non_finite(x) {
         Some((index, value)) => SeriesFault::NonFinite { index, value },
         None => SeriesFault::overflow(x),
-    })
+    }
 }
 
 /// Index and value of the first NaN or infinite sample.
@@ -253,23 +291,99 @@ fn resolve_algorithm(algorithm: AcfAlgorithm, n: usize, max_lag: usize) -> AcfAl
 }
 
 /// Un-normalised lagged products `S(d) = sum_{t=0}^{N-1-d} y_t y_{t+d}`, `d = 0..=max_lag`, of
-/// `y_t = x_t - mean`, by direct summation. Each block is centred into a small buffer, so the
-/// series is read once and never copied whole. Requires `max_lag < x.len()`.
-pub(crate) fn lagged_products(x: &[f64], mean: f64, max_lag: usize) -> Vec<f64> {
+/// the centred series `y_t = x_t - mean`, and that mean (0 for [`Demean::None`]).
+pub(crate) struct CentredProducts {
+    /// `S(0..=max_lag)`.
+    pub(crate) sums: Vec<f64>,
+    /// The mean subtracted.
+    pub(crate) mean: f64,
+}
+
+/// Validates the series, takes its mean and forms the lagged products of the centred series,
+/// reading the series from memory once. Requires `max_lag < x.len()`.
+///
+/// The pass centres on a provisional `shift` (the mean of every [`STRIDE`]-th sample) and then
+/// moves the sums to the exact sample mean algebraically:
+/// `S(d) = R(d) - delta (A_d + B_d) + (N - d) delta^2`, with `R` the products of
+/// `z = x - shift`, `delta = mean(z)`, `A_d = sum_{t<N-d} z_t`, `B_d = sum_{t>=d} z_t`. The
+/// subsample holds `N / STRIDE` samples, so `N delta^2 <= STRIDE N sigma^2` (Chebyshev) and
+/// the correction costs at most a factor `1 + STRIDE` of rounding relative to `S(0)`
+/// (about 1e-14); in practice `delta` is far below `sigma`.
+pub(crate) fn centred_lagged_products(
+    x: &[f64],
+    demean: Demean,
+    max_lag: usize,
+) -> Result<CentredProducts, SeriesFault> {
+    let shift = match demean {
+        Demean::None => 0.0,
+        Demean::SampleMean => subsample_mean(x),
+    };
+    if !shift.is_finite() {
+        return Err(locate_fault(x));
+    }
+    let (mut sums, z_total) = shifted_lagged_products(x, shift, max_lag);
+    if !(z_total.is_finite() && sums[0].is_finite()) {
+        return Err(locate_fault(x));
+    }
+    if demean == Demean::None {
+        return Ok(CentredProducts { sums, mean: 0.0 });
+    }
+    let delta = z_total / x.len() as f64;
+    move_to_mean(&mut sums, x, shift, z_total, delta);
+    Ok(CentredProducts {
+        sums,
+        mean: shift + delta,
+    })
+}
+
+/// Subsampling stride of the provisional shift.
+const STRIDE: usize = 64;
+
+/// Mean of `x[0], x[STRIDE], x[2 STRIDE], ...` (NaN or infinite if such a sample is).
+fn subsample_mean(x: &[f64]) -> f64 {
+    let (sum, count) = x
+        .iter()
+        .step_by(STRIDE)
+        .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+    sum / count as f64
+}
+
+/// Products `R(d)` of `z = x - shift` by blocks, and `sum z`.
+fn shifted_lagged_products(x: &[f64], shift: f64, max_lag: usize) -> (Vec<f64>, f64) {
     let n = x.len();
     let interior = n - max_lag;
     let mut sums = vec![0.0; max_lag + 1];
+    let mut z_total = 0.0;
     let mut block = Vec::with_capacity(BLOCK + max_lag);
     let mut start = 0;
     while start < interior {
         let end = (start + BLOCK).min(interior);
         block.clear();
-        block.extend(x[start..end + max_lag].iter().map(|v| v - mean));
+        block.extend(x[start..end + max_lag].iter().map(|v| v - shift));
+        z_total += sum_in_lanes(&block[..end - start]);
         add_block_products(&block, end - start, &mut sums);
         start = end;
     }
-    add_tail_products(x, mean, interior, &mut sums);
-    sums
+    z_total += x[interior..].iter().map(|v| v - shift).sum::<f64>();
+    add_tail_products(x, shift, interior, &mut sums);
+    (sums, z_total)
+}
+
+/// Turns products of `z = x - shift` into products of `z - delta` (see
+/// [`centred_lagged_products`]); `z_total = sum z = N delta`.
+fn move_to_mean(sums: &mut [f64], x: &[f64], shift: f64, z_total: f64, delta: f64) {
+    let n = x.len();
+    let mut head = 0.0; // sum_{t<d} z_t
+    let mut tail = 0.0; // sum_{t>=N-d} z_t
+    for (lag, sum) in sums.iter_mut().enumerate() {
+        if lag > 0 {
+            head += x[lag - 1] - shift;
+            tail += x[n - lag] - shift;
+        }
+        let a = z_total - tail;
+        let b = z_total - head;
+        *sum += -delta * (a + b) + (n - lag) as f64 * delta * delta;
+    }
 }
 
 /// Adds `sum_{t<len} b_t b_{t+d}` to `sums[d]` for every lag; `block` holds `len + max_lag`

@@ -7,12 +7,29 @@ use thermonav::stoch::acf::{
 
 use crate::ar::data::{self, assert_close, simulate_ar};
 
-/// The defining double loop, `(1/N) sum_t (x_t - m)(x_{t+k} - m)`, mean by a plain sum.
+/// Neumaier-compensated sum: the sample mean to full precision even for a large offset (a plain
+/// running sum of 10^4 values near 1e6 is off by ~1e-8 in the mean, which shifts the lag-d
+/// sums by ~1e-12 of gamma(0)).
+fn compensated_sum(x: &[f64]) -> f64 {
+    let (mut sum, mut compensation) = (0.0f64, 0.0f64);
+    for &v in x {
+        let t = sum + v;
+        compensation += if sum.abs() >= v.abs() {
+            (sum - t) + v
+        } else {
+            (v - t) + sum
+        };
+        sum = t;
+    }
+    sum + compensation
+}
+
+/// The defining double loop, `(1/N) sum_t (x_t - m)(x_{t+k} - m)`, two-pass, exact mean.
 fn naive_autocovariance(x: &[f64], max_lag: usize, demean: Demean) -> Vec<f64> {
     let n = x.len();
     let mean = match demean {
         Demean::None => 0.0,
-        Demean::SampleMean => x.iter().sum::<f64>() / n as f64,
+        Demean::SampleMean => compensated_sum(x) / n as f64,
     };
     (0..=max_lag)
         .map(|k| {
@@ -65,6 +82,24 @@ fn fft_handles_long_series_without_wrap_around() {
     let fft = autocovariance_with(&x, 2000, Demean::SampleMean, AcfAlgorithm::Fft).unwrap();
     let direct = autocovariance_with(&x, 2000, Demean::SampleMean, AcfAlgorithm::Direct).unwrap();
     assert_close(&fft, &direct, 1e-12 * direct[0], 0.0, "fft vs direct");
+}
+
+#[test]
+fn large_offsets_and_stride_aligned_spikes_keep_full_precision() {
+    // The direct path centres on a provisional mean of every 64th sample and corrects the sums
+    // afterwards. A mean 1e6 times the standard deviation, and spikes exactly on the subsampled
+    // indices (provisional mean ~ 8 sigma off, the worst case), must still match the two-pass
+    // naive loop to 1e-12 gamma(0).
+    let base = test_series(10_000, 77);
+    let offset: Vec<f64> = base.iter().map(|v| v + 1e6).collect();
+    let spikes: Vec<f64> = (0..10_000)
+        .map(|t| if t % 64 == 0 { 50.0 } else { base[t] })
+        .collect();
+    for x in [offset, spikes] {
+        let expected = naive_autocovariance(&x, 40, Demean::SampleMean);
+        let got = autocovariance_with(&x, 40, Demean::SampleMean, AcfAlgorithm::Direct).unwrap();
+        assert_close(&got, &expected, 1e-12 * expected[0], 0.0, "direct");
+    }
 }
 
 #[test]
@@ -126,6 +161,12 @@ fn bad_input_gives_errors_with_the_numbers() {
     assert_eq!(
         autocovariance(&[1e200, -1e200, 3.0], 1, Demean::None),
         Err(AcfError::Overflow { max_abs: 1e200 })
+    );
+    // 100 000 copies of 0.35: the running means are off by rounding, so the centred samples are
+    // ~1e-13, not 0; still a constant.
+    assert_eq!(
+        autocorrelation(&[0.35; 100_000], 3, Demean::SampleMean),
+        Err(AcfError::ZeroVariance { n_samples: 100_000 })
     );
     // A constant has zero autocovariance, which is a valid answer (not NaN).
     assert_eq!(

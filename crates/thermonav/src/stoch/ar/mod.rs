@@ -56,7 +56,7 @@ use std::str::FromStr;
 
 use thiserror::Error;
 
-use crate::stoch::acf::{self, SeriesFault};
+use crate::stoch::acf::{self, Demean, SeriesFault};
 
 pub use diagnostics::{LjungBox, ljung_box};
 pub use order::{Order, OrderCriterion, OrderSelection};
@@ -284,7 +284,8 @@ pub enum ArError {
         /// Samples needed.
         min_samples: usize,
     },
-    /// The series (after mean handling) is identically zero: nothing to model.
+    /// The series is constant up to rounding (standard deviation at most 1e-15 of the mean), or
+    /// identically zero with [`MeanModel::Zero`]: nothing to model.
     #[error(
         "the series has zero variance over {n_samples} samples (constant, or all zero with MeanModel::Zero): an AR model is undefined"
     )]
@@ -382,8 +383,13 @@ pub fn fit_ar(x: &[f64], order: Order, method: ArMethod) -> Result<ArModel, ArEr
 /// - [`ArError::TooShort`]: fewer samples than the (largest) order needs: `p + 1` for
 ///   Yule-Walker and Burg, `2p + 1` (+1 with intercept) for covariance, `p + ceil((p+1)/2)` for
 ///   modified covariance (more equations than unknowns), and at least 2.
-/// - [`ArError::ZeroVariance`]: a constant series.
-/// - [`ArError::InterceptUnsupported`], [`ArError::Singular`], [`ArError::ZeroInnovationVariance`].
+/// - [`ArError::ZeroVariance`]: a constant series (or all zero with [`MeanModel::Zero`]).
+/// - [`ArError::Overflow`]: samples so large (near `1e154`) that their squares overflow.
+/// - [`ArError::InterceptUnsupported`]: [`MeanModel::Intercept`] with another method than
+///   covariance.
+/// - [`ArError::Singular`]: rank-deficient least-squares normal equations.
+/// - [`ArError::ZeroInnovationVariance`]: the series is perfectly predictable at the order
+///   (with [`Order::Auto`], at any candidate order).
 pub fn fit_ar_with(x: &[f64], spec: &ArSpec) -> Result<ArModel, ArError> {
     let data = Prepared::new(x, spec)?;
     let fits = match spec.order {
@@ -451,17 +457,9 @@ impl<'a> Prepared<'a> {
         }
         let max_order = spec.order.max_order();
         check_length(x.len(), max_order, spec)?;
-        let sample_mean = validated_mean(x)?;
-        let mean = match spec.mean {
-            MeanModel::Zero => 0.0,
-            // The intercept fit works on the centred series for conditioning and converts back.
-            MeanModel::SampleMean | MeanModel::Intercept => sample_mean,
-        };
-        let lagged = acf::lagged_products(x, mean, max_order);
-        if !lagged[0].is_finite() {
-            return Err(SeriesFault::overflow(x).into());
-        }
-        if lagged[0] <= 0.0 {
+        let products = acf::centred_lagged_products(x, demean_of(spec.mean), max_order)?;
+        let (lagged, mean) = (products.sums, products.mean);
+        if acf::is_constant_to_rounding(lagged[0] / x.len() as f64, mean) {
             return Err(ArError::ZeroVariance { n_samples: x.len() });
         }
         Ok(Prepared {
@@ -520,6 +518,15 @@ impl From<SeriesFault> for ArError {
             SeriesFault::NonFinite { index, value } => ArError::NonFinite { index, value },
             SeriesFault::Overflow { max_abs } => ArError::Overflow { max_abs },
         }
+    }
+}
+
+/// The acf centring of a mean model. The intercept fit works on the centred series (for
+/// conditioning) and converts back.
+fn demean_of(mean: MeanModel) -> Demean {
+    match mean {
+        MeanModel::Zero => Demean::None,
+        MeanModel::SampleMean | MeanModel::Intercept => Demean::SampleMean,
     }
 }
 
