@@ -554,9 +554,9 @@ fn check_length(n_samples: usize, order: usize, spec: &ArSpec) -> Result<(), ArE
 pub fn min_samples(method: ArMethod, mean: MeanModel, p: usize) -> usize {
     let intercept = usize::from(mean == MeanModel::Intercept);
     let needed = match method {
-        ArMethod::YuleWalker | ArMethod::Burg => p + 1,
-        ArMethod::Covariance => 2 * p + 1 + intercept,
-        ArMethod::ModifiedCovariance => p + (p + 2) / 2,
+        ArMethod::YuleWalker | ArMethod::Burg => p.saturating_add(1),
+        ArMethod::Covariance => p.saturating_mul(2).saturating_add(1 + intercept),
+        ArMethod::ModifiedCovariance => p.saturating_add(p / 2 + 1),
     };
     needed.max(2)
 }

@@ -72,8 +72,8 @@ impl OrderCriterion {
     }
 
     /// The criterion for a fit of order `p` with innovation variance `noise_variance > 0` on
-    /// `n_samples > p` samples.
-    pub fn value(self, n_samples: usize, p: usize, noise_variance: f64) -> f64 {
+    /// `n_samples > p` samples (both guaranteed by the fits).
+    pub(super) fn value(self, n_samples: usize, p: usize, noise_variance: f64) -> f64 {
         let n = n_samples as f64;
         let p_f = p as f64;
         match self {
