@@ -229,6 +229,15 @@ impl ArModel {
         let y: Vec<f64> = x.iter().map(|v| v - self.mean).collect();
         Ok(prediction_errors(&y, &self.coefficients, constant))
     }
+
+    /// Ljung-Box whiteness test of [`ArModel::residuals`] on `x`, with `lags` autocorrelation
+    /// lags and the `p` coefficients as fitted parameters (`lags - p` degrees of freedom).
+    ///
+    /// # Errors
+    /// As [`ArModel::residuals`] and [`ljung_box`].
+    pub fn ljung_box(&self, x: &[f64], lags: usize) -> Result<LjungBox, ArError> {
+        ljung_box(&self.residuals(x)?, lags, self.order)
+    }
 }
 
 /// `e_k = y_k - constant - sum c_i y_{k-i}`, `k = p..N-1`.

@@ -1,6 +1,6 @@
 //! Ljung-Box against statsmodels `acorr_ljungbox` (tools/oracles/ar_least_squares.py).
 
-use thermonav::stoch::ar::{ArError, ljung_box};
+use thermonav::stoch::ar::{ArError, ArMethod, Order, fit_ar, ljung_box};
 
 use super::data::{self, assert_scalar};
 
@@ -23,6 +23,36 @@ fn matches_statsmodels_acorr_ljungbox() {
             assert_scalar(test.p_value, p_values[i], 1e-9, 0.0, &label);
             assert_eq!(test.degrees_of_freedom, lag - model_df);
         }
+    }
+}
+
+#[test]
+fn model_residual_test_matches_statsmodels_end_to_end() {
+    // The first oracle series is statsmodels AutoReg(x - mean, 3, trend='n').resid of the ar3
+    // series; fitting our covariance method on that series and testing its own residuals must
+    // give the same Q (1e-9 relative: the residuals themselves differ in the last bits) and
+    // p-value (1e-9 absolute, as above).
+    let oracle = data::least_squares_oracle();
+    let x = data::floats(&oracle["series"][0]["x"]);
+    let case = &oracle["ljung_box"][0];
+    assert_eq!(case["series"], "autoreg_resid_ar3_order3");
+    let model = fit_ar(&x, Order::Fixed(3), ArMethod::Covariance).unwrap();
+    for (i, lag) in [5, 10, 20].into_iter().enumerate() {
+        let test = model.ljung_box(&x, lag).unwrap();
+        assert_scalar(
+            test.statistic,
+            data::floats(&case["lb_stat"])[i],
+            0.0,
+            1e-9,
+            "Q",
+        );
+        assert_scalar(
+            test.p_value,
+            data::floats(&case["lb_pvalue"])[i],
+            1e-9,
+            0.0,
+            "p",
+        );
     }
 }
 
