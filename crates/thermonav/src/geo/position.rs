@@ -130,6 +130,28 @@ impl Geodetic {
         ]
     }
 
+    /// The position `offset` (NED, m) away, with the radii at `self` (first order: the
+    /// neglected curvature terms are ~|offset|²/R, below 1 µm for offsets of metres and below
+    /// 1 mm for a 200 Hz step at 1 km/s). Also the first-order step `v dt` along a velocity.
+    pub fn displaced(&self, offset: &Vector<Ned>) -> Geodetic {
+        let rn = meridian_radius_m(self.latitude_rad) + self.height_m;
+        let re = transverse_radius_m(self.latitude_rad) + self.height_m;
+        Geodetic {
+            latitude_rad: self.latitude_rad + offset.x() / rn,
+            longitude_rad: self.longitude_rad + offset.y() / (re * self.latitude_rad.cos()),
+            height_m: self.height_m - offset.z(),
+        }
+    }
+
+    /// The coordinate-wise mean of two positions (the mid-interval position of a step).
+    pub fn midpoint(&self, other: &Geodetic) -> Geodetic {
+        Geodetic {
+            latitude_rad: 0.5 * (self.latitude_rad + other.latitude_rad),
+            longitude_rad: 0.5 * (self.longitude_rad + other.longitude_rad),
+            height_m: 0.5 * (self.height_m + other.height_m),
+        }
+    }
+
     /// The NED displacement from `origin` to `self` on the local tangent plane, m
     /// (ECEF difference rotated into the origin's NED axes).
     pub fn ned_from(&self, origin: &Geodetic) -> Vector<Ned> {

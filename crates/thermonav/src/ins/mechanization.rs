@@ -23,22 +23,16 @@ use crate::geo::position::Geodetic;
 /// current increment as `previous` as well (the correction terms then vanish).
 pub fn mechanize(state: &NavState, previous: &Increment, current: &Increment) -> NavState {
     let dt = current.dt_s;
-    let mid = extrapolate_to_mid_interval(state, dt);
-    let velocity = update_velocity(state, &mid, previous, current);
+    let velocity = update_velocity(state, previous, current);
     let position = update_position(&state.position, &state.velocity, &velocity, dt);
-    let mid_after = Geodetic {
-        latitude_rad: 0.5 * (state.position.latitude_rad + position.latitude_rad),
-        longitude_rad: 0.5 * (state.position.longitude_rad + position.longitude_rad),
-        height_m: 0.5 * (state.position.height_m + position.height_m),
-    };
     let mean_velocity = (state.velocity + velocity).scale(0.5);
-    let zeta = navigation_frame_rate(&mid_after, &mean_velocity).scale(dt);
+    let zeta = frame_rotation(&state.position.midpoint(&position), &mean_velocity, dt);
     let phi = current.delta_angle.raw()
         + previous.delta_angle.raw().cross(&current.delta_angle.raw()) / 12.0;
     let attitude = state
         .attitude
         .rotated_by_rotation_vector(phi)
-        .frame_rotated_by_rotation_vector(zeta.raw());
+        .frame_rotated_by_rotation_vector(zeta);
     NavState {
         time: current.time,
         position,
@@ -52,48 +46,48 @@ pub fn navigation_frame_rate(position: &Geodetic, velocity: &Vector<Ned>) -> Vec
     position.earth_rate_ned() + position.transport_rate_ned(velocity)
 }
 
-/// Position and velocity extrapolated half a step ahead from the current rates (first order).
-struct MidInterval {
-    position: Geodetic,
-    velocity: Vector<Ned>,
+/// ζ = ω_in^n dt, the navigation frame's rotation over a step, rad.
+pub fn frame_rotation(
+    position: &Geodetic,
+    velocity: &Vector<Ned>,
+    dt: f64,
+) -> nalgebra::Vector3<f64> {
+    navigation_frame_rate(position, velocity).scale(dt).raw()
 }
 
-fn extrapolate_to_mid_interval(state: &NavState, dt: f64) -> MidInterval {
-    let rates = state.position.rates(&state.velocity);
-    let half = 0.5 * dt;
-    MidInterval {
-        position: Geodetic {
-            latitude_rad: state.position.latitude_rad + rates[0] * half,
-            longitude_rad: state.position.longitude_rad + rates[1] * half,
-            height_m: state.position.height_m + rates[2] * half,
-        },
-        velocity: state.velocity,
-    }
+/// The position half a step ahead along the current velocity (first order): where the
+/// velocity update evaluates gravity, Coriolis and ζ.
+pub fn mid_interval_position(state: &NavState, dt: f64) -> Geodetic {
+    state.position.displaced(&state.velocity.scale(0.5 * dt))
 }
 
-fn update_velocity(
-    state: &NavState,
-    mid: &MidInterval,
-    previous: &Increment,
-    current: &Increment,
-) -> Vector<Ned> {
+/// The gravity and Coriolis part of the velocity increment, (g − (2 ω_ie + ω_en) × v) dt, at
+/// the mid-interval position with the velocity at the start of the step.
+pub fn gravity_coriolis_increment(
+    mid: &Geodetic,
+    velocity: &Vector<Ned>,
+    dt: f64,
+) -> nalgebra::Vector3<f64> {
+    let omega_ie = mid.earth_rate_ned().raw();
+    let omega_en = mid.transport_rate_ned(velocity).raw();
+    let gravity = nalgebra::Vector3::from(gravity_ned(mid.latitude_rad, mid.height_m));
+    (gravity - (2.0 * omega_ie + omega_en).cross(&velocity.raw())) * dt
+}
+
+fn update_velocity(state: &NavState, previous: &Increment, current: &Increment) -> Vector<Ned> {
     let dt = current.dt_s;
     let (dth, dv) = (current.delta_angle.raw(), current.delta_velocity.raw());
     let (dth0, dv0) = (previous.delta_angle.raw(), previous.delta_velocity.raw());
     let compensated = dv + 0.5 * dth.cross(&dv) + (dth0.cross(&dv) + dv0.cross(&dth)) / 12.0;
-    let zeta = navigation_frame_rate(&mid.position, &mid.velocity)
-        .scale(dt)
-        .raw();
-    let resolved = (state.attitude * crate::frames::Vector::from_raw(compensated)).raw();
+    let mid = mid_interval_position(state, dt);
+    let zeta = frame_rotation(&mid, &state.velocity, dt);
+    let resolved = (state.attitude * Vector::from_raw(compensated)).raw();
     let specific_force_part = resolved - 0.5 * zeta.cross(&resolved);
-    let omega_ie = mid.position.earth_rate_ned().raw();
-    let omega_en = mid.position.transport_rate_ned(&mid.velocity).raw();
-    let gravity = nalgebra::Vector3::from(gravity_ned(
-        mid.position.latitude_rad,
-        mid.position.height_m,
-    ));
-    let coriolis = (2.0 * omega_ie + omega_en).cross(&mid.velocity.raw());
-    Vector::from_raw(state.velocity.raw() + specific_force_part + (gravity - coriolis) * dt)
+    Vector::from_raw(
+        state.velocity.raw()
+            + specific_force_part
+            + gravity_coriolis_increment(&mid, &state.velocity, dt),
+    )
 }
 
 /// The position update of [`mechanize`]: latitude, longitude and height from the mean of the

@@ -8,14 +8,14 @@
 //!   relation Δv' = Δv + ½ Δθ × Δv + (1/12)(Δθ₋ × Δv + Δv₋ × Δθ) is linear in Δv;
 //! - position needs nothing: trajectories integrate it with the mechanization's own rule.
 //!
-//! ζ and Δv_g are computed by the same functions the mechanization uses, from the trajectory's
+//! ζ, the mid-interval position and Δv_g come from the same functions the mechanization uses, from the trajectory's
 //! states, so the round trip is exact to rounding.
 
 use super::motion::Trajectory;
 use crate::frames::{Ned, Vector};
-use crate::geo::gravity::gravity_ned;
-use crate::geo::position::Geodetic;
-use crate::ins::mechanization::navigation_frame_rate;
+use crate::ins::mechanization::{
+    frame_rotation, gravity_coriolis_increment, mid_interval_position,
+};
 use crate::ins::state::{Increment, NavState};
 use nalgebra::{Matrix3, Vector3};
 
@@ -72,33 +72,21 @@ fn solve(a: Matrix3<f64>, b: Vector3<f64>) -> Vector3<f64> {
 
 /// ζ of the attitude update: the navigation-frame rotation at the mean of the two states.
 fn attitude_frame_rotation(before: &NavState, after: &NavState, dt: f64) -> Vector3<f64> {
-    let mid = Geodetic {
-        latitude_rad: 0.5 * (before.position.latitude_rad + after.position.latitude_rad),
-        longitude_rad: 0.5 * (before.position.longitude_rad + after.position.longitude_rad),
-        height_m: 0.5 * (before.position.height_m + after.position.height_m),
-    };
     let mean_velocity = (before.velocity + after.velocity).scale(0.5);
-    navigation_frame_rate(&mid, &mean_velocity).scale(dt).raw()
+    frame_rotation(
+        &before.position.midpoint(&after.position),
+        &mean_velocity,
+        dt,
+    )
 }
 
 /// Δv' in body axes: the compensated specific-force increment of the velocity update.
 fn compensated_velocity_increment(before: &NavState, after: &NavState, dt: f64) -> Vector3<f64> {
-    let rates = before.position.rates(&before.velocity);
-    let half = 0.5 * dt;
-    let mid = Geodetic {
-        latitude_rad: before.position.latitude_rad + rates[0] * half,
-        longitude_rad: before.position.longitude_rad + rates[1] * half,
-        height_m: before.position.height_m + rates[2] * half,
-    };
-    let zeta = navigation_frame_rate(&mid, &before.velocity)
-        .scale(dt)
-        .raw();
-    let omega_ie = mid.earth_rate_ned().raw();
-    let omega_en = mid.transport_rate_ned(&before.velocity).raw();
-    let gravity = Vector3::from(gravity_ned(mid.latitude_rad, mid.height_m));
-    let coriolis = (2.0 * omega_ie + omega_en).cross(&before.velocity.raw());
-    let specific_force_part =
-        after.velocity.raw() - before.velocity.raw() - (gravity - coriolis) * dt;
+    let mid = mid_interval_position(before, dt);
+    let zeta = frame_rotation(&mid, &before.velocity, dt);
+    let specific_force_part = after.velocity.raw()
+        - before.velocity.raw()
+        - gravity_coriolis_increment(&mid, &before.velocity, dt);
     let resolved = solve(Matrix3::identity() - 0.5 * skew(&zeta), specific_force_part);
     (before.attitude.inverse() * Vector::<Ned>::from_raw(resolved)).raw()
 }

@@ -11,8 +11,7 @@ use super::motion::{
 };
 use super::profile::{ProfileError, SensorProfile};
 use super::rng::{SimRng, named_rng};
-use crate::frames::{Body, Vector};
-use crate::geo::position::Geodetic;
+use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::ins::state::NavState;
@@ -260,12 +259,7 @@ fn state_at(reference: &Trajectory, t: Timestamp) -> Option<NavState> {
         .checked_sub(1)?;
     let s = reference.states[k];
     let dt = t.since(s.time).as_seconds();
-    let rates = s.position.rates(&s.velocity);
-    let position = Geodetic {
-        latitude_rad: s.position.latitude_rad + rates[0] * dt,
-        longitude_rad: s.position.longitude_rad + rates[1] * dt,
-        height_m: s.position.height_m + rates[2] * dt,
-    };
+    let position = s.position.displaced(&s.velocity.scale(dt));
     Some(NavState {
         time: t,
         position,
@@ -292,16 +286,8 @@ fn gnss_fixes(reference: &Trajectory, g: &GnssSettings, rng: &mut SimRng) -> Vec
 
 fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
     let lever_n = state.attitude * Vector::<Body>::from_array(g.lever_arm_body_m);
-    let noise = g.position_sd_ned_m.map(|sd| sd * standard_normal(rng));
-    let offset_n = lever_n.to_array();
-    let antenna = displaced(
-        &state.position,
-        [
-            offset_n[0] + noise[0],
-            offset_n[1] + noise[1],
-            offset_n[2] + noise[2],
-        ],
-    );
+    let noise = Vector::<Ned>::from_array(g.position_sd_ned_m.map(|sd| sd * standard_normal(rng)));
+    let antenna = state.position.displaced(&(lever_n + noise));
     let baseline_n = (state.attitude * Vector::<Body>::from_array(g.baseline_body_m)).to_array();
     let across = g.baseline_noise_m * std::f64::consts::SQRT_2 * standard_normal(rng);
     let length = baseline_n[0].hypot(baseline_n[1]);
@@ -317,18 +303,6 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
             heading_rad: wrap_pi(heading),
             sd_rad: g.heading_sd_rad(),
         }),
-    }
-}
-
-/// The position `offset_ned_m` away from `p` (small offsets: curvature terms neglected,
-/// error ≪ 1 µm for metres).
-fn displaced(p: &Geodetic, offset_ned_m: [f64; 3]) -> Geodetic {
-    let rn = crate::geo::position::meridian_radius_m(p.latitude_rad) + p.height_m;
-    let re = crate::geo::position::transverse_radius_m(p.latitude_rad) + p.height_m;
-    Geodetic {
-        latitude_rad: p.latitude_rad + offset_ned_m[0] / rn,
-        longitude_rad: p.longitude_rad + offset_ned_m[1] / (re * p.latitude_rad.cos()),
-        height_m: p.height_m - offset_ned_m[2],
     }
 }
 

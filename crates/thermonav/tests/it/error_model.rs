@@ -4,7 +4,7 @@
 
 use nalgebra::{Matrix3, SVector, Vector3};
 use thermonav::frames::{Body, Ned, Rotation, Vector};
-use thermonav::geo::position::{Geodetic, meridian_radius_m, transverse_radius_m};
+use thermonav::geo::position::{meridian_radius_m, transverse_radius_m};
 use thermonav::ins::error_model::{CorrelationTimes, STATES, system_matrix};
 use thermonav::ins::mechanization::mechanize;
 use thermonav::ins::state::{Increment, NavState};
@@ -64,13 +64,9 @@ fn error_of(estimate: &NavState, truth: &NavState) -> (Vector3<f64>, Vector3<f64
 
 /// The truth with an initial navigation error applied.
 fn perturbed(truth: &NavState, dx: &State) -> NavState {
-    let (lat, h) = (truth.position.latitude_rad, truth.position.height_m);
-    let position = Geodetic {
-        latitude_rad: lat + dx[0] / (meridian_radius_m(lat) + h),
-        longitude_rad: truth.position.longitude_rad
-            + dx[1] / ((transverse_radius_m(lat) + h) * lat.cos()),
-        height_m: h - dx[2],
-    };
+    let position = truth
+        .position
+        .displaced(&Vector::<Ned>::new(dx[0], dx[1], dx[2]));
     let velocity = truth.velocity + Vector::<Ned>::new(dx[3], dx[4], dx[5]);
     // Ĉ = (I − [φ×]) C ≈ exp(−[φ×]) C: rotate the navigation axes by φ.
     let attitude: Rotation<Body, Ned> = truth

@@ -126,3 +126,16 @@ fn transport_rate_closed_form() {
         .to_array();
     assert!((north[1] + 10.0 / (meridian_radius_m(0.0) + 100.0)).abs() < 1e-18);
 }
+
+// `displaced` is first order: moving 3 m and measuring the displacement back with the exact
+// ECEF route must agree to |offset|²/R ≈ 1.4e-6 m; 1e-5 m leaves room for rounding.
+#[test]
+fn displaced_moves_by_the_offset_to_first_order() {
+    let p = Geodetic::from_degrees(51.08, -114.13, 1100.0);
+    let offset = Vector::<Ned>::new(2.0, -1.5, 1.2);
+    let back = p.displaced(&offset).ned_from(&p);
+    assert!((back - offset).norm() < 1e-5, "{:?}", back.to_array());
+    let q = p.displaced(&Vector::new(100.0, 50.0, -20.0));
+    let mid = p.midpoint(&q);
+    assert!((mid.height_m - (p.height_m + q.height_m) / 2.0).abs() < 1e-12);
+}
