@@ -8,6 +8,7 @@
 //! N²/dt_k). The Gauss-Markov processes start from their stationary distributions.
 
 use super::profile::{BiasAt, ChannelProfile};
+use crate::stoch::gauss_markov::GaussMarkov;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -16,7 +17,7 @@ pub fn standard_normal(rng: &mut impl Rng) -> f64 {
     StandardNormal.sample(rng)
 }
 
-/// One exact Gauss-Markov step: x_k = φ x_{k−1} + √(σ²(1 − φ²)) z, φ = exp(−dt/Tc).
+/// One exact Gauss-Markov step ([`GaussMarkov::step`]) for a correlation time and sigma.
 pub fn gauss_markov_step(
     previous: f64,
     dt_s: f64,
@@ -24,8 +25,11 @@ pub fn gauss_markov_step(
     sigma: f64,
     z: f64,
 ) -> f64 {
-    let phi = (-dt_s / correlation_time_s).exp();
-    phi * previous + sigma * (1.0 - phi * phi).max(0.0).sqrt() * z
+    GaussMarkov {
+        correlation_time_s,
+        sigma,
+    }
+    .step(previous, dt_s, z)
 }
 
 /// Rounds to the nearest multiple of `step` (no change for step 0).

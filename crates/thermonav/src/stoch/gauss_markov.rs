@@ -32,6 +32,13 @@ impl GaussMarkov {
         self.sigma * self.sigma * (-tau_s.abs() / self.correlation_time_s).exp()
     }
 
+    /// One exact step (equations 3-4): x_k = φ x_{k−1} + √(σ²(1 − φ²)) z with φ = exp(−dt/Tc)
+    /// and z a standard normal draw; 1 − φ² is eq. 4's 1 − exp(−2 dt/Tc) with one exp.
+    pub fn step(&self, previous: f64, dt_s: f64, z: f64) -> f64 {
+        let phi = self.phi(dt_s);
+        phi * previous + self.sigma * (1.0 - phi * phi).max(0.0).sqrt() * z
+    }
+
     /// Spectral density of the continuous driving noise, q = 2σ²/Tc.
     pub fn spectral_density(&self) -> f64 {
         2.0 * self.sigma * self.sigma / self.correlation_time_s
