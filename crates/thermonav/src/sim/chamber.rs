@@ -289,24 +289,12 @@ mod tests {
 
     /// A profile whose channels carry only what a test switches on.
     fn bare_profile(white: f64, tc_s: f64, sigma: f64) -> SensorProfile {
-        let mut profile = adis16364_like();
-        for p in profile.channels.values_mut() {
-            *p = ChannelProfile {
-                white_noise_density: white,
-                bias_gauss_markov: vec![GaussMarkovPoint {
-                    temperature_c: 0.0,
-                    correlation_time_s: tc_s,
-                    sigma,
-                }],
-                bias_random_walk_density: 0.0,
-                turn_on_bias_sigma: 0.0,
-                bias_temperature_coefficient_per_c: 0.0,
-                scale_factor_temperature_coefficient_ppm_per_c: 0.0,
-                scale_factor_gauss_markov: None,
-                quantization_step: 0.0,
-            };
-        }
-        profile
+        let bias = GaussMarkovPoint {
+            temperature_c: 0.0,
+            correlation_time_s: tc_s,
+            sigma,
+        };
+        adis16364_like().with_every_channel(&ChannelProfile::stochastic_only(white, bias, 0.0))
     }
 
     fn run(rate_hz: f64, duration_s: f64, seed: u64) -> ChamberRun {

@@ -131,6 +131,14 @@ impl SensorProfile {
         Ok(())
     }
 
+    /// The same profile with every channel replaced by `channel` (controlled experiments).
+    pub fn with_every_channel(mut self, channel: &ChannelProfile) -> Self {
+        for p in self.channels.values_mut() {
+            *p = channel.clone();
+        }
+        self
+    }
+
     /// The profile of one channel (present after [`SensorProfile::validate`]).
     pub fn channel(&self, channel: Channel) -> Option<&ChannelProfile> {
         self.channels.get(&channel)
@@ -157,6 +165,26 @@ fn check(
 }
 
 impl ChannelProfile {
+    /// A channel with stochastic errors only: white noise of density `white_noise_density`, a
+    /// Gauss-Markov bias (one table point, so held at every temperature) and a bias random walk;
+    /// no turn-on bias, temperature terms, scale-factor error or quantisation.
+    pub fn stochastic_only(
+        white_noise_density: f64,
+        bias: GaussMarkovPoint,
+        bias_random_walk_density: f64,
+    ) -> Self {
+        Self {
+            white_noise_density,
+            bias_gauss_markov: vec![bias],
+            bias_random_walk_density,
+            turn_on_bias_sigma: 0.0,
+            bias_temperature_coefficient_per_c: 0.0,
+            scale_factor_temperature_coefficient_ppm_per_c: 0.0,
+            scale_factor_gauss_markov: None,
+            quantization_step: 0.0,
+        }
+    }
+
     fn validate(&self, channel: &'static str) -> Result<(), ProfileError> {
         check(
             channel,

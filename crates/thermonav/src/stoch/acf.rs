@@ -40,15 +40,7 @@ pub enum AcfError {
 }
 
 fn prepare(x: &[f64], max_lag: usize, demean: Demean) -> Result<Vec<f64>, AcfError> {
-    if x.len() <= max_lag || x.is_empty() {
-        return Err(AcfError::TooShort {
-            samples: x.len(),
-            max_lag,
-        });
-    }
-    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
-        return Err(AcfError::NonFinite { index });
-    }
+    check(x, max_lag)?;
     let mean = match demean {
         Demean::Subtract => x.iter().sum::<f64>() / x.len() as f64,
         Demean::Keep => 0.0,

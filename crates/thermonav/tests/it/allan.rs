@@ -239,23 +239,13 @@ fn simulated_white_gauss_markov_and_walk_follow_the_theoretical_curve() {
     use thermonav::sim::clock::SampleClock;
     use thermonav::sim::profile::{ChannelProfile, GaussMarkovPoint, adis16364_like};
     let (white, sigma, tc, walk) = (2e-3, 5e-4, 20.0, 2e-6);
-    let mut profile = adis16364_like();
-    for p in profile.channels.values_mut() {
-        *p = ChannelProfile {
-            white_noise_density: white,
-            bias_gauss_markov: vec![GaussMarkovPoint {
-                temperature_c: 20.0,
-                correlation_time_s: tc,
-                sigma,
-            }],
-            bias_random_walk_density: walk,
-            turn_on_bias_sigma: 0.0,
-            bias_temperature_coefficient_per_c: 0.0,
-            scale_factor_temperature_coefficient_ppm_per_c: 0.0,
-            scale_factor_gauss_markov: None,
-            quantization_step: 0.0,
-        };
-    }
+    let bias = GaussMarkovPoint {
+        temperature_c: 20.0,
+        correlation_time_s: tc,
+        sigma,
+    };
+    let profile =
+        adis16364_like().with_every_channel(&ChannelProfile::stochastic_only(white, bias, walk));
     let run = ChamberRun {
         set_point_c: 20.0,
         duration_s: 30_000.0,

@@ -20,24 +20,12 @@ fn run(seconds: f64) -> VesselRun {
 }
 
 fn error_free_profile() -> thermonav::sim::profile::SensorProfile {
-    let mut profile = adis16364_like();
-    for p in profile.channels.values_mut() {
-        *p = ChannelProfile {
-            white_noise_density: 0.0,
-            bias_gauss_markov: vec![GaussMarkovPoint {
-                temperature_c: 0.0,
-                correlation_time_s: 100.0,
-                sigma: 1e-300,
-            }],
-            bias_random_walk_density: 0.0,
-            turn_on_bias_sigma: 0.0,
-            bias_temperature_coefficient_per_c: 0.0,
-            scale_factor_temperature_coefficient_ppm_per_c: 0.0,
-            scale_factor_gauss_markov: None,
-            quantization_step: 0.0,
-        };
-    }
-    profile
+    let negligible = GaussMarkovPoint {
+        temperature_c: 0.0,
+        correlation_time_s: 100.0,
+        sigma: 1e-300,
+    };
+    adis16364_like().with_every_channel(&ChannelProfile::stochastic_only(0.0, negligible, 0.0))
 }
 
 // With every error off, the IMU rates times their actual (jittered) intervals are the ideal
