@@ -22,6 +22,7 @@
 //! - [`geo`]: WGS84, normal gravity, Earth rate.
 //! - [`imu`]: IMU samples and series (rates or increments), channel names.
 //! - [`ins`]: strapdown mechanization in NED.
+//! - [`nav`]: the 21-state GNSS/INS filters (EKF, UKF) driven by the model bank.
 //! - [`gnss`]: GNSS fixes: position, optional velocity, precision and dual-antenna heading.
 //! - [`trajectory`]: reference trajectory points: position, velocity, attitude.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
@@ -35,6 +36,7 @@ pub mod geo;
 pub mod gnss;
 pub mod imu;
 pub mod ins;
+pub mod nav;
 pub mod signal;
 pub mod sim;
 pub mod stoch;

@@ -143,6 +143,20 @@ impl Geodetic {
         }
     }
 
+    /// The curvilinear NED offset from `origin` to `self` with the radii at `origin`: the exact
+    /// inverse of [`Geodetic::displaced`] (`origin.displaced(&self.offset_from(origin))`
+    /// returns `self` to rounding). Unlike [`Geodetic::ned_from`] it has no tangent-plane
+    /// curvature term, so error states round-trip through it without a bias in down.
+    pub fn offset_from(&self, origin: &Geodetic) -> Vector<Ned> {
+        let rn = meridian_radius_m(origin.latitude_rad) + origin.height_m;
+        let re = transverse_radius_m(origin.latitude_rad) + origin.height_m;
+        Vector::new(
+            (self.latitude_rad - origin.latitude_rad) * rn,
+            (self.longitude_rad - origin.longitude_rad) * re * origin.latitude_rad.cos(),
+            origin.height_m - self.height_m,
+        )
+    }
+
     /// The coordinate-wise mean of two positions (the mid-interval position of a step).
     pub fn midpoint(&self, other: &Geodetic) -> Geodetic {
         Geodetic {

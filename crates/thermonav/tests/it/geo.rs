@@ -139,3 +139,22 @@ fn displaced_moves_by_the_offset_to_first_order() {
     let mid = p.midpoint(&q);
     assert!((mid.height_m - (p.height_m + q.height_m) / 2.0).abs() < 1e-12);
 }
+
+// `offset_from` inverts `displaced` exactly (both use the origin's radii), even for offsets
+// of kilometres where the tangent-plane `ned_from` differs by the curvature |offset|²/2R
+// (~0.3 m in down at 2 km): the round trip closes to rounding (1e-9 m).
+#[test]
+fn offset_from_inverts_displaced() {
+    let p = Geodetic::from_degrees(44.6, -63.6, 12.0);
+    for offset in [
+        Vector::<Ned>::new(2000.0, -1500.0, 30.0),
+        Vector::new(-0.3, 0.2, -0.1),
+    ] {
+        let back = p.displaced(&offset).offset_from(&p);
+        assert!((back - offset).norm() < 1e-9, "{:?}", back.to_array());
+    }
+    let far = p.displaced(&Vector::new(2000.0, 0.0, 0.0));
+    let curvature = far.ned_from(&p).z() - far.offset_from(&p).z();
+    let expected = 2000.0f64.powi(2) / (2.0 * thermonav::geo::wgs84::SEMI_MAJOR_AXIS_M);
+    assert!((curvature / expected - 1.0).abs() < 0.02, "{curvature} vs {expected}");
+}

@@ -7,6 +7,7 @@ mod gauss_markov;
 mod geo;
 mod ideal_imu;
 mod ins;
+mod navigation;
 mod round_trip;
 mod signal;
 mod ukf;

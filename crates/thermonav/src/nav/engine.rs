@@ -1,0 +1,620 @@
+//! The navigation run: strapdown mechanization at the IMU rate, covariance propagation at a
+//! chosen rate, GNSS updates at their epochs, closed-loop feedback.
+//!
+//! **Time alignment.** An IMU interval that contains a GNSS epoch is split there (the
+//! increments shared in proportion to time), so every update happens at the fix's own time
+//! (KF-GINS does the same).
+//!
+//! **Covariance propagation rate.** The nominal state is mechanized at every IMU sample; the
+//! covariance is propagated once per `covariance_interval_s` (and at every GNSS epoch) over the
+//! accumulated interval. The EKF uses Φ = I + FΔt + ½(FΔt)² with F at the interval's start and
+//! the mean corrected rates; the UKF mechanizes each of its 2n + 1 sigma points once over the
+//! interval with the summed increments and differences them against the nominal start state
+//! propagated the same way, so the coarse step's own error cancels and only the error
+//! dynamics remain. The default 0.1 s is checked against per-sample propagation in the tests.
+//!
+//! **Feedback.** After every update (and, for the UKF, after every prediction, whose mean
+//! error is not exactly zero) the error estimate is folded into the nominal
+//! ([`Estimate::corrected_by`]) and reset to zero.
+
+use super::error_state::{ErrorVector, Estimate};
+use super::measurement::{
+    AntennaGeometry, Linearized, MeasurementKind, antenna_position, antenna_velocity,
+    baseline_heading, heading_linearized, position_linearized, velocity_linearized,
+};
+use super::outage::Outages;
+use super::sensor_model::ImuStochasticModel;
+use super::solution::{InnovationRecord, Solution, SolutionEpoch};
+use crate::filter::FilterError;
+use crate::filter::ekf::{joseph_update, propagate_covariance};
+use crate::filter::gating::ChiSquareGate;
+use crate::filter::sigma_points::SigmaPointScheme;
+use crate::filter::ukf::Ukf;
+use crate::frames::Vector;
+use crate::geo::position::Geodetic;
+use crate::gnss::GnssFix;
+use crate::imu::{ImuSeries, SampleKind};
+use crate::ins::error_model::{STATES, SystemMatrix, system_matrix};
+use crate::ins::mechanization::mechanize;
+use crate::ins::state::Increment;
+use crate::sim::vessel::wrap_pi;
+use crate::time::{Duration, Timestamp};
+use nalgebra::{SVector, Vector3};
+use serde::Serialize;
+
+/// Which filter carries the error state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilterKind {
+    /// Error-state extended Kalman filter, Joseph-form updates.
+    Ekf,
+    /// Error-state unscented Kalman filter.
+    Ukf,
+}
+
+impl FilterKind {
+    /// Name used in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            FilterKind::Ekf => "ekf",
+            FilterKind::Ukf => "ukf",
+        }
+    }
+}
+
+/// Which GNSS measurements to use when a fix carries them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Aiding {
+    /// Antenna position.
+    pub position: bool,
+    /// Antenna velocity.
+    pub velocity: bool,
+    /// Dual-antenna heading.
+    pub heading: bool,
+}
+
+impl Default for Aiding {
+    fn default() -> Self {
+        Self {
+            position: true,
+            velocity: true,
+            heading: true,
+        }
+    }
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EngineSettings {
+    /// The filter.
+    pub filter: FilterKind,
+    /// Longest interval over which the covariance is propagated in one step, s.
+    pub covariance_interval_s: f64,
+    /// Probability of the chi-square innovation gate; `None` accepts every update.
+    pub gate_probability: Option<f64>,
+    /// Antennas.
+    pub geometry: AntennaGeometry,
+    /// Measurements used.
+    pub aiding: Aiding,
+    /// GNSS outages.
+    pub outages: Outages,
+    /// Interval between solution epochs, s.
+    pub output_interval_s: f64,
+    /// Sigma points of the UKF.
+    #[serde(skip)]
+    pub sigma_points: SigmaPointScheme,
+    /// Position standard deviation used when a fix gives none, north/east/down, m.
+    pub default_position_sd_m: [f64; 3],
+    /// Velocity standard deviation of GNSS velocities, m/s.
+    pub velocity_sd_m_s: [f64; 3],
+}
+
+impl Default for EngineSettings {
+    /// EKF, covariance at 10 Hz, gate at 0.9999, all aiding, solution at 10 Hz, Merwe points
+    /// with α = 1, β = 2, κ = 0 (all covariance weights non-negative, so the predicted
+    /// covariance is positive semi-definite by construction).
+    fn default() -> Self {
+        Self {
+            filter: FilterKind::Ekf,
+            covariance_interval_s: 0.1,
+            gate_probability: Some(0.9999),
+            geometry: AntennaGeometry::default(),
+            aiding: Aiding::default(),
+            outages: Outages::none(),
+            output_interval_s: 0.1,
+            sigma_points: SigmaPointScheme::MerweScaled {
+                alpha: 1.0,
+                beta: 2.0,
+                kappa: 0.0,
+            },
+            default_position_sd_m: [1.0, 1.0, 2.0],
+            velocity_sd_m_s: [0.05, 0.05, 0.1],
+        }
+    }
+}
+
+/// Why a run failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NavError {
+    /// The filter diverged.
+    #[error("the {filter} diverged at t = {time_s:.3} s: {reason}")]
+    Diverged {
+        /// Filter name.
+        filter: &'static str,
+        /// Time of the failure, s.
+        time_s: f64,
+        /// What failed.
+        reason: String,
+    },
+    /// A setting is out of range.
+    #[error("setting {what} = {value} must be finite and positive")]
+    Setting {
+        /// Which setting.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// No IMU sample after the initial time.
+    #[error("no IMU sample after the initial time {0:.3} s")]
+    NoImu(f64),
+}
+
+/// IMU increments from a series: each sample covers the interval since the previous one (the
+/// first sample, which has no interval, starts the series). Rates are held over the interval.
+pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
+    let kind = series.kind.unwrap_or(SampleKind::Rates);
+    (1..series.len())
+        .map(|k| {
+            let dt = series.time[k].since(series.time[k - 1]).as_seconds();
+            let value = |c: usize| series.channels[c][k];
+            let gyro = [value(0), value(1), value(2)];
+            let accel = [value(3), value(4), value(5)];
+            match kind {
+                SampleKind::Rates => Increment::from_rates(series.time[k], dt, gyro, accel),
+                SampleKind::Increments => Increment {
+                    time: series.time[k],
+                    dt_s: dt,
+                    delta_angle: Vector::from_array(gyro),
+                    delta_velocity: Vector::from_array(accel),
+                },
+            }
+        })
+        .collect()
+}
+
+/// The increment split at `at` (strictly inside its interval) into the parts before and
+/// after, shared in proportion to time.
+fn split(inc: &Increment, at: Timestamp) -> (Increment, Increment) {
+    let after_s = inc.time.since(at).as_seconds();
+    let share = 1.0 - after_s / inc.dt_s;
+    let part = |fraction: f64, time: Timestamp, dt_s: f64| Increment {
+        time,
+        dt_s,
+        delta_angle: inc.delta_angle.scale(fraction),
+        delta_velocity: inc.delta_velocity.scale(fraction),
+    };
+    (
+        part(share, at, inc.dt_s - after_s),
+        part(1.0 - share, inc.time, after_s),
+    )
+}
+
+/// The covariance or the UKF that carries it.
+#[derive(Debug, Clone)]
+enum Core {
+    Ekf(Box<SystemMatrix>),
+    Ukf(Box<Ukf<STATES>>),
+}
+
+impl Core {
+    fn covariance(&self) -> &SystemMatrix {
+        match self {
+            Core::Ekf(p) => p,
+            Core::Ukf(u) => &u.p,
+        }
+    }
+}
+
+/// Raw increments accumulated since the last covariance propagation.
+#[derive(Debug, Clone, Copy)]
+struct Window {
+    start: Estimate,
+    raw: Increment,
+}
+
+impl Window {
+    fn at(start: Estimate) -> Self {
+        Self {
+            start,
+            raw: Increment {
+                time: start.nav.time,
+                dt_s: 0.0,
+                delta_angle: Vector::zeros(),
+                delta_velocity: Vector::zeros(),
+            },
+        }
+    }
+
+    fn add(&mut self, raw: &Increment) {
+        self.raw.time = raw.time;
+        self.raw.dt_s += raw.dt_s;
+        self.raw.delta_angle = self.raw.delta_angle + raw.delta_angle;
+        self.raw.delta_velocity = self.raw.delta_velocity + raw.delta_velocity;
+    }
+}
+
+struct Run<'a> {
+    estimate: Estimate,
+    core: Core,
+    window: Window,
+    previous: Increment,
+    last_raw_rate: Vector3<f64>,
+    model: &'a ImuStochasticModel,
+    settings: &'a EngineSettings,
+    gates: [Option<ChiSquareGate>; 2],
+    solution: Solution,
+    next_output: Timestamp,
+    output_step: Duration,
+}
+
+/// Runs the filter from `initial` (with covariance `p0`) over the increments after its time,
+/// updating with the fixes after its time. `progress` is called with the number of IMU
+/// samples processed, every few thousand.
+///
+/// # Errors
+/// [`NavError`] for bad settings, no data after the start, or a divergence.
+pub fn run(
+    increments: &[Increment],
+    gnss: &[GnssFix],
+    initial: Estimate,
+    p0: SystemMatrix,
+    model: &ImuStochasticModel,
+    settings: &EngineSettings,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Solution, NavError> {
+    for (what, value) in [
+        ("covariance_interval_s", settings.covariance_interval_s),
+        ("output_interval_s", settings.output_interval_s),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(NavError::Setting { what, value });
+        }
+    }
+    let start = initial.nav.time;
+    let first = increments.partition_point(|i| i.time <= start);
+    if first == increments.len() {
+        return Err(NavError::NoImu(start.as_seconds()));
+    }
+    let mut run = Run::new(initial, p0, model, settings)?;
+    let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
+    for (n, inc) in increments[first..].iter().enumerate() {
+        let mut raw = *inc;
+        let interval_start =
+            Timestamp::from_nanos(raw.time.as_nanos() - (raw.dt_s * 1e9).round() as i64);
+        if interval_start < start {
+            raw = split(&raw, start).1;
+        }
+        while let Some(fix) = fixes.next_if(|f| f.time <= raw.time) {
+            if fix.time > run.estimate.nav.time && fix.time < raw.time {
+                let (before, after) = split(&raw, fix.time);
+                run.step(&before)?;
+                raw = after;
+            } else if fix.time == raw.time {
+                run.step(&raw)?;
+                raw.dt_s = 0.0;
+            }
+            run.update(fix)?;
+        }
+        if raw.dt_s > 1e-9 {
+            run.step(&raw)?;
+        }
+        if n % 4096 == 0 {
+            progress(n);
+        }
+    }
+    run.propagate()?;
+    run.record();
+    run.solution.imu_samples = increments.len() - first;
+    progress(increments.len() - first);
+    Ok(run.solution)
+}
+
+impl<'a> Run<'a> {
+    fn new(
+        initial: Estimate,
+        p0: SystemMatrix,
+        model: &'a ImuStochasticModel,
+        settings: &'a EngineSettings,
+    ) -> Result<Self, NavError> {
+        let core = match settings.filter {
+            FilterKind::Ekf => Core::Ekf(Box::new(p0)),
+            FilterKind::Ukf => Core::Ukf(Box::new(Ukf::new(
+                ErrorVector::zeros(),
+                p0,
+                settings.sigma_points,
+            ))),
+        };
+        let gate = |dof| {
+            settings
+                .gate_probability
+                .and_then(|p| ChiSquareGate::new(dof, p))
+        };
+        let output_step =
+            Duration::from_seconds(settings.output_interval_s).map_err(|_| NavError::Setting {
+                what: "output_interval_s",
+                value: settings.output_interval_s,
+            })?;
+        let mut run = Self {
+            estimate: initial,
+            core,
+            window: Window::at(initial),
+            previous: Window::at(initial).raw,
+            last_raw_rate: Vector3::zeros(),
+            model,
+            settings,
+            gates: [gate(3), gate(1)],
+            solution: Solution {
+                epochs: Vec::new(),
+                innovations: Vec::new(),
+                imu_samples: 0,
+            },
+            next_output: initial.nav.time,
+            output_step,
+        };
+        run.record();
+        Ok(run)
+    }
+
+    fn diverged(&self, reason: impl ToString) -> NavError {
+        NavError::Diverged {
+            filter: self.settings.filter.name(),
+            time_s: self.estimate.nav.time.as_seconds(),
+            reason: reason.to_string(),
+        }
+    }
+
+    /// One IMU interval: mechanize the nominal, accumulate the window, propagate when due.
+    fn step(&mut self, raw: &Increment) -> Result<(), NavError> {
+        let corrected = self.estimate.sensors.correct(raw);
+        let previous = if self.previous.dt_s > 0.0 {
+            self.previous
+        } else {
+            corrected
+        };
+        self.estimate.nav = mechanize(&self.estimate.nav, &previous, &corrected);
+        self.previous = corrected;
+        self.last_raw_rate = raw.delta_angle.raw() / raw.dt_s;
+        self.window.add(raw);
+        self.check_nominal()?;
+        if self.window.raw.dt_s >= self.settings.covariance_interval_s - 1e-9 {
+            self.propagate()?;
+        }
+        if self.estimate.nav.time >= self.next_output {
+            self.record();
+        }
+        Ok(())
+    }
+
+    fn check_nominal(&self) -> Result<(), NavError> {
+        let nav = &self.estimate.nav;
+        let finite = [
+            nav.position.latitude_rad,
+            nav.position.longitude_rad,
+            nav.position.height_m,
+        ]
+        .iter()
+        .chain(&nav.velocity.to_array())
+        .all(|v| v.is_finite());
+        if !finite {
+            return Err(self.diverged("the navigation state is not finite"));
+        }
+        if nav.velocity.norm() > 3000.0 {
+            return Err(self.diverged(format!(
+                "the estimated speed reached {:.0} m/s",
+                nav.velocity.norm()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Appends a solution epoch at the current time and schedules the next.
+    fn record(&mut self) {
+        let p = self.core.covariance();
+        let sd = std::array::from_fn(|i| p[(i, i)].max(0.0).sqrt());
+        let time = self.estimate.nav.time;
+        if self.solution.epochs.last().map(|e| e.estimate.nav.time) == Some(time) {
+            return;
+        }
+        self.solution.epochs.push(SolutionEpoch {
+            estimate: self.estimate,
+            sd,
+            in_outage: self.settings.outages.contains(time),
+        });
+        while self.next_output <= time {
+            self.next_output =
+                Timestamp::from_nanos(self.next_output.as_nanos() + self.output_step.as_nanos());
+        }
+    }
+
+    /// Propagates the covariance over the accumulated window.
+    fn propagate(&mut self) -> Result<(), NavError> {
+        let dt = self.window.raw.dt_s;
+        if dt <= 0.0 {
+            return Ok(());
+        }
+        let start = self.window.start;
+        let corrected = start.sensors.correct(&self.window.raw);
+        let f = system_matrix(
+            &start.nav,
+            &corrected.delta_angle.scale(1.0 / dt),
+            &corrected.delta_velocity.scale(1.0 / dt),
+            &self.model.correlation_times(),
+        );
+        let phi = self.model.transition_matrix(&f, dt);
+        let q = self.model.process_noise(&start.nav.attitude, &phi, dt);
+        match &mut self.core {
+            Core::Ekf(p) => **p = propagate_covariance(p, &phi, &q),
+            Core::Ukf(u) => {
+                let raw = self.window.raw;
+                let reference = Estimate {
+                    nav: mechanize(&start.nav, &corrected, &corrected),
+                    sensors: start.sensors,
+                };
+                let decay: [[f64; 3]; 4] = self
+                    .model
+                    .gauss_markov_states()
+                    .map(|(_, group)| group.map(|gm| gm.transition(dt)));
+                let propagate_point = |dx: &ErrorVector| {
+                    let point = start.corrected_by(dx);
+                    let inc = point.sensors.correct(&raw);
+                    let moved = Estimate {
+                        nav: mechanize(&point.nav, &inc, &inc),
+                        sensors: point.sensors,
+                    };
+                    let mut out = moved.error_from(&reference);
+                    for (g, factors) in decay.iter().enumerate() {
+                        for (k, factor) in factors.iter().enumerate() {
+                            out[9 + 3 * g + k] *= factor;
+                        }
+                    }
+                    out
+                };
+                u.predict(propagate_point, &q)
+                    .map_err(|e| NavError::Diverged {
+                        filter: "ukf",
+                        time_s: self.estimate.nav.time.as_seconds(),
+                        reason: e.to_string(),
+                    })?;
+                let mean = u.x;
+                u.x = ErrorVector::zeros();
+                self.estimate = self.estimate.corrected_by(&mean);
+            }
+        }
+        self.window = Window::at(self.estimate);
+        Ok(())
+    }
+
+    /// The GNSS updates at one fix (none inside an outage).
+    fn update(&mut self, fix: &GnssFix) -> Result<(), NavError> {
+        self.propagate()?;
+        if self.settings.outages.contains(fix.time) {
+            return Ok(());
+        }
+        let aiding = self.settings.aiding;
+        let geometry = self.settings.geometry;
+        if aiding.position {
+            let measured = Geodetic {
+                latitude_rad: fix.latitude_rad,
+                longitude_rad: fix.longitude_rad,
+                height_m: fix.height_m,
+            };
+            let sd = fix
+                .position_sd_ned_m
+                .unwrap_or(self.settings.default_position_sd_m);
+            let lin = position_linearized(&self.estimate, &geometry, &measured, sd);
+            let origin = antenna_position(&self.estimate, &geometry);
+            let z = measured.ned_from(&origin).raw();
+            let nominal = self.estimate;
+            self.apply(MeasurementKind::Position, lin, z, move |dx| {
+                antenna_position(&nominal.corrected_by(dx), &geometry)
+                    .ned_from(&origin)
+                    .raw()
+            })?;
+        }
+        if let (true, Some(v)) = (aiding.velocity, fix.velocity_ned_m_s) {
+            let measured = Vector3::from(v);
+            let corrected_rate = |e: &Estimate| {
+                Vector3::from_fn(|k, _| {
+                    (self.last_raw_rate[k] - e.sensors.gyro_bias_rad_s[k])
+                        / (1.0 + e.sensors.gyro_scale[k])
+                })
+            };
+            let nominal = self.estimate;
+            let rate = corrected_rate(&nominal);
+            let lin = velocity_linearized(
+                &nominal,
+                &geometry,
+                &rate,
+                &measured,
+                self.settings.velocity_sd_m_s,
+            );
+            let predicted = antenna_velocity(&nominal, &geometry, &rate).raw();
+            let z = measured - predicted;
+            let raw_rate = self.last_raw_rate;
+            self.apply(MeasurementKind::Velocity, lin, z, move |dx| {
+                let point = nominal.corrected_by(dx);
+                let rate = Vector3::from_fn(|k, _| {
+                    (raw_rate[k] - point.sensors.gyro_bias_rad_s[k])
+                        / (1.0 + point.sensors.gyro_scale[k])
+                });
+                antenna_velocity(&point, &geometry, &rate).raw() - predicted
+            })?;
+        }
+        if let (true, Some(h)) = (aiding.heading, fix.heading) {
+            let nominal = self.estimate;
+            let lin = heading_linearized(&nominal, &geometry, h.heading_rad, h.sd_rad);
+            let predicted = baseline_heading(&nominal, &geometry);
+            let z = SVector::<f64, 1>::new(wrap_pi(h.heading_rad - predicted));
+            self.apply(MeasurementKind::Heading, lin, z, move |dx| {
+                SVector::<f64, 1>::new(wrap_pi(
+                    baseline_heading(&nominal.corrected_by(dx), &geometry) - predicted,
+                ))
+            })?;
+        }
+        self.window = Window::at(self.estimate);
+        Ok(())
+    }
+
+    /// One gated update: the EKF from the linearisation, the UKF from the nonlinear model
+    /// `h` (the measurement `z` relative to the nominal prediction, so that ẑ(0) = 0).
+    fn apply<const M: usize>(
+        &mut self,
+        kind: MeasurementKind,
+        lin: Linearized<M>,
+        z: SVector<f64, M>,
+        h: impl Fn(&ErrorVector) -> SVector<f64, M>,
+    ) -> Result<(), NavError> {
+        let gate = self.gates[usize::from(M == 1)];
+        let outcome = match &self.core {
+            Core::Ekf(p) => {
+                let (mut x, mut p) = (ErrorVector::zeros(), **p);
+                joseph_update(&mut x, &mut p, &lin.residual, &lin.jacobian, &lin.noise).map(
+                    |innovation| {
+                        let record = (-innovation.residual, innovation.covariance, innovation.nis);
+                        (x, Core::Ekf(Box::new(p)), record)
+                    },
+                )
+            }
+            Core::Ukf(u) => {
+                let mut trial = u.clone();
+                trial.update(&z, h, &lin.noise).map(|innovation| {
+                    let x = trial.x;
+                    trial.x = ErrorVector::zeros();
+                    let record = (innovation.residual, innovation.covariance, innovation.nis);
+                    (x, Core::Ukf(trial), record)
+                })
+            }
+        };
+        let (x, core, (innovation, s, nis)) = outcome.map_err(|e: FilterError| self.diverged(e))?;
+        let accepted = gate.is_none_or(|g| g.accepts(nis));
+        self.solution.innovations.push(InnovationRecord {
+            time: self.estimate.nav.time,
+            kind,
+            innovation: std::array::from_fn(|k| if k < M { innovation[k] } else { 0.0 }),
+            sd: std::array::from_fn(|k| {
+                if k < M {
+                    s[(k, k)].max(0.0).sqrt()
+                } else {
+                    0.0
+                }
+            }),
+            nis,
+            accepted,
+        });
+        if accepted {
+            self.core = core;
+            self.estimate = self.estimate.corrected_by(&x);
+        }
+        Ok(())
+    }
+}

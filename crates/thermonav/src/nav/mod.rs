@@ -1,0 +1,26 @@
+//! GNSS/INS integration: the 21-state error-state filters (EKF and UKF) that carry the
+//! temperature model bank's noise models into navigation.
+//!
+//! - [`sensor_model`]: per-axis white noise and Gauss-Markov bias / scale-factor models, taken
+//!   from the bank at a chosen temperature, and their exact discretisation.
+//! - [`error_state`]: the nominal estimate (navigation state plus sensor corrections) and the
+//!   21-element error vector that moves between it and the truth (⊕ and ⊖).
+//! - [`measurement`]: GNSS position and velocity at a lever arm, dual-antenna heading.
+//! - [`alignment`]: coarse levelling, heading from GNSS, the initial covariance.
+//! - [`outage`]: windows in which GNSS updates are withheld.
+//! - [`engine`]: the run loop: mechanization at the IMU rate, covariance propagation at a
+//!   chosen rate, updates at GNSS epochs, closed-loop feedback.
+//! - [`solution`]: what a run returns: solution epochs, innovations and their statistics.
+//!
+//! Error conventions (as in [`crate::ins::error_model`]): δr = r̂ − r (NED, m), δv = v̂ − v,
+//! Ĉ_b^n = (I − [φ×]) C_b^n, and the sensor states are the error left in the corrected
+//! measurements (true bias minus estimated bias), which the closed-loop feedback adds to the
+//! estimated corrections.
+
+pub mod alignment;
+pub mod engine;
+pub mod error_state;
+pub mod measurement;
+pub mod outage;
+pub mod sensor_model;
+pub mod solution;

@@ -1,0 +1,383 @@
+//! The stochastic model of the IMU errors that the filters carry, per axis:
+//!
+//! - white noise of density N (angle random walk, rad/√s; velocity random walk, m/s/√s), from
+//!   the bank's Allan fit at τ = 1 s;
+//! - a first-order Gauss-Markov bias (Tc, σ) from the bank's Gauss-Markov models;
+//! - a first-order Gauss-Markov scale-factor error, which a static record cannot reveal, from
+//!   a stated prior ([`ScaleFactorPrior`]).
+//!
+//! Discretisation over an interval Δt is exact for the Gauss-Markov states:
+//! x_{k+1} = e^{−Δt/Tc} x_k + w_k, var(w_k) = σ²(1 − e^{−2Δt/Tc}); the white noise enters the
+//! velocity and attitude errors as C_b^n diag(N²) C_n^b Δt, averaged over the interval with the
+//! trapezoidal rule ½(Φ Q Φᵀ + Q) (Groves 2013 §3.2.3).
+
+use crate::frames::{Body, Ned, Rotation};
+use crate::imu::Channel;
+use crate::ins::error_model::{CorrelationTimes, STATES, SystemMatrix, block};
+use crate::sim::profile::SensorProfile;
+use crate::stoch::bank::{
+    BankError, GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection,
+};
+use nalgebra::Matrix3;
+use serde::Serialize;
+
+/// A first-order Gauss-Markov process: correlation time and steady-state standard deviation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GaussMarkovParameters {
+    /// Correlation time Tc, s.
+    pub correlation_time_s: f64,
+    /// Steady-state standard deviation σ, in the state's unit.
+    pub sigma: f64,
+}
+
+impl GaussMarkovParameters {
+    /// The transition factor e^{−Δt/Tc}.
+    pub fn transition(&self, dt_s: f64) -> f64 {
+        (-dt_s / self.correlation_time_s).exp()
+    }
+
+    /// The driving-noise variance over Δt, σ²(1 − e^{−2Δt/Tc}) (computed with `exp_m1` so
+    /// that it stays accurate for Δt ≪ Tc).
+    pub fn discrete_variance(&self, dt_s: f64) -> f64 {
+        -self.sigma * self.sigma * (-2.0 * dt_s / self.correlation_time_s).exp_m1()
+    }
+
+    fn is_valid(&self) -> bool {
+        self.correlation_time_s.is_finite()
+            && self.correlation_time_s > 0.0
+            && self.sigma.is_finite()
+            && self.sigma >= 0.0
+    }
+}
+
+/// The error model of one sensor axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AxisModel {
+    /// White-noise density N: rad/√s for gyros, m/s/√s for accelerometers.
+    pub white_noise_density: f64,
+    /// Gauss-Markov bias: σ in rad/s or m/s².
+    pub bias: GaussMarkovParameters,
+    /// Gauss-Markov scale-factor error: σ dimensionless (1e-6 = 1 ppm).
+    pub scale_factor: GaussMarkovParameters,
+}
+
+/// Scale-factor error priors for both sensor kinds (not observable from static records).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ScaleFactorPrior {
+    /// Gyro scale-factor error.
+    pub gyro: GaussMarkovParameters,
+    /// Accelerometer scale-factor error.
+    pub accel: GaussMarkovParameters,
+}
+
+impl Default for ScaleFactorPrior {
+    /// 1000 ppm with a 1 h correlation time for both: the scale-factor error of a consumer
+    /// MEMS unit over temperature (ADIS16364 data sheet: ±1 % initial, 40 ppm/°C).
+    fn default() -> Self {
+        let prior = GaussMarkovParameters {
+            correlation_time_s: 3600.0,
+            sigma: 1e-3,
+        };
+        Self {
+            gyro: prior,
+            accel: prior,
+        }
+    }
+}
+
+/// Which model to take from a bank.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BankChoice {
+    /// Temperature at which to select, °C.
+    pub temperature_c: f64,
+    /// Nearest entry or linear interpolation.
+    pub selection: Selection,
+    /// Which of the bank's Gauss-Markov estimates to use.
+    pub source: GaussMarkovSource,
+}
+
+/// Why an IMU model cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SensorModelError {
+    /// The bank cannot give the requested Gauss-Markov model.
+    #[error(transparent)]
+    Bank(#[from] BankError),
+    /// The bank's entry has no white-noise density for a channel.
+    #[error(
+        "the entry at {temperature_c} °C has no white-noise density (Allan τ = 1 s fit) for channel {channel}"
+    )]
+    NoWhiteNoise {
+        /// Entry temperature.
+        temperature_c: f64,
+        /// Channel name.
+        channel: &'static str,
+    },
+    /// A parameter is not finite and positive.
+    #[error("{what} = {value} must be finite and positive")]
+    Parameter {
+        /// Which parameter.
+        what: String,
+        /// The value.
+        value: f64,
+    },
+}
+
+/// The error model of a whole IMU: three gyro axes then three accelerometer axes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ImuStochasticModel {
+    /// Gyro x, y, z.
+    pub gyro: [AxisModel; 3],
+    /// Accelerometer x, y, z.
+    pub accel: [AxisModel; 3],
+}
+
+impl ImuStochasticModel {
+    /// The model of every channel selected from `bank` at `choice`, with the scale-factor
+    /// priors. White-noise densities are taken from the same entries (interpolated with the
+    /// same weight under linear selection).
+    ///
+    /// # Errors
+    /// [`SensorModelError`] when a channel, a Gauss-Markov model or a white-noise density is
+    /// missing, or a value is not usable.
+    pub fn from_bank(
+        bank: &ModelBank,
+        choice: &BankChoice,
+        scale: &ScaleFactorPrior,
+    ) -> Result<Self, SensorModelError> {
+        let axis = |channel: Channel, scale_factor: GaussMarkovParameters| {
+            let selected: SelectedModel = bank.select(
+                choice.temperature_c,
+                channel,
+                choice.source,
+                choice.selection,
+            )?;
+            let white = white_density(bank, &selected.placement, channel)?;
+            Ok::<_, SensorModelError>(AxisModel {
+                white_noise_density: white,
+                bias: GaussMarkovParameters {
+                    correlation_time_s: selected.correlation_time_s,
+                    sigma: selected.sigma,
+                },
+                scale_factor,
+            })
+        };
+        Self::from_axes(axis, scale)
+    }
+
+    /// The model a sensor profile implies at `temperature_c`: its white-noise densities, its
+    /// Gauss-Markov bias at that temperature, its scale-factor Gauss-Markov process where it
+    /// has one and the prior otherwise. For simulated data this is the true model; for a
+    /// data-sheet profile it is the temperature-blind baseline.
+    ///
+    /// # Errors
+    /// [`SensorModelError::Parameter`] when a channel is missing or a value is unusable.
+    pub fn from_profile(
+        profile: &SensorProfile,
+        temperature_c: f64,
+        scale: &ScaleFactorPrior,
+    ) -> Result<Self, SensorModelError> {
+        let axis = |channel: Channel, prior: GaussMarkovParameters| {
+            let p = profile
+                .channel(channel)
+                .ok_or_else(|| SensorModelError::Parameter {
+                    what: format!("profile channel {}", channel.name()),
+                    value: f64::NAN,
+                })?;
+            let bias = p.bias_at(temperature_c);
+            Ok::<_, SensorModelError>(AxisModel {
+                white_noise_density: p.white_noise_density,
+                bias: GaussMarkovParameters {
+                    correlation_time_s: bias.correlation_time_s,
+                    sigma: bias.sigma,
+                },
+                scale_factor: p.scale_factor_gauss_markov.map_or(prior, |g| {
+                    GaussMarkovParameters {
+                        correlation_time_s: g.correlation_time_s,
+                        sigma: g.sigma_ppm * 1e-6,
+                    }
+                }),
+            })
+        };
+        Self::from_axes(axis, scale)
+    }
+
+    /// The six axes from a per-channel constructor, validated.
+    fn from_axes(
+        axis: impl Fn(Channel, GaussMarkovParameters) -> Result<AxisModel, SensorModelError>,
+        scale: &ScaleFactorPrior,
+    ) -> Result<Self, SensorModelError> {
+        let [gx, gy, gz, ax, ay, az] = Channel::ALL;
+        let model = Self {
+            gyro: [
+                axis(gx, scale.gyro)?,
+                axis(gy, scale.gyro)?,
+                axis(gz, scale.gyro)?,
+            ],
+            accel: [
+                axis(ax, scale.accel)?,
+                axis(ay, scale.accel)?,
+                axis(az, scale.accel)?,
+            ],
+        };
+        model.validate()?;
+        Ok(model)
+    }
+
+    /// Checks that every density, σ and Tc is finite and positive.
+    ///
+    /// # Errors
+    /// [`SensorModelError::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<(), SensorModelError> {
+        let axes = self.gyro.iter().chain(&self.accel).zip(Channel::ALL);
+        for (a, channel) in axes {
+            let bad = |what: &str, value: f64| SensorModelError::Parameter {
+                what: format!("{} {what}", channel.name()),
+                value,
+            };
+            if !(a.white_noise_density.is_finite() && a.white_noise_density > 0.0) {
+                return Err(bad("white-noise density", a.white_noise_density));
+            }
+            if !a.bias.is_valid() {
+                return Err(bad("bias correlation time", a.bias.correlation_time_s));
+            }
+            if !a.scale_factor.is_valid() {
+                return Err(bad(
+                    "scale-factor correlation time",
+                    a.scale_factor.correlation_time_s,
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The correlation times of the four Gauss-Markov groups, for the system matrix.
+    pub fn correlation_times(&self) -> CorrelationTimes {
+        CorrelationTimes {
+            gyro_bias_s: self.gyro.map(|a| a.bias.correlation_time_s),
+            accel_bias_s: self.accel.map(|a| a.bias.correlation_time_s),
+            gyro_scale_s: self.gyro.map(|a| a.scale_factor.correlation_time_s),
+            accel_scale_s: self.accel.map(|a| a.scale_factor.correlation_time_s),
+        }
+    }
+
+    /// The Gauss-Markov groups in state order (gyro bias, accel bias, gyro scale, accel
+    /// scale), each with its first state index.
+    pub fn gauss_markov_states(&self) -> [(usize, [GaussMarkovParameters; 3]); 4] {
+        [
+            (block::GYRO_BIAS, self.gyro.map(|a| a.bias)),
+            (block::ACCEL_BIAS, self.accel.map(|a| a.bias)),
+            (block::GYRO_SCALE, self.gyro.map(|a| a.scale_factor)),
+            (block::ACCEL_SCALE, self.accel.map(|a| a.scale_factor)),
+        ]
+    }
+
+    /// The discrete transition matrix over Δt from the system matrix: Φ = I + FΔt + ½(FΔt)²
+    /// for the navigation blocks, with the Gauss-Markov diagonal replaced by its exact
+    /// e^{−Δt/Tc}.
+    pub fn transition_matrix(&self, f: &SystemMatrix, dt_s: f64) -> SystemMatrix {
+        let fdt = f * dt_s;
+        let mut phi = SystemMatrix::identity() + fdt + fdt * fdt * 0.5;
+        for (start, group) in self.gauss_markov_states() {
+            for (k, gm) in group.iter().enumerate() {
+                phi[(start + k, start + k)] = gm.transition(dt_s);
+            }
+        }
+        phi
+    }
+
+    /// The discrete process noise over Δt at attitude C_b^n with transition Φ: white noise
+    /// averaged with the trapezoidal rule, Gauss-Markov driving noise exact.
+    pub fn process_noise(
+        &self,
+        attitude: &Rotation<Body, Ned>,
+        phi: &SystemMatrix,
+        dt_s: f64,
+    ) -> SystemMatrix {
+        let rows = attitude.matrix();
+        let c = Matrix3::from_fn(|r, k| rows[r][k]);
+        let squared = |axes: &[AxisModel; 3]| {
+            Matrix3::from_diagonal(&nalgebra::Vector3::from(
+                axes.map(|a| a.white_noise_density * a.white_noise_density),
+            ))
+        };
+        let mut white = SystemMatrix::zeros();
+        white
+            .fixed_view_mut::<3, 3>(block::VELOCITY, block::VELOCITY)
+            .copy_from(&(c * squared(&self.accel) * c.transpose() * dt_s));
+        white
+            .fixed_view_mut::<3, 3>(block::ATTITUDE, block::ATTITUDE)
+            .copy_from(&(c * squared(&self.gyro) * c.transpose() * dt_s));
+        let mut q = (phi * white * phi.transpose() + white) * 0.5;
+        for (start, group) in self.gauss_markov_states() {
+            for (k, gm) in group.iter().enumerate() {
+                q[(start + k, start + k)] += gm.discrete_variance(dt_s);
+            }
+        }
+        q
+    }
+
+    /// Steady-state standard deviations of the 12 sensor states in state order (for the
+    /// initial covariance when nothing better is known).
+    pub fn steady_state_sd(&self) -> [f64; STATES - block::GYRO_BIAS] {
+        let mut sd = [0.0; STATES - block::GYRO_BIAS];
+        for (start, group) in self.gauss_markov_states() {
+            for (k, gm) in group.iter().enumerate() {
+                sd[start - block::GYRO_BIAS + k] = gm.sigma;
+            }
+        }
+        sd
+    }
+}
+
+/// The white-noise density of `channel` at the entries a placement refers to.
+fn white_density(
+    bank: &ModelBank,
+    placement: &Placement,
+    channel: Channel,
+) -> Result<f64, SensorModelError> {
+    let at = |temperature_c: f64| {
+        bank.entries
+            .iter()
+            .find(|e| e.temperature_c == temperature_c)
+            .and_then(|e| e.channels.get(&channel))
+            .and_then(|m| m.allan.white_noise_density)
+            .ok_or(SensorModelError::NoWhiteNoise {
+                temperature_c,
+                channel: channel.name(),
+            })
+    };
+    match *placement {
+        Placement::Entry { temperature_c } | Placement::Clamped { temperature_c } => {
+            at(temperature_c)
+        }
+        Placement::Between {
+            lower_c,
+            upper_c,
+            weight,
+        } => Ok(at(lower_c)? * (1.0 - weight) + at(upper_c)? * weight),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // The exact discretisation must reproduce the stationary variance: with x₀ ~ N(0, σ²),
+    // var(x₁) = φ²σ² + q = σ² for every Δt (a closed form), and it must match the Euler
+    // form 2σ²Δt/Tc when Δt ≪ Tc.
+    #[test]
+    fn exact_discretisation_keeps_the_stationary_variance() {
+        let gm = GaussMarkovParameters {
+            correlation_time_s: 120.0,
+            sigma: 3e-4,
+        };
+        for dt in [1e-3, 0.1, 1.0, 60.0, 1e4] {
+            let phi = gm.transition(dt);
+            let total = phi * phi * gm.sigma.powi(2) + gm.discrete_variance(dt);
+            assert!((total / gm.sigma.powi(2) - 1.0).abs() < 1e-12, "dt {dt}");
+        }
+        let dt = 1e-4;
+        let euler = 2.0 * gm.sigma.powi(2) * dt / gm.correlation_time_s;
+        assert!((gm.discrete_variance(dt) / euler - 1.0).abs() < 1e-5);
+    }
+}
