@@ -278,13 +278,8 @@ fn outages_withhold_updates_and_the_covariance_covers_the_drift() {
     let (before, end) = (at(199.0), at(259.0));
     assert!(end.sd[0] > 3.0 * before.sd[0] && end.in_outage && !before.in_outage);
     let e = nav_error(&record, &end.estimate);
-    for axis in 0..2 {
-        assert!(
-            e[axis].abs() < 3.5 * end.sd[axis],
-            "axis {axis}: {} vs sd {}",
-            e[axis],
-            end.sd[axis]
-        );
+    for (axis, (error, sd)) in e.iter().zip(end.sd).take(2).enumerate() {
+        assert!(error.abs() < 3.5 * sd, "axis {axis}: {error} vs sd {sd}");
     }
 }
 
