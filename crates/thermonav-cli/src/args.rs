@@ -36,6 +36,83 @@ pub enum Command {
     Bank(BankArgs),
     /// Simulate thermal-chamber records, a vessel survey, or write the built-in sensor profile.
     Simulate(SimulateArgs),
+    /// GNSS/INS integration (21-state EKF or UKF) with the bank's noise model at a temperature.
+    Integrate(IntegrateArgs),
+}
+
+/// The navigation filters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FilterArg {
+    /// Error-state extended Kalman filter (Joseph form).
+    Ekf,
+    /// Error-state unscented Kalman filter.
+    Ukf,
+}
+
+/// Arguments of `integrate`.
+#[derive(Debug, Args)]
+pub struct IntegrateArgs {
+    /// The IMU CSV (rates or increments).
+    #[arg(long)]
+    pub imu: PathBuf,
+    /// The GNSS CSV (position; optional velocity, heading and standard deviations).
+    #[arg(long)]
+    pub gnss: PathBuf,
+    /// The temperature model bank (JSON, from `characterize`).
+    #[arg(long)]
+    pub bank: PathBuf,
+    /// Use the bank's model at this temperature, °C (the paper's "model of temperature T").
+    #[arg(
+        long,
+        conflicts_with = "operating_temperature_c",
+        allow_hyphen_values = true
+    )]
+    pub model_temperature_c: Option<f64>,
+    /// The sensor's operating temperature, °C; the model is selected with --select. Without
+    /// either temperature, the mean of the IMU file's temp_c column is used.
+    #[arg(long, allow_hyphen_values = true)]
+    pub operating_temperature_c: Option<f64>,
+    /// How to select the model at the operating temperature.
+    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    pub select: SelectArg,
+    /// Which Gauss-Markov family of the bank drives the bias states.
+    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    pub model: GmSourceArg,
+    /// The filter.
+    #[arg(long, value_enum, default_value_t = FilterArg::Ekf)]
+    pub filter: FilterArg,
+    /// GNSS outages: START+DURATION[,START+DURATION...] or every:FIRST,DURATION,PERIOD,COUNT
+    /// (seconds on the files' t_s scale).
+    #[arg(long, default_value = "none")]
+    pub outages: String,
+    /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.0, 0.0, 0.0])]
+    pub lever_arm_m: Vec<f64>,
+    /// Dual-antenna baseline direction in body axes (primary to secondary).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1.0, 0.0, 0.0])]
+    pub baseline: Vec<f64>,
+    /// Start from this reference trajectory's state at the first GNSS epoch instead of
+    /// aligning from GNSS and the accelerometers.
+    #[arg(long)]
+    pub initial_from: Option<PathBuf>,
+    /// Covariance propagation rate, Hz (the nominal state is mechanized at every IMU sample).
+    #[arg(long, default_value_t = 10.0)]
+    pub covariance_rate_hz: f64,
+    /// Solution output rate, Hz.
+    #[arg(long, default_value_t = 10.0)]
+    pub output_rate_hz: f64,
+    /// Ignore GNSS velocities.
+    #[arg(long)]
+    pub no_velocity: bool,
+    /// Ignore dual-antenna headings.
+    #[arg(long)]
+    pub no_heading: bool,
+    /// The solution trajectory CSV; the state file is written beside it as STEM.states.csv.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Allan τ grids.

@@ -40,6 +40,7 @@ mod lines;
 pub mod motion;
 pub mod profile;
 mod rows;
+pub mod solution;
 mod text;
 pub mod trajectory;
 

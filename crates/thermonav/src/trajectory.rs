@@ -5,6 +5,9 @@
 //! local NED frame as Z-Y-X Euler angles: yaw about down, then pitch about the new y, then roll
 //! about the new x.
 
+use crate::frames::{Rotation, Vector};
+use crate::geo::position::Geodetic;
+use crate::ins::state::NavState;
 use crate::time::Timestamp;
 
 /// One epoch of a reference trajectory.
@@ -26,4 +29,35 @@ pub struct TrajectoryPoint {
     pub pitch_rad: f64,
     /// Yaw (heading, rotation about down), rad.
     pub yaw_rad: f64,
+}
+
+impl TrajectoryPoint {
+    /// The point of a navigation state (attitude as Z-Y-X Euler angles).
+    pub fn from_nav_state(s: &NavState) -> Self {
+        let (roll_rad, pitch_rad, yaw_rad) = s.attitude.euler_zyx();
+        Self {
+            time: s.time,
+            latitude_rad: s.position.latitude_rad,
+            longitude_rad: s.position.longitude_rad,
+            height_m: s.position.height_m,
+            velocity_ned_m_s: s.velocity.to_array(),
+            roll_rad,
+            pitch_rad,
+            yaw_rad,
+        }
+    }
+
+    /// The navigation state of the point.
+    pub fn nav_state(&self) -> NavState {
+        NavState {
+            time: self.time,
+            position: Geodetic {
+                latitude_rad: self.latitude_rad,
+                longitude_rad: self.longitude_rad,
+                height_m: self.height_m,
+            },
+            velocity: Vector::from_array(self.velocity_ned_m_s),
+            attitude: Rotation::from_euler_zyx(self.roll_rad, self.pitch_rad, self.yaw_rad),
+        }
+    }
 }

@@ -8,6 +8,7 @@ mod demo;
 mod filter;
 mod fir;
 mod inspect;
+mod integrate;
 mod simulate;
 
 use crate::args::{Cli, Command};
@@ -25,5 +26,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Characterize(args) => characterize::run(&args),
         Command::Bank(args) => bank::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Integrate(args) => integrate::run(&args),
     }
 }

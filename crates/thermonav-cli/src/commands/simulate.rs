@@ -199,7 +199,12 @@ pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure
         imu: args.out.join("imu.csv"),
         gnss: args.out.join("gnss.csv"),
     };
-    let points: Vec<TrajectoryPoint> = record.reference.states.iter().map(point_of).collect();
+    let points: Vec<TrajectoryPoint> = record
+        .reference
+        .states
+        .iter()
+        .map(TrajectoryPoint::from_nav_state)
+        .collect();
     write_trajectory_file(&files.reference, &points).data()?;
     write_imu_file(&files.imu, &record.imu).data()?;
     write_gnss_file(&files.gnss, &record.gnss).data()?;
@@ -215,20 +220,6 @@ pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure
     };
     write_json_atomically(args.out.join("vessel.json"), &summary).data()?;
     Ok(summary)
-}
-
-fn point_of(s: &thermonav::ins::state::NavState) -> TrajectoryPoint {
-    let (roll_rad, pitch_rad, yaw_rad) = s.attitude.euler_zyx();
-    TrajectoryPoint {
-        time: s.time,
-        latitude_rad: s.position.latitude_rad,
-        longitude_rad: s.position.longitude_rad,
-        height_m: s.position.height_m,
-        velocity_ned_m_s: s.velocity.to_array(),
-        roll_rad,
-        pitch_rad,
-        yaw_rad,
-    }
 }
 
 fn run_vessel(args: &VesselArgs) -> Result<(), Failure> {

@@ -56,6 +56,16 @@ pub enum OutageError {
         /// Last data time, s.
         data_end_s: f64,
     },
+    /// A specification that does not parse.
+    #[error(
+        "outage specification \"{spec}\": {reason} (expected START+DURATION[,START+DURATION...] or every:FIRST,DURATION,PERIOD,COUNT, in seconds on the files' t_s scale)"
+    )]
+    Spec {
+        /// The text given.
+        spec: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A time that cannot be represented.
     #[error("outage time {0} s is not a finite number of seconds")]
     Time(f64),
@@ -120,6 +130,52 @@ impl Outages {
         Self::from_start_duration(&pairs)
     }
 
+    /// Parses a specification: `none`, a list `START+DURATION[,START+DURATION...]`, or a
+    /// periodic generator `every:FIRST,DURATION,PERIOD,COUNT`; seconds on the data's time
+    /// scale.
+    ///
+    /// # Errors
+    /// [`OutageError::Spec`] for text that does not parse; otherwise as
+    /// [`Outages::from_start_duration`].
+    pub fn from_spec(spec: &str) -> Result<Self, OutageError> {
+        let bad = |reason: &str| OutageError::Spec {
+            spec: spec.to_owned(),
+            reason: reason.to_owned(),
+        };
+        let number = |text: &str| {
+            text.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(&format!("\"{}\" is not a finite number", text.trim())))
+        };
+        let text = spec.trim();
+        if text.eq_ignore_ascii_case("none") || text.is_empty() {
+            return Ok(Self::none());
+        }
+        if let Some(rest) = text.strip_prefix("every:") {
+            let fields: Vec<&str> = rest.split(',').collect();
+            let [first, duration, period, count] = fields[..] else {
+                return Err(bad("every: takes four values"));
+            };
+            let count: usize = count
+                .trim()
+                .parse()
+                .map_err(|_| bad(&format!("count \"{}\" is not a whole number", count.trim())))?;
+            return Self::periodic(number(first)?, number(duration)?, number(period)?, count);
+        }
+        let pairs = text
+            .split(',')
+            .map(|item| {
+                let (start, duration) = item
+                    .split_once('+')
+                    .ok_or_else(|| bad(&format!("\"{}\" is not START+DURATION", item.trim())))?;
+                Ok((number(start)?, number(duration)?))
+            })
+            .collect::<Result<Vec<_>, OutageError>>()?;
+        Self::from_start_duration(&pairs)
+    }
+
     /// Checks that every window lies within [first, last] of the data.
     ///
     /// # Errors
@@ -175,6 +231,15 @@ mod tests {
             Err(OutageError::Empty { .. })
         ));
         assert!(o.check_within(seconds(0), seconds(400)).is_ok());
+        assert_eq!(Outages::from_spec("every:100,30,60,3").unwrap(), o);
+        assert_eq!(Outages::from_spec("160+30, 100+30,220+30").unwrap(), o);
+        assert_eq!(Outages::from_spec("none").unwrap(), Outages::none());
+        for bad in ["100", "100+x", "every:1,2,3", "every:1,2,3,-1", "5+nan"] {
+            assert!(
+                matches!(Outages::from_spec(bad), Err(OutageError::Spec { .. })),
+                "{bad}"
+            );
+        }
         assert!(o.check_within(seconds(0), seconds(200)).is_err());
     }
 }

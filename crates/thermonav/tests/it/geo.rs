@@ -156,5 +156,8 @@ fn offset_from_inverts_displaced() {
     let far = p.displaced(&Vector::new(2000.0, 0.0, 0.0));
     let curvature = far.ned_from(&p).z() - far.offset_from(&p).z();
     let expected = 2000.0f64.powi(2) / (2.0 * thermonav::geo::wgs84::SEMI_MAJOR_AXIS_M);
-    assert!((curvature / expected - 1.0).abs() < 0.02, "{curvature} vs {expected}");
+    assert!(
+        (curvature / expected - 1.0).abs() < 0.02,
+        "{curvature} vs {expected}"
+    );
 }

@@ -1,0 +1,125 @@
+//! The navigation solution's state file: per epoch, the standard deviations of the error
+//! states and the estimated sensor errors, beside the solution trajectory (written with
+//! [`crate::trajectory`], so that the solution reads back as a reference trajectory). The
+//! split follows KF-GINS, which writes the navigation result, the IMU errors and the standard
+//! deviations to separate files.
+//!
+//! ```text
+//! t_s,sd_n_m,sd_e_m,sd_d_m,sd_vn_m_s,sd_ve_m_s,sd_vd_m_s,sd_att_n_deg,sd_att_e_deg,sd_att_d_deg,
+//! bgx_deg_h,bgy_deg_h,bgz_deg_h,bax_mg,bay_mg,baz_mg,sgx_ppm,sgy_ppm,sgz_ppm,sax_ppm,say_ppm,saz_ppm,
+//! sd_bgx_deg_h,…,sd_saz_ppm,in_outage
+//! ```
+
+use crate::atomic::write_atomically;
+use crate::error::WriteError;
+use crate::text::{write_time, write_value};
+use std::io::Write;
+use std::path::Path;
+use thermonav::ins::error_model::STATES;
+use thermonav::nav::solution::SolutionEpoch;
+use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
+
+/// Header names of the 21 standard deviations, in state order.
+const SD_NAMES: [&str; STATES] = [
+    "sd_n_m",
+    "sd_e_m",
+    "sd_d_m",
+    "sd_vn_m_s",
+    "sd_ve_m_s",
+    "sd_vd_m_s",
+    "sd_att_n_deg",
+    "sd_att_e_deg",
+    "sd_att_d_deg",
+    "sd_bgx_deg_h",
+    "sd_bgy_deg_h",
+    "sd_bgz_deg_h",
+    "sd_bax_mg",
+    "sd_bay_mg",
+    "sd_baz_mg",
+    "sd_sgx_ppm",
+    "sd_sgy_ppm",
+    "sd_sgz_ppm",
+    "sd_sax_ppm",
+    "sd_say_ppm",
+    "sd_saz_ppm",
+];
+
+/// Header names of the 12 sensor-error estimates.
+const SENSOR_NAMES: [&str; 12] = [
+    "bgx_deg_h",
+    "bgy_deg_h",
+    "bgz_deg_h",
+    "bax_mg",
+    "bay_mg",
+    "baz_mg",
+    "sgx_ppm",
+    "sgy_ppm",
+    "sgz_ppm",
+    "sax_ppm",
+    "say_ppm",
+    "saz_ppm",
+];
+
+/// The factor from the SI value of state `i` to its unit in the file.
+fn file_unit_factor(i: usize) -> f64 {
+    match i {
+        0..=5 => 1.0,
+        6..=8 => 1f64.to_degrees(),
+        9..=11 => rad_per_s_to_deg_per_h(1.0),
+        12..=14 => 1000.0 / STANDARD_GRAVITY_M_S2,
+        _ => 1e6,
+    }
+}
+
+/// Writes the state file of `epochs`.
+///
+/// # Errors
+/// [`WriteError::Empty`] for no epoch, [`WriteError::Io`].
+pub fn write_solution_states(
+    mut out: impl Write,
+    epochs: &[SolutionEpoch],
+) -> Result<(), WriteError> {
+    if epochs.is_empty() {
+        return Err(WriteError::Empty {
+            what: "solution epochs",
+        });
+    }
+    let header: Vec<&str> = std::iter::once("t_s")
+        .chain(SD_NAMES[..9].iter().copied())
+        .chain(SENSOR_NAMES)
+        .chain(SD_NAMES[9..].iter().copied())
+        .chain(std::iter::once("in_outage"))
+        .collect();
+    writeln!(out, "{}", header.join(","))?;
+    for epoch in epochs {
+        write_time(&mut out, epoch.estimate.nav.time)?;
+        let s = &epoch.estimate.sensors;
+        let sensors = s
+            .gyro_bias_rad_s
+            .iter()
+            .chain(&s.accel_bias_m_s2)
+            .chain(&s.gyro_scale)
+            .chain(&s.accel_scale)
+            .enumerate()
+            .map(|(k, v)| v * file_unit_factor(9 + k));
+        let sd = |range: std::ops::Range<usize>| range.map(|i| epoch.sd[i] * file_unit_factor(i));
+        for value in sd(0..9).chain(sensors).chain(sd(9..STATES)) {
+            out.write_all(b",")?;
+            write_value(&mut out, value)?;
+        }
+        writeln!(out, ",{}", u8::from(epoch.in_outage))?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// Writes the state file to `path` atomically.
+///
+/// # Errors
+/// As [`write_solution_states`], plus those of [`write_atomically`].
+pub fn write_solution_states_file(
+    path: impl AsRef<Path>,
+    epochs: &[SolutionEpoch],
+) -> Result<(), WriteError> {
+    write_atomically(path, |file| write_solution_states(file, epochs))
+}
