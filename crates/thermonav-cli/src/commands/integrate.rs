@@ -254,6 +254,7 @@ struct InnovationJson {
     dimension: usize,
     offered: usize,
     rejected: usize,
+    forced: usize,
     mean_nis: f64,
     fraction_nis_in_95: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -272,6 +273,7 @@ impl From<&InnovationStatistics> for InnovationJson {
             dimension: s.dimension,
             offered: s.offered,
             rejected: s.rejected,
+            forced: s.forced,
             mean_nis: s.mean_nis,
             fraction_nis_in_95: s.fraction_nis_in_95,
             rms_innovation_ned_m: (s.kind == MeasurementKind::Position).then_some(rms),
@@ -443,9 +445,10 @@ fn print_summary(s: &Summary) {
         rows.push((
             i.kind.name(),
             format!(
-                "{} updates, {} rejected, mean NIS {:.2} (expected {}), {:.0} % inside the 95 % band",
+                "{} updates, {} rejected ({} forced in after a run of rejections), mean NIS {:.2} (expected {}), {:.0} % inside the 95 % band",
                 i.offered,
                 i.rejected,
+                i.forced,
                 i.mean_nis,
                 i.dimension,
                 100.0 * i.fraction_nis_in_95

@@ -3,6 +3,7 @@
 mod bad_input;
 mod commands;
 mod modelling;
+mod navigation;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

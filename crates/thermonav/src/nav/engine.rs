@@ -92,6 +92,11 @@ pub struct EngineSettings {
     pub covariance_interval_s: f64,
     /// Probability of the chi-square innovation gate; `None` accepts every update.
     pub gate_probability: Option<f64>,
+    /// After this many consecutive rejections of one measurement kind, the next update of
+    /// that kind is applied whatever its NIS (and counted as forced): a filter whose model
+    /// lets its covariance become too small would otherwise reject every later fix and run
+    /// free.
+    pub gate_recovery_after: usize,
     /// Antennas.
     pub geometry: AntennaGeometry,
     /// Measurements used.
@@ -118,6 +123,7 @@ impl Default for EngineSettings {
             filter: FilterKind::Ekf,
             covariance_interval_s: 0.1,
             gate_probability: Some(0.9999),
+            gate_recovery_after: 5,
             geometry: AntennaGeometry::default(),
             aiding: Aiding::default(),
             outages: Outages::none(),
@@ -252,6 +258,7 @@ struct Run<'a> {
     model: &'a ImuStochasticModel,
     settings: &'a EngineSettings,
     gates: [Option<ChiSquareGate>; 2],
+    consecutive_rejections: [usize; 3],
     solution: Solution,
     next_output: Timestamp,
     output_step: Duration,
@@ -353,6 +360,7 @@ impl<'a> Run<'a> {
             model,
             settings,
             gates: [gate(3), gate(1)],
+            consecutive_rejections: [0; 3],
             solution: Solution {
                 epochs: Vec::new(),
                 innovations: Vec::new(),
@@ -417,10 +425,15 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
+    /// Standard deviations of the error states now.
+    fn current_sd(&self) -> [f64; STATES] {
+        let p = self.core.covariance();
+        std::array::from_fn(|i| p[(i, i)].max(0.0).sqrt())
+    }
+
     /// Appends a solution epoch at the current time and schedules the next.
     fn record(&mut self) {
-        let p = self.core.covariance();
-        let sd = std::array::from_fn(|i| p[(i, i)].max(0.0).sqrt());
+        let sd = self.current_sd();
         let time = self.estimate.nav.time;
         if self.solution.epochs.last().map(|e| e.estimate.nav.time) == Some(time) {
             return;
@@ -562,7 +575,19 @@ impl<'a> Run<'a> {
             })?;
         }
         self.window = Window::at(self.estimate);
+        self.refresh_last_epoch();
         Ok(())
+    }
+
+    /// An epoch recorded at this fix's time, before its updates, shows the updated state.
+    fn refresh_last_epoch(&mut self) {
+        let (time, sd) = (self.estimate.nav.time, self.current_sd());
+        if let Some(last) = self.solution.epochs.last_mut() {
+            if last.estimate.nav.time == time {
+                last.estimate = self.estimate;
+                last.sd = sd;
+            }
+        }
     }
 
     /// One gated update: the EKF from the linearisation, the UKF from the nonlinear model
@@ -596,7 +621,11 @@ impl<'a> Run<'a> {
             }
         };
         let (x, core, (innovation, s, nis)) = outcome.map_err(|e: FilterError| self.diverged(e))?;
-        let accepted = gate.is_none_or(|g| g.accepts(nis));
+        let passed = gate.is_none_or(|g| g.accepts(nis));
+        let streak = &mut self.consecutive_rejections[kind as usize];
+        let forced = !passed && *streak >= self.settings.gate_recovery_after;
+        *streak = if passed || forced { 0 } else { *streak + 1 };
+        let accepted = passed || forced;
         self.solution.innovations.push(InnovationRecord {
             time: self.estimate.nav.time,
             kind,
@@ -610,6 +639,7 @@ impl<'a> Run<'a> {
             }),
             nis,
             accepted,
+            forced,
         });
         if accepted {
             self.core = core;

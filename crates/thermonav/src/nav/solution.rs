@@ -35,6 +35,8 @@ pub struct InnovationRecord {
     pub nis: f64,
     /// False when the chi-square gate rejected it.
     pub accepted: bool,
+    /// True when it failed the gate but was applied after too many rejections in a row.
+    pub forced: bool,
 }
 
 /// Statistics of one measurement kind over a run.
@@ -48,6 +50,8 @@ pub struct InnovationStatistics {
     pub offered: usize,
     /// Updates the gate rejected.
     pub rejected: usize,
+    /// Updates that failed the gate but were applied to recover from a run of rejections.
+    pub forced: usize,
     /// Mean NIS over accepted updates (its expectation is `dimension` for a consistent filter).
     pub mean_nis: f64,
     /// Fraction of accepted NIS inside the two-sided 95 % chi-square interval.
@@ -113,6 +117,7 @@ fn statistics_of(
         dimension,
         offered: of_kind.len(),
         rejected: of_kind.len() - accepted.len(),
+        forced: of_kind.iter().filter(|r| r.forced).count(),
         mean_nis,
         fraction_nis_in_95: inside,
         rms_innovation: rms,
