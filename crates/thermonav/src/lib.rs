@@ -17,6 +17,7 @@
 //! ## Modules
 //! - [`time`]: exact timestamps and durations.
 //! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
+//! - [`evaluation`]: outage metrics, the temperature-model tournament and its significance.
 //! - [`filter`]: generic UKF and EKF steps, sigma points, chi-square gating.
 //! - [`frames`]: vectors and rotations typed by frame (body FRD, NED, ECEF).
 //! - [`geo`]: WGS84, normal gravity, Earth rate.
@@ -30,6 +31,7 @@
 //!   temperature model bank.
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
+pub mod evaluation;
 pub mod filter;
 pub mod frames;
 pub mod geo;

@@ -3,6 +3,7 @@
 mod allan;
 mod ar;
 mod error_model;
+mod evaluation;
 mod gauss_markov;
 mod geo;
 mod ideal_imu;

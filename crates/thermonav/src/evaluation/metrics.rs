@@ -1,0 +1,309 @@
+//! Errors of a navigation solution against a reference trajectory inside GNSS outages.
+//!
+//! At every solution epoch inside an outage the reference is interpolated linearly in time
+//! (latitude, longitude, height, and yaw on the circle); the north and east errors are the
+//! NED components of the solution's position relative to it, the heading error is the
+//! wrapped yaw difference.
+
+use crate::geo::position::Geodetic;
+use crate::nav::outage::Outage;
+use crate::nav::solution::SolutionEpoch;
+use crate::sim::vessel::wrap_pi;
+use crate::time::Timestamp;
+use crate::trajectory::TrajectoryPoint;
+use serde::Serialize;
+
+/// The error at one epoch.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EpochError {
+    /// Epoch, s.
+    pub time_s: f64,
+    /// Seconds since the outage began.
+    pub since_outage_start_s: f64,
+    /// Solution minus reference, north, m.
+    pub north_m: f64,
+    /// Solution minus reference, east, m.
+    pub east_m: f64,
+    /// Horizontal distance, m.
+    pub horizontal_m: f64,
+    /// Solution minus reference heading, wrapped to (−180, 180], deg.
+    pub heading_deg: f64,
+}
+
+/// Figures of one outage.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OutageMetrics {
+    /// Outage start, s.
+    pub start_s: f64,
+    /// Outage end, s.
+    pub end_s: f64,
+    /// Epochs evaluated.
+    pub epochs: usize,
+    /// RMS north error, m.
+    pub rms_north_m: f64,
+    /// RMS east error, m.
+    pub rms_east_m: f64,
+    /// RMS horizontal error, m.
+    pub rms_horizontal_m: f64,
+    /// RMS heading error, deg.
+    pub rms_heading_deg: f64,
+    /// Largest |north error|, m.
+    pub max_north_m: f64,
+    /// Largest |east error|, m.
+    pub max_east_m: f64,
+    /// Largest horizontal error, m.
+    pub max_horizontal_m: f64,
+    /// Largest |heading error|, deg.
+    pub max_heading_deg: f64,
+}
+
+/// Figures of a whole run over all its outages.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunMetrics {
+    /// Mean over outages of the per-outage RMS north error, m (the paper's figure).
+    pub rms_north_m: f64,
+    /// Mean over outages of the per-outage RMS east error, m.
+    pub rms_east_m: f64,
+    /// Mean over outages of the per-outage RMS horizontal error, m.
+    pub rms_horizontal_m: f64,
+    /// Mean over outages of the per-outage RMS heading error, deg.
+    pub rms_heading_deg: f64,
+    /// RMS over outages of the per-outage maximum horizontal error, m (KF-GINS's figure).
+    pub max_drift_horizontal_m: f64,
+    /// RMS over outages of the per-outage maximum |north error|, m.
+    pub rms_of_max_north_m: f64,
+    /// RMS over outages of the per-outage maximum |east error|, m.
+    pub rms_of_max_east_m: f64,
+    /// RMS over outages of the per-outage maximum |heading error|, deg.
+    pub rms_of_max_heading_deg: f64,
+    /// Per outage.
+    pub per_outage: Vec<OutageMetrics>,
+}
+
+/// The metrics a tournament ranks by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Metric {
+    /// Mean per-outage RMS north error.
+    RmsNorth,
+    /// Mean per-outage RMS east error.
+    RmsEast,
+    /// Mean per-outage RMS horizontal error.
+    RmsHorizontal,
+    /// Mean per-outage RMS heading error.
+    RmsHeading,
+    /// RMS of the per-outage maximum horizontal error.
+    MaxDriftHorizontal,
+}
+
+impl Metric {
+    /// Every metric.
+    pub const ALL: [Metric; 5] = [
+        Metric::RmsNorth,
+        Metric::RmsEast,
+        Metric::RmsHorizontal,
+        Metric::RmsHeading,
+        Metric::MaxDriftHorizontal,
+    ];
+
+    /// Key with its unit, as in the JSON output.
+    pub fn key(self) -> &'static str {
+        match self {
+            Metric::RmsNorth => "rms_north_m",
+            Metric::RmsEast => "rms_east_m",
+            Metric::RmsHorizontal => "rms_horizontal_m",
+            Metric::RmsHeading => "rms_heading_deg",
+            Metric::MaxDriftHorizontal => "max_drift_horizontal_m",
+        }
+    }
+
+    /// The value of this metric in `m`.
+    pub fn of(self, m: &RunMetrics) -> f64 {
+        match self {
+            Metric::RmsNorth => m.rms_north_m,
+            Metric::RmsEast => m.rms_east_m,
+            Metric::RmsHorizontal => m.rms_horizontal_m,
+            Metric::RmsHeading => m.rms_heading_deg,
+            Metric::MaxDriftHorizontal => m.max_drift_horizontal_m,
+        }
+    }
+}
+
+/// Why a solution cannot be evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MetricsError {
+    /// The reference does not cover an outage.
+    #[error(
+        "the reference trajectory ({first_s:.3}-{last_s:.3} s) does not cover the outage {start_s:.3}-{end_s:.3} s"
+    )]
+    ReferenceCoverage {
+        /// Outage start, s.
+        start_s: f64,
+        /// Outage end, s.
+        end_s: f64,
+        /// First reference time, s.
+        first_s: f64,
+        /// Last reference time, s.
+        last_s: f64,
+    },
+    /// No solution epoch inside an outage.
+    #[error("no solution epoch inside the outage {start_s:.3}-{end_s:.3} s")]
+    NoEpochs {
+        /// Outage start, s.
+        start_s: f64,
+        /// Outage end, s.
+        end_s: f64,
+    },
+    /// No outage to evaluate.
+    #[error("no outage to evaluate")]
+    NoOutage,
+}
+
+/// The reference at `t`, linearly interpolated (yaw on the circle); `None` outside it.
+pub fn reference_at(reference: &[TrajectoryPoint], t: Timestamp) -> Option<(Geodetic, f64)> {
+    let k = reference.partition_point(|p| p.time < t);
+    let b = reference.get(k)?;
+    if b.time == t {
+        return Some((position_of(b), b.yaw_rad));
+    }
+    let a = reference.get(k.checked_sub(1)?)?;
+    let w = t.since(a.time).as_seconds() / b.time.since(a.time).as_seconds();
+    let lerp = |x: f64, y: f64| x + w * (y - x);
+    let position = Geodetic {
+        latitude_rad: lerp(a.latitude_rad, b.latitude_rad),
+        longitude_rad: lerp(a.longitude_rad, b.longitude_rad),
+        height_m: lerp(a.height_m, b.height_m),
+    };
+    Some((position, a.yaw_rad + w * wrap_pi(b.yaw_rad - a.yaw_rad)))
+}
+
+fn position_of(p: &TrajectoryPoint) -> Geodetic {
+    Geodetic {
+        latitude_rad: p.latitude_rad,
+        longitude_rad: p.longitude_rad,
+        height_m: p.height_m,
+    }
+}
+
+/// The errors at the solution epochs inside `outage`.
+///
+/// # Errors
+/// [`MetricsError`] when the reference does not cover the outage or no epoch falls in it.
+pub fn outage_errors(
+    reference: &[TrajectoryPoint],
+    epochs: &[SolutionEpoch],
+    outage: &Outage,
+) -> Result<Vec<EpochError>, MetricsError> {
+    let span = |o: &Outage| (o.start.as_seconds(), o.end.as_seconds());
+    let (start_s, end_s) = span(outage);
+    let (Some(first), Some(last)) = (reference.first(), reference.last()) else {
+        return Err(MetricsError::ReferenceCoverage {
+            start_s,
+            end_s,
+            first_s: f64::NAN,
+            last_s: f64::NAN,
+        });
+    };
+    let inside: Vec<&SolutionEpoch> = epochs
+        .iter()
+        .filter(|e| outage.contains(e.estimate.nav.time))
+        .collect();
+    if inside.is_empty() {
+        return Err(MetricsError::NoEpochs { start_s, end_s });
+    }
+    inside
+        .iter()
+        .map(|e| {
+            let nav = &e.estimate.nav;
+            let (position, yaw) =
+                reference_at(reference, nav.time).ok_or(MetricsError::ReferenceCoverage {
+                    start_s,
+                    end_s,
+                    first_s: first.time.as_seconds(),
+                    last_s: last.time.as_seconds(),
+                })?;
+            let d = nav.position.ned_from(&position);
+            let (_, _, solution_yaw) = nav.attitude.euler_zyx();
+            Ok(EpochError {
+                time_s: nav.time.as_seconds(),
+                since_outage_start_s: nav.time.since(outage.start).as_seconds(),
+                north_m: d.x(),
+                east_m: d.y(),
+                horizontal_m: d.x().hypot(d.y()),
+                heading_deg: wrap_pi(solution_yaw - yaw).to_degrees(),
+            })
+        })
+        .collect()
+}
+
+fn rms(values: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
+    if n == 0 { 0.0 } else { (sum / n as f64).sqrt() }
+}
+
+fn max_abs(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0, |m: f64, v| m.max(v.abs()))
+}
+
+/// The figures of one outage from its epoch errors.
+pub fn outage_metrics(outage: &Outage, errors: &[EpochError]) -> OutageMetrics {
+    let of = |f: fn(&EpochError) -> f64| errors.iter().map(f);
+    OutageMetrics {
+        start_s: outage.start.as_seconds(),
+        end_s: outage.end.as_seconds(),
+        epochs: errors.len(),
+        rms_north_m: rms(of(|e| e.north_m)),
+        rms_east_m: rms(of(|e| e.east_m)),
+        rms_horizontal_m: rms(of(|e| e.horizontal_m)),
+        rms_heading_deg: rms(of(|e| e.heading_deg)),
+        max_north_m: max_abs(of(|e| e.north_m)),
+        max_east_m: max_abs(of(|e| e.east_m)),
+        max_horizontal_m: max_abs(of(|e| e.horizontal_m)),
+        max_heading_deg: max_abs(of(|e| e.heading_deg)),
+    }
+}
+
+/// The overall figures from the per-outage ones.
+///
+/// # Errors
+/// [`MetricsError::NoOutage`] for an empty list.
+pub fn run_metrics(per_outage: Vec<OutageMetrics>) -> Result<RunMetrics, MetricsError> {
+    if per_outage.is_empty() {
+        return Err(MetricsError::NoOutage);
+    }
+    let n = per_outage.len() as f64;
+    let mean = |f: fn(&OutageMetrics) -> f64| per_outage.iter().map(f).sum::<f64>() / n;
+    let rms_of = |f: fn(&OutageMetrics) -> f64| rms(per_outage.iter().map(f));
+    Ok(RunMetrics {
+        rms_north_m: mean(|o| o.rms_north_m),
+        rms_east_m: mean(|o| o.rms_east_m),
+        rms_horizontal_m: mean(|o| o.rms_horizontal_m),
+        rms_heading_deg: mean(|o| o.rms_heading_deg),
+        max_drift_horizontal_m: rms_of(|o| o.max_horizontal_m),
+        rms_of_max_north_m: rms_of(|o| o.max_north_m),
+        rms_of_max_east_m: rms_of(|o| o.max_east_m),
+        rms_of_max_heading_deg: rms_of(|o| o.max_heading_deg),
+        per_outage,
+    })
+}
+
+/// Errors inside every outage and the run's figures.
+///
+/// # Errors
+/// As [`outage_errors`] and [`run_metrics`].
+pub fn evaluate_solution(
+    reference: &[TrajectoryPoint],
+    epochs: &[SolutionEpoch],
+    outages: &[Outage],
+) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {
+    let errors = outages
+        .iter()
+        .map(|o| outage_errors(reference, epochs, o))
+        .collect::<Result<Vec<_>, _>>()?;
+    let per_outage = outages
+        .iter()
+        .zip(&errors)
+        .map(|(o, e)| outage_metrics(o, e))
+        .collect();
+    Ok((run_metrics(per_outage)?, errors))
+}

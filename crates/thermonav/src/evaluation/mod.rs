@@ -1,0 +1,17 @@
+//! The paper's Steps 2-3: INS-only errors inside GNSS outages, per model, and the tournament
+//! that ranks the temperature models by them.
+//!
+//! - [`metrics`]: errors of a solution against a reference inside each outage; per-outage RMS
+//!   and maximum; overall figures as the paper reports them (mean of the per-outage RMS) and as
+//!   KF-GINS does (RMS of the per-outage maxima).
+//! - [`candidates`]: the models that compete: every bank entry, the bank interpolated at the
+//!   operating temperature, the temperature-blind mean of the bank, and data-sheet values.
+//! - [`tournament`]: every candidate through the same filter on the same data, in parallel,
+//!   and the ranking.
+//! - [`significance`]: Monte Carlo summaries (mean and 95 % interval per metric) and the
+//!   paired test of the winner against the runner-up.
+
+pub mod candidates;
+pub mod metrics;
+pub mod significance;
+pub mod tournament;

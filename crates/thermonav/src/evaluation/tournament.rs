@@ -1,0 +1,236 @@
+//! Every candidate model through the same filter on the same data (in parallel), the
+//! outage metrics of each, the ranking, and its Monte Carlo significance.
+
+use super::candidates::{Candidate, CandidateKind};
+use super::metrics::{EpochError, Metric, RunMetrics, evaluate_solution};
+use super::significance::{MeanInterval, PairedTest, mean_interval, paired_t_test};
+use crate::gnss::GnssFix;
+use crate::ins::error_model::SystemMatrix;
+use crate::ins::state::Increment;
+use crate::nav::engine::{EngineSettings, FilterKind, run};
+use crate::nav::error_state::Estimate;
+use crate::nav::solution::InnovationStatistics;
+use crate::trajectory::TrajectoryPoint;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// The data and settings every candidate is run on.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// IMU increments.
+    pub increments: Vec<Increment>,
+    /// GNSS fixes.
+    pub gnss: Vec<GnssFix>,
+    /// Reference trajectory (covering every outage).
+    pub reference: Vec<TrajectoryPoint>,
+    /// Initial estimate.
+    pub initial: Estimate,
+    /// Initial covariance.
+    pub initial_covariance: SystemMatrix,
+    /// Filter settings, outages included (the filter kind is set per run).
+    pub settings: EngineSettings,
+}
+
+/// What a run of one candidate gave.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Evaluated {
+    /// The outage figures.
+    pub metrics: RunMetrics,
+    /// Per-epoch errors inside each outage.
+    #[serde(skip)]
+    pub errors: Vec<Vec<EpochError>>,
+    /// Innovation statistics of the run.
+    pub innovations: Vec<InnovationStatistics>,
+}
+
+/// One candidate through one filter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelResult {
+    /// Candidate label.
+    pub label: String,
+    /// Candidate kind.
+    pub candidate: CandidateKind,
+    /// The filter.
+    pub filter: FilterKind,
+    /// The figures, or why the run failed (divergence).
+    pub outcome: Result<Evaluated, String>,
+}
+
+impl ModelResult {
+    /// The value of `metric`, when the run succeeded.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        self.outcome.as_ref().ok().map(|e| metric.of(&e.metrics))
+    }
+}
+
+/// Runs every candidate through every filter on `scenario`, in parallel; the results are in
+/// candidate-major order.
+pub fn run_tournament(
+    scenario: &Scenario,
+    candidates: &[Candidate],
+    filters: &[FilterKind],
+) -> Vec<ModelResult> {
+    let pairs: Vec<(&Candidate, FilterKind)> = candidates
+        .iter()
+        .flat_map(|c| filters.iter().map(move |f| (c, *f)))
+        .collect();
+    pairs
+        .par_iter()
+        .map(|(candidate, filter)| run_one(scenario, candidate, *filter))
+        .collect()
+}
+
+fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> ModelResult {
+    let settings = EngineSettings {
+        filter,
+        ..scenario.settings.clone()
+    };
+    let outcome = run(
+        &scenario.increments,
+        &scenario.gnss,
+        scenario.initial,
+        scenario.initial_covariance,
+        &candidate.model,
+        &settings,
+        &mut |_| {},
+    )
+    .map_err(|e| e.to_string())
+    .and_then(|solution| {
+        let (metrics, errors) = evaluate_solution(
+            &scenario.reference,
+            &solution.epochs,
+            settings.outages.windows(),
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(Evaluated {
+            metrics,
+            errors,
+            innovations: solution.innovation_statistics(),
+        })
+    });
+    ModelResult {
+        label: candidate.label.clone(),
+        candidate: candidate.kind,
+        filter,
+        outcome,
+    }
+}
+
+/// The successful results of `filter`, best (lowest `metric`) first.
+pub fn ranked(results: &[ModelResult], filter: FilterKind, metric: Metric) -> Vec<&ModelResult> {
+    let mut ok: Vec<&ModelResult> = results
+        .iter()
+        .filter(|r| r.filter == filter && r.value(metric).is_some())
+        .collect();
+    ok.sort_by(|a, b| {
+        let (x, y) = (
+            a.value(metric).unwrap_or(f64::INFINITY),
+            b.value(metric).unwrap_or(f64::INFINITY),
+        );
+        x.total_cmp(&y)
+    });
+    ok
+}
+
+/// One model's metrics over the Monte Carlo replicates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelSummary {
+    /// Candidate label.
+    pub label: String,
+    /// The filter.
+    pub filter: FilterKind,
+    /// Per metric key, the mean and its 95 % interval.
+    pub ci95: Vec<(Metric, MeanInterval)>,
+    /// Replicates in which the run failed.
+    pub failures: usize,
+}
+
+/// Whether the winner of one metric beats the runner-up beyond the replicate noise.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Significance {
+    /// The filter.
+    pub filter: FilterKind,
+    /// The metric.
+    pub metric: Metric,
+    /// Lowest mean over the replicates.
+    pub winner: String,
+    /// Second lowest.
+    pub runner_up: String,
+    /// Paired t-test of winner − runner-up over the replicates.
+    pub test: Option<PairedTest>,
+    /// p < 0.05.
+    pub significant: bool,
+}
+
+/// Per-model summaries and winner-against-runner-up tests over replicates, each replicate
+/// holding the same candidates and filters in the same order. A model with a failed run in
+/// any replicate is left out of the tests.
+pub fn summarize_replicates(
+    replicates: &[Vec<ModelResult>],
+) -> (Vec<ModelSummary>, Vec<Significance>) {
+    let Some(first) = replicates.first() else {
+        return (Vec::new(), Vec::new());
+    };
+    let values = |index: usize, metric: Metric| -> Vec<Option<f64>> {
+        replicates
+            .iter()
+            .map(|r| r.get(index).and_then(|m| m.value(metric)))
+            .collect()
+    };
+    let summaries: Vec<ModelSummary> = first
+        .iter()
+        .enumerate()
+        .map(|(i, m)| ModelSummary {
+            label: m.label.clone(),
+            filter: m.filter,
+            ci95: Metric::ALL
+                .iter()
+                .filter_map(|&metric| {
+                    let v: Vec<f64> = values(i, metric).into_iter().flatten().collect();
+                    mean_interval(&v).map(|ci| (metric, ci))
+                })
+                .collect(),
+            failures: values(i, Metric::RmsHorizontal)
+                .iter()
+                .filter(|v| v.is_none())
+                .count(),
+        })
+        .collect();
+    let mut tests = Vec::new();
+    let mut filters: Vec<FilterKind> = Vec::new();
+    for m in first {
+        if !filters.contains(&m.filter) {
+            filters.push(m.filter);
+        }
+    }
+    for filter in filters {
+        for metric in Metric::ALL {
+            let complete: Vec<(usize, Vec<f64>)> = first
+                .iter()
+                .enumerate()
+                .filter(|(_, m)| m.filter == filter)
+                .filter_map(|(i, _)| {
+                    values(i, metric)
+                        .into_iter()
+                        .collect::<Option<Vec<f64>>>()
+                        .map(|v| (i, v))
+                })
+                .collect();
+            let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+            let mut order: Vec<&(usize, Vec<f64>)> = complete.iter().collect();
+            order.sort_by(|a, b| mean(&a.1).total_cmp(&mean(&b.1)));
+            if let [winner, runner_up, ..] = order[..] {
+                let test = paired_t_test(&winner.1, &runner_up.1);
+                tests.push(Significance {
+                    filter,
+                    metric,
+                    winner: first[winner.0].label.clone(),
+                    runner_up: first[runner_up.0].label.clone(),
+                    significant: test.is_some_and(|t| t.p_value < 0.05),
+                    test,
+                });
+            }
+        }
+    }
+    (summaries, tests)
+}
