@@ -23,6 +23,7 @@ use thermonav::nav::outage::{Outage, Outages};
 use thermonav::nav::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior};
 use thermonav::nav::solution::{InnovationStatistics, Solution};
 use thermonav::stoch::bank::GaussMarkovSource;
+use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
 use thermonav_io::solution::write_solution_states_file;
@@ -32,7 +33,7 @@ use thermonav_io::{
 
 /// Runs `integrate`.
 pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
-    let settings = engine_settings(args)?;
+    let mut settings = engine_settings(args)?;
     let series = read_imu_file(&args.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&args.gnss, Strictness::Strict).data()?;
     let bank = read_bank(&args.bank)?;
@@ -47,11 +48,7 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
             args.imu.display()
         )));
     };
-    settings
-        .outages
-        .check_within(first.time, last.time)
-        .map_err(|e| anyhow!("--outages: {e}"))
-        .usage()?;
+    settings.outages = outages_in(&args.outages, first.time, last.time)?;
     let (initial, initial_source) = initial_estimate(args, &increments, &gnss, &settings)?;
     let bar = crate::progress::bar(
         increments.len(),
@@ -112,9 +109,6 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             "--baseline must have a horizontal component to define a heading"
         )));
     }
-    let outages = Outages::from_spec(&args.outages)
-        .map_err(|e| anyhow!("--outages: {e}"))
-        .usage()?;
     Ok(EngineSettings {
         filter: match args.filter {
             FilterArg::Ekf => FilterKind::Ekf,
@@ -131,9 +125,17 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             velocity: !args.no_velocity,
             heading: !args.no_heading,
         },
-        outages,
         ..EngineSettings::default()
     })
+}
+
+/// The outages of a specification over the data span, each inside the data.
+pub fn outages_in(spec: &str, first: Timestamp, last: Timestamp) -> Result<Outages, Failure> {
+    let outages = Outages::from_spec(spec, (first, last))
+        .and_then(|o| o.check_within(first, last).map(|()| o))
+        .map_err(|e| anyhow!("--outages: {e}"))
+        .usage()?;
+    Ok(outages)
 }
 
 /// The temperature and rule from the arguments, or the IMU file's mean temp_c.

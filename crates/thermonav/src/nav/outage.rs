@@ -130,14 +130,55 @@ impl Outages {
         Self::from_start_duration(&pairs)
     }
 
-    /// Parses a specification: `none`, a list `START+DURATION[,START+DURATION...]`, or a
-    /// periodic generator `every:FIRST,DURATION,PERIOD,COUNT`; seconds on the data's time
-    /// scale.
+    /// `count` outages of `duration_s` spread evenly over the data [first, last]: equal gaps g
+    /// before each outage and g/2 after the last, so count·(g + duration) + g/2 = span (the
+    /// arrangement of the paper's Figure 6, with time to converge before the first).
+    ///
+    /// # Errors
+    /// [`OutageError::Spec`] when they do not fit; otherwise as
+    /// [`Outages::from_start_duration`].
+    pub fn spread(
+        first: Timestamp,
+        last: Timestamp,
+        count: usize,
+        duration_s: f64,
+    ) -> Result<Self, OutageError> {
+        let span = last.since(first).as_seconds();
+        let gap = (span - count as f64 * duration_s) / (count as f64 + 0.5);
+        if count == 0 || gap.is_nan() || gap <= 0.0 {
+            return Err(OutageError::Spec {
+                spec: format!("spread:{count},{duration_s}"),
+                reason: format!(
+                    "{count} outages of {duration_s} s do not fit in {span:.1} s of data"
+                ),
+            });
+        }
+        let start = first.as_seconds() + gap;
+        Self::periodic(start, duration_s, gap + duration_s, count)
+    }
+
+    /// Every window moved by `offset_s`.
+    ///
+    /// # Errors
+    /// As [`Outages::from_start_duration`].
+    pub fn shifted(&self, offset_s: f64) -> Result<Self, OutageError> {
+        let pairs: Vec<(f64, f64)> = self
+            .windows
+            .iter()
+            .map(|w| (w.start.as_seconds() + offset_s, w.duration_s()))
+            .collect();
+        Self::from_start_duration(&pairs)
+    }
+
+    /// Parses a specification: `none`; a list `START+DURATION[,START+DURATION...]`; a
+    /// periodic generator `every:FIRST,DURATION,PERIOD,COUNT`; or `spread:COUNT,DURATION`,
+    /// spread over the data span `data` as [`Outages::spread`] does. Seconds on the data's
+    /// time scale.
     ///
     /// # Errors
     /// [`OutageError::Spec`] for text that does not parse; otherwise as
     /// [`Outages::from_start_duration`].
-    pub fn from_spec(spec: &str) -> Result<Self, OutageError> {
+    pub fn from_spec(spec: &str, data: (Timestamp, Timestamp)) -> Result<Self, OutageError> {
         let bad = |reason: &str| OutageError::Spec {
             spec: spec.to_owned(),
             reason: reason.to_owned(),
@@ -152,6 +193,16 @@ impl Outages {
         let text = spec.trim();
         if text.eq_ignore_ascii_case("none") || text.is_empty() {
             return Ok(Self::none());
+        }
+        if let Some(rest) = text.strip_prefix("spread:") {
+            let Some((count, duration)) = rest.split_once(',') else {
+                return Err(bad("spread: takes two values"));
+            };
+            let count: usize = count
+                .trim()
+                .parse()
+                .map_err(|_| bad(&format!("count \"{}\" is not a whole number", count.trim())))?;
+            return Self::spread(data.0, data.1, count, number(duration)?);
         }
         if let Some(rest) = text.strip_prefix("every:") {
             let fields: Vec<&str> = rest.split(',').collect();
@@ -231,15 +282,34 @@ mod tests {
             Err(OutageError::Empty { .. })
         ));
         assert!(o.check_within(seconds(0), seconds(400)).is_ok());
-        assert_eq!(Outages::from_spec("every:100,30,60,3").unwrap(), o);
-        assert_eq!(Outages::from_spec("160+30, 100+30,220+30").unwrap(), o);
-        assert_eq!(Outages::from_spec("none").unwrap(), Outages::none());
-        for bad in ["100", "100+x", "every:1,2,3", "every:1,2,3,-1", "5+nan"] {
+        let data = (seconds(0), seconds(1000));
+        assert_eq!(Outages::from_spec("every:100,30,60,3", data).unwrap(), o);
+        assert_eq!(
+            Outages::from_spec("160+30, 100+30,220+30", data).unwrap(),
+            o
+        );
+        assert_eq!(Outages::from_spec("none", data).unwrap(), Outages::none());
+        for bad in [
+            "100",
+            "100+x",
+            "every:1,2,3",
+            "every:1,2,3,-1",
+            "5+nan",
+            "spread:20,100",
+        ] {
             assert!(
-                matches!(Outages::from_spec(bad), Err(OutageError::Spec { .. })),
+                matches!(Outages::from_spec(bad, data), Err(OutageError::Spec { .. })),
                 "{bad}"
             );
         }
+        // Spread: 1700 s of data, 8 × 100 s: gap (1700 − 800) / 8.5 ≈ 105.9 s.
+        let spread = Outages::from_spec("spread:8,100", (seconds(100), seconds(1800))).unwrap();
+        let gap = 900.0 / 8.5;
+        let w = spread.windows();
+        assert_eq!(w.len(), 8);
+        assert!((w[0].start.as_seconds() - (100.0 + gap)).abs() < 1e-6);
+        assert!((1800.0 - w[7].end.as_seconds() - gap / 2.0).abs() < 1e-6);
+        assert_eq!(o.shifted(5.0).unwrap().windows()[0].start, seconds(105));
         assert!(o.check_within(seconds(0), seconds(200)).is_err());
     }
 }
