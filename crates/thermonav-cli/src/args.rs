@@ -38,6 +38,67 @@ pub enum Command {
     Simulate(SimulateArgs),
     /// GNSS/INS integration (21-state EKF or UKF) with the bank's noise model at a temperature.
     Integrate(IntegrateArgs),
+    /// The temperature-model tournament: every bank model through the filter, GNSS outages,
+    /// errors against a reference, ranking and its Monte Carlo significance.
+    Evaluate(EvaluateArgs),
+}
+
+/// Which filters a tournament runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FiltersArg {
+    /// The EKF only.
+    Ekf,
+    /// The UKF only.
+    Ukf,
+    /// Both (the UKF is reported first, as in the paper).
+    Both,
+}
+
+/// Arguments of `evaluate`.
+#[derive(Debug, Args)]
+pub struct EvaluateArgs {
+    /// The IMU CSV.
+    #[arg(long)]
+    pub imu: PathBuf,
+    /// The GNSS CSV.
+    #[arg(long)]
+    pub gnss: PathBuf,
+    /// The reference trajectory CSV (truth), covering every outage.
+    #[arg(long)]
+    pub reference: PathBuf,
+    /// The temperature model bank (JSON).
+    #[arg(long)]
+    pub bank: PathBuf,
+    /// The sensor's operating temperature, °C (default: the mean of the IMU's temp_c column).
+    #[arg(long, allow_hyphen_values = true)]
+    pub operating_temperature_c: Option<f64>,
+    /// Which Gauss-Markov family of the bank drives the bias states.
+    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    pub model: GmSourceArg,
+    /// Filters to run.
+    #[arg(long, value_enum, default_value_t = FiltersArg::Both)]
+    pub filter: FiltersArg,
+    /// Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT.
+    #[arg(long, default_value = "spread:8,100")]
+    pub outages: String,
+    /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
+    #[arg(long, default_value_t = 1)]
+    pub monte_carlo: usize,
+    /// Seed of the outage shifts.
+    #[arg(long, default_value_t = 2009)]
+    pub seed: u64,
+    /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.0, 0.0, 0.0])]
+    pub lever_arm_m: Vec<f64>,
+    /// Dual-antenna baseline direction in body axes (primary to secondary).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1.0, 0.0, 0.0])]
+    pub baseline: Vec<f64>,
+    /// Output folder (evaluation.json and errors/*.csv).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// The navigation filters.

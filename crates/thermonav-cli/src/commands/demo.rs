@@ -4,10 +4,17 @@
 //!    whose bias correlation times vary with temperature.
 //! 2. Characterisation of every record into the model bank.
 //! 3. The recovered correlation times against the simulated truth.
-//! 4. A harbour survey at 17 °C (reference, IMU and GNSS files for the navigation stage).
+//! 4. A harbour survey at 17 °C (reference, IMU and GNSS files).
+//! 5. The tournament (UKF and EKF): every bank model, the interpolated one, the pooled and the
+//!    data-sheet baselines through GNSS outages spread over the survey, with a Monte Carlo
+//!    over simulation seeds (new IMU errors and GNSS noise per replicate) for significance.
 
 use super::characterize::{build_bank, show_estimate};
-use super::simulate::{run_chamber, simulate_vessel_files};
+use super::evaluate::{
+    EvaluationJson, ScenarioFiles, TournamentPlan, print_tournament_table, run_plan,
+    scenario_from_files, scenario_of,
+};
+use super::simulate::{VesselFiles, run_chamber, simulate_vessel_files, vessel_run};
 use crate::args::{ChamberArgs, DemoArgs, VesselArgs};
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
@@ -15,8 +22,12 @@ use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
 use thermonav::imu::Channel;
-use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::nav::engine::{FilterKind, increments_from_series};
+use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::sim::vessel::{GnssSettings, VesselRun, simulate_vessel};
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank};
 use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::write_json_atomically;
 
 /// Sizes of a demo run.
@@ -24,6 +35,8 @@ struct Plan {
     duration_s: f64,
     rate_hz: f64,
     vessel_s: f64,
+    outages: &'static str,
+    replicates: u64,
 }
 
 fn plan(quick: bool) -> Plan {
@@ -32,12 +45,16 @@ fn plan(quick: bool) -> Plan {
             duration_s: 1800.0,
             rate_hz: 100.0,
             vessel_s: 600.0,
+            outages: "spread:4,60",
+            replicates: 3,
         }
     } else {
         Plan {
             duration_s: 10_800.0,
             rate_hz: 200.0,
-            vessel_s: 3600.0,
+            vessel_s: 1800.0,
+            outages: "spread:8,100",
+            replicates: 5,
         }
     }
 }
@@ -65,6 +82,7 @@ struct DemoSummary {
     recovery: Vec<Recovery>,
     ml_intervals_covering_truth: usize,
     ml_intervals: usize,
+    tournament: EvaluationJson,
     elapsed_s: f64,
 }
 
@@ -87,14 +105,14 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     say(
         args,
         &format!(
-            "1/3 simulating 6 chamber records of {} s at {} Hz ...",
+            "1/4 simulating 6 chamber records of {} s at {} Hz ...",
             p.duration_s, p.rate_hz
         ),
     );
     let truth = run_chamber(&chamber)?;
     say(
         args,
-        "2/3 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
+        "2/4 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
     );
     let files: Vec<&Path> = truth.files.iter().map(|p| p.as_path()).collect();
     let bank_path = args.out.join("bank.json");
@@ -107,7 +125,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     say(
         args,
         &format!(
-            "3/3 simulating the {} s vessel survey at 17 °C ...",
+            "3/4 simulating the {} s vessel survey at 17 °C ...",
             p.vessel_s
         ),
     );
@@ -120,7 +138,15 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         seed: args.seed,
         json: false,
     };
-    simulate_vessel_files(&vessel)?;
+    let vessel_files = simulate_vessel_files(&vessel)?.files;
+    say(
+        args,
+        &format!(
+            "4/4 the tournament: UKF and EKF, {} outages, {} Monte Carlo replicates ...",
+            p.outages, p.replicates
+        ),
+    );
+    let tournament = tournament(&bank, &vessel, &vessel_files, &p, &args.out)?;
     let recovery = recovery_table(&bank, &truth.temperatures);
     let covered = recovery
         .iter()
@@ -140,6 +166,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         recovery,
         ml_intervals_covering_truth: covered,
         ml_intervals: judged,
+        tournament,
         elapsed_s: started.elapsed().as_secs_f64(),
     };
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
@@ -148,6 +175,63 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     }
     print_summary(&summary);
     Ok(())
+}
+
+/// The tournament on the survey files, with replicates re-simulated under other seeds.
+fn tournament(
+    bank: &ModelBank,
+    vessel: &VesselArgs,
+    files: &VesselFiles,
+    p: &Plan,
+    out: &Path,
+) -> Result<EvaluationJson, Failure> {
+    let gnss = GnssSettings::default();
+    let geometry = AntennaGeometry {
+        lever_arm_body_m: gnss.lever_arm_body_m,
+        baseline_body: gnss.baseline_body_m,
+    };
+    let (main, operating_c) = scenario_from_files(
+        &ScenarioFiles {
+            imu: &files.imu,
+            gnss: &files.gnss,
+            reference: &files.reference,
+        },
+        geometry,
+        p.outages,
+        Some(vessel.temperature_c),
+    )?;
+    let (profile, run) = vessel_run(vessel)?;
+    let replicates = (1..p.replicates)
+        .map(|k| {
+            let run = VesselRun {
+                seed: vessel.seed.wrapping_add(k),
+                ..run.clone()
+            };
+            let record = simulate_vessel(&profile, &run).usage()?;
+            let reference = record
+                .reference
+                .states
+                .iter()
+                .map(TrajectoryPoint::from_nav_state)
+                .collect();
+            scenario_of(
+                increments_from_series(&record.imu),
+                record.gnss,
+                reference,
+                main.settings.clone(),
+                &files.reference,
+            )
+        })
+        .collect::<Result<Vec<_>, Failure>>()?;
+    let plan = TournamentPlan {
+        bank,
+        operating_temperature_c: operating_c,
+        source: GaussMarkovSource::IrregularMl,
+        filters: vec![FilterKind::Ukf, FilterKind::Ekf],
+        replicate_kind: "simulation seeds (new IMU errors and GNSS noise per replicate)",
+        out: &out.join("evaluation"),
+    };
+    run_plan(&plan, &main, &replicates)
 }
 
 fn say(args: &DemoArgs, line: &str) {
@@ -228,4 +312,5 @@ fn print_summary(s: &DemoSummary) {
         "at datasheet noise levels; the exact likelihood models both. Outputs under {} ({:.1} s).",
         s.out, s.elapsed_s
     );
+    print_tournament_table(&s.tournament);
 }

@@ -97,18 +97,6 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             )));
         }
     }
-    let triple = |name: &str, v: &[f64]| -> Result<[f64; 3], Failure> {
-        match v {
-            [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
-            _ => Err(Failure::Usage(anyhow!("{name} takes three finite numbers"))),
-        }
-    };
-    let baseline = triple("--baseline", &args.baseline)?;
-    if baseline[0].hypot(baseline[1]) == 0.0 {
-        return Err(Failure::Usage(anyhow!(
-            "--baseline must have a horizontal component to define a heading"
-        )));
-    }
     Ok(EngineSettings {
         filter: match args.filter {
             FilterArg::Ekf => FilterKind::Ekf,
@@ -116,16 +104,33 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         },
         covariance_interval_s: 1.0 / args.covariance_rate_hz,
         output_interval_s: 1.0 / args.output_rate_hz,
-        geometry: AntennaGeometry {
-            lever_arm_body_m: triple("--lever-arm-m", &args.lever_arm_m)?,
-            baseline_body: baseline,
-        },
+        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         aiding: Aiding {
             position: true,
             velocity: !args.no_velocity,
             heading: !args.no_heading,
         },
         ..EngineSettings::default()
+    })
+}
+
+/// The antenna set-up from `--lever-arm-m` and `--baseline`.
+pub fn antenna_geometry(lever_arm_m: &[f64], baseline: &[f64]) -> Result<AntennaGeometry, Failure> {
+    let triple = |name: &str, v: &[f64]| -> Result<[f64; 3], Failure> {
+        match v {
+            [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+            _ => Err(Failure::Usage(anyhow!("{name} takes three finite numbers"))),
+        }
+    };
+    let baseline = triple("--baseline", baseline)?;
+    if baseline[0].hypot(baseline[1]) == 0.0 {
+        return Err(Failure::Usage(anyhow!(
+            "--baseline must have a horizontal component to define a heading"
+        )));
+    }
+    Ok(AntennaGeometry {
+        lever_arm_body_m: triple("--lever-arm-m", lever_arm_m)?,
+        baseline_body: baseline,
     })
 }
 
@@ -148,23 +153,33 @@ fn bank_choice(args: &IntegrateArgs, series: &ImuSeries) -> Result<BankChoice, F
             source,
         });
     }
-    let temperature_c = match (args.operating_temperature_c, &series.temperature_c) {
-        (Some(t), _) => t,
-        (None, Some(column)) if !column.is_empty() => {
-            column.iter().sum::<f64>() / column.len() as f64
-        }
-        _ => {
-            return Err(Failure::Usage(anyhow!(
-                "{}: no temp_c column; give --model-temperature-c or --operating-temperature-c",
-                args.imu.display()
-            )));
-        }
-    };
+    let temperature_c = operating_temperature(args.operating_temperature_c, series, &args.imu)?;
     Ok(BankChoice {
         temperature_c,
         selection: selection_of(args.select),
         source,
     })
+}
+
+/// The operating temperature: given, or the mean of the IMU file's temp_c column.
+pub fn operating_temperature(
+    given: Option<f64>,
+    series: &ImuSeries,
+    imu: &Path,
+) -> Result<f64, Failure> {
+    match (given, &series.temperature_c) {
+        (Some(t), _) if t.is_finite() => Ok(t),
+        (Some(t), _) => Err(Failure::Usage(anyhow!(
+            "temperature {t} °C is not a finite number"
+        ))),
+        (None, Some(column)) if !column.is_empty() => {
+            Ok(column.iter().sum::<f64>() / column.len() as f64)
+        }
+        _ => Err(Failure::Usage(anyhow!(
+            "{}: no temp_c column; give the temperature (--model-temperature-c or --operating-temperature-c)",
+            imu.display()
+        ))),
+    }
 }
 
 /// Where the initial state came from.

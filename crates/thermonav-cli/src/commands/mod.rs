@@ -5,6 +5,7 @@ mod ar;
 mod bank;
 mod characterize;
 mod demo;
+mod evaluate;
 mod filter;
 mod fir;
 mod inspect;
@@ -27,5 +28,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Bank(args) => bank::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),
+        Command::Evaluate(args) => evaluate::run(&args),
     }
 }

@@ -167,8 +167,8 @@ pub struct VesselFiles {
     pub gnss: PathBuf,
 }
 
-/// Simulates and writes a vessel survey.
-pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure> {
+/// The sensor profile and the vessel run that `args` describe.
+pub fn vessel_run(args: &VesselArgs) -> Result<(SensorProfile, VesselRun), Failure> {
     let profile = load_profile(args.profile.as_deref())?;
     let motion = match &args.motion {
         Some(path) => read_motion(path).usage()?,
@@ -182,7 +182,6 @@ pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure
             )));
         }
     };
-    let duration_s = motion.duration_s();
     let run = VesselRun {
         motion,
         temperature_c: args.temperature_c,
@@ -190,6 +189,13 @@ pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure
         gnss: GnssSettings::default(),
         seed: args.seed,
     };
+    Ok((profile, run))
+}
+
+/// Simulates and writes a vessel survey.
+pub fn simulate_vessel_files(args: &VesselArgs) -> Result<VesselSummary, Failure> {
+    let (profile, run) = vessel_run(args)?;
+    let duration_s = run.motion.duration_s();
     let record = simulate_vessel(&profile, &run).usage()?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| anyhow!("{}: cannot create: {e}", args.out.display()))

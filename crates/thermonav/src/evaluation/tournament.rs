@@ -64,11 +64,12 @@ impl ModelResult {
 }
 
 /// Runs every candidate through every filter on `scenario`, in parallel; the results are in
-/// candidate-major order.
+/// candidate-major order. `on_done` is called after each run (for progress).
 pub fn run_tournament(
     scenario: &Scenario,
     candidates: &[Candidate],
     filters: &[FilterKind],
+    on_done: &(dyn Fn() + Sync),
 ) -> Vec<ModelResult> {
     let pairs: Vec<(&Candidate, FilterKind)> = candidates
         .iter()
@@ -76,7 +77,11 @@ pub fn run_tournament(
         .collect();
     pairs
         .par_iter()
-        .map(|(candidate, filter)| run_one(scenario, candidate, *filter))
+        .map(|(candidate, filter)| {
+            let result = run_one(scenario, candidate, *filter);
+            on_done();
+            result
+        })
         .collect()
 }
 
