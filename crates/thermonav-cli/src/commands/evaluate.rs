@@ -14,10 +14,10 @@ use std::path::{Path, PathBuf};
 use thermonav::evaluation::candidates::{
     Candidate, CandidateKind, DatasheetValues, Excluded, tournament_candidates,
 };
-use thermonav::evaluation::metrics::{EpochError, Metric, OutageMetrics, RunMetrics};
+use thermonav::evaluation::metrics::{EpochError, Metric, OutageMetrics};
 use thermonav::evaluation::significance::MeanInterval;
 use thermonav::evaluation::tournament::{
-    Evaluated, ModelResult, Scenario, Significance, ranked, run_tournament, summarize_replicates,
+    ModelResult, Scenario, Significance, run_tournament, summarize_replicates,
 };
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
 use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
@@ -98,6 +98,7 @@ pub fn scenario_from_files(
         )));
     };
     let outages = outages_in(outage_spec, first.time, last.time)?;
+    check_reference_covers(&reference, &outages, files.reference)?;
     let settings = EngineSettings {
         geometry,
         outages,
@@ -105,6 +106,35 @@ pub fn scenario_from_files(
     };
     let scenario = scenario_of(increments, gnss, reference, settings, files.reference)?;
     Ok((scenario, operating_c))
+}
+
+/// Every outage must lie within the reference trajectory.
+fn check_reference_covers(
+    reference: &[TrajectoryPoint],
+    outages: &Outages,
+    path: &Path,
+) -> Result<(), Failure> {
+    let (Some(first), Some(last)) = (reference.first(), reference.last()) else {
+        return Err(Failure::Data(anyhow!(
+            "{}: no trajectory point",
+            path.display()
+        )));
+    };
+    match outages
+        .windows()
+        .iter()
+        .find(|w| w.start < first.time || w.end > last.time)
+    {
+        Some(w) => Err(Failure::Data(anyhow!(
+            "{}: the reference ({:.3}-{:.3} s) does not cover the outage {:.3}-{:.3} s",
+            path.display(),
+            first.time.as_seconds(),
+            last.time.as_seconds(),
+            w.start.as_seconds(),
+            w.end.as_seconds()
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// A scenario from in-memory data, started from the reference at the first fix.
@@ -279,9 +309,20 @@ pub fn run_plan(
         &ScaleFactorPrior::default(),
         Some(&DatasheetValues::adis16364()),
     );
-    if candidates.is_empty() {
+    let from_bank = |c: &Candidate| {
+        matches!(
+            c.kind,
+            CandidateKind::Entry { .. } | CandidateKind::Interpolated { .. }
+        )
+    };
+    if !candidates.iter().any(from_bank) {
+        let reasons: Vec<String> = excluded
+            .iter()
+            .map(|e| format!("{}: {}", e.label, e.reason))
+            .collect();
         return Err(Failure::Data(anyhow!(
-            "no model of the bank can be used: {excluded:?}"
+            "no model of the bank can be used:\n  {}",
+            reasons.join("\n  ")
         )));
     }
     let runs = candidates.len() * plan.filters.len() * (1 + replicates.len());
@@ -311,14 +352,14 @@ pub fn run_plan(
         models.push(model_json(candidate, result, &summary.ci95, csv));
     }
     let ranking = if all.len() > 1 {
-        &models_by_mean(&models)
+        mean_values(&models)
     } else {
-        &results
+        single_run_values(&results)
     };
     let best_by_filter = plan
         .filters
         .iter()
-        .map(|f| (f.name(), best_labels(ranking, *f)))
+        .map(|f| (f.name(), best_labels(&ranking, *f)))
         .collect::<BTreeMap<_, _>>();
     let report_file = plan.out.join("evaluation.json");
     let report = EvaluationJson {
@@ -337,7 +378,7 @@ pub fn run_plan(
             .collect(),
         models,
         excluded,
-        best: best_labels(ranking, plan.filters[0]),
+        best: best_labels(&ranking, plan.filters[0]),
         best_by_filter,
         significance: SignificanceJson {
             replicates: all.len(),
@@ -350,49 +391,40 @@ pub fn run_plan(
     Ok(report)
 }
 
-/// Results whose figures are the Monte Carlo means (for ranking by the mean).
-fn models_by_mean(models: &[ModelJson]) -> Vec<ModelResult> {
+/// A model's label, filter and the values it is ranked by (in [`Metric::ALL`] order).
+type Ranked = (String, FilterKind, [Option<f64>; 5]);
+
+/// The values of a single run.
+fn single_run_values(results: &[ModelResult]) -> Vec<Ranked> {
+    results
+        .iter()
+        .map(|r| (r.label.clone(), r.filter, Metric::ALL.map(|m| r.value(m))))
+        .collect()
+}
+
+/// The Monte Carlo means.
+fn mean_values(models: &[ModelJson]) -> Vec<Ranked> {
     models
         .iter()
         .map(|m| {
             let mean = |metric: Metric| m.ci95.get(metric.key()).map(|c| c.mean);
-            let metrics = Metric::ALL
-                .iter()
-                .map(|k| mean(*k))
-                .collect::<Option<Vec<f64>>>();
-            ModelResult {
-                label: m.label.clone(),
-                candidate: m.candidate,
-                filter: m.filter,
-                outcome: metrics
-                    .map(|v| Evaluated {
-                        metrics: RunMetrics {
-                            rms_north_m: v[0],
-                            rms_east_m: v[1],
-                            rms_horizontal_m: v[2],
-                            rms_heading_deg: v[3],
-                            max_drift_horizontal_m: v[4],
-                            rms_of_max_north_m: f64::NAN,
-                            rms_of_max_east_m: f64::NAN,
-                            rms_of_max_heading_deg: f64::NAN,
-                            per_outage: Vec::new(),
-                        },
-                        errors: Vec::new(),
-                        innovations: Vec::new(),
-                    })
-                    .ok_or_else(|| "failed in a replicate".to_string()),
-            }
+            (m.label.clone(), m.filter, Metric::ALL.map(mean))
         })
         .collect()
 }
 
-fn best_labels(results: &[ModelResult], filter: FilterKind) -> BTreeMap<&'static str, String> {
+/// The label with the lowest value of each metric among `filter`'s models.
+fn best_labels(values: &[Ranked], filter: FilterKind) -> BTreeMap<&'static str, String> {
     Metric::ALL
         .iter()
-        .filter_map(|m| {
-            ranked(results, filter, *m)
-                .first()
-                .map(|r| (m.key(), r.label.clone()))
+        .enumerate()
+        .filter_map(|(k, metric)| {
+            values
+                .iter()
+                .filter(|(_, f, _)| *f == filter)
+                .filter_map(|(label, _, v)| v[k].map(|x| (label, x)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(label, _)| (metric.key(), label.clone()))
         })
         .collect()
 }

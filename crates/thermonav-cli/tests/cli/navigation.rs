@@ -236,3 +236,138 @@ fn integrate_refuses_bad_input_without_partial_output() {
     );
     assert!(!out.exists());
 }
+
+/// `evaluate` on the vessel run with two 30 s outages and the EKF.
+fn evaluate_args<'a>(
+    vessel: &'a Path,
+    bank: &'a Path,
+    out: &'a Path,
+    extra: &[&'a str],
+) -> Vec<String> {
+    let files = ["imu.csv", "gnss.csv", "reference.csv"].map(|f| vessel.join(f));
+    let mut args: Vec<String> = [
+        "evaluate",
+        "--imu",
+        arg(&files[0]),
+        "--gnss",
+        arg(&files[1]),
+        "--reference",
+        arg(&files[2]),
+        "--bank",
+        arg(bank),
+        "--lever-arm-m",
+        "0.3,0,-2.5",
+        "--filter",
+        "ekf",
+        "--out",
+        arg(out),
+        "--json",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
+// The tournament's JSON follows the contract, and its per-outage RMS equals the RMS of the
+// per-epoch errors it wrote to CSV (recomputed here from the file).
+#[test]
+fn evaluate_ranks_the_models_and_writes_the_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("evaluation");
+    let extra = [
+        "--outages",
+        "60+30,150+30",
+        "--monte-carlo",
+        "2",
+        "--operating-temperature-c",
+        "30",
+    ];
+    let json = json_of(&evaluate_args(&vessel, &bank, &out, &extra));
+    // 30 °C lies above the bank (10 and 25 °C): the interpolated model is the 25 °C one, held.
+    assert_eq!(json["operating_temperature_c"], 30.0);
+    let models = json["models"].as_array().unwrap();
+    let labels: Vec<&str> = models
+        .iter()
+        .map(|m| m["label"].as_str().unwrap())
+        .collect();
+    for expected in ["interpolated 30.0 °C", "pooled", "data sheet"] {
+        assert!(labels.contains(&expected), "{labels:?}");
+    }
+    let best = json["best"]["rms_north_m"].as_str().unwrap();
+    assert!(labels.contains(&best));
+    assert_eq!(json["significance"]["replicates"], 2);
+    let model = models.iter().find(|m| m["label"] == "pooled").unwrap();
+    assert_eq!(model["filter"], "ekf");
+    assert_eq!(model["per_outage"].as_array().unwrap().len(), 2);
+    let csv = std::fs::read_to_string(model["errors_csv"].as_str().unwrap()).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "outage,t_s,since_outage_start_s,north_m,east_m,horizontal_m,heading_deg"
+    );
+    let north: Vec<f64> = lines
+        .filter(|l| l.starts_with("1,"))
+        .map(|l| l.split(',').nth(3).unwrap().parse().unwrap())
+        .collect();
+    // 30 s at the 10 Hz output rate: 300 epochs (±1 for an epoch on the boundary).
+    assert!((299..=301).contains(&north.len()), "{}", north.len());
+    let rms = (north.iter().map(|x| x * x).sum::<f64>() / north.len() as f64).sqrt();
+    let reported = model["per_outage"][0]["rms_north_m"].as_f64().unwrap();
+    assert!(
+        (rms - reported).abs() < 1e-9 * reported.max(1.0),
+        "{rms} vs {reported}"
+    );
+    assert!(json["models"][0]["ci95"]["rms_north_m"]["low"].is_number());
+}
+
+// Bad input: outages outside the data or overlapping, a reference that does not cover an
+// outage, a bank without the needed channels. Each is a clear error and leaves no report.
+#[test]
+fn evaluate_refuses_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("bad");
+    let fails = |bank: &Path, extra: &[&str], code: i32, needle: &str| {
+        let args = evaluate_args(&vessel, bank, &out, extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (status, _, stderr) = outcome(&thermonav(&args));
+        assert_eq!(status, code, "{extra:?}: {stderr}");
+        assert!(stderr.contains(needle), "{extra:?}: {stderr}");
+        assert!(!out.join("evaluation.json").exists());
+    };
+    fails(&bank, &["--outages", "5000+30"], 2, "not inside the data");
+    fails(&bank, &["--outages", "60+30,80+30"], 2, "overlap");
+    fails(&bank, &["--outages", "spread:50,100"], 2, "do not fit");
+    fails(&bank, &["--monte-carlo", "0"], 2, "at least 1");
+    let short = dir.path().join("short_reference.csv");
+    let text = std::fs::read_to_string(vessel.join("reference.csv")).unwrap();
+    let kept: Vec<&str> = text.lines().take(1 + 200 * 100).collect();
+    std::fs::write(&short, kept.join("\n") + "\n").unwrap();
+    let args = evaluate_args(&vessel, &bank, &out, &["--outages", "150+30"]);
+    let mut args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let position = args.iter().position(|a| *a == "--reference").unwrap();
+    args[position + 1] = arg(&short);
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("does not cover the outage 150.000-180.000 s"),
+        "{stderr}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&bank).unwrap()).unwrap();
+    let mut stripped = json.clone();
+    for entry in stripped["entries"].as_array_mut().unwrap() {
+        entry["channels"].as_object_mut().unwrap().remove("az");
+    }
+    let no_az = dir.path().join("no_az.json");
+    std::fs::write(&no_az, serde_json::to_string(&stripped).unwrap()).unwrap();
+    fails(
+        &no_az,
+        &["--outages", "150+30"],
+        1,
+        "no model for channel az",
+    );
+}
