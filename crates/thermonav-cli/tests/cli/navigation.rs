@@ -62,7 +62,7 @@ fn integrate_args<'a>(
     extra: &[&'a str],
 ) -> Vec<String> {
     let (imu, gnss) = (vessel.join("imu.csv"), vessel.join("gnss.csv"));
-    let mut args: Vec<String> = [
+    let args = [
         "integrate",
         "--imu",
         arg(&imu),
@@ -72,17 +72,19 @@ fn integrate_args<'a>(
         arg(bank),
         "--model-temperature-c",
         "25",
-        "--lever-arm-m",
-        "0.3,0,-2.5",
         "--out",
         arg(out),
-        "--json",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.extend(extra.iter().map(|s| s.to_string()));
-    args
+    ];
+    owned(&args, extra)
+}
+
+/// `base`, the vessel's lever arm, `--json` and `extra`, as owned strings.
+fn owned(base: &[&str], extra: &[&str]) -> Vec<String> {
+    base.iter()
+        .chain(&["--lever-arm-m", "0.3,0,-2.5", "--json"])
+        .chain(extra)
+        .map(|s| s.to_string())
+        .collect()
 }
 
 /// (t_s, lat_deg, lon_deg) rows of a trajectory CSV.
@@ -245,7 +247,7 @@ fn evaluate_args<'a>(
     extra: &[&'a str],
 ) -> Vec<String> {
     let files = ["imu.csv", "gnss.csv", "reference.csv"].map(|f| vessel.join(f));
-    let mut args: Vec<String> = [
+    let args = [
         "evaluate",
         "--imu",
         arg(&files[0]),
@@ -255,19 +257,12 @@ fn evaluate_args<'a>(
         arg(&files[2]),
         "--bank",
         arg(bank),
-        "--lever-arm-m",
-        "0.3,0,-2.5",
         "--filter",
         "ekf",
         "--out",
         arg(out),
-        "--json",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.extend(extra.iter().map(|s| s.to_string()));
-    args
+    ];
+    owned(&args, extra)
 }
 
 // The tournament's JSON follows the contract, and its per-outage RMS equals the RMS of the
