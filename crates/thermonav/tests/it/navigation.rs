@@ -138,6 +138,13 @@ fn aided_solution_tracks_the_truth() {
             "{filter:?}: worst heading error {} deg",
             worst_psi.to_degrees()
         );
+        // The covariance stays positive definite: every variance finite and positive.
+        assert!(
+            solution
+                .epochs
+                .iter()
+                .all(|e| e.sd.iter().all(|s| s.is_finite() && *s > 0.0))
+        );
         let stats = solution.innovation_statistics();
         assert!(
             stats.iter().all(|s| s.rejected * 100 <= s.offered),
@@ -328,4 +335,33 @@ fn initial_perturbation_is_nonzero() {
     let (start, _) = initial(&record, 1);
     let truth = record.reference.states[0];
     assert!(start.nav.position.ned_from(&truth.position).norm() > 0.5);
+}
+
+// A divergence is detected and reported, never printed as numbers: an accelerometer stuck at
+// 1000 g drives the speed past any vehicle's within seconds, and the run stops with an error
+// naming the filter and the time.
+#[test]
+fn divergence_is_reported_not_printed() {
+    let mut record = vessel(2, 60.0);
+    let n = record.imu.len();
+    record.imu.channels[3] = vec![9806.65; n];
+    for filter in [FilterKind::Ekf, FilterKind::Ukf] {
+        let (start, uncertainty) = initial(&record, 2);
+        let result = run(
+            &increments_from_series(&record.imu),
+            &record.gnss,
+            start,
+            uncertainty.covariance(),
+            &true_model(),
+            &settings(filter, Outages::none()),
+            &mut |_| {},
+        );
+        let error = result
+            .expect_err("a 1000 g accelerometer must diverge")
+            .to_string();
+        assert!(
+            error.contains(filter.name()) && error.contains("diverged at t ="),
+            "{error}"
+        );
+    }
 }
