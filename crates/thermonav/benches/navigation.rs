@@ -9,7 +9,7 @@ use thermonav::ins::mechanization::mechanize;
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
 use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series, run};
 use thermonav::nav::measurement::AntennaGeometry;
-use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
+use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::profile::adis16364_like;
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
@@ -28,7 +28,8 @@ fn one_hour(c: &mut Criterion) {
         },
     )
     .expect("simulation");
-    let model = ImuStochasticModel::from_profile(&profile, 17.0, &ScaleFactorPrior::default())
+    let model = profile
+        .stochastic_model(17.0, &ScaleFactorPrior::default())
         .expect("model");
     let increments = increments_from_series(&record.imu);
     let start = uncorrected(record.reference.states[0]);

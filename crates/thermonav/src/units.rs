@@ -71,6 +71,16 @@ pub fn vrw_m_per_s_per_sqrt_s_to_m_per_s_per_sqrt_h(m_per_s_per_sqrt_s: f64) -> 
     m_per_s_per_sqrt_s * SECONDS_PER_HOUR.sqrt()
 }
 
+/// An angle wrapped to (−π, π], rad.
+pub fn wrap_pi(angle_rad: f64) -> f64 {
+    let wrapped = angle_rad.rem_euclid(std::f64::consts::TAU);
+    if wrapped > std::f64::consts::PI {
+        wrapped - std::f64::consts::TAU
+    } else {
+        wrapped
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -13,8 +13,8 @@
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
 };
-use crate::sim::profile::GAUSS_MARKOV_ADEV_PEAK_RATIO;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
+use crate::stoch::noise_terms::GAUSS_MARKOV_ADEV_PEAK_RATIO;
 use crate::units::{
     arw_deg_per_sqrt_h_to_rad_per_sqrt_s, deg_to_rad, mg_to_m_per_s2,
     vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s,

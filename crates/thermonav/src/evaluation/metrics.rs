@@ -8,9 +8,9 @@
 use crate::geo::position::Geodetic;
 use crate::nav::outage::Outage;
 use crate::nav::solution::SolutionEpoch;
-use crate::sim::vessel::wrap_pi;
 use crate::time::Timestamp;
 use crate::trajectory::TrajectoryPoint;
+use crate::units::wrap_pi;
 use serde::Serialize;
 
 /// The error at one epoch.

@@ -37,8 +37,8 @@ use crate::imu::{ImuSeries, SampleKind};
 use crate::ins::error_model::{STATES, SystemMatrix, system_matrix};
 use crate::ins::mechanization::mechanize;
 use crate::ins::state::Increment;
-use crate::sim::vessel::wrap_pi;
 use crate::time::{Duration, Timestamp};
+use crate::units::wrap_pi;
 use nalgebra::{SVector, Vector3};
 use serde::Serialize;
 

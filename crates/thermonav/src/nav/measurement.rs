@@ -14,7 +14,7 @@ use super::error_state::Estimate;
 use crate::frames::{Body, Ned, Vector};
 use crate::geo::position::Geodetic;
 use crate::ins::error_model::{STATES, block};
-use crate::sim::vessel::wrap_pi;
+use crate::units::wrap_pi;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use serde::Serialize;
 

@@ -14,7 +14,6 @@
 use crate::frames::{Body, Ned, Rotation};
 use crate::imu::Channel;
 use crate::ins::error_model::{CorrelationTimes, STATES, SystemMatrix, block};
-use crate::sim::profile::SensorProfile;
 use crate::stoch::bank::{
     BankError, GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection,
 };
@@ -164,45 +163,8 @@ impl ImuStochasticModel {
         Self::from_axes(axis, scale)
     }
 
-    /// The model a sensor profile implies at `temperature_c`: its white-noise densities, its
-    /// Gauss-Markov bias at that temperature, its scale-factor Gauss-Markov process where it
-    /// has one and the prior otherwise. For simulated data this is the true model; for a
-    /// data-sheet profile it is the temperature-blind baseline.
-    ///
-    /// # Errors
-    /// [`SensorModelError::Parameter`] when a channel is missing or a value is unusable.
-    pub fn from_profile(
-        profile: &SensorProfile,
-        temperature_c: f64,
-        scale: &ScaleFactorPrior,
-    ) -> Result<Self, SensorModelError> {
-        let axis = |channel: Channel, prior: GaussMarkovParameters| {
-            let p = profile
-                .channel(channel)
-                .ok_or_else(|| SensorModelError::Parameter {
-                    what: format!("profile channel {}", channel.name()),
-                    value: f64::NAN,
-                })?;
-            let bias = p.bias_at(temperature_c);
-            Ok::<_, SensorModelError>(AxisModel {
-                white_noise_density: p.white_noise_density,
-                bias: GaussMarkovParameters {
-                    correlation_time_s: bias.correlation_time_s,
-                    sigma: bias.sigma,
-                },
-                scale_factor: p.scale_factor_gauss_markov.map_or(prior, |g| {
-                    GaussMarkovParameters {
-                        correlation_time_s: g.correlation_time_s,
-                        sigma: g.sigma_ppm * 1e-6,
-                    }
-                }),
-            })
-        };
-        Self::from_axes(axis, scale)
-    }
-
     /// The six axes from a per-channel constructor, validated.
-    fn from_axes(
+    pub fn from_axes(
         axis: impl Fn(Channel, GaussMarkovParameters) -> Result<AxisModel, SensorModelError>,
         scale: &ScaleFactorPrior,
     ) -> Result<Self, SensorModelError> {

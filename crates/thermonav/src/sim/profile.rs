@@ -11,6 +11,9 @@
 //! the end value is held.
 
 use crate::imu::{Channel, Sensor};
+use crate::nav::sensor_model::{
+    AxisModel, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior, SensorModelError,
+};
 use crate::units::{
     arw_deg_per_sqrt_h_to_rad_per_sqrt_s, deg_to_rad, mg_to_m_per_s2,
     vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s,
@@ -115,6 +118,43 @@ pub enum ProfileError {
 }
 
 impl SensorProfile {
+    /// The model a sensor profile implies at `temperature_c`: its white-noise densities, its
+    /// Gauss-Markov bias at that temperature, its scale-factor Gauss-Markov process where it
+    /// has one and the prior otherwise. For simulated data this is the true model; for a
+    /// data-sheet profile it is the temperature-blind baseline.
+    ///
+    /// # Errors
+    /// [`SensorModelError::Parameter`] when a channel is missing or a value is unusable.
+    pub fn stochastic_model(
+        &self,
+        temperature_c: f64,
+        scale: &ScaleFactorPrior,
+    ) -> Result<ImuStochasticModel, SensorModelError> {
+        let axis = |channel: Channel, prior: GaussMarkovParameters| {
+            let p = self
+                .channel(channel)
+                .ok_or_else(|| SensorModelError::Parameter {
+                    what: format!("profile channel {}", channel.name()),
+                    value: f64::NAN,
+                })?;
+            let bias = p.bias_at(temperature_c);
+            Ok::<_, SensorModelError>(AxisModel {
+                white_noise_density: p.white_noise_density,
+                bias: GaussMarkovParameters {
+                    correlation_time_s: bias.correlation_time_s,
+                    sigma: bias.sigma,
+                },
+                scale_factor: p.scale_factor_gauss_markov.map_or(prior, |g| {
+                    GaussMarkovParameters {
+                        correlation_time_s: g.correlation_time_s,
+                        sigma: g.sigma_ppm * 1e-6,
+                    }
+                }),
+            })
+        };
+        ImuStochasticModel::from_axes(axis, scale)
+    }
+
     /// Checks every channel: all six present, tables non-empty and increasing, values finite
     /// with the right sign.
     ///
@@ -353,9 +393,7 @@ const ACCEL_SIGMA_SCALE: [f64; 6] = [1.4, 1.1, 1.0, 0.9, 1.2, 1.6];
 const AXIS_TC_SCALE: [f64; 3] = [1.0, 0.8, 1.25];
 const AXIS_SIGMA_SCALE: [f64; 3] = [1.0, 1.1, 0.9];
 
-/// Ratio of the Allan-deviation peak of a first-order Gauss-Markov process to its σ (≈ 0.62 at
-/// τ ≈ 1.89 Tc); used to turn a datasheet "in-run bias stability" into a Gauss-Markov σ.
-pub const GAUSS_MARKOV_ADEV_PEAK_RATIO: f64 = 0.62;
+pub use crate::stoch::noise_terms::GAUSS_MARKOV_ADEV_PEAK_RATIO;
 
 /// The built-in ADIS16364-like profile, from the datasheet figures quoted by the paper
 /// (method.md): gyro ARW 2 deg/√h, in-run bias stability 0.007 deg/s, initial bias ±3 deg/s

@@ -306,12 +306,4 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
     }
 }
 
-/// An angle wrapped to (−π, π].
-pub fn wrap_pi(angle_rad: f64) -> f64 {
-    let wrapped = angle_rad.rem_euclid(std::f64::consts::TAU);
-    if wrapped > std::f64::consts::PI {
-        wrapped - std::f64::consts::TAU
-    } else {
-        wrapped
-    }
-}
+pub use crate::units::wrap_pi;

@@ -116,6 +116,10 @@ pub fn fit_noise_terms(curve: &AllanCurve) -> NoiseTerms {
     }
 }
 
+/// Ratio of the Allan-deviation peak of a first-order Gauss-Markov process to its σ (≈ 0.62 at
+/// τ ≈ 1.89 Tc); turns a data sheet's "in-run bias stability" into a Gauss-Markov σ.
+pub const GAUSS_MARKOV_ADEV_PEAK_RATIO: f64 = 0.62;
+
 /// Theoretical Allan variance of white rate noise of density N: N²/τ.
 pub fn avar_white(density: f64, tau_s: f64) -> f64 {
     density * density / tau_s

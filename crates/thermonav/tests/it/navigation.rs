@@ -45,12 +45,9 @@ fn settings(filter: FilterKind, outages: Outages) -> EngineSettings {
 
 /// The true model of the simulated sensor at the run's temperature.
 fn true_model() -> ImuStochasticModel {
-    ImuStochasticModel::from_profile(
-        &adis16364_like(),
-        TEMPERATURE_C,
-        &ScaleFactorPrior::default(),
-    )
-    .unwrap()
+    adis16364_like()
+        .stochastic_model(TEMPERATURE_C, &ScaleFactorPrior::default())
+        .unwrap()
 }
 
 /// The initial estimate: the true start state perturbed by a draw from the initial
