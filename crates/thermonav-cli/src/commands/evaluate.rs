@@ -24,6 +24,7 @@ use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series}
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::nav::solution::InnovationStatistics;
 use thermonav::sim::rng::named_rng;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank};
 use thermonav::trajectory::TrajectoryPoint;
@@ -263,6 +264,7 @@ pub struct ModelJson {
     rms_of_max_heading_deg: Option<f64>,
     per_outage: Vec<OutageMetrics>,
     ci95: BTreeMap<&'static str, MeanInterval>,
+    innovations: Vec<InnovationStatistics>,
     errors_csv: Option<PathBuf>,
 }
 
@@ -453,6 +455,11 @@ fn model_json(
         rms_of_max_heading_deg: pick(|m| m.rms_of_max_heading_deg),
         per_outage: ok.map(|m| m.per_outage.clone()).unwrap_or_default(),
         ci95: ci95.iter().map(|(m, ci)| (m.key(), *ci)).collect(),
+        innovations: result
+            .outcome
+            .as_ref()
+            .map(|e| e.innovations.clone())
+            .unwrap_or_default(),
         errors_csv,
     }
 }
