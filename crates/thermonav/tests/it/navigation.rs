@@ -362,3 +362,47 @@ fn divergence_is_reported_not_printed() {
         );
     }
 }
+
+// GNSS velocity updates end to end: fixes carry the antenna velocity v + C(ω × l) of the
+// simulated truth (ω from consecutive true attitudes) plus 0.05 m/s white noise; the velocity
+// NIS must average its dimension (3) within 20 % and the position solution stay aided.
+#[test]
+fn velocity_updates_are_consistent() {
+    use rand_distr::{Distribution, StandardNormal};
+    let mut record = vessel(31, 300.0);
+    let g = GnssSettings::default();
+    let lever =
+        thermonav::frames::Vector::<thermonav::frames::Body>::from_array(g.lever_arm_body_m);
+    let mut rng = thermonav::sim::rng::named_rng(31, "test/gnss-velocity");
+    let states = record.reference.states.clone();
+    for fix in &mut record.gnss {
+        let k = states
+            .partition_point(|s| s.time < fix.time)
+            .min(states.len() - 2);
+        let (s0, s1) = (states[k], states[k + 1]);
+        let dt = s1.time.since(s0.time).as_seconds();
+        let turn = (s0.attitude.inverse() * s1.attitude)
+            .unit_quaternion()
+            .scaled_axis()
+            / dt;
+        let rate = thermonav::frames::Vector::<thermonav::frames::Body>::from_raw(turn);
+        let v = s0.velocity + s0.attitude * rate.cross(&lever);
+        let noise: [f64; 3] = std::array::from_fn(|_| {
+            let z: f64 = StandardNormal.sample(&mut rng);
+            0.05 * z
+        });
+        fix.velocity_ned_m_s = Some(std::array::from_fn(|i| v.to_array()[i] + noise[i]));
+    }
+    let s = EngineSettings {
+        velocity_sd_m_s: [0.05; 3],
+        ..settings(FilterKind::Ekf, Outages::none())
+    };
+    let solution = navigate(&record, 31, &s);
+    let stats = solution.innovation_statistics();
+    let velocity = stats
+        .iter()
+        .find(|s| s.kind == thermonav::nav::measurement::MeasurementKind::Velocity)
+        .expect("velocity updates ran");
+    assert!(velocity.offered >= 290, "{velocity:?}");
+    assert!((velocity.mean_nis / 3.0 - 1.0).abs() < 0.2, "{velocity:?}");
+}
