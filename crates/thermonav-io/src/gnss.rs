@@ -153,7 +153,7 @@ fn fix_from_row(time: thermonav::time::Timestamp, v: &[f64], groups: Groups) -> 
 }
 
 /// Strict checks: latitude within ±90°, standard deviations not negative.
-fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
+pub(crate) fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
     crate::check_latitude(fix.latitude_rad)?;
     let sds = fix.position_sd_ned_m.unwrap_or_default();
     let sd_names = ["sd_n_m", "sd_e_m", "sd_u_m"];

@@ -33,13 +33,17 @@
 
 pub mod atomic;
 pub mod error;
+mod fixed;
 pub mod gnss;
+pub mod gpst;
 pub mod imu;
+pub mod kf_gins;
 mod layout;
 mod lines;
 pub mod motion;
 pub mod profile;
 mod rows;
+pub mod rtklib_pos;
 pub mod solution;
 mod text;
 pub mod trajectory;
