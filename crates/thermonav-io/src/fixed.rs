@@ -15,6 +15,13 @@ pub(crate) fn split_blanks(line: &[u8]) -> Vec<&[u8]> {
         .collect()
 }
 
+/// The fields of `line` separated by `separator`, each without surrounding blanks.
+pub(crate) fn split_on(line: &[u8], separator: u8) -> Vec<&[u8]> {
+    line.split(|&b| b == separator)
+        .map(<[u8]>::trim_ascii)
+        .collect()
+}
+
 /// Fails unless there are `expected` fields; `layout` lists them for the message.
 pub(crate) fn expect_fields(
     fields: &[&[u8]],

@@ -42,6 +42,7 @@ mod layout;
 mod lines;
 pub mod motion;
 pub mod profile;
+pub mod raw_imu;
 mod rows;
 pub mod rtklib_pos;
 pub mod solution;

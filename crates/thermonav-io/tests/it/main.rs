@@ -6,6 +6,7 @@ mod imu_errors;
 mod imu_units;
 mod kf_gins;
 mod parallel;
+mod raw_imu;
 mod round_trip;
 mod rtklib_pos;
 mod support;
