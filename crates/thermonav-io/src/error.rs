@@ -215,9 +215,9 @@ pub enum ReadErrorKind {
         /// What the format has there.
         expected: &'static str,
     },
-    /// Two inputs read together disagree (an IMU file and its time-tag file).
+    /// The input, taken as a whole, cannot be used; the text says why and what is needed.
     #[error("{0}")]
-    Inconsistent(String),
+    Unusable(String),
 }
 
 /// Why a file or stream could not be written.

@@ -41,6 +41,7 @@ pub mod kf_gins;
 mod layout;
 mod lines;
 pub mod motion;
+pub mod nmea;
 pub mod profile;
 pub mod raw_imu;
 mod rows;

@@ -184,7 +184,7 @@ struct RawRow {
 /// # Errors
 /// [`ReadErrorKind::NoData`] for fewer than three lines (two are dropped), a line without 7
 /// fields, a field that is not a number or a tick that is not a whole number, NaN (strict), a
-/// tick that does not increase (strict), each with its line; [`ReadErrorKind::Inconsistent`]
+/// tick that does not increase (strict), each with its line; [`ReadErrorKind::Unusable`]
 /// when the first and last kept ticks are equal.
 pub fn read_raw_imu(
     reader: impl BufRead,
@@ -276,7 +276,7 @@ fn series_from_rows(
     let first = rows[0].tick_ms;
     let ticks = rows[rows.len() - 1].tick_ms - first;
     if ticks == 0 {
-        return Err(ReadErrorKind::Inconsistent(format!(
+        return Err(ReadErrorKind::Unusable(format!(
             "the first and last kept rows have the same tick {first} ms (need at least two \
              distinct ticks to map onto the tag file's span)"
         )));

@@ -5,6 +5,7 @@ mod gnss;
 mod imu_errors;
 mod imu_units;
 mod kf_gins;
+mod nmea;
 mod parallel;
 mod raw_imu;
 mod round_trip;
