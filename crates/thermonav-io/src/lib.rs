@@ -52,7 +52,9 @@ pub mod trajectory;
 
 pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
-pub use gnss::{GnssReader, read_gnss, read_gnss_file, write_gnss, write_gnss_file};
+pub use gnss::{
+    GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
+};
 pub use imu::{
     ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu, write_imu_file,
 };

@@ -4,6 +4,7 @@ mod allan;
 mod ar;
 mod bank;
 mod characterize;
+mod convert;
 mod demo;
 mod filter;
 mod fir;
@@ -27,5 +28,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Bank(args) => bank::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),
+        Command::Convert(args) => convert::run(&args),
     }
 }
