@@ -5,7 +5,8 @@
 //! is an error naming the line, under [`Strictness::Lenient`] it is skipped. Any talker is
 //! accepted (`GP`, `GN`, `GL`, `HE`, `IN`, …); other sentence types are ignored.
 //!
-//! Epochs: GGA and RMC carry the UTC time of day; sentences with the same time form one epoch.
+//! Epochs: GGA and RMC carry the UTC time of day (sentences with an empty time, sent before
+//! a first fix, are ignored); sentences with the same time form one epoch.
 //! VTG, HDT and THS carry no time and join the latest timed epoch (receivers send them right
 //! after its GGA/RMC). An epoch gives a fix when it has a GGA with fix quality > 0:
 //! - position: GGA latitude and longitude; height = GGA altitude above mean sea level + geoid
@@ -179,6 +180,10 @@ fn decode_sentence(
     }
     let kind = &address[address.len().saturating_sub(3)..];
     let field = |index: usize| fields.get(index).copied().unwrap_or_default();
+    if matches!(kind, b"GGA" | b"RMC") && field(1).is_empty() {
+        // No time yet (receivers send empty sentences before their first fix).
+        return Ok(());
+    }
     match kind {
         b"GGA" => {
             let epoch = epoch_at(epochs, time_of_day(field(1))?);
@@ -192,7 +197,9 @@ fn decode_sentence(
         }
         b"RMC" => {
             let epoch = epoch_at(epochs, time_of_day(field(1))?);
-            epoch.date = Some(rmc_date(field(9))?);
+            if !field(9).is_empty() {
+                epoch.date = Some(rmc_date(field(9))?);
+            }
             if field(2) == b"A" {
                 let speed = optional(fields, 7, "RMC speed (knots)", strictness)?;
                 let course = optional(fields, 8, "RMC course (deg)", strictness)?;

@@ -12,6 +12,13 @@
 //! - HDT `$GPHDT,123.456,T*00`: Trimble R750 help, "NMEA-0183 message: HDT" (heading 123.456°
 //!   from true north). Its `*00` is not the sentence's checksum (that is `*32`): it serves here
 //!   as a real bad-checksum line, and the corrected sentence as the valid one.
+//! - u-blox 8 / M8 Receiver Description including Protocol Specification, NMEA messages:
+//!   GGA `$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B`
+//!   (09:27:25.00 UTC, 47°17.11399′ N, 8°33.91590′ E, quality 1, altitude 499.6 m, geoid
+//!   separation 48.0 m) and RMC `$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,
+//!   091202,,,A*57` (08:35:59.00 UTC, 0.004 kn, 77.52°, 9 December 2002); the empty sentences
+//!   a u-blox receiver sends before its first fix, `$GPGGA,,,,,,0,00,99.99,,,,,,*48` and
+//!   `$GPRMC,,V,,,,,,,,,,N*53`.
 //! - THS `$HETHS,316.70,E*1A`: Navis NavDP-4000 manual, "THS Message: True Heading and Status"
 //!   (heading 316.70° true, mode E = estimated).
 
@@ -29,6 +36,9 @@ const THS: &str = "$HETHS,316.70,E*1A";
 
 /// Unix seconds of 1994-03-23 12:35:19 UTC (GNU `date -u -d … +%s`).
 const FIX_UTC_S: i64 = 764_426_119;
+
+/// Unix seconds of 2002-12-09 09:27:25 UTC (GNU `date -u -d … +%s`).
+const UBLOX_GGA_UTC_S: i64 = 1_039_426_045;
 
 /// GPS − UTC on 1994-03-23: TAI − UTC was 28 s (IERS Bulletin C, 1993-07-01 to 1994-07-01)
 /// and GPS − TAI is −19 s, so 9 s.
@@ -200,4 +210,31 @@ fn bad_input_names_file_line_and_expectation() {
         strict_error(&[RMC, no_fix]),
         "log.nmea: no GGA sentence with a valid fix (quality above 0): nothing to convert"
     );
+}
+
+#[test]
+fn ublox_examples_date_a_later_gga_and_skip_sentences_before_the_first_fix() {
+    let text = log(&[
+        "$GPGGA,,,,,,0,00,99.99,,,,,,*48",
+        "$GPRMC,,V,,,,,,,,,,N*53",
+        "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57",
+        "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B",
+    ]);
+    // GPS − UTC in December 2002: 13 s (TAI − UTC 32 s from 1999-01-01, IERS Bulletin C).
+    let settings = NmeaSettings {
+        gpst_minus_utc: Duration::from_nanos(13 * NANOS_PER_SECOND),
+        ..NmeaSettings::default()
+    };
+    let fixes = read_nmea(text.as_bytes(), "ublox.nmea", settings).unwrap();
+    // The RMC epoch has no GGA (no height): only the GGA epoch gives a fix, dated by the
+    // earlier RMC.
+    assert_eq!(fixes.len(), 1);
+    let fix = fixes[0];
+    assert_eq!(
+        fix.time.as_nanos(),
+        (UBLOX_GGA_UTC_S + 13) * NANOS_PER_SECOND
+    );
+    assert!(close_deg(fix.latitude_rad, 47.0 + 17.11399 / 60.0));
+    assert!(close_deg(fix.longitude_rad, 8.0 + 33.91590 / 60.0));
+    assert!((fix.height_m - (499.6 + 48.0)).abs() < 1e-9);
 }
