@@ -364,7 +364,10 @@ fn fixes_of(epochs: &[Epoch], settings: &NmeaSettings) -> Result<Vec<GnssFix>, R
         .filter_map(|(epoch, day)| {
             let [latitude, longitude, height] = epoch.position?;
             let utc = gpst::from_day_and_nanos(day, epoch.time_of_day)?;
-            let time = Timestamp::from_nanos(utc.as_nanos() + settings.gpst_minus_utc.as_nanos());
+            let time = Timestamp::from_nanos(
+                utc.as_nanos()
+                    .saturating_add(settings.gpst_minus_utc.as_nanos()),
+            );
             let velocity = epoch
                 .course_speed
                 .filter(|_| settings.level_velocity)

@@ -184,8 +184,9 @@ struct RawRow {
 /// # Errors
 /// [`ReadErrorKind::NoData`] for fewer than three lines (two are dropped), a line without 7
 /// fields, a field that is not a number or a tick that is not a whole number, NaN (strict), a
-/// tick that does not increase (strict), each with its line; [`ReadErrorKind::Unusable`]
-/// when the first and last kept ticks are equal.
+/// tick that does not increase (strict; the message gives ticks as seconds since power-up),
+/// each with its line; [`ReadErrorKind::Unusable`] when the first and last kept ticks are
+/// equal or a time falls outside the representable range.
 pub fn read_raw_imu(
     reader: impl BufRead,
     input: impl Into<String>,
@@ -281,10 +282,23 @@ fn series_from_rows(
              distinct ticks to map onto the tag file's span)"
         )));
     }
-    let start = tag.start.as_nanos() + settings.time_offset.as_nanos();
+    let start = tag
+        .start
+        .as_nanos()
+        .checked_add(settings.time_offset.as_nanos());
     let mut series = ImuSeries::new(SampleKind::Rates);
     for row in rows {
-        let time = start + stretched_nanos(row.tick_ms - first, ticks, tag.span.as_nanos());
+        let elapsed = row.tick_ms - first;
+        let time = start
+            .zip(stretched_nanos(elapsed, ticks, tag.span.as_nanos()))
+            .and_then(|(start, offset)| start.checked_add(offset))
+            .ok_or_else(|| {
+                ReadErrorKind::Unusable(format!(
+                    "tick {} ms maps outside the time range (±292 years) with this tag file \
+                     and time offset",
+                    row.tick_ms
+                ))
+            })?;
         series.push(&ImuSample {
             time: Timestamp::from_nanos(time),
             gyro: settings.frame.apply(row.gyro),
@@ -296,11 +310,13 @@ fn series_from_rows(
 }
 
 /// `elapsed / total · span`, in integer arithmetic rounded to the nearest nanosecond.
-fn stretched_nanos(elapsed_ticks: i64, total_ticks: i64, span_nanos: i64) -> i64 {
+/// `None` when the result does not fit (ticks far outside the first-to-last range, which only
+/// lenient reading lets through).
+fn stretched_nanos(elapsed_ticks: i64, total_ticks: i64, span_nanos: i64) -> Option<i64> {
     let numerator = i128::from(elapsed_ticks) * i128::from(span_nanos);
     let total = i128::from(total_ticks);
     let rounded = (2 * numerator + total).div_euclid(2 * total);
-    rounded as i64
+    i64::try_from(rounded).ok()
 }
 
 #[cfg(test)]
@@ -309,10 +325,11 @@ mod tests {
 
     #[test]
     fn stretching_maps_the_ends_exactly_and_rounds_to_nearest() {
-        assert_eq!(stretched_nanos(0, 3, 1_000), 0);
-        assert_eq!(stretched_nanos(3, 3, 1_000), 1_000);
+        assert_eq!(stretched_nanos(0, 3, 1_000), Some(0));
+        assert_eq!(stretched_nanos(3, 3, 1_000), Some(1_000));
         // 1/3 of 1000 ns = 333.33… → 333; 2/3 → 666.67 → 667.
-        assert_eq!(stretched_nanos(1, 3, 1_000), 333);
-        assert_eq!(stretched_nanos(2, 3, 1_000), 667);
+        assert_eq!(stretched_nanos(1, 3, 1_000), Some(333));
+        assert_eq!(stretched_nanos(2, 3, 1_000), Some(667));
+        assert_eq!(stretched_nanos(i64::MAX / 2, 1, i64::MAX), None);
     }
 }

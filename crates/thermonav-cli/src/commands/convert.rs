@@ -114,9 +114,14 @@ fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSetti
         }
         sd => sd.map(f64::to_radians),
     };
-    let gpst_minus_utc = Duration::from_seconds(args.leap_seconds as f64)
-        .map_err(|e| anyhow!("--leap-seconds: {e}"))
-        .usage()?;
+    if args.leap_seconds.abs() > 3600 {
+        return Err(anyhow!(
+            "--leap-seconds is GPST minus UTC (18 since 2017), not {}",
+            args.leap_seconds
+        ))
+        .usage();
+    }
+    let gpst_minus_utc = Duration::from_nanos(args.leap_seconds * 1_000_000_000);
     Ok(NmeaSettings {
         strictness,
         gpst_minus_utc,
@@ -164,6 +169,9 @@ fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> 
         ))
         .usage()
     };
+    if head.starts_with(b"TIMETAG") {
+        return unknown("an RTKLIB time-tag file: convert the IMU CSV it belongs to");
+    }
     let Some(first) = lines.first() else {
         return unknown("the file is empty");
     };

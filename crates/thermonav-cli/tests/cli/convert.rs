@@ -104,6 +104,10 @@ fn nmea_and_kf_gins_files_convert() {
     let (status, _, stderr) = outcome(&thermonav(&["convert", arg(&seven), "--out", arg(&out)]));
     assert_eq!(status, 2, "{stderr}");
     assert!(stderr.contains("give --format"), "{stderr}");
+    let tag = shared_data(&format!("{DRIVE}/imu_1934.csv.tag"));
+    let (status, _, stderr) = outcome(&thermonav(&["convert", arg(&tag), "--out", arg(&out)]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("time-tag file"), "{stderr}");
     let args = [
         "convert",
         arg(&seven),

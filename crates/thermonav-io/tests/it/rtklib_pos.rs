@@ -104,6 +104,21 @@ fn ecef_form_is_converted_with_wgs84_constants() {
 }
 
 #[test]
+fn ecef_point_above_the_pole_has_latitude_90() {
+    // (0, 0, b + h) with b = 6 356 752.314245 m, WGS84's semi-minor axis (NIMA TR8350.2,
+    // Table 3.1): latitude 90°, height h. Height within 1 mm: b is given to the micrometre and
+    // the conversion's pole branch subtracts it from z.
+    let text = format!(
+        "{}2369 239676.000 0.0 0.0 6356852.314245 1 9\n",
+        "%  GPST x-ecef(m) y-ecef(m) z-ecef(m) Q ns\n"
+    );
+    let fix = read_rtklib_pos(text.as_bytes(), "pole.pos", PosSettings::default()).unwrap()[0].fix;
+    assert!((fix.latitude_rad - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    assert!((fix.height_m - 100.0).abs() < 1e-3, "{}", fix.height_m);
+    assert_eq!(fix.position_sd_ned_m, None);
+}
+
+#[test]
 fn ecef_cross_terms_are_signed_square_roots() {
     // At the equator, longitude 0: NED north = +z, east = +y. sdyz = -1 means cov(y, z) = -1 m²
     // (RTKLIB's sign(c)·√|c|), which does not change the north and east variances (4 and 9 from
