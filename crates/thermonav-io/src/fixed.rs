@@ -64,6 +64,26 @@ pub(crate) fn number(
     Ok(value)
 }
 
+/// Field `index` (0-based) as a whole number from 0 to `max`; `expected` says what it is.
+pub(crate) fn whole_number(
+    fields: &[&[u8]],
+    index: usize,
+    column: &'static str,
+    max: u64,
+    expected: &'static str,
+) -> Result<u64, ReadErrorKind> {
+    let value = number(fields, index, column, Strictness::Strict)?;
+    match value.fract() == 0.0 && (0.0..=max as f64).contains(&value) {
+        true => Ok(value as u64),
+        false => Err(ReadErrorKind::BadField {
+            index: index + 1,
+            column,
+            expected,
+            found: shown(fields.get(index).copied().unwrap_or_default()),
+        }),
+    }
+}
+
 /// `N` consecutive fields from `first` (0-based) as numbers, named by `columns`.
 pub(crate) fn numbers<const N: usize>(
     fields: &[&[u8]],

@@ -21,7 +21,7 @@
 
 use crate::Strictness;
 use crate::error::{ReadError, ReadErrorKind};
-use crate::fixed::{numbers, read_records, seconds, split_blanks};
+use crate::fixed::{numbers, read_records, seconds, split_blanks, whole_number};
 use crate::gpst;
 use std::io::BufRead;
 use std::path::Path;
@@ -133,8 +133,14 @@ pub fn read_kf_gins_nav(
     read_records(reader, input.into(), strictness, NAV_LAYOUT, |line| {
         let fields = split_blanks(line);
         crate::fixed::expect_fields(&fields, 11, NAV_LAYOUT)?;
-        let [week] = numbers(&fields, 0, ["week"], strictness)?;
-        let week = whole_week(week, fields[0])?;
+        let week = whole_number(
+            &fields,
+            0,
+            "week",
+            u32::MAX.into(),
+            "a whole GPS week number",
+        )?;
+        let week = week as u32;
         let time = week_time(seconds(&fields, 1, "time")?, (week != 0).then_some(week))?;
         let [lat, lon, h, vn, ve, vd, roll, pitch, yaw] = numbers(
             &fields,
@@ -219,18 +225,5 @@ fn week_time(
                 expected: "a GPS week within the time range",
             },
         ),
-    }
-}
-
-/// A week field as a whole non-negative number.
-fn whole_week(week: f64, field: &[u8]) -> Result<u32, ReadErrorKind> {
-    match week.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&week) {
-        true => Ok(week as u32),
-        false => Err(ReadErrorKind::BadField {
-            index: 1,
-            column: "week",
-            expected: "a whole GPS week number",
-            found: crate::fixed::shown(field),
-        }),
     }
 }

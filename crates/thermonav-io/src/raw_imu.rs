@@ -24,7 +24,7 @@
 
 use crate::Strictness;
 use crate::error::{ReadError, ReadErrorKind};
-use crate::fixed::{TimeOrder, expect_fields, number, numbers, shown, split_on};
+use crate::fixed::{TimeOrder, expect_fields, numbers, split_on, whole_number};
 use crate::lines::Lines;
 use std::io::BufRead;
 use std::path::Path;
@@ -252,15 +252,13 @@ fn decode_row(line: &[u8], strictness: Strictness) -> Result<RawRow, ReadErrorKi
         ["gx (deg/s)", "gy (deg/s)", "gz (deg/s)"],
         strictness,
     )?;
-    let tick = number(&fields, 6, "tick (ms)", Strictness::Strict)?;
-    if tick.fract() != 0.0 || !(0.0..=9.0e15).contains(&tick) {
-        return Err(ReadErrorKind::BadField {
-            index: 7,
-            column: "tick",
-            expected: "whole milliseconds since power-up",
-            found: shown(fields[6]),
-        });
-    }
+    let tick = whole_number(
+        &fields,
+        6,
+        "tick",
+        9_000_000_000_000_000,
+        "whole milliseconds since power-up",
+    )?;
     Ok(RawRow {
         tick_ms: tick as i64,
         gyro: gyro_deg_s.map(deg_to_rad),

@@ -25,7 +25,7 @@
 
 use crate::Strictness;
 use crate::error::{ReadError, ReadErrorKind};
-use crate::fixed::{number, read_records, seconds, shown, split_blanks};
+use crate::fixed::{number, read_records, seconds, shown, split_blanks, whole_number};
 use crate::gpst;
 use std::io::BufRead;
 use std::path::Path;
@@ -300,9 +300,12 @@ impl Columns {
         let position = triple(self.position)?;
         let sd = self.sd.map(triple).transpose()?;
         let velocity = self.velocity.map(triple).transpose()?;
-        let quality = whole(fields, self.quality, "Q", 7)? as u8;
+        let quality =
+            whole_number(fields, self.quality, "Q", 7, "a quality flag from 0 to 7")? as u8;
         let satellites = match self.satellites {
-            Some(index) => Some(whole(fields, index, "ns", u32::MAX.into())? as u32),
+            Some(index) => {
+                Some(whole_number(fields, index, "ns", 999, "a number of satellites")? as u32)
+            }
             None => None,
         };
         let fix = match self.form {
@@ -331,25 +334,6 @@ impl Columns {
 /// Name given to value columns in messages (with the field number).
 const POS_COLUMN: &str = "solution value";
 
-/// Field `index` as a whole number within 0..=`max`.
-fn whole(
-    fields: &[&[u8]],
-    index: usize,
-    column: &'static str,
-    max: u64,
-) -> Result<u64, ReadErrorKind> {
-    let value = number(fields, index, column, Strictness::Strict)?;
-    match value.fract() == 0.0 && (0.0..=max as f64).contains(&value) {
-        true => Ok(value as u64),
-        false => Err(ReadErrorKind::BadField {
-            index: index + 1,
-            column,
-            expected: "a whole number in its range (Q: 0 to 7)",
-            found: shown(fields[index]),
-        }),
-    }
-}
-
 /// The time of a solution line: `yyyy/mm/dd hh:mm:ss.sss` or `week seconds`, GPST.
 fn solution_time(fields: &[&[u8]]) -> Result<Timestamp, ReadErrorKind> {
     if fields[0].contains(&b'/') {
@@ -357,7 +341,7 @@ fn solution_time(fields: &[&[u8]]) -> Result<Timestamp, ReadErrorKind> {
         let nanos = nanos_of_day(fields[1])?;
         gpst::from_day_and_nanos(days, nanos).ok_or_else(|| bad_date(fields[0]))
     } else {
-        let week = whole(fields, 0, "GPS week", 9_999)?;
+        let week = whole_number(fields, 0, "GPS week", 9_999, "a GPS week number")?;
         let seconds_of_week = seconds(fields, 1, "GPS seconds of week")?;
         gpst::from_week_and_nanos(week as i64, seconds_of_week.as_nanos())
             .ok_or_else(|| bad_date(fields[1]))
