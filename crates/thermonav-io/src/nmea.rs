@@ -185,46 +185,72 @@ fn decode_sentence(
         return Ok(());
     }
     match kind {
-        b"GGA" => {
-            let epoch = epoch_at(epochs, time_of_day(field(1))?);
-            let quality = number(fields, 6, "GGA fix quality", strictness)?;
-            if quality > 0.0 {
-                let [latitude, longitude] = latitude_longitude(fields, 2, strictness)?;
-                let altitude = number(fields, 9, "GGA altitude", strictness)?;
-                let separation = optional(fields, 11, "GGA geoid separation", strictness)?;
-                epoch.position = Some([latitude, longitude, altitude + separation.unwrap_or(0.0)]);
-            }
-        }
-        b"RMC" => {
-            let epoch = epoch_at(epochs, time_of_day(field(1))?);
-            if !field(9).is_empty() {
-                epoch.date = Some(rmc_date(field(9))?);
-            }
-            if field(2) == b"A" {
-                let speed = optional(fields, 7, "RMC speed (knots)", strictness)?;
-                let course = optional(fields, 8, "RMC course (deg)", strictness)?;
-                if let (Some(knots), Some(course)) = (speed, course) {
-                    epoch.course_speed = Some((deg_to_rad(course), knots_to_m_s(knots)));
-                }
-            }
-        }
-        b"VTG" => {
-            let course = optional(fields, 1, "VTG course (deg true)", strictness)?;
-            let knots = optional(fields, 5, "VTG speed (knots)", strictness)?;
-            let km_h = optional(fields, 7, "VTG speed (km/h)", strictness)?;
-            let speed = knots.map(knots_to_m_s).or(km_h.map(|v| v / 3.6));
-            if let (Some(epoch), Some(course), Some(speed)) = (epochs.last_mut(), course, speed) {
-                epoch.course_speed = Some((deg_to_rad(course), speed));
-            }
-        }
+        b"GGA" => add_gga(fields, epoch_at(epochs, time_of_day(field(1))?), strictness),
+        b"RMC" => add_rmc(fields, epoch_at(epochs, time_of_day(field(1))?), strictness),
+        b"VTG" => add_vtg(fields, epochs.last_mut(), strictness),
         b"HDT" | b"THS" => {
-            let heading = optional(fields, 1, "heading (deg true)", strictness)?;
             let valid = kind == b"HDT" || field(2) != b"V";
+            let heading = optional(fields, 1, "heading (deg true)", strictness)?;
             if let (Some(epoch), Some(heading), true) = (epochs.last_mut(), heading, valid) {
                 epoch.heading = Some(deg_to_rad(heading));
             }
+            Ok(())
         }
-        _ => {}
+        _ => Ok(()),
+    }
+}
+
+/// GGA: the position when the fix quality is above 0 (height made ellipsoidal).
+fn add_gga(
+    fields: &[&[u8]],
+    epoch: &mut Epoch,
+    strictness: Strictness,
+) -> Result<(), ReadErrorKind> {
+    let quality = number(fields, 6, "GGA fix quality", strictness)?;
+    if quality > 0.0 {
+        let [latitude, longitude] = latitude_longitude(fields, 2, strictness)?;
+        if strictness == Strictness::Strict {
+            crate::check_latitude(latitude)?;
+        }
+        let altitude = number(fields, 9, "GGA altitude", strictness)?;
+        let separation = optional(fields, 11, "GGA geoid separation", strictness)?;
+        epoch.position = Some([latitude, longitude, altitude + separation.unwrap_or(0.0)]);
+    }
+    Ok(())
+}
+
+/// RMC: the date, and course and speed when the status is valid (`A`).
+fn add_rmc(
+    fields: &[&[u8]],
+    epoch: &mut Epoch,
+    strictness: Strictness,
+) -> Result<(), ReadErrorKind> {
+    let field = |index: usize| fields.get(index).copied().unwrap_or_default();
+    if !field(9).is_empty() {
+        epoch.date = Some(rmc_date(field(9))?);
+    }
+    if field(2) == b"A" {
+        let speed = optional(fields, 7, "RMC speed (knots)", strictness)?;
+        let course = optional(fields, 8, "RMC course (deg)", strictness)?;
+        if let (Some(knots), Some(course)) = (speed, course) {
+            epoch.course_speed = Some((deg_to_rad(course), knots_to_m_s(knots)));
+        }
+    }
+    Ok(())
+}
+
+/// VTG: true course and speed (knots, else km/h) for the latest epoch.
+fn add_vtg(
+    fields: &[&[u8]],
+    epoch: Option<&mut Epoch>,
+    strictness: Strictness,
+) -> Result<(), ReadErrorKind> {
+    let course = optional(fields, 1, "VTG course (deg true)", strictness)?;
+    let knots = optional(fields, 5, "VTG speed (knots)", strictness)?;
+    let km_h = optional(fields, 7, "VTG speed (km/h)", strictness)?;
+    let speed = knots.map(knots_to_m_s).or(km_h.map(|v| v / 3.6));
+    if let (Some(epoch), Some(course), Some(speed)) = (epoch, course, speed) {
+        epoch.course_speed = Some((deg_to_rad(course), speed));
     }
     Ok(())
 }

@@ -205,6 +205,12 @@ fn bad_input_names_file_line_and_expectation() {
         "log.nmea:2: field 4 (hemisphere): expected N or S after a latitude, E or W after a \
          longitude, found \"X\""
     );
+    let beyond_pole = "$GPGGA,123519,9507.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
+    let message = strict_error(&[RMC, beyond_pole]);
+    assert!(
+        message.starts_with("log.nmea:2: column lat_deg: value 95.11"),
+        "{message}"
+    );
     let no_fix = "$GPGGA,123519,4807.038,N,01131.000,E,0,08,0.9,545.4,M,46.9,M,,*46";
     assert_eq!(
         strict_error(&[RMC, no_fix]),
