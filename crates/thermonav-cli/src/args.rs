@@ -41,6 +41,8 @@ pub enum Command {
     /// The temperature-model tournament: every bank model through the filter, GNSS outages,
     /// errors against a reference, ranking and its Monte Carlo significance.
     Evaluate(EvaluateArgs),
+    /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag) to a canonical CSV.
+    Convert(ConvertArgs),
 }
 
 /// Which filters a tournament runs.
@@ -493,4 +495,73 @@ pub struct FilterArgs {
     /// Print one JSON document (the sidecar) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// Foreign formats read by `convert`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ForeignFormatArg {
+    /// RTKLIB solution (.pos), lat/lon/height or ECEF form, GPST times → GNSS CSV.
+    RtklibPos,
+    /// NMEA 0183 log (GGA, RMC, VTG, HDT, THS) → GNSS CSV.
+    Nmea,
+    /// KF-GINS IMU text file (time, angle and velocity increments) → IMU CSV (increments).
+    KfGinsImu,
+    /// KF-GINS GNSS text file (7 or 13 columns) → GNSS CSV.
+    KfGinsGnss,
+    /// KF-GINS navigation result / truth (.nav) → trajectory CSV.
+    KfGinsNav,
+    /// Raw IMU CSV (g, deg/s, ms tick) timed by its RTKLIB .tag file → IMU CSV (rates).
+    RawImuTag,
+}
+
+/// Axes of a raw IMU file's output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ImuFrameArg {
+    /// As recorded by the sensor (rotate to forward-right-down before navigating).
+    Sensor,
+    /// Forward-right-down by the rtklibexplorer drive's mounting (x and z negated).
+    DriveFrd,
+}
+
+/// Arguments of `convert`.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The foreign file.
+    pub input: PathBuf,
+    /// Its format; detected from the content when omitted and unambiguous.
+    #[arg(long, value_enum)]
+    pub format: Option<ForeignFormatArg>,
+    /// The canonical CSV to write (atomically; nothing is written on error).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// raw-imu-tag: the time-tag file (default: INPUT.tag).
+    #[arg(long)]
+    pub tag: Option<PathBuf>,
+    /// raw-imu-tag: axes of the output.
+    #[arg(long, value_enum, default_value_t = ImuFrameArg::Sensor)]
+    pub imu_frame: ImuFrameArg,
+    /// raw-imu-tag: seconds added to every time (the drive's author uses -0.125).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub time_offset_s: f64,
+    /// rtklib-pos: keep only these quality flags Q (1 fix, 2 float, …), e.g. --quality 1.
+    #[arg(long, value_delimiter = ',')]
+    pub quality: Vec<u8>,
+    /// kf-gins-imu, kf-gins-gnss: GPS week of the seconds-of-week times (put on the GPST scale).
+    #[arg(long)]
+    pub gps_week: Option<u32>,
+    /// nmea: GPST minus UTC, s.
+    #[arg(long, default_value_t = 18)]
+    pub leap_seconds: i64,
+    /// nmea: UTC date of the first epoch (YYYY-MM-DD) when the log has no RMC sentence.
+    #[arg(long)]
+    pub date: Option<String>,
+    /// nmea: keep HDT/THS headings with this standard deviation, deg.
+    #[arg(long)]
+    pub heading_sd_deg: Option<f64>,
+    /// nmea: turn speed and course into a velocity with down = 0.
+    #[arg(long)]
+    pub level_velocity: bool,
+    /// Keep NaN values and non-increasing times; skip NMEA lines with bad checksums.
+    #[arg(long)]
+    pub lenient: bool,
 }

@@ -171,6 +171,53 @@ pub enum ReadErrorKind {
         /// Time on this line.
         current: Timestamp,
     },
+    /// A headerless format with no data line at all.
+    #[error("no data (expected {expected})")]
+    NoData {
+        /// What the format's lines hold.
+        expected: &'static str,
+    },
+    /// A field of a fixed-layout line that is not what the format expects there.
+    #[error("field {index} ({column}): expected {expected}, found \"{found}\"")]
+    BadField {
+        /// 1-based position of the field on the line.
+        index: usize,
+        /// The format's name for the field.
+        column: &'static str,
+        /// What the field should hold.
+        expected: &'static str,
+        /// The field's text (cut to 40 characters).
+        found: String,
+    },
+    /// A variant of a format that this reader does not implement.
+    #[error("{found} is not supported (expected {expected})")]
+    Unsupported {
+        /// What was found.
+        found: String,
+        /// What the reader accepts.
+        expected: &'static str,
+    },
+    /// An NMEA sentence whose checksum does not match its characters, or that has none.
+    #[error(
+        "NMEA checksum: the sentence ends in \"{given}\" but its characters give *{computed:02X}"
+    )]
+    Checksum {
+        /// The text after `*` (empty when the sentence has no checksum).
+        given: String,
+        /// XOR of the characters between `$` and `*`.
+        computed: u8,
+    },
+    /// A binary file whose bytes are not what the format expects at some offset.
+    #[error("at byte {offset}: expected {expected}")]
+    BadBinary {
+        /// Offset of the problem from the start of the file, bytes.
+        offset: u64,
+        /// What the format has there.
+        expected: &'static str,
+    },
+    /// The input, taken as a whole, cannot be used; the text says why and what is needed.
+    #[error("{0}")]
+    Unusable(String),
 }
 
 /// Why a file or stream could not be written.

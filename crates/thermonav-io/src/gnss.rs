@@ -153,7 +153,7 @@ fn fix_from_row(time: thermonav::time::Timestamp, v: &[f64], groups: Groups) -> 
 }
 
 /// Strict checks: latitude within ±90°, standard deviations not negative.
-fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
+pub(crate) fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
     crate::check_latitude(fix.latitude_rad)?;
     let sds = fix.position_sd_ned_m.unwrap_or_default();
     let sd_names = ["sd_n_m", "sd_e_m", "sd_u_m"];
@@ -217,6 +217,40 @@ pub fn write_gnss(mut out: impl Write, fixes: &[GnssFix]) -> Result<(), WriteErr
     }
     out.flush()?;
     Ok(())
+}
+
+/// Drops from every fix the optional groups that some fix lacks, so that the fixes can be
+/// written as one file (foreign formats give velocity or heading only at some epochs); returns
+/// the names of the dropped groups.
+pub fn keep_common_groups(fixes: &mut [GnssFix]) -> Vec<&'static str> {
+    let every = |has: fn(&GnssFix) -> bool| fixes.iter().all(has);
+    let keep_sd = every(|f| f.position_sd_ned_m.is_some());
+    let keep_velocity = every(|f| f.velocity_ned_m_s.is_some());
+    let keep_heading = every(|f| f.heading.is_some());
+    let some = |has: fn(&GnssFix) -> bool| fixes.iter().any(has);
+    let dropped: Vec<&'static str> = [
+        (
+            keep_sd || !some(|f| f.position_sd_ned_m.is_some()),
+            SD_GROUP,
+        ),
+        (
+            keep_velocity || !some(|f| f.velocity_ned_m_s.is_some()),
+            VELOCITY_GROUP,
+        ),
+        (
+            keep_heading || !some(|f| f.heading.is_some()),
+            HEADING_GROUP,
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(fine, group)| (!fine).then_some(group))
+    .collect();
+    for fix in fixes.iter_mut() {
+        fix.position_sd_ned_m = fix.position_sd_ned_m.filter(|_| keep_sd);
+        fix.velocity_ned_m_s = fix.velocity_ned_m_s.filter(|_| keep_velocity);
+        fix.heading = fix.heading.filter(|_| keep_heading);
+    }
+    dropped
 }
 
 /// Writes fixes to `path` atomically (see [`write_atomically`]).

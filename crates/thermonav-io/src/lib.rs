@@ -20,6 +20,18 @@
 //! into integer nanoseconds and written back with nine decimals: no time is ever rounded
 //! through an `f64` (except one written in scientific notation, which is rare for times).
 //!
+//! ## Foreign formats
+//! Readers of other tools' files, returning the same library types (the `thermonav convert`
+//! command writes them out as canonical CSVs):
+//! - [`rtklib_pos`]: RTKLIB solutions (`.pos`), latitude/longitude or ECEF form, `Q` filter;
+//! - [`nmea`]: NMEA 0183 GGA, RMC, VTG, HDT, THS with checksums, combined per epoch;
+//! - [`kf_gins`]: KF-GINS IMU increments, GNSS positions and `.nav` trajectories;
+//! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`).
+//!
+//! They share one absolute time scale, [`gpst`]: seconds since 1970 counted in GPST without
+//! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
+//! up. Lines of these formats are numbered like the canonical CSVs' in errors.
+//!
 //! ## Sensor profiles
 //! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
 //!
@@ -33,20 +45,28 @@
 
 pub mod atomic;
 pub mod error;
+mod fixed;
 pub mod gnss;
+pub mod gpst;
 pub mod imu;
+pub mod kf_gins;
 mod layout;
 mod lines;
 pub mod motion;
+pub mod nmea;
 pub mod profile;
+pub mod raw_imu;
 mod rows;
+pub mod rtklib_pos;
 pub mod solution;
 mod text;
 pub mod trajectory;
 
 pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
-pub use gnss::{GnssReader, read_gnss, read_gnss_file, write_gnss, write_gnss_file};
+pub use gnss::{
+    GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
+};
 pub use imu::{
     ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu, write_imu_file,
 };

@@ -58,6 +58,11 @@ impl<R: BufRead> Lines<R> {
         ReadError::new(self.input.as_str(), Some(self.number), kind)
     }
 
+    /// An error about an earlier line, `number`.
+    pub(crate) fn error_at(&self, number: u64, kind: ReadErrorKind) -> ReadError {
+        ReadError::new(self.input.as_str(), Some(number), kind)
+    }
+
     /// An error about the whole input.
     pub(crate) fn error_in_input(&self, kind: ReadErrorKind) -> ReadError {
         ReadError::new(self.input.as_str(), None, kind)

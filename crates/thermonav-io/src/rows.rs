@@ -2,6 +2,7 @@
 
 use crate::Strictness;
 use crate::error::{ReadError, ReadErrorKind};
+use crate::fixed::{TimeOrder, shown};
 use crate::layout::{Layout, MAX_SLOTS, Schema, Target};
 use crate::lines::Lines;
 use crate::text::{parse_time_prefix, parse_value_prefix};
@@ -17,7 +18,7 @@ pub(crate) struct Rows<R> {
     layout: Layout,
     strictness: Strictness,
     values: [f64; MAX_SLOTS],
-    previous: Option<(Timestamp, u64)>,
+    order: TimeOrder,
     state: State,
 }
 
@@ -57,7 +58,7 @@ impl<R: BufRead> Rows<R> {
             layout,
             strictness,
             values: [0.0; MAX_SLOTS],
-            previous: None,
+            order: TimeOrder::default(),
             state: State::BeforeFirstRow,
         })
     }
@@ -127,18 +128,9 @@ impl<R: BufRead> Rows<R> {
 
     /// Under [`Strictness::Strict`], times must increase strictly from row to row.
     fn check_time_order(&mut self, time: Timestamp) -> Result<(), ReadError> {
-        let line = self.lines.number();
-        let previous = self.previous.replace((time, line));
-        match (self.strictness, previous) {
-            (Strictness::Strict, Some((previous, previous_line))) if time <= previous => {
-                Err(self.lines.error_here(ReadErrorKind::NonIncreasingTime {
-                    previous,
-                    previous_line,
-                    current: time,
-                }))
-            }
-            _ => Ok(()),
-        }
+        self.order
+            .check(time, self.lines.number(), self.strictness)
+            .map_err(|kind| self.lines.error_here(kind))
     }
 }
 
@@ -249,15 +241,5 @@ fn non_finite_error(field: &[u8], column: &str) -> ReadErrorKind {
     ReadErrorKind::NonFinite {
         column: column.to_owned(),
         found: shown(field),
-    }
-}
-
-/// A field's text for an error message, cut to 40 characters.
-fn shown(field: &[u8]) -> String {
-    const LIMIT: usize = 40;
-    let text = String::from_utf8_lossy(field);
-    match text.char_indices().nth(LIMIT) {
-        Some((cut, _)) => format!("{}…", &text[..cut]),
-        None => text.into_owned(),
     }
 }

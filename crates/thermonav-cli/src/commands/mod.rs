@@ -4,6 +4,7 @@ mod allan;
 mod ar;
 mod bank;
 mod characterize;
+mod convert;
 mod demo;
 mod evaluate;
 mod filter;
@@ -29,5 +30,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
+        Command::Convert(args) => convert::run(&args),
     }
 }

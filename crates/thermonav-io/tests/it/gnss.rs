@@ -141,3 +141,18 @@ fn strict_rejects_unordered_fix_times() {
          (strict reading)"
     );
 }
+
+#[test]
+fn groups_missing_at_some_fixes_are_dropped_from_all() {
+    use thermonav_io::keep_common_groups;
+    let text = "t_s,lat_deg,lon_deg,h_m,vn_m_s,ve_m_s,vd_m_s\n1,45,-90,100,1,2,3\n";
+    let with_velocity = gnss(text, Strictness::Strict).unwrap()[0];
+    let mut fixes = vec![with_velocity, with_velocity];
+    assert!(keep_common_groups(&mut fixes).is_empty());
+    assert!(fixes.iter().all(|f| f.velocity_ned_m_s.is_some()));
+    fixes[1].velocity_ned_m_s = None;
+    assert_eq!(keep_common_groups(&mut fixes), ["vn_m_s,ve_m_s,vd_m_s"]);
+    assert!(fixes.iter().all(|f| f.velocity_ned_m_s.is_none()));
+    let mut out = Vec::new();
+    thermonav_io::write_gnss(&mut out, &fixes).unwrap();
+}

@@ -27,3 +27,15 @@ pub fn within_ulps(value: f64, expected: f64, ulps: u64) -> bool {
     let distance = (value.to_bits() as i64 - expected.to_bits() as i64).unsigned_abs();
     value.signum() == expected.signum() && distance <= ulps
 }
+
+/// Path of a file under the project's `shared/data` folder, found in the nearest ancestor of
+/// this crate that has one (the main checkout sits beside `shared/`, worktrees deeper).
+pub fn shared_data(relative: &str) -> std::path::PathBuf {
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .ancestors()
+        .map(|dir| dir.join("shared/data"))
+        .find(|dir| dir.is_dir())
+        .expect("a shared/data folder above the crate")
+        .join(relative)
+}

@@ -1,0 +1,209 @@
+//! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag) to the
+//! canonical GNSS, IMU or trajectory CSV. The whole input is read before anything is written,
+//! and the output is written atomically, so a bad input leaves no output behind.
+
+use crate::args::{ConvertArgs, ForeignFormatArg, ImuFrameArg};
+use crate::failure::{Classify, Failure};
+use anyhow::anyhow;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use thermonav::gnss::GnssFix;
+use thermonav::time::Duration;
+use thermonav_io::kf_gins::{read_kf_gins_gnss_file, read_kf_gins_imu_file, read_kf_gins_nav_file};
+use thermonav_io::nmea::{NmeaSettings, read_nmea_file};
+use thermonav_io::raw_imu::{ImuFrame, RawImuSettings, read_raw_imu_files};
+use thermonav_io::rtklib_pos::{PosSettings, QualitySet, read_rtklib_pos_file};
+use thermonav_io::{
+    Strictness, keep_common_groups, write_gnss_file, write_imu_file, write_trajectory_file,
+};
+
+/// Runs `convert`.
+pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
+    let format = match args.format {
+        Some(format) => format,
+        None => detect_format(&args.input, &tag_path(args))?,
+    };
+    let strictness = match args.lenient {
+        true => Strictness::Lenient,
+        false => Strictness::Strict,
+    };
+    let (count, what) = match format {
+        ForeignFormatArg::RtklibPos => {
+            let settings = PosSettings {
+                strictness,
+                qualities: match args.quality.is_empty() {
+                    true => QualitySet::ALL,
+                    false => QualitySet::of(&args.quality),
+                },
+            };
+            let solutions = read_rtklib_pos_file(&args.input, settings).data()?;
+            write_fixes(&args.out, solutions.iter().map(|s| s.fix).collect())?
+        }
+        ForeignFormatArg::Nmea => {
+            let fixes = read_nmea_file(&args.input, nmea_settings(args, strictness)?).data()?;
+            write_fixes(&args.out, fixes)?
+        }
+        ForeignFormatArg::KfGinsGnss => {
+            let fixes = read_kf_gins_gnss_file(&args.input, args.gps_week, strictness).data()?;
+            write_fixes(&args.out, fixes)?
+        }
+        ForeignFormatArg::KfGinsImu => {
+            let series = read_kf_gins_imu_file(&args.input, args.gps_week, strictness).data()?;
+            write_imu_file(&args.out, &series).data()?;
+            (series.len(), "IMU samples (increments)")
+        }
+        ForeignFormatArg::RawImuTag => {
+            let settings = raw_imu_settings(args, strictness)?;
+            let series = read_raw_imu_files(&args.input, tag_path(args), settings).data()?;
+            write_imu_file(&args.out, &series).data()?;
+            (series.len(), "IMU samples (rates)")
+        }
+        ForeignFormatArg::KfGinsNav => {
+            let points = read_kf_gins_nav_file(&args.input, strictness).data()?;
+            write_trajectory_file(&args.out, &points).data()?;
+            (points.len(), "trajectory points")
+        }
+    };
+    println!(
+        "{}: {count} {what} written to {}",
+        args.input.display(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// Writes fixes as one GNSS CSV, dropping (with a note) the groups only some fixes carry.
+fn write_fixes(out: &Path, mut fixes: Vec<GnssFix>) -> Result<(usize, &'static str), Failure> {
+    for group in keep_common_groups(&mut fixes) {
+        eprintln!("note: {group} is not given at every epoch and is left out");
+    }
+    write_gnss_file(out, &fixes).data()?;
+    Ok((fixes.len(), "GNSS fixes"))
+}
+
+/// The time-tag file: `--tag`, or the input's name with `.tag` appended.
+fn tag_path(args: &ConvertArgs) -> PathBuf {
+    args.tag.clone().unwrap_or_else(|| {
+        let mut name = args.input.clone().into_os_string();
+        name.push(".tag");
+        PathBuf::from(name)
+    })
+}
+
+fn raw_imu_settings(args: &ConvertArgs, strictness: Strictness) -> Result<RawImuSettings, Failure> {
+    let time_offset = Duration::from_seconds(args.time_offset_s)
+        .map_err(|e| anyhow!("--time-offset-s: {e}"))
+        .usage()?;
+    Ok(RawImuSettings {
+        strictness,
+        frame: match args.imu_frame {
+            ImuFrameArg::Sensor => ImuFrame::Sensor,
+            ImuFrameArg::DriveFrd => ImuFrame::DriveMountingFrd,
+        },
+        time_offset,
+    })
+}
+
+fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSettings, Failure> {
+    let heading_sd_rad = match args.heading_sd_deg {
+        Some(sd) if !(sd.is_finite() && sd > 0.0) => {
+            return Err(anyhow!(
+                "--heading-sd-deg must be a positive number, not {sd}"
+            ))
+            .usage();
+        }
+        sd => sd.map(f64::to_radians),
+    };
+    if args.leap_seconds.abs() > 3600 {
+        return Err(anyhow!(
+            "--leap-seconds is GPST minus UTC (18 since 2017), not {}",
+            args.leap_seconds
+        ))
+        .usage();
+    }
+    let gpst_minus_utc = Duration::from_nanos(args.leap_seconds * 1_000_000_000);
+    Ok(NmeaSettings {
+        strictness,
+        gpst_minus_utc,
+        date: args.date.as_deref().map(parse_date).transpose().usage()?,
+        heading_sd_rad,
+        level_velocity: args.level_velocity,
+    })
+}
+
+/// `YYYY-MM-DD` as (year, month, day).
+fn parse_date(text: &str) -> anyhow::Result<(i32, u32, u32)> {
+    let bad = || anyhow!("--date: expected YYYY-MM-DD, found \"{text}\"");
+    let mut parts = text.splitn(3, '-');
+    let mut next = || parts.next().ok_or_else(bad);
+    let (year, month, day) = (next()?, next()?, next()?);
+    let year: i32 = year.parse().map_err(|_| bad())?;
+    let month: u32 = month.parse().map_err(|_| bad())?;
+    let day: u32 = day.parse().map_err(|_| bad())?;
+    match (1..=12).contains(&month) && (1..=31).contains(&day) {
+        true => Ok((year, month, day)),
+        false => Err(bad()),
+    }
+}
+
+/// Bytes read from the start of a file to recognise its format.
+const SNIFF_BYTES: u64 = 64 * 1024;
+
+/// The format of `input` told from its first lines, when only one format fits.
+fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> {
+    let mut head = Vec::new();
+    std::fs::File::open(input)
+        .and_then(|file| file.take(SNIFF_BYTES).read_to_end(&mut head))
+        .map_err(|e| anyhow!("{}: cannot open: {e}", input.display()))
+        .data()?;
+    let text = String::from_utf8_lossy(&head);
+    let lines: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .take(3)
+        .collect();
+    let unknown = |why: &str| {
+        Err(anyhow!(
+            "{}: cannot tell the format from the content ({why}); give --format",
+            input.display()
+        ))
+        .usage()
+    };
+    if head.starts_with(b"TIMETAG") {
+        return unknown("an RTKLIB time-tag file: convert the IMU CSV it belongs to");
+    }
+    let Some(first) = lines.first() else {
+        return unknown("the file is empty");
+    };
+    let first_token = first.split_whitespace().next().unwrap_or("");
+    if first.starts_with('%') || is_slashed_date(first_token) {
+        return Ok(ForeignFormatArg::RtklibPos);
+    }
+    if first.starts_with('$') {
+        return Ok(ForeignFormatArg::Nmea);
+    }
+    // The first line of a raw IMU log is partial: look at the second.
+    let probe = lines.get(1).unwrap_or(first);
+    if probe.split(',').count() == 7 {
+        return match tag.is_file() {
+            true => Ok(ForeignFormatArg::RawImuTag),
+            false => unknown("7 comma-separated fields like a raw IMU log, but no time-tag file"),
+        };
+    }
+    match first.split_whitespace().count() {
+        11 => Ok(ForeignFormatArg::KfGinsNav),
+        13 => Ok(ForeignFormatArg::KfGinsGnss),
+        7 => unknown("7 blank-separated columns fit both kf-gins-imu and kf-gins-gnss"),
+        _ => unknown("no known layout"),
+    }
+}
+
+/// `yyyy/mm/dd`.
+fn is_slashed_date(token: &str) -> bool {
+    let parts: Vec<&str> = token.split('/').collect();
+    parts.len() == 3
+        && parts
+            .iter()
+            .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
+        && parts[0].len() == 4
+}
