@@ -122,8 +122,13 @@ pub struct IntegrateArgs {
     #[arg(long)]
     pub gnss: PathBuf,
     /// The temperature model bank (JSON, from `characterize`).
+    #[arg(long, required_unless_present = "profile", conflicts_with = "profile")]
+    pub bank: Option<PathBuf>,
+    /// Instead of a bank: a sensor profile (TOML, as `simulate profile` writes) whose noise
+    /// model is used at the model temperature (its reference temperature by default): for a
+    /// sensor without a chamber campaign, from its data sheet or a peer's configuration.
     #[arg(long)]
-    pub bank: PathBuf,
+    pub profile: Option<PathBuf>,
     /// Use the bank's model at this temperature, °C (the paper's "model of temperature T").
     #[arg(
         long,
@@ -164,6 +169,17 @@ pub struct IntegrateArgs {
     /// Solution output rate, Hz.
     #[arg(long, default_value_t = 10.0)]
     pub output_rate_hz: f64,
+    /// Probability of the chi-square innovation gate (e.g. 0.9999), or 1 to accept every
+    /// update.
+    #[arg(long, default_value_t = 0.9999)]
+    pub gate_probability: f64,
+    /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none).
+    #[arg(long, default_value_t = 0.05)]
+    pub velocity_sd_m_s: f64,
+    /// Multiplies the white-noise densities (ARW, VRW) of the model: vibration on a vehicle
+    /// raises the effective noise above a static record's (1 = the model as characterised).
+    #[arg(long, default_value_t = 1.0)]
+    pub process_noise_scale: f64,
     /// Ignore GNSS velocities.
     #[arg(long)]
     pub no_velocity: bool,

@@ -26,6 +26,7 @@ use thermonav::stoch::bank::GaussMarkovSource;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
+use thermonav_io::profile::read_profile;
 use thermonav_io::solution::write_solution_states_file;
 use thermonav_io::{
     Strictness, read_gnss_file, read_imu_file, read_trajectory_file, write_trajectory_file,
@@ -36,11 +37,8 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
     let mut settings = engine_settings(args)?;
     let series = read_imu_file(&args.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&args.gnss, Strictness::Strict).data()?;
-    let bank = read_bank(&args.bank)?;
-    let choice = bank_choice(args, &series)?;
-    let model = ImuStochasticModel::from_bank(&bank, &choice, &ScaleFactorPrior::default())
-        .map_err(|e| anyhow!("{}: {e}", args.bank.display()))
-        .data()?;
+    let (mut model, choice) = noise_model(args, &series)?;
+    model.scale_white_noise(args.process_noise_scale);
     let increments = increments_from_series(&series);
     let (Some(first), Some(last)) = (increments.first(), increments.last()) else {
         return Err(Failure::Data(anyhow!(
@@ -87,13 +85,15 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
 }
 
 fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
-    for (name, rate) in [
+    for (name, value) in [
         ("--covariance-rate-hz", args.covariance_rate_hz),
         ("--output-rate-hz", args.output_rate_hz),
+        ("--velocity-sd-m-s", args.velocity_sd_m_s),
+        ("--process-noise-scale", args.process_noise_scale),
     ] {
-        if !(rate.is_finite() && rate > 0.0) {
+        if !(value.is_finite() && value > 0.0) {
             return Err(Failure::Usage(anyhow!(
-                "{name} {rate} must be a positive number of Hz"
+                "{name} {value} must be a positive number"
             )));
         }
     }
@@ -103,6 +103,8 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             FilterArg::Ukf => FilterKind::Ukf,
         },
         covariance_interval_s: 1.0 / args.covariance_rate_hz,
+        gate_probability: gate_of(args.gate_probability)?,
+        velocity_sd_m_s: [args.velocity_sd_m_s; 3],
         output_interval_s: 1.0 / args.output_rate_hz,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         aiding: Aiding {
@@ -112,6 +114,19 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         },
         ..EngineSettings::default()
     })
+}
+
+/// The gate from `--gate-probability`: `None` (accept all) at 1.
+fn gate_of(probability: f64) -> Result<Option<f64>, Failure> {
+    if probability == 1.0 {
+        Ok(None)
+    } else if probability > 0.0 && probability < 1.0 {
+        Ok(Some(probability))
+    } else {
+        Err(Failure::Usage(anyhow!(
+            "--gate-probability {probability} must be in (0, 1], 1 meaning no gate"
+        )))
+    }
 }
 
 /// The antenna set-up from `--lever-arm-m` and `--baseline`.
@@ -141,6 +156,48 @@ pub fn outages_in(spec: &str, first: Timestamp, last: Timestamp) -> Result<Outag
         .map_err(|e| anyhow!("--outages: {e}"))
         .usage()?;
     Ok(outages)
+}
+
+/// The filter's noise model: from the bank at the chosen temperature, or from the profile.
+fn noise_model(
+    args: &IntegrateArgs,
+    series: &ImuSeries,
+) -> Result<(ImuStochasticModel, BankChoice), Failure> {
+    let scale = ScaleFactorPrior::default();
+    if let Some(path) = &args.profile {
+        let profile = read_profile(path).data()?;
+        let temperature_c = args
+            .model_temperature_c
+            .or(args.operating_temperature_c)
+            .or_else(|| {
+                series
+                    .temperature_c
+                    .as_ref()
+                    .filter(|c| !c.is_empty())
+                    .map(|c| c.iter().sum::<f64>() / c.len() as f64)
+            })
+            .unwrap_or(profile.reference_temperature_c);
+        let model = profile
+            .stochastic_model(temperature_c, &scale)
+            .map_err(|e| anyhow!("{}: {e}", path.display()))
+            .data()?;
+        let choice = BankChoice {
+            temperature_c,
+            selection: thermonav::stoch::bank::Selection::Nearest,
+            source: source_of(args.model),
+        };
+        return Ok((model, choice));
+    }
+    let path = args
+        .bank
+        .as_ref()
+        .ok_or_else(|| Failure::Usage(anyhow!("give --bank or --profile")))?;
+    let bank = read_bank(path)?;
+    let choice = bank_choice(args, series)?;
+    let model = ImuStochasticModel::from_bank(&bank, &choice, &scale)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()?;
+    Ok((model, choice))
 }
 
 /// The temperature and rule from the arguments, or the IMU file's mean temp_c.
@@ -332,7 +389,8 @@ struct Summary {
     filter: FilterKind,
     imu: PathBuf,
     gnss: PathBuf,
-    bank: PathBuf,
+    bank: Option<PathBuf>,
+    profile: Option<PathBuf>,
     model: ModelJson,
     initial: InitialSource,
     covariance_rate_hz: f64,
@@ -383,6 +441,7 @@ fn summarize(
         imu: args.imu.clone(),
         gnss: args.gnss.clone(),
         bank: args.bank.clone(),
+        profile: args.profile.clone(),
         model: ModelJson {
             gauss_markov_source: choice.source,
             selection: choice.selection,

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use thermonav_io::{Strictness, read_gnss_file, read_imu_file, read_trajectory_file};
 
 /// Path of a file under the project's `shared/data`, in the nearest ancestor that has one.
-fn shared_data(relative: &str) -> PathBuf {
+pub(crate) fn shared_data(relative: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .ancestors()
         .map(|dir| dir.join("shared/data"))
@@ -16,7 +16,7 @@ fn shared_data(relative: &str) -> PathBuf {
         .join(relative)
 }
 
-const DRIVE: &str = "rtklibexplorer-gnss-imu/drive_0708";
+pub(crate) const DRIVE: &str = "rtklibexplorer-gnss-imu/drive_0708";
 
 #[test]
 fn drive_pos_and_imu_convert_with_detected_formats() {

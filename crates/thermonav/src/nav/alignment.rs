@@ -16,6 +16,10 @@ use crate::ins::error_model::{STATES, SystemMatrix, block};
 use crate::ins::state::{Increment, NavState};
 use serde::Serialize;
 
+/// Slowest course over ground trusted for the initial heading, m/s (at 1 m/s and 1 Hz a 1 cm
+/// position noise is already 0.6° of course).
+pub const MIN_COURSE_SPEED_M_S: f64 = 1.0;
+
 /// Roll and pitch (rad) from a mean specific force in body axes (m/s²).
 pub fn level(mean_specific_force_b: [f64; 3]) -> (f64, f64) {
     let [fx, fy, fz] = mean_specific_force_b;
@@ -43,10 +47,10 @@ pub enum AlignmentError {
     NoImu(f64),
     /// Neither a dual-antenna heading nor enough speed for a course.
     #[error(
-        "no initial heading: the first fix has no dual-antenna heading and the speed between the first two fixes ({speed_m_s:.2} m/s) is below 1 m/s"
+        "no initial heading: no fix during the IMU record has a dual-antenna heading, and the vehicle never reaches 1 m/s between fixes (fastest {speed_m_s:.2} m/s)"
     )]
     NoHeading {
-        /// Speed between the first two fixes.
+        /// Largest speed between consecutive fixes.
         speed_m_s: f64,
     },
 }
@@ -68,10 +72,11 @@ fn geodetic(fix: &GnssFix) -> Geodetic {
     }
 }
 
-/// Aligns at the first GNSS fix: attitude levelled from the IMU samples in
-/// `levelling_s` after it, heading from its dual-antenna heading or the course to the second
-/// fix, velocity from its velocity or the difference of the first two fixes, position at the
-/// IMU (the antenna position less the lever arm).
+/// Aligns at the first GNSS fix during the IMU record that has a dual-antenna heading or is
+/// followed by a move of at least [`MIN_COURSE_SPEED_M_S`] (a vehicle parked at the start is
+/// waited for): attitude levelled from the IMU samples in `levelling_s` after it, heading
+/// from its dual-antenna heading or the course to the next fix, velocity from its velocity or
+/// that course, position at the IMU (the antenna position less the lever arm).
 ///
 /// # Errors
 /// [`AlignmentError`] when the data cannot give one of these.
@@ -81,9 +86,30 @@ pub fn align_from_gnss(
     geometry: &AntennaGeometry,
     levelling_s: f64,
 ) -> Result<Alignment, AlignmentError> {
-    let [first, second, ..] = gnss else {
+    let imu_start = imu.first().map(|i| i.time);
+    let usable: Vec<&[GnssFix]> = gnss
+        .windows(2)
+        .filter(|w| imu_start.is_some_and(|t| w[0].time >= t))
+        .collect();
+    if usable.is_empty() {
         return Err(AlignmentError::TooFewFixes(gnss.len()));
+    }
+    let course_of = |w: &[GnssFix]| {
+        let dt = w[1].time.since(w[0].time).as_seconds();
+        geodetic(&w[1]).ned_from(&geodetic(&w[0])).scale(1.0 / dt)
     };
+    let speed = |w: &[GnssFix]| {
+        let c = course_of(w);
+        c.x().hypot(c.y())
+    };
+    let Some(pair) = usable
+        .iter()
+        .find(|w| w[0].heading.is_some() || speed(w) >= MIN_COURSE_SPEED_M_S)
+    else {
+        let fastest = usable.iter().map(|w| speed(w)).fold(0.0, f64::max);
+        return Err(AlignmentError::NoHeading { speed_m_s: fastest });
+    };
+    let first = &pair[0];
     let span: Vec<_> = imu
         .iter()
         .filter(|i| i.time > first.time && i.time.since(first.time).as_seconds() <= levelling_s)
@@ -97,22 +123,14 @@ pub fn align_from_gnss(
         .fold(Vector::<Body>::zeros(), |acc, i| acc + i.delta_velocity)
         .scale(1.0 / total_dt);
     let (roll, pitch) = level(mean_force.to_array());
-    let (p0, p1) = (geodetic(first), geodetic(second));
-    let dt = second.time.since(first.time).as_seconds();
-    let course = p1.ned_from(&p0).scale(1.0 / dt);
+    let p0 = geodetic(first);
+    let course = course_of(pair);
     let (yaw, heading_source) = match first.heading {
         Some(h) => {
             let b = geometry.baseline_body;
             (h.heading_rad - b[1].atan2(b[0]), HeadingSource::DualAntenna)
         }
-        None if course.x().hypot(course.y()) >= 1.0 => {
-            (course.y().atan2(course.x()), HeadingSource::Course)
-        }
-        None => {
-            return Err(AlignmentError::NoHeading {
-                speed_m_s: course.x().hypot(course.y()),
-            });
-        }
+        None => (course.y().atan2(course.x()), HeadingSource::Course),
     };
     let attitude = Rotation::from_euler_zyx(roll, pitch, yaw);
     let lever = attitude * Vector::<Body>::from_array(geometry.lever_arm_body_m);

@@ -212,6 +212,14 @@ impl ImuStochasticModel {
         Ok(())
     }
 
+    /// Multiplies every white-noise density by `factor` (vibration on a vehicle raises the
+    /// effective noise above a static record's; a tuning knob navigation engineers expect).
+    pub fn scale_white_noise(&mut self, factor: f64) {
+        for axis in self.gyro.iter_mut().chain(self.accel.iter_mut()) {
+            axis.white_noise_density *= factor;
+        }
+    }
+
     /// The correlation times of the four Gauss-Markov groups, for the system matrix.
     pub fn correlation_times(&self) -> CorrelationTimes {
         CorrelationTimes {
