@@ -275,6 +275,14 @@ impl Figure {
     }
 }
 
+/// Width and height of a panel's plot area, px.
+pub fn plot_area_size() -> (f64, f64) {
+    (
+        PANEL_WIDTH - MARGIN_LEFT - MARGIN_RIGHT,
+        PANEL_HEIGHT - MARGIN_TOP - MARGIN_BOTTOM,
+    )
+}
+
 /// A pixel position `(x, y)`.
 type Pixel = (f64, f64);
 
@@ -330,11 +338,12 @@ fn frame_of(chart: &Chart, area: PlotArea) -> Frame {
 }
 
 fn draw_panel(svg: &mut SvgWriter, chart: &Chart, index: usize, left: f64, top: f64) {
+    let (width, height) = plot_area_size();
     let area = PlotArea {
         left: left + MARGIN_LEFT,
         top: top + MARGIN_TOP,
-        width: PANEL_WIDTH - MARGIN_LEFT - MARGIN_RIGHT,
-        height: PANEL_HEIGHT - MARGIN_TOP - MARGIN_BOTTOM,
+        width,
+        height,
     };
     let frame = frame_of(chart, area);
     let clip_id = format!("plot-area-{index}");

@@ -128,3 +128,44 @@ pub fn assert_complete_figure(svg: &ParsedSvg) {
         );
     }
 }
+
+/// The pixel of a data value on one axis of one panel, read off two of its labelled grid
+/// lines (`data-value` and position); `log` takes log₁₀ of values first.
+pub fn grid_mapping(svg: &ParsedSvg, panel: usize, axis: &str, log: bool) -> impl Fn(f64) -> f64 {
+    let panel_node = svg.with_class("panel")[panel];
+    let lines: Vec<(f64, f64)> = panel_node
+        .descendants()
+        .filter(|n| n.attribute("class") == Some(&format!("grid major {axis}")))
+        .map(|n| {
+            let value: f64 = n.attribute("data-value").unwrap().parse().unwrap();
+            let pixel = number(&n, if axis == "x" { "x1" } else { "y1" });
+            (if log { value.log10() } else { value }, pixel)
+        })
+        .collect();
+    assert!(lines.len() >= 2, "two grid lines to read the mapping from");
+    let ((v0, p0), (v1, p1)) = (lines[0], lines[lines.len() - 1]);
+    move |value: f64| {
+        let t = if log { value.log10() } else { value };
+        p0 + (t - v0) / (v1 - v0) * (p1 - p0)
+    }
+}
+
+/// The `(x, y)` pairs of a polyline's `points` attribute.
+pub fn polyline_points(node: &Node) -> Vec<(f64, f64)> {
+    node.attribute("points")
+        .unwrap()
+        .split(' ')
+        .map(|pair| {
+            let (x, y) = pair.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// The layer groups named `name`.
+pub fn layers_named<'d, 'i>(svg: &'d ParsedSvg<'i>, name: &str) -> Vec<Node<'d, 'i>> {
+    svg.with_class("layer")
+        .into_iter()
+        .filter(|n| n.attribute("data-name") == Some(name))
+        .collect()
+}
