@@ -20,6 +20,21 @@ const MARGIN_RIGHT: f64 = 200.0;
 const MARGIN_TOP: f64 = 32.0;
 const MARGIN_BOTTOM: f64 = 52.0;
 const LEGEND_ROW: f64 = 18.0;
+/// Start of the ids of the panels' clip paths (`plot-area-0`, `plot-area-1`, …).
+const CLIP_ID_STEM: &str = "plot-area-";
+
+/// A figure's SVG with `prefix` put before each of its element ids and the references to
+/// them, so that several figures can share one HTML document.
+pub fn prefix_ids(svg: &str, prefix: &str) -> String {
+    svg.replace(
+        &format!("id=\"{CLIP_ID_STEM}"),
+        &format!("id=\"{prefix}{CLIP_ID_STEM}"),
+    )
+    .replace(
+        &format!("url(#{CLIP_ID_STEM}"),
+        &format!("url(#{prefix}{CLIP_ID_STEM}"),
+    )
+}
 
 /// Line pattern.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -346,7 +361,7 @@ fn draw_panel(svg: &mut SvgWriter, chart: &Chart, index: usize, left: f64, top: 
         height,
     };
     let frame = frame_of(chart, area);
-    let clip_id = format!("plot-area-{index}");
+    let clip_id = format!("{CLIP_ID_STEM}{index}");
     svg.start("g", &[("class", "panel".into())]);
     svg.start("clipPath", &[("id", clip_id.clone())]);
     svg.empty("rect", &area_attributes(area));
