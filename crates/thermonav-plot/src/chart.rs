@@ -11,12 +11,12 @@ use crate::scale::{Axis, Mapping, TickLabel, domain_of, major_ticks, minor_ticks
 use crate::svg::{SvgWriter, coordinate, escape_markup, points_attribute};
 
 /// Width of one panel cell, px.
-pub const PANEL_WIDTH: f64 = 720.0;
+pub const PANEL_WIDTH: f64 = 760.0;
 /// Height of one panel cell, px.
 pub const PANEL_HEIGHT: f64 = 330.0;
 const FIGURE_TITLE_HEIGHT: f64 = 34.0;
 const MARGIN_LEFT: f64 = 80.0;
-const MARGIN_RIGHT: f64 = 200.0;
+const MARGIN_RIGHT: f64 = 240.0;
 const MARGIN_TOP: f64 = 32.0;
 const MARGIN_BOTTOM: f64 = 52.0;
 const LEGEND_ROW: f64 = 18.0;
@@ -116,17 +116,38 @@ impl Marker {
     }
 }
 
-/// A point with an interval around it; `None` bounds are unbounded (drawn to the plot edge).
+/// One end of an interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bound {
+    /// The interval ends at this value.
+    At(f64),
+    /// The data do not bound this side: the bar runs to the plot edge.
+    Unbounded,
+}
+
+impl Bound {
+    /// The bound of an optional value, `None` being unbounded.
+    pub fn from_option(value: Option<f64>) -> Self {
+        value.map_or(Bound::Unbounded, Bound::At)
+    }
+
+    fn value(self) -> Option<f64> {
+        match self {
+            Bound::At(v) => Some(v),
+            Bound::Unbounded => None,
+        }
+    }
+}
+
+/// A point with the interval around it, when one was given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ErrorBar {
     /// Abscissa.
     pub x: f64,
     /// Estimate.
     pub y: f64,
-    /// Lower bound.
-    pub low: Option<f64>,
-    /// Upper bound.
-    pub high: Option<f64>,
+    /// Lower and upper bounds; `None` when no interval was given (marker alone).
+    pub interval: Option<[Bound; 2]>,
 }
 
 /// One kind of data drawn in a panel. Points whose coordinates the axes cannot place (NaN,
@@ -218,7 +239,10 @@ impl Layer {
             }
             Layer::ErrorBars { bars, .. } => bars
                 .iter()
-                .flat_map(|b| [Some(b.y), b.low, b.high])
+                .flat_map(|b| {
+                    let [low, high] = b.interval.map_or([None, None], |i| i.map(Bound::value));
+                    [Some(b.y), low, high]
+                })
                 .flatten()
                 .collect(),
             Layer::Band { low, high, .. } => low.iter().chain(high).copied().collect(),
@@ -663,29 +687,41 @@ fn draw_error_bar(
         return;
     };
     let x = x + offset_px;
+    if let Some(interval) = bar.interval {
+        draw_interval(svg, frame, x, interval, stroke);
+    }
+    draw_marker(svg, "marker", (x, y), marker);
+}
+
+fn draw_interval(
+    svg: &mut SvgWriter,
+    frame: &Frame,
+    x: f64,
+    [low, high]: [Bound; 2],
+    stroke: Stroke,
+) {
     let a = frame.area;
     // An unbounded side, or one the axis cannot place, runs past the plot edge (clipped).
-    let low = bar
-        .low
+    let low_px = low
+        .value()
         .and_then(|v| frame.y.pixel(v))
         .unwrap_or(a.bottom() + 2.0);
-    let high = bar
-        .high
+    let high_px = high
+        .value()
         .and_then(|v| frame.y.pixel(v))
         .unwrap_or(a.top - 2.0);
     let mut attributes = stroke_attributes(stroke);
-    attributes.extend(line_attributes((x, low), (x, high)));
+    attributes.extend(line_attributes((x, low_px), (x, high_px)));
     attributes.push(("class", "error-bar".into()));
     svg.empty("line", &attributes);
-    for (bound, pixel) in [(bar.low, low), (bar.high, high)] {
-        if bound.is_some() {
+    for (bound, pixel) in [(low, low_px), (high, high_px)] {
+        if let Bound::At(_) = bound {
             let mut cap = stroke_attributes(stroke);
             cap.extend(line_attributes((x - 4.0, pixel), (x + 4.0, pixel)));
             cap.push(("class", "error-cap".into()));
             svg.empty("line", &cap);
         }
     }
-    draw_marker(svg, "marker", (x, y), marker);
 }
 
 fn draw_band(
@@ -949,14 +985,17 @@ mod tests {
                     ErrorBar {
                         x: 10.0,
                         y: 50.0,
-                        low: Some(40.0),
-                        high: Some(70.0),
+                        interval: Some([Bound::At(40.0), Bound::At(70.0)]),
                     },
                     ErrorBar {
                         x: 30.0,
                         y: 50.0,
-                        low: Some(20.0),
-                        high: None,
+                        interval: Some([Bound::At(20.0), Bound::Unbounded]),
+                    },
+                    ErrorBar {
+                        x: 35.0,
+                        y: 50.0,
+                        interval: None,
                     },
                 ],
                 marker: Marker::filled(Shape::Circle, palette::INK),
@@ -974,6 +1013,8 @@ mod tests {
         let (low, high) = ends(&bars[1]);
         assert!((low - y_of(20.0)).abs() < 0.01 && high < area.top);
         assert_eq!(svg.with_class("error-cap").len(), 3);
+        assert_eq!(bars.len(), 2, "no bar without an interval");
+        assert_eq!(svg.with_class("marker").len(), 3);
         let x = number(&bars[1], "x1");
         assert!((x - (area.left + 0.75 * area.width)).abs() < 0.01);
     }

@@ -2,7 +2,10 @@
 //! ticks.
 //!
 //! A log axis shows whole decades, so its decade ticks are equally spaced in pixels; a linear
-//! axis is widened to a multiple of a 1-2-5 tick step.
+//! axis shows the data with a margin and ticks at multiples of a 1-2-5 step.
+
+/// Margin added on each side of a fitted linear axis, as a fraction of the data's span.
+pub const LINEAR_PADDING: f64 = 0.04;
 
 /// How data values are placed along an axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,7 +88,7 @@ pub struct Domain {
 }
 
 /// The domain an axis shows for `values`: its fixed range when it has a usable one, else the
-/// data's extent widened to whole decades (log) or to tick steps (linear).
+/// data's extent widened to whole decades (log) or padded (linear).
 pub fn domain_of(axis: &Axis, values: impl IntoIterator<Item = f64>) -> Domain {
     let scale = axis.scale;
     if let Some(domain) = axis.range.and_then(|range| fixed_domain(scale, range)) {
@@ -104,7 +107,7 @@ pub fn domain_of(axis: &Axis, values: impl IntoIterator<Item = f64>) -> Domain {
     };
     match scale {
         AxisScale::Log10 => whole_decades(low, high),
-        AxisScale::Linear => whole_steps(low, high),
+        AxisScale::Linear => padded(low, high),
     }
 }
 
@@ -123,7 +126,8 @@ fn fixed_domain(scale: AxisScale, (low, high): (f64, f64)) -> Option<Domain> {
 }
 
 fn whole_decades(low: f64, high: f64) -> Domain {
-    let (low, high) = (low.floor(), high.ceil());
+    // Values within a hundredth of a decade of a power of ten count as on it.
+    let (low, high) = ((low + 0.01).floor(), (high - 0.01).ceil());
     Domain {
         scale: AxisScale::Log10,
         low,
@@ -132,23 +136,26 @@ fn whole_decades(low: f64, high: f64) -> Domain {
     }
 }
 
-fn whole_steps(low: f64, high: f64) -> Domain {
+/// The data's extent padded by [`LINEAR_PADDING`] of its span on each side (a constant
+/// series gets a span of its own), with a 1-2-5 tick step.
+fn padded(low: f64, high: f64) -> Domain {
     let (low, high) = if high > low {
         (low, high)
     } else {
         let half = (low.abs() * 0.1).max(0.5);
         (low - half, high + half)
     };
-    let step = nice_step((high - low) / 5.0);
+    let pad = (high - low) * LINEAR_PADDING;
+    let (low, high) = (low - pad, high + pad);
     Domain {
         scale: AxisScale::Linear,
-        low: (low / step).floor() * step,
-        high: (high / step).ceil() * step,
-        step,
+        low,
+        high,
+        step: nice_step((high - low) / 5.0),
     }
 }
 
-/// The 1, 2 or 5 × 10ᵏ step nearest above `raw`.
+/// The 1, 2 or 5 × 10ᵏ step nearest to `raw` (on a log scale).
 pub fn nice_step(raw: f64) -> f64 {
     let raw = if raw > 0.0 && raw.is_finite() {
         raw
@@ -157,11 +164,11 @@ pub fn nice_step(raw: f64) -> f64 {
     };
     let power = 10f64.powf(raw.log10().floor());
     let fraction = raw / power;
-    let nice = if fraction <= 1.0 {
+    let nice = if fraction < 2f64.sqrt() {
         1.0
-    } else if fraction <= 2.0 {
+    } else if fraction < 10f64.sqrt() {
         2.0
-    } else if fraction <= 5.0 {
+    } else if fraction < 50f64.sqrt() {
         5.0
     } else {
         10.0
@@ -285,18 +292,22 @@ mod tests {
     #[test]
     fn a_log_domain_covers_whole_decades_around_the_data() {
         let d = domain_of(&Axis::log10("τ (s)"), [0.013, 4.0, 650.0, -1.0, 0.0]);
+        let on_decades = domain_of(&Axis::log10("τ (s)"), [0.009_999_9, 1_000.000_1]);
+        assert_eq!((on_decades.low, on_decades.high), (-2.0, 3.0));
         assert_eq!((d.low, d.high), (-2.0, 3.0));
         let values: Vec<f64> = major_ticks(&d).iter().map(|t| t.value).collect();
         assert_eq!(values, [0.01, 0.1, 1.0, 10.0, 100.0, 1000.0]);
     }
 
     #[test]
-    fn a_linear_domain_is_widened_to_tick_steps() {
+    fn a_linear_domain_pads_the_data_and_ticks_inside_it() {
         let d = domain_of(&Axis::linear("T (°C)"), [-38.0, 61.0]);
-        assert_eq!((d.low, d.high), (-40.0, 80.0));
+        let pad = 99.0 * LINEAR_PADDING;
+        assert!((d.low - (-38.0 - pad)).abs() < 1e-12 && (d.high - (61.0 + pad)).abs() < 1e-12);
         let labels: Vec<TickLabel> = major_ticks(&d).into_iter().map(|t| t.label).collect();
         assert_eq!(labels.first(), Some(&TickLabel::Plain("-40".into())));
-        assert_eq!(labels.last(), Some(&TickLabel::Plain("80".into())));
+        assert_eq!(labels.last(), Some(&TickLabel::Plain("60".into())));
+        assert_eq!(labels.len(), 6);
     }
 
     #[test]
@@ -329,8 +340,9 @@ mod tests {
 
     #[test]
     fn steps_are_one_two_or_five_times_a_power_of_ten() {
-        assert_eq!(nice_step(0.3), 0.5);
-        assert_eq!(nice_step(13.0), 20.0);
+        assert_eq!(nice_step(0.3), 0.2);
+        assert_eq!(nice_step(0.4), 0.5);
+        assert_eq!(nice_step(13.0), 10.0);
         assert_eq!(nice_step(2.0), 2.0);
         assert!((nice_step(0.00071) - 0.001).abs() < 1e-15);
         assert_eq!(plain_number(0.30000000000000004, 0.1), "0.3");

@@ -2,7 +2,7 @@
 //! gyros in the left column and accelerometers in the right, one series per Gauss-Markov
 //! family with its 95 % interval as error bars on a log axis.
 
-use crate::chart::{Chart, ErrorBar, Figure, Layer, Marker, Shape, Stroke};
+use crate::chart::{Bound, Chart, ErrorBar, Figure, Layer, Marker, Shape, Stroke};
 use crate::palette;
 use crate::scale::Axis;
 use thermonav::imu::Channel;
@@ -11,7 +11,9 @@ use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank};
 /// Horizontal distance between the error bars of neighbouring families at one temperature, px.
 pub const FAMILY_SPACING_PX: f64 = 8.0;
 
-/// A correlation time at one temperature with its 95 % interval (`None`: unbounded side).
+/// A correlation time at one temperature with its 95 % interval as the bank records it:
+/// `None` on a side the data do not bound; `None` on both sides means no interval was given
+/// (the autocorrelation fit gives none), drawn as a marker alone.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CorrelationTimePoint {
     /// Temperature, °C.
@@ -86,8 +88,7 @@ fn correlation_panel(
                 .map(|p| ErrorBar {
                     x: p.temperature_c,
                     y: p.correlation_time_s,
-                    low: p.ci95_s[0],
-                    high: p.ci95_s[1],
+                    interval: interval_of(p.ci95_s),
                 })
                 .collect(),
             marker: Marker::filled(family_shape(index), color),
@@ -100,6 +101,14 @@ fn correlation_panel(
         x: Axis::linear("temperature (°C)"),
         y: Axis::log10("correlation time Tc (s)"),
         layers,
+    }
+}
+
+/// The bar of a bank interval: none when neither side is given.
+fn interval_of(ci95_s: [Option<f64>; 2]) -> Option<[Bound; 2]> {
+    match ci95_s {
+        [None, None] => None,
+        sides => Some(sides.map(Bound::from_option)),
     }
 }
 
@@ -178,6 +187,11 @@ mod tests {
                 point(-40.0, 20.0, Some(40.0)),
                 point(20.0, 100.0, Some(300.0)),
                 point(60.0, 200.0, None),
+                CorrelationTimePoint {
+                    temperature_c: 0.0,
+                    correlation_time_s: 50.0,
+                    ci95_s: [None, None],
+                },
             ],
         }
     }
