@@ -9,6 +9,7 @@ mod filter;
 mod fir;
 mod inspect;
 mod integrate;
+mod plot;
 mod simulate;
 
 use crate::args::{Cli, Command};
@@ -27,5 +28,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Bank(args) => bank::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),
+        Command::Plot(args) => plot::run(&args),
     }
 }

@@ -4,6 +4,7 @@ mod bad_input;
 mod commands;
 mod modelling;
 mod navigation;
+mod plots;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
