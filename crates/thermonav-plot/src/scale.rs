@@ -266,23 +266,19 @@ fn decade_exponents(domain: &Domain) -> impl Iterator<Item = i32> {
     first..=last
 }
 
-/// `value` with as many decimals as `step` needs.
+/// `value` with as many decimals as `step` needs; in exponent form (`1.4e6`) when the step is
+/// below 10⁻³ or above 10⁴.
 pub fn plain_number(value: f64, step: f64) -> String {
-    let magnitude = step.abs().log10().floor();
-    if !(-4.0..=6.0).contains(&magnitude) {
-        return format!("{value:e}");
+    let step_magnitude = step.abs().log10().floor();
+    if (value / step).abs() < 0.5 {
+        return "0".to_owned();
     }
-    let decimals = (-magnitude).max(0.0) as usize;
-    let text = format!("{value:.decimals$}");
-    if text
-        .trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        "0".to_owned()
-    } else {
-        text
+    if !(-3.0..=4.0).contains(&step_magnitude) {
+        let digits = (value.abs().log10().floor() - step_magnitude).max(0.0) as usize;
+        return format!("{value:.digits$e}");
     }
+    let decimals = (-step_magnitude).max(0.0) as usize;
+    format!("{value:.decimals$}")
 }
 
 #[cfg(test)]
@@ -347,5 +343,8 @@ mod tests {
         assert!((nice_step(0.00071) - 0.001).abs() < 1e-15);
         assert_eq!(plain_number(0.30000000000000004, 0.1), "0.3");
         assert_eq!(plain_number(-0.0, 0.5), "0");
+        assert_eq!(plain_number(1_400_000.000_000_1, 200_000.0), "1.4e6");
+        assert_eq!(plain_number(-0.000_35, 0.000_05), "-3.5e-4");
+        assert_eq!(plain_number(25.0, 5.0), "25");
     }
 }

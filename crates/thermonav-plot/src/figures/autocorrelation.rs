@@ -63,12 +63,7 @@ pub fn autocorrelation_figure(title: &str, data: &Autocovariance, units: Display
             })
             .collect();
         layers.push(Layer::Line {
-            name: format!(
-                "σ² exp(−τ/Tc), Tc = {:.1} s, σ = {:.3e} {}",
-                fit.correlation_time_s,
-                units.rate(sensor, fit.sigma),
-                units.rate_unit(sensor)
-            ),
+            name: "fitted σ² exp(−τ/Tc)".into(),
             points: curve,
             stroke: Stroke::dashed(palette::series_color(3)),
         });
@@ -85,13 +80,29 @@ pub fn autocorrelation_figure(title: &str, data: &Autocovariance, units: Display
         });
     }
     let unit = units.rate_unit(sensor);
+    let panel_title = match data.fit {
+        Some(fit) => format!(
+            "{}: Tc = {} s, σ = {} {unit}",
+            data.channel.name(),
+            significant(fit.correlation_time_s),
+            significant(units.rate(sensor, fit.sigma)),
+        ),
+        None => format!("{}: no Gauss-Markov fit", data.channel.name()),
+    };
     let chart = Chart {
-        title: data.channel.name().to_owned(),
+        title: panel_title,
         x: Axis::linear("lag τ (s)"),
         y: Axis::linear(format!("autocovariance (({unit})²)")),
         layers,
     };
     Figure::stacked(title, vec![chart]).to_svg()
+}
+
+/// `value` with three significant digits.
+fn significant(value: f64) -> String {
+    let magnitude = value.abs().log10().floor();
+    let decimals = (2.0 - magnitude).clamp(0.0, 12.0) as usize;
+    format!("{value:.decimals$}")
 }
 
 #[cfg(test)]
@@ -120,6 +131,10 @@ mod tests {
         let svg = ParsedSvg::parse(&text);
         assert_complete_figure(&svg);
         assert_eq!(svg.texts("axis-label y"), ["autocovariance ((deg/h)²)"]);
+        assert_eq!(
+            svg.texts("panel-title"),
+            ["gy: Tc = 30.0 s, σ = 41.3 deg/h"]
+        );
         let x_of = grid_mapping(&svg, 0, "x", false);
         let y_of = grid_mapping(&svg, 0, "y", false);
         let sigma2 = rad_per_s_to_deg_per_h(2e-4).powi(2);
