@@ -466,7 +466,7 @@ pub struct PlotArgs {
     /// Its input: `allan --json` output or a bank (allan), a bank (correlation-time), an IMU
     /// CSV of rates, filtered and decimated as for `ar` (autocorrelation).
     pub input: PathBuf,
-    /// The figure file: FILE.svg or FILE.png.
+    /// The figure file: FILE.svg, or FILE.png (rasterised with the bundled DejaVu Sans).
     #[arg(long)]
     pub out: PathBuf,
     /// Units of rates and Allan deviations.

@@ -9,11 +9,13 @@
 //!   temperature, autocorrelation, navigation errors, trajectory), each a function of typed
 //!   data returning an SVG string.
 //! - [`html`]: a self-contained HTML page assembled from sections.
+//! - [`png`]: the same figures as PNG, rasterised in pure Rust with a bundled font.
 
 pub mod chart;
 pub mod figures;
 pub mod html;
 pub mod palette;
+pub mod png;
 pub mod scale;
 pub mod svg;
 

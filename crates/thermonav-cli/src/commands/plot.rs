@@ -23,6 +23,7 @@ use thermonav_plot::figures::autocorrelation::{
     Autocovariance, GaussMarkovFit, autocorrelation_figure,
 };
 use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_time_series};
+use thermonav_plot::png::svg_to_png;
 
 /// Most lags drawn on an autocovariance figure (the fit uses all of them).
 const MAX_DRAWN_LAGS: usize = 2000;
@@ -31,6 +32,7 @@ const MAX_DRAWN_LAGS: usize = 2000;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ImageFormat {
     Svg,
+    Png,
 }
 
 fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
@@ -40,8 +42,9 @@ fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
         .map(str::to_ascii_lowercase);
     match extension.as_deref() {
         Some("svg") => Ok(ImageFormat::Svg),
+        Some("png") => Ok(ImageFormat::Png),
         _ => Err(Failure::Usage(anyhow!(
-            "--out {}: the figure file must end in .svg",
+            "--out {}: the figure file must end in .svg or .png",
             path.display()
         ))),
     }
@@ -59,11 +62,11 @@ pub fn run(args: &PlotArgs) -> Result<(), Failure> {
         PlotKind::CorrelationTime => correlation_svg(args)?,
         PlotKind::Autocorrelation => autocorrelation_svg(args, units)?,
     };
-    match format {
-        ImageFormat::Svg => {
-            write_atomically(&args.out, |file| Ok(file.write_all(svg.as_bytes())?)).data()?
-        }
-    }
+    let bytes = match format {
+        ImageFormat::Svg => svg.into_bytes(),
+        ImageFormat::Png => svg_to_png(&svg).data()?,
+    };
+    write_atomically(&args.out, |file| Ok(file.write_all(&bytes)?)).data()?;
     Ok(())
 }
 

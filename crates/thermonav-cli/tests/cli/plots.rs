@@ -48,6 +48,11 @@ fn figures_from_the_bank_allan_output_and_a_record() {
     let dir = tempfile::tempdir().unwrap();
     let (files, bank) = records_and_bank(dir.path());
 
+    let png = dir.path().join("tc.png");
+    succeed(&["plot", "correlation-time", arg(&bank), "--out", arg(&png)]);
+    let bytes = std::fs::read(&png).unwrap();
+    assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "a PNG file");
+
     let tc = dir.path().join("tc.svg");
     succeed(&["plot", "correlation-time", arg(&bank), "--out", arg(&tc)]);
     let labels = axis_labels(&tc);
