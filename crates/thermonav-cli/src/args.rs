@@ -446,6 +446,9 @@ pub enum PlotKind {
     CorrelationTime,
     /// Autocovariance of one channel of an IMU CSV with the fitted Gauss-Markov curve.
     Autocorrelation,
+    /// East versus north of a trajectory CSV (reference or `integrate` solution), the parts
+    /// inside --outages highlighted.
+    Trajectory,
 }
 
 /// Units of inertial quantities on figures.
@@ -464,7 +467,8 @@ pub struct PlotArgs {
     #[arg(value_enum)]
     pub kind: PlotKind,
     /// Its input: `allan --json` output or a bank (allan), a bank (correlation-time), an IMU
-    /// CSV of rates, filtered and decimated as for `ar` (autocorrelation).
+    /// CSV of rates, filtered and decimated as for `ar` (autocorrelation), a trajectory CSV
+    /// (trajectory).
     pub input: PathBuf,
     /// The figure file: FILE.svg, or FILE.png (rasterised with the bundled DejaVu Sans).
     #[arg(long)]
@@ -484,6 +488,9 @@ pub struct PlotArgs {
     /// Longest lag shown, s (autocorrelation).
     #[arg(long, default_value_t = 300.0)]
     pub max_lag_s: f64,
+    /// GNSS outages to highlight, as for `integrate` (trajectory).
+    #[arg(long, default_value = "none")]
+    pub outages: String,
     /// Figure title (default: one naming the input).
     #[arg(long)]
     pub title: Option<String>,

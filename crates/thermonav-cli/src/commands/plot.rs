@@ -9,11 +9,13 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use std::path::Path;
+use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
+use thermonav::nav::outage::Outages;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
-use thermonav_io::write_atomically;
+use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{
     AllanCurve, ConfidenceBand, NoiseTerm, NoiseTermReading, allan_curves_of_entry,
@@ -23,6 +25,7 @@ use thermonav_plot::figures::autocorrelation::{
     Autocovariance, GaussMarkovFit, autocorrelation_figure,
 };
 use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_time_series};
+use thermonav_plot::figures::navigation::{Trajectory, trajectory_figure};
 use thermonav_plot::png::svg_to_png;
 
 /// Most lags drawn on an autocovariance figure (the fit uses all of them).
@@ -61,6 +64,7 @@ pub fn run(args: &PlotArgs) -> Result<(), Failure> {
         PlotKind::Allan => allan_svg(args, units)?,
         PlotKind::CorrelationTime => correlation_svg(args)?,
         PlotKind::Autocorrelation => autocorrelation_svg(args, units)?,
+        PlotKind::Trajectory => trajectory_svg(args)?,
     };
     let bytes = match format {
         ImageFormat::Svg => svg.into_bytes(),
@@ -273,4 +277,36 @@ fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, F
         channel.name()
     );
     Ok(autocorrelation_figure(&title_or(args, title), &data, units))
+}
+
+fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
+    let outages = Outages::from_spec(&args.outages)
+        .map_err(|e| anyhow!("--outages: {e}"))
+        .usage()?;
+    let points = read_trajectory_file(&args.input, Strictness::Strict).data()?;
+    let position = |i: usize| Geodetic {
+        latitude_rad: points[i].latitude_rad,
+        longitude_rad: points[i].longitude_rad,
+        height_m: points[i].height_m,
+    };
+    let origin = position(0);
+    let local: Vec<[f64; 3]> = (0..points.len())
+        .map(|i| position(i).ned_from(&origin).to_array())
+        .collect();
+    let trajectory = Trajectory {
+        time_s: points.iter().map(|p| p.time.as_seconds()).collect(),
+        north_m: local.iter().map(|ned| ned[0]).collect(),
+        east_m: local.iter().map(|ned| ned[1]).collect(),
+    };
+    let windows: Vec<(f64, f64)> = outages
+        .windows()
+        .iter()
+        .map(|w| (w.start.as_seconds(), w.end.as_seconds()))
+        .collect();
+    let title = format!("Trajectory, {}", file_name(&args.input));
+    Ok(trajectory_figure(
+        &title_or(args, title),
+        &trajectory,
+        &windows,
+    ))
 }

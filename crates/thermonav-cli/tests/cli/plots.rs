@@ -132,3 +132,51 @@ fn bad_plot_requests_fail_with_the_right_code_and_write_nothing() {
     assert_eq!(status, 2);
     assert!(!out.exists() && !pdf.exists());
 }
+
+#[test]
+fn the_trajectory_figure_highlights_each_outage() {
+    let dir = tempfile::tempdir().unwrap();
+    let vessel = dir.path().join("vessel");
+    succeed(&[
+        "simulate",
+        "vessel",
+        "--out",
+        arg(&vessel),
+        "--duration-s",
+        "120",
+        "--seed",
+        "3",
+        "--quiet",
+    ]);
+    let out = dir.path().join("trajectory.svg");
+    let reference = vessel.join("reference.csv");
+    succeed(&[
+        "plot",
+        "trajectory",
+        arg(&reference),
+        "--outages",
+        "20+15,70+20",
+        "--out",
+        arg(&out),
+    ]);
+    assert_eq!(axis_labels(&out), ["east (m)", "north (m)"]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let thick = doc
+        .descendants()
+        .filter(|n| {
+            n.attribute("class") == Some("series") && n.attribute("stroke-width") == Some("4")
+        })
+        .count();
+    assert_eq!(thick, 2, "one highlighted run per outage");
+    let (status, _, _) = outcome(&thermonav(&[
+        "plot",
+        "trajectory",
+        arg(&reference),
+        "--outages",
+        "20+-5",
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(status, 2);
+}

@@ -260,13 +260,13 @@ pub fn trajectory_figure(title: &str, trajectory: &Trajectory, outages_s: &[(f64
         })
         .collect();
     let (x_range, y_range) = equal_aspect_ranges(&points);
-    let mut layers = vec![
-        Layer::Line {
-            name: "trajectory".into(),
-            points: points.clone(),
-            stroke: Stroke::solid(palette::series_color(0)),
-        },
-        Layer::Line {
+    let mut layers = vec![Layer::Line {
+        name: "trajectory".into(),
+        points: points.clone(),
+        stroke: Stroke::solid(palette::series_color(0)),
+    }];
+    if !outages_s.is_empty() {
+        layers.push(Layer::Line {
             name: "GNSS outage".into(),
             points: highlighted,
             stroke: Stroke {
@@ -274,8 +274,8 @@ pub fn trajectory_figure(title: &str, trajectory: &Trajectory, outages_s: &[(f64
                 width: 4.0,
                 dash: Dash::Solid,
             },
-        },
-    ];
+        });
+    }
     for (name, point, shape) in [
         ("start", points.first(), Shape::Triangle),
         ("end", points.last(), Shape::Square),
@@ -425,6 +425,8 @@ mod tests {
             east_m,
             north_m,
         };
+        let no_outage = trajectory_figure("Survey", &trajectory, &[]);
+        assert!(!no_outage.contains("GNSS outage"));
         let text = trajectory_figure("Survey", &trajectory, &[(20.0, 40.0), (120.0, 150.0)]);
         let svg = ParsedSvg::parse(&text);
         assert_complete_figure(&svg);
