@@ -43,6 +43,8 @@ pub enum Command {
     Evaluate(EvaluateArgs),
     /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag) to a canonical CSV.
     Convert(ConvertArgs),
+    /// Draw a figure as SVG (or PNG, by the --out extension) from a file thermonav wrote.
+    Plot(PlotArgs),
 }
 
 /// Which filters a tournament runs.
@@ -580,4 +582,64 @@ pub struct ConvertArgs {
     /// Keep NaN values and non-increasing times; skip NMEA lines with bad checksums.
     #[arg(long)]
     pub lenient: bool,
+}
+
+/// Figures drawn by `plot`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum PlotKind {
+    /// Allan deviation per channel from `allan --json` output, or from a model bank entry
+    /// (--temperature-c).
+    Allan,
+    /// Correlation time versus temperature with 95 % intervals, from a model bank.
+    CorrelationTime,
+    /// Autocovariance of one channel of an IMU CSV with the fitted Gauss-Markov curve.
+    Autocorrelation,
+    /// East versus north of a trajectory CSV (reference or `integrate` solution), the parts
+    /// inside --outages highlighted.
+    Trajectory,
+}
+
+/// Units of inertial quantities on figures.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum UnitsArg {
+    /// rad/s and m/s².
+    Si,
+    /// deg/h and mg.
+    Navigation,
+}
+
+/// Arguments of `plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// The figure.
+    #[arg(value_enum)]
+    pub kind: PlotKind,
+    /// Its input: `allan --json` output or a bank (allan), a bank (correlation-time), an IMU
+    /// CSV of rates, filtered and decimated as for `ar` (autocorrelation), a trajectory CSV
+    /// (trajectory).
+    pub input: PathBuf,
+    /// The figure file: FILE.svg, or FILE.png (rasterised with the bundled DejaVu Sans).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Units of rates and Allan deviations.
+    #[arg(long, value_enum, default_value_t = UnitsArg::Navigation)]
+    pub units: UnitsArg,
+    /// The bank entry nearest this temperature, °C (allan from a bank with several entries).
+    #[arg(long, allow_negative_numbers = true)]
+    pub temperature_c: Option<f64>,
+    /// Gauss-Markov families drawn (correlation-time).
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [GmSourceArg::IrregularMl, GmSourceArg::ArBased, GmSourceArg::AcfFit])]
+    pub families: Vec<GmSourceArg>,
+    /// The channel (autocorrelation).
+    #[arg(long, default_value = "gx")]
+    pub channel: String,
+    /// Longest lag shown, s (autocorrelation).
+    #[arg(long, default_value_t = 300.0)]
+    pub max_lag_s: f64,
+    /// GNSS outages to highlight, as for `integrate` (trajectory).
+    #[arg(long, default_value = "none")]
+    pub outages: String,
+    /// Figure title (default: one naming the input).
+    #[arg(long)]
+    pub title: Option<String>,
 }

@@ -7,7 +7,8 @@ use crate::report::print_json;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use thermonav::imu::{Channel, SampleKind};
+use std::path::Path;
+use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::allan::{TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::fit_noise_terms;
@@ -43,6 +44,22 @@ pub fn grid_of(taus: TausArg) -> TauGrid {
     }
 }
 
+/// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
+/// rates in the error for a file of increments.
+pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failure> {
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    if series.kind == Some(SampleKind::Increments) {
+        return Err(Failure::Data(anyhow!(
+            "{}: {purpose} needs rates; the file holds increments",
+            path.display()
+        )));
+    }
+    let rate_hz = interval_stats(&series.time)
+        .map(|s| s.nominal_rate_hz())
+        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", path.display())))?;
+    Ok((series, rate_hz))
+}
+
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     if !(args.confidence > 0.0 && args.confidence < 1.0) {
@@ -51,16 +68,7 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
             args.confidence
         )));
     }
-    let series = read_imu_file(&args.file, Strictness::Strict).data()?;
-    if series.kind == Some(SampleKind::Increments) {
-        return Err(Failure::Data(anyhow!(
-            "{}: Allan deviation needs rates; the file holds increments",
-            args.file.display()
-        )));
-    }
-    let rate_hz = interval_stats(&series.time)
-        .map(|s| s.nominal_rate_hz())
-        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", args.file.display())))?;
+    let (series, rate_hz) = read_rates(&args.file, "Allan deviation")?;
     let grid = grid_of(args.taus);
     let mut channels = BTreeMap::new();
     for channel in Channel::ALL {

@@ -11,6 +11,7 @@ mod filter;
 mod fir;
 mod inspect;
 mod integrate;
+mod plot;
 mod simulate;
 
 use crate::args::{Cli, Command};
@@ -31,5 +32,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Integrate(args) => integrate::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
         Command::Convert(args) => convert::run(&args),
+        Command::Plot(args) => plot::run(&args),
     }
 }

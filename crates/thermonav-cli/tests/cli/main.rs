@@ -5,6 +5,7 @@ mod commands;
 mod convert;
 mod modelling;
 mod navigation;
+mod plots;
 mod real_data;
 
 use std::fmt::Write as _;

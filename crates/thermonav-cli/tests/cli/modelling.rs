@@ -10,7 +10,7 @@ fn json_of(args: &[&str]) -> serde_json::Value {
 }
 
 /// Two short chamber records (0 and 20 °C, 10 min at 50 Hz) in `dir`.
-fn chamber(dir: &Path) -> serde_json::Value {
+pub fn chamber(dir: &Path) -> serde_json::Value {
     let out = dir.join("chamber");
     json_of(&[
         "simulate",
