@@ -43,6 +43,8 @@ pub enum Command {
     Evaluate(EvaluateArgs),
     /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag) to a canonical CSV.
     Convert(ConvertArgs),
+    /// Build DIR/report.html (one self-contained page) from what demo or evaluate wrote there.
+    Report(ReportArgs),
     /// Draw a figure as SVG (or PNG, by the --out extension) from a file thermonav wrote.
     Plot(PlotArgs),
 }
@@ -642,4 +644,11 @@ pub struct PlotArgs {
     /// Figure title (default: one naming the input).
     #[arg(long)]
     pub title: Option<String>,
+}
+
+/// Arguments of `report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// The folder demo (or characterize + evaluate) wrote: bank.json, evaluation/, vessel/.
+    pub dir: PathBuf,
 }

@@ -12,6 +12,7 @@ mod fir;
 mod inspect;
 mod integrate;
 mod plot;
+mod report;
 mod simulate;
 
 use crate::args::{Cli, Command};
@@ -33,5 +34,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Evaluate(args) => evaluate::run(&args),
         Command::Convert(args) => convert::run(&args),
         Command::Plot(args) => plot::run(&args),
+        Command::Report(args) => report::run(&args),
     }
 }
