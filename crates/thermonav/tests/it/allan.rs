@@ -10,7 +10,7 @@ use thermonav::stoch::noise_terms::{
 };
 
 /// Stable32 rows: (AF, #, alpha, min, sigma, max).
-fn stable32(path: &str) -> Vec<(usize, usize, i32, f64, f64, f64)> {
+pub(crate) fn stable32(path: &str) -> Vec<(usize, usize, i32, f64, f64, f64)> {
     std::fs::read_to_string(shared_data(path))
         .expect("shared data present")
         .lines()
