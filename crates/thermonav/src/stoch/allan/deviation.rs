@@ -29,12 +29,26 @@ pub fn overlapping_adev(
     sample_rate_hz: f64,
     grid: &TauGrid,
 ) -> Result<AllanCurve, AllanError> {
-    validate_series(y, sample_rate_hz)?;
+    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
+        return Err(AllanError::Rate {
+            rate_hz: sample_rate_hz,
+        });
+    }
+    if y.len() < 3 {
+        return Err(AllanError::TooShort { samples: y.len() });
+    }
     let factors = grid.factors(y.len());
     if factors.is_empty() {
         return Err(AllanError::EmptyGrid { samples: y.len() });
     }
-    let phase = centred_cumulative_sum(y);
+    let sums = piece_sums(y);
+    let total: f64 = sums.iter().sum();
+    if !total.is_finite() {
+        if let Some(index) = y.iter().position(|v| !v.is_finite()) {
+            return Err(AllanError::NonFinite { index });
+        }
+    }
+    let phase = centred_phase(y, total / y.len() as f64);
     let tau0_s = 1.0 / sample_rate_hz;
     let n = y.len();
     let adev = sums_of_squared_second_differences(&phase, &factors)
@@ -52,24 +66,25 @@ pub fn overlapping_adev(
     })
 }
 
-/// Checks the rate, the length (at least 3) and that every sample is finite.
-pub(crate) fn validate_series(y: &[f64], sample_rate_hz: f64) -> Result<(), AllanError> {
-    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
-        return Err(AllanError::Rate {
-            rate_hz: sample_rate_hz,
-        });
-    }
-    if y.len() < 3 {
-        return Err(AllanError::TooShort { samples: y.len() });
-    }
-    match y.iter().position(|v| !v.is_finite()) {
-        Some(index) => Err(AllanError::NonFinite { index }),
-        None => Ok(()),
+/// Samples per piece of the passes over the series. Fixed, so that every sum is added up in
+/// the same order whether the pieces run on one thread or many.
+const PIECE: usize = 1 << 16;
+
+/// Samples below which the passes over the series stay on the calling thread.
+const PARALLEL_SAMPLES: usize = 1 << 18;
+
+/// Σ y over each piece of [`PIECE`] samples (the last one shorter). A non-finite sample makes
+/// its piece's sum non-finite, so one pass serves both the mean and the finiteness check.
+fn piece_sums(y: &[f64]) -> Vec<f64> {
+    if y.len() < PARALLEL_SAMPLES {
+        y.chunks(PIECE).map(sum).collect()
+    } else {
+        y.par_chunks(PIECE).map(sum).collect()
     }
 }
 
-/// Mean by eight interleaved partial sums (vectorisable, and more accurate than one chain).
-pub(crate) fn mean(y: &[f64]) -> f64 {
+/// Σ y by eight interleaved partial sums (vectorisable, and more accurate than one chain).
+fn sum(y: &[f64]) -> f64 {
     let mut partial = [0.0_f64; 8];
     let chunks = y.chunks_exact(8);
     let rest: f64 = chunks.remainder().iter().sum();
@@ -78,30 +93,82 @@ pub(crate) fn mean(y: &[f64]) -> f64 {
             *p += v;
         }
     }
-    (partial.iter().sum::<f64>() + rest) / y.len() as f64
+    partial.iter().sum::<f64>() + rest
+}
+
+/// The mean of y (see [`sum`]).
+pub(crate) fn mean(y: &[f64]) -> f64 {
+    sum(y) / y.len() as f64
 }
 
 /// S_i = Σ_{j<i} (y_j − ȳ), i = 0..=N: the phase in units of τ₀.
 ///
 /// The mean is removed so the running sum stays small (a 0.4 °/s gyro bias over 10⁶ samples
-/// would otherwise grow it to 4·10⁵ and cost six digits in the differences). A running sum is
-/// bound by the latency of one addition, so it runs as four independent chains over the four
-/// quarters of the series, and each quarter is then shifted by the totals of those before it.
+/// would otherwise grow it to 4·10⁵ and cost six digits in the differences).
 pub(crate) fn centred_cumulative_sum(y: &[f64]) -> Vec<f64> {
-    const CHAINS: usize = 4;
-    let mean = mean(y);
-    let quarter = y.len() / CHAINS;
+    centred_phase(y, piece_sums(y).iter().sum::<f64>() / y.len() as f64)
+}
+
+/// S_i = Σ_{j<i} (y_j − mean), i = 0..=N, in two passes over pieces of [`PIECE`] samples that
+/// may run in parallel: each piece's own running sum from zero ([`running_sum_into`]), then each
+/// piece shifted by the totals of the pieces before it.
+fn centred_phase(y: &[f64], mean: f64) -> Vec<f64> {
     let mut phase = vec![0.0; y.len() + 1];
+    let parallel = y.len() >= PARALLEL_SAMPLES;
+    let totals: Vec<f64> = if parallel {
+        phase[1..]
+            .par_chunks_mut(PIECE)
+            .zip(y.par_chunks(PIECE))
+            .map(|(out, piece)| running_sum_into(piece, mean, out))
+            .collect()
+    } else {
+        phase[1..]
+            .chunks_mut(PIECE)
+            .zip(y.chunks(PIECE))
+            .map(|(out, piece)| running_sum_into(piece, mean, out))
+            .collect()
+    };
+    let offsets: Vec<f64> = totals
+        .iter()
+        .scan(0.0, |before, total| {
+            let offset = *before;
+            *before += total;
+            Some(offset)
+        })
+        .collect();
+    let shift = |(out, offset): (&mut [f64], &f64)| out.iter_mut().for_each(|s| *s += offset);
+    if parallel {
+        phase[1..]
+            .par_chunks_mut(PIECE)
+            .zip(offsets.par_iter())
+            .skip(1)
+            .for_each(shift);
+    } else {
+        phase[1..]
+            .chunks_mut(PIECE)
+            .zip(&offsets)
+            .skip(1)
+            .for_each(shift);
+    }
+    phase
+}
+
+/// out_k = Σ_{j≤k} (y_j − mean); returns the total. A running sum is bound by the latency of one
+/// addition, so it runs as four independent chains over the four quarters of the piece, and each
+/// quarter is then shifted by the totals of those before it.
+fn running_sum_into(y: &[f64], mean: f64, out: &mut [f64]) -> f64 {
+    const CHAINS: usize = 4;
+    let quarter = y.len() / CHAINS;
     let mut sums = [0.0_f64; CHAINS];
     for k in 0..quarter {
         for (c, sum) in sums.iter_mut().enumerate() {
             *sum += y[c * quarter + k] - mean;
-            phase[c * quarter + k + 1] = *sum;
+            out[c * quarter + k] = *sum;
         }
     }
     for k in CHAINS * quarter..y.len() {
         sums[CHAINS - 1] += y[k] - mean;
-        phase[k + 1] = sums[CHAINS - 1];
+        out[k] = sums[CHAINS - 1];
     }
     let mut offset = 0.0;
     for c in 1..CHAINS {
@@ -111,11 +178,9 @@ pub(crate) fn centred_cumulative_sum(y: &[f64]) -> Vec<f64> {
         } else {
             (c + 1) * quarter
         };
-        phase[c * quarter + 1..=end]
-            .iter_mut()
-            .for_each(|p| *p += offset);
+        out[c * quarter..end].iter_mut().for_each(|p| *p += offset);
     }
-    phase
+    offset + sums[CHAINS - 1]
 }
 
 /// 2 m² n, n = phase points − 2m: the Allan-variance denominator in units of τ₀ (τ₀ cancels
@@ -138,18 +203,22 @@ const PARALLEL_WORK: usize = 1 << 22;
 
 /// For each m of `factors` (ascending): Σ_i (s_{i+2m} − 2 s_{i+m} + s_i)² over all i with
 /// i + 2m < s.len().
-///
-/// The index range is cut into fixed slices; each slice is one blocked sweep over all factors
-/// ([`slice_sums`]) and the slices' partial sums are added in slice order.
 fn sums_of_squared_second_differences(s: &[f64], factors: &[usize]) -> Vec<f64> {
+    let work: usize = factors.iter().map(|&m| s.len() - 2 * m).sum();
+    swept_sums(s, factors, work >= PARALLEL_WORK)
+}
+
+/// The sums of [`sums_of_squared_second_differences`]: the index range is cut into fixed
+/// slices, each one blocked sweep over all factors ([`slice_sums`], on the rayon pool when
+/// `parallel`), and the slices' partial sums are added in slice order.
+fn swept_sums(s: &[f64], factors: &[usize], parallel: bool) -> Vec<f64> {
     let longest = factors.iter().map(|&m| s.len() - 2 * m).max().unwrap_or(0);
     let starts: Vec<usize> = (0..longest).step_by(SLICE).collect();
     let slice = |&start: &usize| slice_sums(s, factors, start, (start + SLICE).min(longest));
-    let work: usize = factors.iter().map(|&m| s.len() - 2 * m).sum();
-    let partials: Vec<Vec<f64>> = if work < PARALLEL_WORK {
-        starts.iter().map(slice).collect()
-    } else {
+    let partials: Vec<Vec<f64>> = if parallel {
         starts.par_iter().map(slice).collect()
+    } else {
+        starts.iter().map(slice).collect()
     };
     let mut total = vec![0.0; factors.len()];
     for partial in &partials {
@@ -165,23 +234,19 @@ const BLOCK: usize = 2048;
 
 /// The sums of [`sums_of_squared_second_differences`] restricted to start ≤ i < end.
 fn slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64> {
-    let mut sums = vec![0.0; factors.len()];
+    let mut acc = vec![[0.0; LANES]; factors.len()];
     for block in (start..end).step_by(BLOCK) {
-        for (sum, &m) in sums.iter_mut().zip(factors) {
+        for (acc, &m) in acc.iter_mut().zip(factors) {
             let stop = (block + BLOCK).min(end).min(s.len() - 2 * m);
             if block < stop {
-                *sum += block_sum_of_squares(
-                    &s[block..stop],
-                    &s[block + m..stop + m],
-                    &s[block + 2 * m..stop + 2 * m],
-                );
+                add_second_differences(acc, s, block..stop, m);
             }
         }
     }
-    sums
+    acc.iter().map(total_of_lanes).collect()
 }
 
-/// Independent accumulators in [`block_sum_of_squares`].
+/// Independent accumulators in [`add_second_differences`].
 const LANES: usize = 8;
 
 /// A chunk from `chunks_exact(LANES)` as an array, so the compiler drops the bounds checks.
@@ -191,10 +256,23 @@ fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
         .expect("chunks_exact yields LANES elements")
 }
 
-/// Σ_i (c_i − 2 b_i + a_i)² over equal-length slices. Eight independent accumulators let the
-/// compiler keep several vector registers busy instead of waiting on one chain of additions.
-fn block_sum_of_squares(a: &[f64], b: &[f64], c: &[f64]) -> f64 {
-    let mut acc = [0.0_f64; LANES];
+/// Adds ((s_i + s_{i+2m})/2 − s_{i+m})² for i in `range` to the lanes of `acc`: a quarter of
+/// each squared second difference. The halving is exact and runs on the multiplier, leaving
+/// three additions per term (the adders are the bottleneck without FMA); eight independent
+/// accumulators let the compiler keep several vector registers busy instead of waiting on one
+/// chain of additions.
+fn add_second_differences(
+    acc: &mut [f64; LANES],
+    s: &[f64],
+    range: std::ops::Range<usize>,
+    m: usize,
+) {
+    let (start, end) = (range.start, range.end);
+    let (a, b, c) = (
+        &s[start..end],
+        &s[start + m..end + m],
+        &s[start + 2 * m..end + 2 * m],
+    );
     let chunks = a
         .chunks_exact(LANES)
         .zip(b.chunks_exact(LANES))
@@ -202,16 +280,20 @@ fn block_sum_of_squares(a: &[f64], b: &[f64], c: &[f64]) -> f64 {
     for ((a, b), c) in chunks {
         let (a, b, c) = (as_lanes(a), as_lanes(b), as_lanes(c));
         for l in 0..LANES {
-            let d = c[l] - 2.0 * b[l] + a[l];
-            acc[l] += d * d;
+            let half = 0.5 * (a[l] + c[l]) - b[l];
+            acc[l] += half * half;
         }
     }
     let tail = a.len() - a.len() % LANES;
-    let rest: f64 = (tail..a.len())
-        .map(|i| c[i] - 2.0 * b[i] + a[i])
-        .map(|d| d * d)
-        .sum();
-    acc.iter().sum::<f64>() + rest
+    for (l, i) in (tail..a.len()).enumerate() {
+        let half = 0.5 * (a[i] + c[i]) - b[i];
+        acc[l] += half * half;
+    }
+}
+
+/// 4 Σ acc: the sum of squared second differences from the quarter-squares in the lanes.
+fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
+    4.0 * acc.iter().sum::<f64>()
 }
 
 #[cfg(test)]
@@ -227,22 +309,25 @@ mod tests {
         );
     }
 
-    // Oracle: the plain running sum, one addition at a time (the four-chain version adds the
-    // same numbers in another order: 1e-12 of the largest |S| is rounding).
+    // Oracle: the plain running sum, one addition at a time, on one piece (serial path) and
+    // on several pieces (parallel path). The samples are multiples of 1/8 below 2^8 whose second
+    // half negates the first, so the mean is exactly 0 and every partial sum (below 2^27) is
+    // exact in both orders of addition: the results must be equal.
     #[test]
-    fn four_chain_phase_equals_the_plain_running_sum() {
-        let y: Vec<f64> = (0..1003)
-            .map(|k| ((k * k) as f64 * 0.37).sin() + 0.2)
-            .collect();
-        let m = y.iter().sum::<f64>() / y.len() as f64;
-        let mut plain = vec![0.0];
-        for v in &y {
-            plain.push(plain.last().unwrap() + (v - m));
-        }
-        let fast = centred_cumulative_sum(&y);
-        let scale = plain.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-        for (f, p) in fast.iter().zip(&plain) {
-            assert!((f - p).abs() <= 1e-12 * scale, "{f} vs {p}");
+    fn piecewise_phase_equals_the_plain_running_sum() {
+        for half in [502, (5 * PIECE + 1003) / 2] {
+            let first: Vec<f64> = (0..half).map(|k| ((k * k) % 1009) as f64 / 8.0).collect();
+            let y: Vec<f64> = first.iter().chain(&first).copied().collect::<Vec<_>>();
+            let y: Vec<f64> = y
+                .iter()
+                .enumerate()
+                .map(|(k, v)| if k < half { *v } else { -v })
+                .collect();
+            let mut plain = vec![0.0];
+            for v in &y {
+                plain.push(plain.last().unwrap() + v);
+            }
+            assert_eq!(centred_cumulative_sum(&y), plain, "n {}", y.len());
         }
     }
 
@@ -262,5 +347,18 @@ mod tests {
                 .sum();
             assert!((got / plain - 1.0).abs() < 1e-12, "m {m}: {got} vs {plain}");
         }
+    }
+
+    // The thread count must not change a single bit: the slices are fixed and added in order.
+    #[test]
+    fn parallel_slices_give_the_serial_sums_exactly() {
+        let s: Vec<f64> = (0..2 * SLICE + 77)
+            .map(|k| ((k * 7919) % 1013) as f64 * 0.01)
+            .collect();
+        let factors = [1, 5, 64, 1000, 2048, 50_000];
+        assert_eq!(
+            swept_sums(&s, &factors, true),
+            swept_sums(&s, &factors, false)
+        );
     }
 }
