@@ -9,7 +9,8 @@
 //!
 //! which is allantools' `oadev(y, rate, data_type='freq')` and Stable32's "Overlapping Allan"
 //! (the `#` column is n). The mean of y is removed first (the second difference cancels it
-//! exactly; removing it keeps S small and the sums accurate). O(N) per τ.
+//! exactly; removing it keeps S small and the sums accurate). O(N) per τ, all τ in one blocked
+//! sweep over S.
 //!
 //! Confidence intervals follow Stable32 1.60: the noise type α at each τ by the lag-1
 //! autocorrelation of the m-averages when at least 30 exist and by Barnes' B1 ratio (with R(n)
