@@ -72,8 +72,10 @@ def section_allan(n, tmp, rows):
         n_common = min(len(mine), len(res[1]))
         rel = float(np.max(np.abs(mine[:n_common] / res[1][:n_common] - 1))) if n_common else float("nan")
         agree = n_common == len(res[1]) and rel < 1e-9
-        rows.append((f"overlapping ADEV, {grid}, {n} samples", "allantools.oadev", peer_s, ours[f"{grid}_s"], agree,
-                     f"{n_common} taus, max rel diff {rel:.1e}"))
+        rows.append((f"overlapping ADEV, {grid}, {n} samples, {ours['threads']} threads", "allantools.oadev", peer_s,
+                     ours[f"{grid}_s"], agree, f"{n_common} taus, max rel diff {rel:.1e}"))
+        rows.append((f"overlapping ADEV, {grid}, {n} samples, 1 thread", "allantools.oadev", peer_s,
+                     ours[f"{grid}_1t_s"], agree, "same curve, one-thread rayon pool"))
 
 
 def section_ar(n, tmp, rows):

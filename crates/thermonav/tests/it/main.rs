@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav library against independent oracles.
 
 mod allan;
+mod allan_confidence;
 mod ar;
 mod error_model;
 mod evaluation;
@@ -16,10 +17,12 @@ mod vessel;
 
 use std::path::PathBuf;
 
-/// Path of a file under `../shared/data` (the repository sits beside `shared/`).
+/// Path of a file under `../shared/data` (the repository sits beside `shared/`), or under
+/// `$THERMONAV_SHARED_DATA` when set (a checkout elsewhere, e.g. a git worktree).
 pub fn shared_data(relative: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data")
+    std::env::var_os("THERMONAV_SHARED_DATA")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"))
         .join(relative)
 }
 
