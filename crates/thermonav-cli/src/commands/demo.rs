@@ -170,6 +170,8 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         elapsed_s: started.elapsed().as_secs_f64(),
     };
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
+    let report = super::report::write_report(&args.out)?;
+    say(args, &format!("report: {}", report.display()));
     if args.json {
         return print_json(&summary);
     }

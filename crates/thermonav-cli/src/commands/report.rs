@@ -44,7 +44,10 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
     };
     let out = dir.join("report.html");
     let html = render_page(&page);
-    write_atomically(&out, |file| Ok(std::io::Write::write_all(file, html.as_bytes())?)).data()?;
+    write_atomically(&out, |file| {
+        Ok(std::io::Write::write_all(file, html.as_bytes())?)
+    })
+    .data()?;
     Ok(out)
 }
 
@@ -85,14 +88,25 @@ fn run_section(dir: &Path, demo: Option<&Value>) -> Section {
             ("quick", "quick"),
             ("chamber record per temperature (s)", "chamber_duration_s"),
             ("chamber sample rate (Hz)", "chamber_rate_hz"),
-            ("exact-ML intervals covering the true Tc", "ml_intervals_covering_truth"),
+            (
+                "exact-ML intervals covering the true Tc",
+                "ml_intervals_covering_truth",
+            ),
             ("exact-ML intervals judged", "ml_intervals"),
             ("run time (s)", "elapsed_s"),
         ] {
             rows.push(vec![label.into(), field(key)]);
         }
-        let quick = if d.get("quick") == Some(&Value::Bool(true)) { " --quick" } else { "" };
-        reproduce = format!("thermonav demo --out {}{quick} --seed {}", dir.display(), field("seed"));
+        let quick = if d.get("quick") == Some(&Value::Bool(true)) {
+            " --quick"
+        } else {
+            ""
+        };
+        reproduce = format!(
+            "thermonav demo --out {}{quick} --seed {}",
+            dir.display(),
+            field("seed")
+        );
     }
     Section {
         heading: "What was run".into(),
@@ -116,7 +130,11 @@ fn models_section(bank: &ModelBank) -> Section {
     for entry in &bank.entries {
         let title = format!("Allan deviation at {:.1} °C", entry.temperature_c);
         blocks.push(figure(
-            allan_deviation_figure(&title, &allan_curves_of_entry(entry), DisplayUnits::Navigation),
+            allan_deviation_figure(
+                &title,
+                &allan_curves_of_entry(entry),
+                DisplayUnits::Navigation,
+            ),
             &title,
         ));
     }
@@ -143,7 +161,10 @@ fn number(v: &Value, key: &str) -> Option<f64> {
 }
 
 fn text(v: &Value, key: &str) -> String {
-    v.get(key).and_then(Value::as_str).unwrap_or_default().to_string()
+    v.get(key)
+        .and_then(Value::as_str)
+        .unwrap_or_default()
+        .to_string()
 }
 
 fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
@@ -167,7 +188,11 @@ fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
     let reference = dir.join("vessel/reference.csv");
     if reference.exists() {
         blocks.push(figure(
-            trajectory_figure("Survey with its GNSS outages", &trajectory_of(&reference)?, &outages),
+            trajectory_figure(
+                "Survey with its GNSS outages",
+                &trajectory_of(&reference)?,
+                &outages,
+            ),
             "The survey, outages drawn thick (the paper's Figure 6)",
         ));
     }
@@ -191,7 +216,12 @@ fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
     ] {
         let series = rms_series(models, &filters, key);
         blocks.push(figure(
-            rms_versus_temperature_figure(&format!("{quantity} per model"), quantity, unit, &series),
+            rms_versus_temperature_figure(
+                &format!("{quantity} per model"),
+                quantity,
+                unit,
+                &series,
+            ),
             &format!("{quantity} against the model's temperature (Figures 13-15)"),
         ));
     }
@@ -221,7 +251,12 @@ fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
     let local: Vec<(f64, [f64; 3])> = points
         .iter()
         .step_by(step)
-        .map(|p| (p.time.as_seconds(), position(p).ned_from(&origin).to_array()))
+        .map(|p| {
+            (
+                p.time.as_seconds(),
+                position(p).ned_from(&origin).to_array(),
+            )
+        })
         .collect();
     Ok(Trajectory {
         time_s: local.iter().map(|(t, _)| *t).collect(),
@@ -328,12 +363,23 @@ fn significance_table(e: &Value) -> Table {
     Table {
         caption: format!(
             "Is the ranking real? Paired t-tests of winner against runner-up over {} replicates ({})",
-            e.pointer("/significance/replicates").map(Value::to_string).unwrap_or_default(),
-            e.pointer("/significance/replicates_differ_by").and_then(Value::as_str).unwrap_or_default()
+            e.pointer("/significance/replicates")
+                .map(Value::to_string)
+                .unwrap_or_default(),
+            e.pointer("/significance/replicates_differ_by")
+                .and_then(Value::as_str)
+                .unwrap_or_default()
         ),
-        header: ["filter", "metric", "winner", "runner-up", "p-value", "verdict"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "filter",
+            "metric",
+            "winner",
+            "runner-up",
+            "p-value",
+            "verdict",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: tests
             .iter()
             .map(|t| {
