@@ -599,6 +599,24 @@ pub enum PlotKind {
     /// East versus north of a trajectory CSV (reference or `integrate` solution), the parts
     /// inside --outages highlighted.
     Trajectory,
+    /// North, east and heading errors in the first outage, one line per model, from an
+    /// `evaluate` report (evaluation.json) for the filter --filter.
+    OutageErrors,
+    /// RMS error (--metric) against the model's temperature, from evaluation.json.
+    RmsTemperature,
+    /// Innovations with ±3σ bounds, from an `integrate` STEM.innovations.csv.
+    Innovations,
+}
+
+/// The error metric of `plot rms-temperature`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum MetricArg {
+    /// Mean of per-outage RMS north error, m.
+    North,
+    /// Mean of per-outage RMS east error, m.
+    East,
+    /// Mean of per-outage RMS heading error, deg.
+    Heading,
 }
 
 /// Units of inertial quantities on figures.
@@ -641,6 +659,12 @@ pub struct PlotArgs {
     /// GNSS outages to highlight, as for `integrate` (trajectory).
     #[arg(long, default_value = "none")]
     pub outages: String,
+    /// Filter whose models to draw (outage-errors): ukf or ekf; default the report's first.
+    #[arg(long)]
+    pub filter: Option<String>,
+    /// Metric of rms-temperature.
+    #[arg(long, value_enum, default_value_t = MetricArg::North)]
+    pub metric: MetricArg,
     /// Figure title (default: one naming the input).
     #[arg(long)]
     pub title: Option<String>,

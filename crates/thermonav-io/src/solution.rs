@@ -123,3 +123,54 @@ pub fn write_solution_states_file(
 ) -> Result<(), WriteError> {
     write_atomically(path, |file| write_solution_states(file, epochs))
 }
+
+/// Writes every measurement update of a run:
+/// `t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced`,
+/// components north/east/down for position (m) and velocity (m/s), the first alone for
+/// heading (deg); `sd_k` are square roots of the innovation covariance's diagonal.
+///
+/// # Errors
+/// [`WriteError::Io`].
+pub fn write_innovations(
+    mut out: impl Write,
+    records: &[thermonav::nav::solution::InnovationRecord],
+) -> Result<(), WriteError> {
+    use thermonav::nav::measurement::MeasurementKind;
+    writeln!(
+        out,
+        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced"
+    )?;
+    for r in records {
+        let (unit, factor) = match r.kind {
+            MeasurementKind::Position => ("m", 1.0),
+            MeasurementKind::Velocity => ("m/s", 1.0),
+            MeasurementKind::Heading => ("deg", 1f64.to_degrees()),
+        };
+        write_time(&mut out, r.time)?;
+        write!(out, ",{},{unit}", r.kind.name())?;
+        for value in r
+            .innovation
+            .iter()
+            .chain(&r.sd)
+            .map(|v| v * factor)
+            .chain([r.nis])
+        {
+            out.write_all(b",")?;
+            write_value(&mut out, value)?;
+        }
+        writeln!(out, ",{},{}", u8::from(r.accepted), u8::from(r.forced))?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// Writes the updates to `path` atomically.
+///
+/// # Errors
+/// As [`write_innovations`], plus those of [`write_atomically`].
+pub fn write_innovations_file(
+    path: impl AsRef<Path>,
+    records: &[thermonav::nav::solution::InnovationRecord],
+) -> Result<(), WriteError> {
+    write_atomically(path, |file| write_innovations(file, records))
+}

@@ -14,8 +14,11 @@ use super::evaluate::{
     EvaluationJson, ScenarioFiles, TournamentPlan, print_tournament_table, run_plan,
     scenario_from_files, scenario_of,
 };
+use super::integrate::{Summary as IntegrateSummary, integrate_files};
 use super::simulate::{VesselFiles, run_chamber, simulate_vessel_files, vessel_run};
-use crate::args::{ChamberArgs, DemoArgs, VesselArgs};
+use crate::args::{
+    ChamberArgs, DemoArgs, FilterArg, GmSourceArg, IntegrateArgs, SelectArg, VesselArgs,
+};
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
 use serde::Serialize;
@@ -83,6 +86,7 @@ struct DemoSummary {
     ml_intervals_covering_truth: usize,
     ml_intervals: usize,
     tournament: EvaluationJson,
+    solution: IntegrateSummary,
     elapsed_s: f64,
 }
 
@@ -147,6 +151,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         ),
     );
     let tournament = tournament(&bank, &vessel, &vessel_files, &p, &args.out)?;
+    let solution = interpolated_solution(&vessel_files, &p, &args.out)?;
     let recovery = recovery_table(&bank, &truth.temperatures);
     let covered = recovery
         .iter()
@@ -167,6 +172,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         ml_intervals_covering_truth: covered,
         ml_intervals: judged,
         tournament,
+        solution,
         elapsed_s: started.elapsed().as_secs_f64(),
     };
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
@@ -234,6 +240,44 @@ fn tournament(
         out: &out.join("evaluation"),
     };
     run_plan(&plan, &main, &replicates)
+}
+
+/// The UKF solution with the model interpolated at 17 °C through the same outages, with its
+/// state and innovation files, under DIR/solution.
+fn interpolated_solution(
+    files: &VesselFiles,
+    p: &Plan,
+    out: &Path,
+) -> Result<IntegrateSummary, Failure> {
+    let gnss = GnssSettings::default();
+    let args = IntegrateArgs {
+        imu: files.imu.clone(),
+        gnss: files.gnss.clone(),
+        bank: Some(out.join("bank.json")),
+        profile: None,
+        model_temperature_c: None,
+        operating_temperature_c: Some(17.0),
+        select: SelectArg::Linear,
+        model: GmSourceArg::IrregularMl,
+        filter: FilterArg::Ukf,
+        outages: p.outages.to_string(),
+        lever_arm_m: gnss.lever_arm_body_m.to_vec(),
+        baseline: gnss.baseline_body_m.to_vec(),
+        initial_from: Some(files.reference.clone()),
+        covariance_rate_hz: 10.0,
+        output_rate_hz: 10.0,
+        gate_probability: 0.9999,
+        velocity_sd_m_s: 0.05,
+        process_noise_scale: 1.0,
+        no_velocity: false,
+        no_heading: false,
+        out: out.join("solution/solution.csv"),
+        json: true,
+    };
+    std::fs::create_dir_all(out.join("solution"))
+        .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))
+        .data()?;
+    integrate_files(&args)
 }
 
 fn say(args: &DemoArgs, line: &str) {

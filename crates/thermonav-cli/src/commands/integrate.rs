@@ -27,13 +27,23 @@ use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
 use thermonav_io::profile::read_profile;
-use thermonav_io::solution::write_solution_states_file;
+use thermonav_io::solution::{write_innovations_file, write_solution_states_file};
 use thermonav_io::{
     Strictness, read_gnss_file, read_imu_file, read_trajectory_file, write_trajectory_file,
 };
 
 /// Runs `integrate`.
 pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
+    let summary = integrate_files(args)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    print_summary(&summary);
+    Ok(())
+}
+
+/// Runs the filter on the files of `args`, writes the outputs and returns the summary.
+pub fn integrate_files(args: &IntegrateArgs) -> Result<Summary, Failure> {
     let mut settings = engine_settings(args)?;
     let series = read_imu_file(&args.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&args.gnss, Strictness::Strict).data()?;
@@ -77,11 +87,7 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
         processing_s,
         files,
     );
-    if args.json {
-        return print_json(&summary);
-    }
-    print_summary(&summary);
-    Ok(())
+    Ok(summary)
 }
 
 fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
@@ -279,14 +285,15 @@ fn initial_estimate(
 struct Files {
     solution: PathBuf,
     states: PathBuf,
+    innovations: PathBuf,
 }
 
-/// STEM.states.csv beside the solution.
-fn states_path(out: &Path) -> PathBuf {
+/// STEM.SUFFIX.csv beside the solution.
+pub fn beside(out: &Path, suffix: &str) -> PathBuf {
     let stem = out
         .file_stem()
         .map_or_else(|| "solution".into(), |s| s.to_string_lossy().into_owned());
-    out.with_file_name(format!("{stem}.states.csv"))
+    out.with_file_name(format!("{stem}.{suffix}.csv"))
 }
 
 fn write_outputs(out: &Path, solution: &Solution) -> Result<Files, Failure> {
@@ -295,12 +302,15 @@ fn write_outputs(out: &Path, solution: &Solution) -> Result<Files, Failure> {
         .iter()
         .map(|e| TrajectoryPoint::from_nav_state(&e.estimate.nav))
         .collect();
-    let states = states_path(out);
+    let states = beside(out, "states");
+    let innovations = beside(out, "innovations");
     write_trajectory_file(out, &points).data()?;
     write_solution_states_file(&states, &solution.epochs).data()?;
+    write_innovations_file(&innovations, &solution.innovations).data()?;
     Ok(Files {
         solution: out.to_path_buf(),
         states,
+        innovations,
     })
 }
 
@@ -384,8 +394,9 @@ impl From<&Outage> for OutageJson {
     }
 }
 
+/// What `integrate` reports.
 #[derive(Debug, Serialize)]
-struct Summary {
+pub struct Summary {
     filter: FilterKind,
     imu: PathBuf,
     gnss: PathBuf,
@@ -551,5 +562,6 @@ fn print_summary(s: &Summary) {
     }
     rows.push(("solution", s.files.solution.display().to_string()));
     rows.push(("states", s.files.states.display().to_string()));
+    rows.push(("innovations", s.files.innovations.display().to_string()));
     print_rows(&rows);
 }

@@ -2,7 +2,8 @@
 
 use super::allan::read_rates;
 use super::bank::{read_bank, source_of};
-use crate::args::{PlotArgs, PlotKind, UnitsArg};
+use super::report::{innovations_of, outage_errors, rms_series};
+use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use serde::Deserialize;
@@ -25,7 +26,10 @@ use thermonav_plot::figures::autocorrelation::{
     Autocovariance, GaussMarkovFit, autocorrelation_figure,
 };
 use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_time_series};
-use thermonav_plot::figures::navigation::{Trajectory, trajectory_figure};
+use thermonav_plot::figures::navigation::{
+    Trajectory, innovations_figure, outage_errors_figure, rms_versus_temperature_figure,
+    trajectory_figure,
+};
 use thermonav_plot::png::svg_to_png;
 
 /// Most lags drawn on an autocovariance figure (the fit uses all of them).
@@ -65,6 +69,12 @@ pub fn run(args: &PlotArgs) -> Result<(), Failure> {
         PlotKind::CorrelationTime => correlation_svg(args)?,
         PlotKind::Autocorrelation => autocorrelation_svg(args, units)?,
         PlotKind::Trajectory => trajectory_svg(args)?,
+        PlotKind::OutageErrors => outage_errors_svg(args)?,
+        PlotKind::RmsTemperature => rms_temperature_svg(args)?,
+        PlotKind::Innovations => innovations_figure(
+            &title_or(args, format!("Innovations, {}", file_name(&args.input))),
+            &innovations_of(&args.input)?,
+        ),
     };
     let bytes = match format {
         ImageFormat::Svg => svg.into_bytes(),
@@ -314,5 +324,67 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
         &title_or(args, title),
         &trajectory,
         &windows,
+    ))
+}
+
+/// The evaluation report and its filters (first = the report's primary one).
+fn evaluation(args: &PlotArgs) -> Result<(serde_json::Value, Vec<String>), Failure> {
+    let text = std::fs::read_to_string(&args.input)
+        .map_err(|e| anyhow!("{}: cannot read: {e}", args.input.display()))
+        .data()?;
+    let json: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| anyhow!("{}:{}: not JSON: {e}", args.input.display(), e.line()))
+        .data()?;
+    let filters: Vec<String> = json
+        .get("filters")
+        .and_then(serde_json::Value::as_array)
+        .map(|f| {
+            f.iter()
+                .filter_map(|x| x.as_str().map(str::to_string))
+                .collect()
+        })
+        .unwrap_or_default();
+    if json.get("models").is_none() || filters.is_empty() {
+        return Err(Failure::Data(anyhow!(
+            "{}: not an evaluation report (expected \"models\" and \"filters\" keys)",
+            args.input.display()
+        )));
+    }
+    Ok((json, filters))
+}
+
+fn outage_errors_svg(args: &PlotArgs) -> Result<String, Failure> {
+    let (json, filters) = evaluation(args)?;
+    let filter = args.filter.clone().unwrap_or_else(|| filters[0].clone());
+    if !filters.contains(&filter) {
+        return Err(Failure::Usage(anyhow!(
+            "--filter {filter}: the report has {}",
+            filters.join(", ")
+        )));
+    }
+    let models = json["models"].as_array().cloned().unwrap_or_default();
+    let errors = outage_errors(&models, &filter)?;
+    let title = format!(
+        "INS-only errors in the first outage ({})",
+        filter.to_uppercase()
+    );
+    Ok(outage_errors_figure(&title_or(args, title), &errors, None))
+}
+
+fn rms_temperature_svg(args: &PlotArgs) -> Result<String, Failure> {
+    let (json, filters) = evaluation(args)?;
+    let models = json["models"].as_array().cloned().unwrap_or_default();
+    let (key, quantity, unit) = match args.metric {
+        MetricArg::North => ("rms_north_m", "north RMS error", "m"),
+        MetricArg::East => ("rms_east_m", "east RMS error", "m"),
+        MetricArg::Heading => ("rms_heading_deg", "heading RMS error", "deg"),
+    };
+    let series = rms_series(&models, &filters, key);
+    let title = format!("{quantity} per model");
+    Ok(rms_versus_temperature_figure(
+        &title_or(args, title),
+        quantity,
+        unit,
+        &series,
     ))
 }

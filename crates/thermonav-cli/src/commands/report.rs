@@ -17,8 +17,8 @@ use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{allan_curves_of_entry, allan_deviation_figure};
 use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_time_series};
 use thermonav_plot::figures::navigation::{
-    ModelErrors, RmsSeries, Trajectory, outage_errors_figure, rms_versus_temperature_figure,
-    trajectory_figure,
+    Innovations, ModelErrors, RmsSeries, Trajectory, innovations_figure, outage_errors_figure,
+    rms_versus_temperature_figure, trajectory_figure,
 };
 use thermonav_plot::html::{Block, InlineFigure, Page, Section, Table, render_page};
 
@@ -225,6 +225,16 @@ fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
             &format!("{quantity} against the model's temperature (Figures 13-15)"),
         ));
     }
+    let innovations = dir.join("solution/solution.innovations.csv");
+    if innovations.exists() {
+        blocks.push(figure(
+            innovations_figure(
+                "Innovations of the UKF with the interpolated model (solution/)",
+                &innovations_of(&innovations)?,
+            ),
+            "GNSS innovations with their ±3σ bounds (none inside the outages)",
+        ));
+    }
     blocks.push(Block::Table(ranking_table(models)));
     blocks.push(Block::Table(significance_table(e)));
     Ok(Section {
@@ -265,8 +275,51 @@ fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
     })
 }
 
+/// Position (north, east, down) and heading innovations of an `integrate` innovations file,
+/// accepted updates only, times from the first update.
+pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
+    let csv = std::fs::read_to_string(path)
+        .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
+        .data()?;
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .filter(|f: &Vec<&str>| f.len() == 12 && f[10] == "1")
+        .collect();
+    let t0 = rows
+        .first()
+        .and_then(|r| r[0].parse::<f64>().ok())
+        .unwrap_or(0.0);
+    let component = |kind: &str, k: usize, name: &str| {
+        let of_kind: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == kind).collect();
+        let column = |c: usize| -> Vec<f64> {
+            of_kind
+                .iter()
+                .map(|r| r[c].parse().unwrap_or(f64::NAN))
+                .collect()
+        };
+        Innovations {
+            name: name.into(),
+            unit: of_kind.first().map_or("", |r| r[2]).into(),
+            time_s: column(0).iter().map(|t| t - t0).collect(),
+            innovation: column(3 + k),
+            sigma: column(6 + k),
+        }
+    };
+    Ok([
+        component("position", 0, "north position"),
+        component("position", 1, "east position"),
+        component("position", 2, "down position"),
+        component("heading", 0, "heading"),
+    ]
+    .into_iter()
+    .filter(|c| !c.time_s.is_empty())
+    .collect())
+}
+
 /// The first outage's errors of every model of `filter`, from their CSVs.
-fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>, Failure> {
+pub fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>, Failure> {
     let mut out = Vec::new();
     for m in models.iter().filter(|m| text(m, "filter") == filter) {
         let Some(path) = m.get("errors_csv").and_then(Value::as_str) else {
@@ -296,7 +349,7 @@ fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>, Fai
 
 /// Per filter, the bank entries' values at their temperatures, and the interpolated model at
 /// the operating temperature as its own series.
-fn rms_series(models: &[Value], filters: &[String], key: &str) -> Vec<RmsSeries> {
+pub fn rms_series(models: &[Value], filters: &[String], key: &str) -> Vec<RmsSeries> {
     let mut series = Vec::new();
     for filter in filters {
         for (kind, name) in [("entry", "bank models"), ("interpolated", "interpolated")] {

@@ -112,7 +112,8 @@ pub fn outage_errors_figure(
     )
 }
 
-/// RMS error of one model at each operating temperature.
+/// RMS error at each temperature: the temperature a model stands for (the paper's Figures
+/// 13-15), or the operating temperature when one model is run at several.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RmsSeries {
     /// The model's name.
@@ -152,7 +153,7 @@ pub fn rms_versus_temperature_figure(
     }
     let chart = Chart {
         title: format!("RMS {quantity} error"),
-        x: Axis::linear("operating temperature (°C)"),
+        x: Axis::linear("model temperature (°C)"),
         y: Axis::linear(format!("RMS {quantity} error ({unit})")),
         layers,
     };
