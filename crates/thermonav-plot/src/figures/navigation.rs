@@ -175,15 +175,36 @@ pub struct Innovations {
     pub sigma: Vec<f64>,
 }
 
-/// A panel per component: the innovations as markers between ±3σ lines.
+/// Index ranges of `times` without a gap longer than five times the median step (a GNSS
+/// outage), so that bound lines are not drawn across it.
+pub fn contiguous_runs(times: &[f64]) -> Vec<std::ops::Range<usize>> {
+    if times.len() < 2 {
+        return std::iter::once(0..times.len()).collect();
+    }
+    let mut steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let limit = 5.0 * steps[steps.len() / 2];
+    let mut runs = Vec::new();
+    let mut start = 0;
+    for k in 1..times.len() {
+        if times[k] - times[k - 1] > limit {
+            runs.push(start..k);
+            start = k;
+        }
+    }
+    runs.push(start..times.len());
+    runs
+}
+
+/// A panel per component: the innovations as markers between ±3σ lines (broken at gaps).
 pub fn innovations_figure(title: &str, components: &[Innovations]) -> String {
     let panels = components
         .iter()
         .map(|c| {
-            let bound = |sign: f64| -> Vec<(f64, f64)> {
-                c.time_s
+            let bound = |sign: f64, range: std::ops::Range<usize>| -> Vec<(f64, f64)> {
+                c.time_s[range.clone()]
                     .iter()
-                    .zip(&c.sigma)
+                    .zip(&c.sigma[range])
                     .map(|(&t, &s)| (t, sign * 3.0 * s))
                     .collect()
             };
@@ -196,31 +217,27 @@ pub fn innovations_figure(title: &str, components: &[Innovations]) -> String {
                 title: c.name.clone(),
                 x: Axis::linear("time (s)"),
                 y: Axis::linear(format!("innovation ({})", c.unit)),
-                layers: vec![
-                    Layer::Markers {
-                        name: "innovation".into(),
-                        points: c
-                            .time_s
-                            .iter()
-                            .copied()
-                            .zip(c.innovation.iter().copied())
-                            .collect(),
-                        marker: Marker {
-                            radius: 1.8,
-                            ..Marker::filled(Shape::Circle, palette::series_color(0))
-                        },
+                layers: std::iter::once(Layer::Markers {
+                    name: "innovation".into(),
+                    points: c
+                        .time_s
+                        .iter()
+                        .copied()
+                        .zip(c.innovation.iter().copied())
+                        .collect(),
+                    marker: Marker {
+                        radius: 1.8,
+                        ..Marker::filled(Shape::Circle, palette::series_color(0))
                     },
-                    Layer::Line {
+                })
+                .chain(contiguous_runs(&c.time_s).into_iter().flat_map(|run| {
+                    [1.0, -1.0].map(|sign| Layer::Line {
                         name: "±3σ".into(),
-                        points: bound(1.0),
+                        points: bound(sign, run.clone()),
                         stroke: bound_stroke,
-                    },
-                    Layer::Line {
-                        name: "±3σ".into(),
-                        points: bound(-1.0),
-                        stroke: bound_stroke,
-                    },
-                ],
+                    })
+                }))
+                .collect(),
             }
         })
         .collect();
@@ -327,6 +344,15 @@ fn equal_aspect_ranges(points: &[(f64, f64)]) -> ((f64, f64), (f64, f64)) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // Steps of 1 s with one 9 s gap (an outage): two runs, split at the gap.
+    #[test]
+    fn runs_break_at_outage_gaps() {
+        let t = [0.0, 1.0, 2.0, 11.0, 12.0, 13.0];
+        assert_eq!(contiguous_runs(&t), vec![0..3, 3..6]);
+        assert_eq!(contiguous_runs(&t[..3]).len(), 1);
+        assert_eq!(contiguous_runs(&[]).len(), 1);
+    }
     use crate::parsed_svg::{
         ParsedSvg, assert_complete_figure, grid_mapping, number, polyline_points,
     };
