@@ -22,7 +22,7 @@
 //! Conventions (CONVENTIONS.md): Hamilton quaternions, scalar first; Euler angles ZYX with
 //! C_b^n = R_z(yaw) R_y(pitch) R_x(roll).
 
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::marker::PhantomData;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -175,6 +175,11 @@ impl<From, To> Rotation<From, To> {
         self.q
     }
 
+    /// The direction cosine matrix C_From^To as a matrix.
+    pub fn to_matrix3(&self) -> Matrix3<f64> {
+        self.q.to_rotation_matrix().into_inner()
+    }
+
     /// The direction cosine matrix C_From^To as rows.
     pub fn matrix(&self) -> [[f64; 3]; 3] {
         let m = self.q.to_rotation_matrix();
@@ -234,6 +239,11 @@ impl<A, B> Mul<Vector<A>> for Rotation<A, B> {
     fn mul(self, rhs: Vector<A>) -> Vector<B> {
         Vector::from_raw(self.q * rhs.v)
     }
+}
+
+/// The skew-symmetric matrix [v×] with [v×] w = v × w.
+pub fn skew_matrix(v: &Vector3<f64>) -> Matrix3<f64> {
+    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
 }
 
 #[cfg(test)]

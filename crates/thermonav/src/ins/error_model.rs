@@ -13,7 +13,7 @@
 //! navigation equations in the tests.
 
 use super::state::NavState;
-use crate::frames::{Body, Vector};
+use crate::frames::{Body, Vector, skew_matrix};
 use crate::geo::position::{meridian_radius_m, transverse_radius_m};
 use crate::geo::wgs84::EARTH_RATE_RAD_S;
 use nalgebra::{Matrix3, SMatrix, Vector3};
@@ -54,10 +54,6 @@ pub struct CorrelationTimes {
     pub accel_scale_s: [f64; 3],
 }
 
-fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
-    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
-}
-
 fn put(f: &mut SystemMatrix, row: usize, col: usize, m: &Matrix3<f64>) {
     f.fixed_view_mut::<3, 3>(row, col).copy_from(m);
 }
@@ -73,17 +69,16 @@ pub fn system_matrix(
     use block::*;
     let mut f = SystemMatrix::zeros();
     let k = Kinematic::new(state);
-    let rows = state.attitude.matrix();
-    let c_bn = Matrix3::from_fn(|r, col| rows[r][col]);
+    let c_bn = state.attitude.to_matrix3();
     let force_n = c_bn * force_b.raw();
     put(&mut f, POSITION, POSITION, &k.f_rr());
     put(&mut f, POSITION, VELOCITY, &Matrix3::identity());
     put(&mut f, VELOCITY, POSITION, &k.f_vr());
     put(&mut f, VELOCITY, VELOCITY, &k.f_vv());
-    put(&mut f, VELOCITY, ATTITUDE, &skew(&force_n));
+    put(&mut f, VELOCITY, ATTITUDE, &skew_matrix(&force_n));
     put(&mut f, ATTITUDE, POSITION, &k.f_phi_r());
     put(&mut f, ATTITUDE, VELOCITY, &k.f_phi_v());
-    put(&mut f, ATTITUDE, ATTITUDE, &(-skew(&k.omega_in())));
+    put(&mut f, ATTITUDE, ATTITUDE, &(-skew_matrix(&k.omega_in())));
     put(&mut f, VELOCITY, ACCEL_BIAS, &c_bn);
     put(
         &mut f,

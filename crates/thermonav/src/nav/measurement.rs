@@ -11,7 +11,7 @@
 //!   b_E b_D φ_E − (b_N² + b_E²) φ_D) / (b_N² + b_E²), which is −φ_D for a level baseline.
 
 use super::error_state::Estimate;
-use crate::frames::{Body, Ned, Vector};
+use crate::frames::{Body, Ned, Vector, skew_matrix};
 use crate::geo::position::Geodetic;
 use crate::ins::error_model::{STATES, block};
 use crate::units::wrap_pi;
@@ -70,15 +70,6 @@ impl MeasurementKind {
     }
 }
 
-fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
-    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
-}
-
-fn rotation_matrix(e: &Estimate) -> Matrix3<f64> {
-    let rows = e.nav.attitude.matrix();
-    Matrix3::from_fn(|r, c| rows[r][c])
-}
-
 /// The antenna position of an estimate.
 pub fn antenna_position(e: &Estimate, geometry: &AntennaGeometry) -> Geodetic {
     let lever = e.nav.attitude * Vector::<Body>::from_array(geometry.lever_arm_body_m);
@@ -123,12 +114,12 @@ pub fn position_linearized(
 ) -> Linearized<3> {
     let predicted = antenna_position(e, geometry);
     let residual = predicted.ned_from(measured).raw();
-    let lever_n = rotation_matrix(e) * Vector3::from(geometry.lever_arm_body_m);
+    let lever_n = e.nav.attitude.to_matrix3() * Vector3::from(geometry.lever_arm_body_m);
     let mut h = SMatrix::<f64, 3, STATES>::zeros();
     h.fixed_view_mut::<3, 3>(0, block::POSITION)
         .copy_from(&Matrix3::identity());
     h.fixed_view_mut::<3, 3>(0, block::ATTITUDE)
-        .copy_from(&skew(&lever_n));
+        .copy_from(&skew_matrix(&lever_n));
     Linearized {
         residual,
         jacobian: h,
@@ -144,18 +135,18 @@ pub fn velocity_linearized(
     measured: &Vector3<f64>,
     sd_m_s: [f64; 3],
 ) -> Linearized<3> {
-    let c = rotation_matrix(e);
+    let c = e.nav.attitude.to_matrix3();
     let lever = Vector3::from(geometry.lever_arm_body_m);
     let residual = antenna_velocity(e, geometry, rate_b).raw() - measured;
     let mut h = SMatrix::<f64, 3, STATES>::zeros();
     h.fixed_view_mut::<3, 3>(0, block::VELOCITY)
         .copy_from(&Matrix3::identity());
     h.fixed_view_mut::<3, 3>(0, block::ATTITUDE)
-        .copy_from(&skew(&(c * rate_b.cross(&lever))));
+        .copy_from(&skew_matrix(&(c * rate_b.cross(&lever))));
     h.fixed_view_mut::<3, 3>(0, block::GYRO_BIAS)
-        .copy_from(&(-c * skew(&lever)));
+        .copy_from(&(-c * skew_matrix(&lever)));
     h.fixed_view_mut::<3, 3>(0, block::GYRO_SCALE)
-        .copy_from(&(-c * skew(&lever) * Matrix3::from_diagonal(rate_b)));
+        .copy_from(&(-c * skew_matrix(&lever) * Matrix3::from_diagonal(rate_b)));
     Linearized {
         residual,
         jacobian: h,
@@ -170,7 +161,7 @@ pub fn heading_linearized(
     measured_rad: f64,
     sd_rad: f64,
 ) -> Linearized<1> {
-    let b = rotation_matrix(e) * Vector3::from(geometry.baseline_body);
+    let b = e.nav.attitude.to_matrix3() * Vector3::from(geometry.baseline_body);
     let rho2 = b.x * b.x + b.y * b.y;
     let mut h = SMatrix::<f64, 1, STATES>::zeros();
     h[(0, block::ATTITUDE)] = b.x * b.z / rho2;

@@ -263,8 +263,7 @@ impl ImuStochasticModel {
         phi: &SystemMatrix,
         dt_s: f64,
     ) -> SystemMatrix {
-        let rows = attitude.matrix();
-        let c = Matrix3::from_fn(|r, k| rows[r][k]);
+        let c = attitude.to_matrix3();
         let squared = |axes: &[AxisModel; 3]| {
             Matrix3::from_diagonal(&nalgebra::Vector3::from(
                 axes.map(|a| a.white_noise_density * a.white_noise_density),

@@ -12,7 +12,7 @@
 //! states, so the round trip is exact to rounding.
 
 use super::motion::Trajectory;
-use crate::frames::{Ned, Vector};
+use crate::frames::{Ned, Vector, skew_matrix};
 use crate::ins::mechanization::{
     frame_rotation, gravity_coriolis_increment, mid_interval_position,
 };
@@ -30,10 +30,6 @@ pub fn ideal_increments(trajectory: &Trajectory) -> Vec<Increment> {
     increments
 }
 
-fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
-    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
-}
-
 /// The increment that takes `before` to `after`, given the increment before it (`None` for the
 /// first: the mechanization is then called with the current increment as the previous one).
 fn invert_step(before: &NavState, after: &NavState, previous: Option<&Increment>) -> Increment {
@@ -44,17 +40,24 @@ fn invert_step(before: &NavState, after: &NavState, previous: Option<&Increment>
         * after.attitude.unit_quaternion();
     let phi = relative.scaled_axis();
     let delta_angle = match previous {
-        Some(p) => solve(Matrix3::identity() + skew(&p.delta_angle.raw()) / 12.0, phi),
+        Some(p) => solve(
+            Matrix3::identity() + skew_matrix(&p.delta_angle.raw()) / 12.0,
+            phi,
+        ),
         None => phi,
     };
     let compensated = compensated_velocity_increment(before, after, dt);
     let delta_velocity = match previous {
         Some(p) => {
             let (dth0, dv0) = (p.delta_angle.raw(), p.delta_velocity.raw());
-            let a = Matrix3::identity() + 0.5 * skew(&delta_angle) + skew(&dth0) / 12.0;
+            let a =
+                Matrix3::identity() + 0.5 * skew_matrix(&delta_angle) + skew_matrix(&dth0) / 12.0;
             solve(a, compensated - dv0.cross(&delta_angle) / 12.0)
         }
-        None => solve(Matrix3::identity() + 0.5 * skew(&delta_angle), compensated),
+        None => solve(
+            Matrix3::identity() + 0.5 * skew_matrix(&delta_angle),
+            compensated,
+        ),
     };
     Increment {
         time: after.time,
@@ -87,6 +90,9 @@ fn compensated_velocity_increment(before: &NavState, after: &NavState, dt: f64) 
     let specific_force_part = after.velocity.raw()
         - before.velocity.raw()
         - gravity_coriolis_increment(&mid, &before.velocity, dt);
-    let resolved = solve(Matrix3::identity() - 0.5 * skew(&zeta), specific_force_part);
+    let resolved = solve(
+        Matrix3::identity() - 0.5 * skew_matrix(&zeta),
+        specific_force_part,
+    );
     (before.attitude.inverse() * Vector::<Ned>::from_raw(resolved)).raw()
 }
