@@ -536,14 +536,9 @@ impl<'a> Run<'a> {
         }
         if let (true, Some(v)) = (aiding.velocity, fix.velocity_ned_m_s) {
             let measured = Vector3::from(v);
-            let corrected_rate = |e: &Estimate| {
-                Vector3::from_fn(|k, _| {
-                    (self.last_raw_rate[k] - e.sensors.gyro_bias_rad_s[k])
-                        / (1.0 + e.sensors.gyro_scale[k])
-                })
-            };
             let nominal = self.estimate;
-            let rate = corrected_rate(&nominal);
+            let raw_rate = self.last_raw_rate;
+            let rate = nominal.sensors.corrected_rate(&raw_rate);
             let lin = velocity_linearized(
                 &nominal,
                 &geometry,
@@ -553,13 +548,9 @@ impl<'a> Run<'a> {
             );
             let predicted = antenna_velocity(&nominal, &geometry, &rate).raw();
             let z = measured - predicted;
-            let raw_rate = self.last_raw_rate;
             self.apply(MeasurementKind::Velocity, lin, z, move |dx| {
                 let point = nominal.corrected_by(dx);
-                let rate = Vector3::from_fn(|k, _| {
-                    (raw_rate[k] - point.sensors.gyro_bias_rad_s[k])
-                        / (1.0 + point.sensors.gyro_scale[k])
-                });
+                let rate = point.sensors.corrected_rate(&raw_rate);
                 antenna_velocity(&point, &geometry, &rate).raw() - predicted
             })?;
         }

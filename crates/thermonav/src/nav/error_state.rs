@@ -51,6 +51,14 @@ impl SensorCorrection {
         }
     }
 
+    /// A raw gyro rate (rad/s) with these errors removed: (ω̃ − b_g) / (1 + s_g), the rate form
+    /// of [`SensorCorrection::correct`].
+    pub fn corrected_rate(&self, raw_rate: &Vector3<f64>) -> Vector3<f64> {
+        Vector3::from_fn(|k, _| {
+            (raw_rate[k] - self.gyro_bias_rad_s[k]) / (1.0 + self.gyro_scale[k])
+        })
+    }
+
     fn groups_mut(&mut self) -> [(usize, &mut [f64; 3]); 4] {
         [
             (block::GYRO_BIAS, &mut self.gyro_bias_rad_s),
