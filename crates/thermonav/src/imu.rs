@@ -137,6 +137,14 @@ impl ImuSeries {
         self.time.is_empty()
     }
 
+    /// Mean of the temperature column, °C; `None` without one (or with no sample).
+    pub fn mean_temperature_c(&self) -> Option<f64> {
+        self.temperature_c
+            .as_ref()
+            .filter(|c| !c.is_empty())
+            .map(|c| c.iter().sum::<f64>() / c.len() as f64)
+    }
+
     /// The column of one channel.
     pub fn channel(&self, channel: Channel) -> &[f64] {
         &self.channels[channel.index()]

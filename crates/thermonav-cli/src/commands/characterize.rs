@@ -26,13 +26,12 @@ fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result
     if let Some(t) = given {
         return Ok(t);
     }
-    let column = series.temperature_c.as_ref().ok_or_else(|| {
+    series.mean_temperature_c().ok_or_else(|| {
         Failure::Usage(anyhow!(
             "{}: no temp_c column; give the temperature with --temperature-c",
             path.display()
         ))
-    })?;
-    Ok(column.iter().sum::<f64>() / column.len().max(1) as f64)
+    })
 }
 
 /// Characterises one file.

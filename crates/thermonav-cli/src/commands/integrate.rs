@@ -175,13 +175,7 @@ fn noise_model(
         let temperature_c = args
             .model_temperature_c
             .or(args.operating_temperature_c)
-            .or_else(|| {
-                series
-                    .temperature_c
-                    .as_ref()
-                    .filter(|c| !c.is_empty())
-                    .map(|c| c.iter().sum::<f64>() / c.len() as f64)
-            })
+            .or_else(|| series.mean_temperature_c())
             .unwrap_or(profile.reference_temperature_c);
         let model = profile
             .stochastic_model(temperature_c, &scale)
@@ -230,15 +224,13 @@ pub fn operating_temperature(
     series: &ImuSeries,
     imu: &Path,
 ) -> Result<f64, Failure> {
-    match (given, &series.temperature_c) {
+    match (given, series.mean_temperature_c()) {
         (Some(t), _) if t.is_finite() => Ok(t),
         (Some(t), _) => Err(Failure::Usage(anyhow!(
             "temperature {t} °C is not a finite number"
         ))),
-        (None, Some(column)) if !column.is_empty() => {
-            Ok(column.iter().sum::<f64>() / column.len() as f64)
-        }
-        _ => Err(Failure::Usage(anyhow!(
+        (None, Some(mean)) => Ok(mean),
+        (None, None) => Err(Failure::Usage(anyhow!(
             "{}: no temp_c column; give the temperature (--model-temperature-c or --operating-temperature-c)",
             imu.display()
         ))),
