@@ -121,22 +121,6 @@ fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> Mo
     }
 }
 
-/// The successful results of `filter`, best (lowest `metric`) first.
-pub fn ranked(results: &[ModelResult], filter: FilterKind, metric: Metric) -> Vec<&ModelResult> {
-    let mut ok: Vec<&ModelResult> = results
-        .iter()
-        .filter(|r| r.filter == filter && r.value(metric).is_some())
-        .collect();
-    ok.sort_by(|a, b| {
-        let (x, y) = (
-            a.value(metric).unwrap_or(f64::INFINITY),
-            b.value(metric).unwrap_or(f64::INFINITY),
-        );
-        x.total_cmp(&y)
-    });
-    ok
-}
-
 /// One model's metrics over the Monte Carlo replicates.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ModelSummary {
