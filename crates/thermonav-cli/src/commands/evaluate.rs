@@ -3,7 +3,7 @@
 //! reference, the ranking, and its Monte Carlo significance. `demo` calls the same code.
 
 use super::bank::{read_bank, source_of};
-use super::integrate::{antenna_geometry, operating_temperature, outages_in};
+use super::integrate::{antenna_geometry, increments_with_span, operating_temperature, outages_in};
 use crate::args::{EvaluateArgs, FiltersArg};
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
@@ -20,7 +20,7 @@ use thermonav::evaluation::tournament::{
     ModelResult, Scenario, Significance, run_tournament, summarize_replicates,
 };
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
-use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
+use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
@@ -91,14 +91,8 @@ pub fn scenario_from_files(
     let gnss = read_gnss_file(files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, files.imu)?;
-    let increments = increments_from_series(&series);
-    let (Some(first), Some(last)) = (increments.first(), increments.last()) else {
-        return Err(Failure::Data(anyhow!(
-            "{}: at least two IMU samples are needed",
-            files.imu.display()
-        )));
-    };
-    let outages = outages_in(outage_spec, first.time, last.time)?;
+    let (increments, first, last) = increments_with_span(&series, files.imu)?;
+    let outages = outages_in(outage_spec, first, last)?;
     check_reference_covers(&reference, &outages, files.reference)?;
     let settings = EngineSettings {
         geometry,

@@ -49,14 +49,8 @@ pub fn integrate_files(args: &IntegrateArgs) -> Result<Summary, Failure> {
     let gnss = read_gnss_file(&args.gnss, Strictness::Strict).data()?;
     let (mut model, choice) = noise_model(args, &series)?;
     model.scale_white_noise(args.process_noise_scale);
-    let increments = increments_from_series(&series);
-    let (Some(first), Some(last)) = (increments.first(), increments.last()) else {
-        return Err(Failure::Data(anyhow!(
-            "{}: at least two IMU samples are needed",
-            args.imu.display()
-        )));
-    };
-    settings.outages = outages_in(&args.outages, first.time, last.time)?;
+    let (increments, first, last) = increments_with_span(&series, &args.imu)?;
+    settings.outages = outages_in(&args.outages, first, last)?;
     let (initial, initial_source) = initial_estimate(args, &increments, &gnss, &settings)?;
     let bar = crate::progress::bar(
         increments.len(),
@@ -153,6 +147,25 @@ pub fn antenna_geometry(lever_arm_m: &[f64], baseline: &[f64]) -> Result<Antenna
         lever_arm_body_m: triple("--lever-arm-m", lever_arm_m)?,
         baseline_body: baseline,
     })
+}
+
+/// The IMU increments of a series and the span they cover, refusing a series too short to
+/// have one.
+pub fn increments_with_span(
+    series: &ImuSeries,
+    path: &Path,
+) -> Result<(Vec<Increment>, Timestamp, Timestamp), Failure> {
+    let increments = increments_from_series(series);
+    match (increments.first(), increments.last()) {
+        (Some(first), Some(last)) => {
+            let (first, last) = (first.time, last.time);
+            Ok((increments, first, last))
+        }
+        _ => Err(Failure::Data(anyhow!(
+            "{}: at least two IMU samples are needed",
+            path.display()
+        ))),
+    }
 }
 
 /// The outages of a specification over the data span, each inside the data.
