@@ -3,15 +3,18 @@
 //! case), once at a sensor's resolution as loggers write them (~75 bytes a row).
 //!
 //! Run with `cargo bench -p thermonav-io --bench csv`; throughput is reported in bytes/s, and
-//! rows/s follows from the row count printed at start.
+//! rows/s follows from the row count printed at start. The `imu_csv_*_per_core` groups time the
+//! one-thread readers in CPU time of the benchmarking thread (Linux), so that they give the speed
+//! per core even while other work shares the machine; the others are wall time.
 
+use criterion::measurement::{Measurement, ValueFormatter, WallTime};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 use std::time::Duration;
-use thermonav_io::{ImuReader, Strictness, read_imu_file};
+use thermonav_io::{ImuReader, Strictness, read_imu, read_imu_file};
 
 /// 3 h at 200 Hz.
 const ROWS: u64 = 3 * 3600 * 200;
@@ -77,13 +80,24 @@ fn imu_csv(c: &mut Criterion) {
     }
 }
 
-fn bench_file(c: &mut Criterion, digits: Digits) {
+fn imu_csv_per_core(c: &mut Criterion<ThreadCpuTime>) {
+    for digits in [Digits::Full, Digits::SensorResolution] {
+        bench_file_per_core(c, digits);
+    }
+}
+
+/// A generated bench file in its temporary directory, and its size in bytes.
+fn bench_input(digits: Digits) -> (tempfile::TempDir, std::path::PathBuf, u64) {
     let dir = tempfile::tempdir().expect("temporary directory");
     let path = dir.path().join("imu.csv");
     generate(&path, digits).expect("bench file written");
     let bytes = std::fs::metadata(&path).expect("bench file size").len();
     eprintln!("bench file {digits:?}: {ROWS} rows, {bytes} bytes");
+    (dir, path, bytes)
+}
 
+fn bench_file(c: &mut Criterion, digits: Digits) {
+    let (_dir, path, bytes) = bench_input(digits);
     let mut group = c.benchmark_group(format!("imu_csv_{digits:?}"));
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(20));
@@ -91,14 +105,86 @@ fn bench_file(c: &mut Criterion, digits: Digits) {
     group.bench_function("read_imu_file", |b| {
         b.iter(|| read_imu_file(&path, Strictness::Strict).expect("bench file reads"))
     });
-    group.bench_function("stream_count", |b| {
-        b.iter(|| {
-            let reader = ImuReader::open(&path, Strictness::Strict).expect("bench file opens");
-            reader.map(|s| s.expect("row reads").gyro[0]).sum::<f64>()
-        })
-    });
+    group.bench_function("stream_count", |b| b.iter(|| stream_count(&path)));
     group.finish();
 }
 
+fn bench_file_per_core(c: &mut Criterion<ThreadCpuTime>, digits: Digits) {
+    let (_dir, path, bytes) = bench_input(digits);
+    let mut group = c.benchmark_group(format!("imu_csv_{digits:?}_per_core"));
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(10));
+    group.throughput(Throughput::Bytes(bytes));
+    group.bench_function("read_imu_one_thread", |b| {
+        b.iter(|| {
+            let file = std::fs::File::open(&path).expect("bench file opens");
+            read_imu(
+                std::io::BufReader::with_capacity(1 << 18, file),
+                "bench",
+                Strictness::Strict,
+            )
+            .expect("bench file reads")
+        })
+    });
+    group.bench_function("stream_count", |b| b.iter(|| stream_count(&path)));
+    group.finish();
+}
+
+/// Sum of the x gyro over the streaming reader (no series built).
+fn stream_count(path: &Path) -> f64 {
+    let reader = ImuReader::open(path, Strictness::Strict).expect("bench file opens");
+    reader.map(|s| s.expect("row reads").gyro[0]).sum::<f64>()
+}
+
+/// CPU time of the benchmarking thread in ns (Linux: the first field of
+/// `/proc/thread-self/schedstat`), for timing one-thread work on a shared machine.
+struct ThreadCpuTime;
+
+/// Formats nanoseconds as criterion's wall clock does.
+static WALL_TIME: WallTime = WallTime;
+
+fn thread_cpu_ns() -> u64 {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat")
+        .expect("/proc/thread-self/schedstat (Linux) is readable");
+    text.split_whitespace()
+        .next()
+        .and_then(|field| field.parse().ok())
+        .expect("schedstat starts with the CPU time in ns")
+}
+
+impl Measurement for ThreadCpuTime {
+    type Intermediate = u64;
+    type Value = u64;
+
+    fn start(&self) -> u64 {
+        thread_cpu_ns()
+    }
+
+    fn end(&self, start: u64) -> u64 {
+        thread_cpu_ns().saturating_sub(start)
+    }
+
+    fn add(&self, a: &u64, b: &u64) -> u64 {
+        a + b
+    }
+
+    fn zero(&self) -> u64 {
+        0
+    }
+
+    fn to_f64(&self, value: &u64) -> f64 {
+        *value as f64
+    }
+
+    fn formatter(&self) -> &dyn ValueFormatter {
+        WALL_TIME.formatter()
+    }
+}
+
 criterion_group!(benches, imu_csv);
-criterion_main!(benches);
+criterion_group! {
+    name = per_core;
+    config = Criterion::default().with_measurement(ThreadCpuTime);
+    targets = imu_csv_per_core
+}
+criterion_main!(benches, per_core);
