@@ -266,7 +266,12 @@ pub struct CharacterizeArgs {
     #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
     /// Temperatures of the files, °C, comma-separated (default: the mean of each file's temp_c).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true, conflicts_with = "manifest")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        conflicts_with = "manifest"
+    )]
     pub temperature_c: Vec<f64>,
     /// Output bank (JSON); with --manifest, the output folder (DIR/SERIAL/bank.json and
     /// DIR/lot-summary.json).

@@ -146,12 +146,21 @@ pub fn parse_manifest(text: &str, name: &str, folder: &Path) -> Result<LotManife
         message,
     };
     if file.unit.is_empty() {
-        return Err(invalid(0..0, "no [[unit]] entries (expected at least one unit)".into()));
+        return Err(invalid(
+            0..0,
+            "no [[unit]] entries (expected at least one unit)".into(),
+        ));
     }
     let conditioning = conditioning_of(&file.defaults, &invalid)?;
     let mut units: Vec<LotUnit> = Vec::new();
     for unit in &file.unit {
-        let lot_unit = unit_of(unit, file.defaults.temperatures_c.as_ref(), folder, text, &invalid)?;
+        let lot_unit = unit_of(
+            unit,
+            file.defaults.temperatures_c.as_ref(),
+            folder,
+            text,
+            &invalid,
+        )?;
         if let Some(first) = units.iter().find(|u| u.serial == lot_unit.serial) {
             return Err(invalid(
                 unit.serial.span(),
@@ -316,13 +325,23 @@ files = ["/abs/0.csv"]
         assert!(e.to_string().contains("cutof_hz"), "{e}");
         let short = GOOD.replace("[0.0, 20.0]", "[0.0]");
         let e = parse_manifest(&short, "lot.toml", Path::new("")).unwrap_err();
-        assert!(e.to_string().starts_with("lot.toml:9: unit SN1: 1 temperatures for 2 files"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("lot.toml:9: unit SN1: 1 temperatures for 2 files"),
+            "{e}"
+        );
         let slash = GOOD.replace("\"SN1\"", "\"../x\"");
         let e = parse_manifest(&slash, "lot.toml", Path::new("")).unwrap_err();
-        assert!(e.to_string().starts_with("lot.toml:7: serial \"../x\""), "{e}");
+        assert!(
+            e.to_string().starts_with("lot.toml:7: serial \"../x\""),
+            "{e}"
+        );
         let negative = GOOD.replace("0.5", "-1");
         let e = parse_manifest(&negative, "lot.toml", Path::new("")).unwrap_err();
-        assert!(e.to_string().starts_with("lot.toml:4: cutoff_hz = -1"), "{e}");
+        assert!(
+            e.to_string().starts_with("lot.toml:4: cutoff_hz = -1"),
+            "{e}"
+        );
         let e = parse_manifest("name = \"x\"\n", "lot.toml", Path::new("")).unwrap_err();
         assert!(e.to_string().contains("no [[unit]]"), "{e}");
     }

@@ -62,13 +62,9 @@ pub fn characterize_lot(args: &CharacterizeArgs, manifest_path: &Path) -> Result
         .par_iter()
         .map(|unit| characterize_unit(unit, &settings, &args.out))
         .collect();
-    let banks: Vec<(&str, &ModelBank)> = units
-        .iter()
-        .zip(&results)
-        .filter_map(|(u, r)| Some((u.serial.as_str(), r.as_ref().ok()?)))
-        .collect();
-    let summary = match banks.len() == manifest.units.len() {
-        true => Some(write_summary(&manifest.name, &banks, &args.out)?),
+    let every_unit_done = units.len() == manifest.units.len() && results.iter().all(Result::is_ok);
+    let summary = match every_unit_done {
+        true => Some(summarize_written_banks(&manifest, &args.out)?),
         false => None,
     };
     let outcomes = outcomes_of(&units, &results, &args.out);
@@ -121,7 +117,9 @@ fn selected_units<'m>(
 fn lot_settings(mut settings: CharacterizeSettings, given: &Conditioning) -> CharacterizeSettings {
     settings.cutoff_hz = given.cutoff_hz.unwrap_or(settings.cutoff_hz);
     settings.transition_hz = given.transition_hz.unwrap_or(settings.transition_hz);
-    settings.modelling_rate_hz = given.modelling_rate_hz.unwrap_or(settings.modelling_rate_hz);
+    settings.modelling_rate_hz = given
+        .modelling_rate_hz
+        .unwrap_or(settings.modelling_rate_hz);
     settings
 }
 
@@ -133,12 +131,21 @@ fn characterize_unit(
 ) -> Result<ModelBank, String> {
     let fail = |what: String| format!("unit {}: {what}", unit.serial);
     let folder = dir.join(&unit.serial);
-    std::fs::create_dir_all(&folder)
-        .map_err(|e| fail(format!("{}: cannot create the folder: {e}", folder.display())))?;
+    std::fs::create_dir_all(&folder).map_err(|e| {
+        fail(format!(
+            "{}: cannot create the folder: {e}",
+            folder.display()
+        ))
+    })?;
     let files: Vec<&Path> = unit.files.iter().map(PathBuf::as_path).collect();
     let temperatures = unit.temperatures_c.as_deref().unwrap_or(&[]);
-    build_bank(&files, temperatures, settings, &bank_path(dir, &unit.serial))
-        .map_err(|failure| fail(failure.to_string()))
+    build_bank(
+        &files,
+        temperatures,
+        settings,
+        &bank_path(dir, &unit.serial),
+    )
+    .map_err(|failure| fail(failure.to_string()))
 }
 
 /// Each unit's bank path or error.
@@ -212,11 +219,27 @@ fn print_lot_run(
 /// Runs `lot summarize`.
 fn run_summarize(args: &LotSummarizeArgs) -> Result<(), Failure> {
     let manifest = read_manifest(&args.manifest).data()?;
+    let summary = summarize_written_banks(&manifest, &args.dir)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    print_summary_table(&summary);
+    println!(
+        "\nlot summary written to {}",
+        args.dir.join(SUMMARY_FILE).display()
+    );
+    Ok(())
+}
+
+/// Reads every unit's bank back from `DIR/SERIAL/bank.json`, summarises the lot and writes
+/// `DIR/lot-summary.json`. Both the all-units run and `lot summarize` come here, so the summary
+/// is always that of the files as written (whatever jobs wrote them).
+fn summarize_written_banks(manifest: &LotManifest, dir: &Path) -> Result<LotSummary, Failure> {
     let results: Vec<Result<ModelBank, String>> = manifest
         .units
         .iter()
         .map(|u| {
-            read_bank(&bank_path(&args.dir, &u.serial))
+            read_bank(&bank_path(dir, &u.serial))
                 .map_err(|failure| format!("unit {}: {failure}", u.serial))
         })
         .collect();
@@ -238,16 +261,7 @@ fn run_summarize(args: &LotSummarizeArgs) -> Result<(), Failure> {
         .zip(&results)
         .filter_map(|(u, r)| Some((u.serial.as_str(), r.as_ref().ok()?)))
         .collect();
-    let summary = write_summary(&manifest.name, &banks, &args.dir)?;
-    if args.json {
-        return print_json(&summary);
-    }
-    print_summary_table(&summary);
-    println!(
-        "\nlot summary written to {}",
-        args.dir.join(SUMMARY_FILE).display()
-    );
-    Ok(())
+    write_summary(&manifest.name, &banks, dir)
 }
 
 /// The quantities of the table (the JSON has every family and Allan term).
@@ -258,7 +272,8 @@ const TABLE_QUANTITIES: [Quantity; 4] = [
     Quantity::BiasInstability,
 ];
 
-/// The lot table: per point, channel and quantity, median, range, MAD and outliers.
+/// The lot table: per point, channel and quantity, the units with a value (n), median, range,
+/// MAD and outliers.
 fn print_summary_table(summary: &LotSummary) {
     println!(
         "lot {}: {} units; exact-ML Gauss-Markov and Allan terms (every family in the JSON)",
@@ -266,8 +281,8 @@ fn print_summary_table(summary: &LotSummary) {
         summary.units.len()
     );
     println!(
-        "{:>7} {:<3} {:<40} {:>11} {:>11} {:>11} {:>11}  outliers",
-        "temp_C", "ch", "quantity", "median", "min", "max", "MAD"
+        "{:>7} {:<3} {:<40} {:>3} {:>11} {:>11} {:>11} {:>11}  outliers",
+        "temp_C", "ch", "quantity", "n", "median", "min", "max", "MAD"
     );
     for point in &summary.points {
         for channel in Channel::ALL {
@@ -281,10 +296,11 @@ fn print_summary_table(summary: &LotSummary) {
                 };
                 let outliers: Vec<&str> = s.outliers.iter().map(|o| o.serial.as_str()).collect();
                 println!(
-                    "{:>7.1} {:<3} {:<40} {:>11} {:>11} {:>11} {:>11}  {}",
+                    "{:>7.1} {:<3} {:<40} {:>3} {:>11} {:>11} {:>11} {:>11}  {}",
                     point.temperature_c,
                     channel.name(),
                     key,
+                    s.units_with_value,
                     number(s.median),
                     number(s.min),
                     number(s.max),
@@ -295,7 +311,10 @@ fn print_summary_table(summary: &LotSummary) {
         }
     }
     println!("\noutlier rule: {}", summary.outlier_rule);
-    println!("{} outlying values in lot-summary.json", summary.outliers.len());
+    println!(
+        "{} outlying values in lot-summary.json",
+        summary.outliers.len()
+    );
 }
 
 /// A number in fixed notation when it reads well so, scientific otherwise.

@@ -245,7 +245,10 @@ pub fn scaled_mads_from_median(value: f64, median: f64, mad: f64) -> Option<f64>
 
 /// The spread of `(serial, value)` pairs; `None` when no unit has a value.
 fn spread_of(values: &[(&str, Option<f64>)]) -> Option<Spread> {
-    let present: Vec<(&str, f64)> = values.iter().filter_map(|(s, v)| Some((*s, (*v)?))).collect();
+    let present: Vec<(&str, f64)> = values
+        .iter()
+        .filter_map(|(s, v)| Some((*s, (*v)?)))
+        .collect();
     let mut sorted: Vec<f64> = present.iter().map(|(_, v)| *v).collect();
     sorted.sort_by(f64::total_cmp);
     let median = median_of_sorted(&sorted);
@@ -288,7 +291,12 @@ type Member<'a> = (&'a str, f64, &'a crate::stoch::bank::TemperatureEntry);
 fn group_into_points<'a>(units: &[UnitBank<'a>]) -> Result<Vec<Vec<Member<'a>>>, LotError> {
     let mut all: Vec<Member<'a>> = units
         .iter()
-        .flat_map(|u| u.bank.entries.iter().map(|e| (u.serial, e.temperature_c, e)))
+        .flat_map(|u| {
+            u.bank
+                .entries
+                .iter()
+                .map(|e| (u.serial, e.temperature_c, e))
+        })
         .collect();
     all.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut points: Vec<Vec<Member<'a>>> = Vec::new();
