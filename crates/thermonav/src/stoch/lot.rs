@@ -451,4 +451,83 @@ mod tests {
         assert!(flat.outliers.is_empty());
         assert!(spread_of(&[("a", None)]).is_none());
     }
+
+    /// A bank whose entries sit at `temperatures_c`, gx only, every value `value`.
+    fn bank(temperatures_c: &[f64], value: f64) -> ModelBank {
+        let channel = serde_json::json!({
+            "unit": "rad/s",
+            "allan": { "tau_s": [1.0], "adev": [value], "white_noise_density": value,
+                       "bias_instability": null, "rate_random_walk": null },
+            "ar": { "method": "burg", "coefficients": [0.5], "noise_variance": value, "dt_s": 1.0 },
+            "gauss_markov": {
+                "ar_based": { "status": "no_equivalent", "reason": "test" },
+                "irregular_ml": { "status": "model", "correlation_time_s": value, "sigma": value,
+                                  "ci95_correlation_time_s": [null, null] },
+                "acf_fit": { "status": "no_equivalent", "reason": "test" } } });
+        let entries: Vec<serde_json::Value> = temperatures_c
+            .iter()
+            .map(|t| {
+                serde_json::json!({
+                "temperature_c": t, "source": "x.csv",
+                "preprocessing": { "input_rate_hz": 1.0, "filter": null, "decimation_factor": 1,
+                                   "modelling_rate_hz": 1.0 },
+                "channels": { "gx": channel } })
+            })
+            .collect();
+        serde_json::from_value(serde_json::json!({ "version": 1, "entries": entries })).unwrap()
+    }
+
+    // Entries within 2 °C of each other form one point whose temperature is their median; a
+    // unit missing a point is simply absent from it; two entries of one unit at a point and a
+    // repeated serial are refused.
+    #[test]
+    fn entries_are_matched_into_points_by_temperature() {
+        let (a, b, c) = (
+            bank(&[-0.3, 20.0], 1.0),
+            bank(&[0.4, 21.5], 2.0),
+            bank(&[0.1], 4.0),
+        );
+        let units = [
+            UnitBank {
+                serial: "a",
+                bank: &a,
+            },
+            UnitBank {
+                serial: "b",
+                bank: &b,
+            },
+            UnitBank {
+                serial: "c",
+                bank: &c,
+            },
+        ];
+        let summary = summarize_lot("lot", &units).unwrap();
+        assert_eq!(summary.points.len(), 2);
+        assert_eq!(summary.points[0].temperature_c, 0.1);
+        assert_eq!(summary.points[1].temperature_c, 0.5 * (20.0 + 21.5));
+        let tc = &summary.points[0].channels[&Channel::Gx]["irregular_ml_correlation_time_s"];
+        assert_eq!((tc.median, tc.min, tc.max, tc.mad), (2.0, 1.0, 4.0, 1.0));
+        assert_eq!(summary.points[1].unit_temperatures_c.len(), 2);
+        assert!(
+            summary.points[0].channels[&Channel::Gx]
+                .get("ar_based_sigma_rad_s")
+                .is_none()
+        );
+        assert!(summary.points[0].channels[&Channel::Ax].is_empty());
+        let close = bank(&[0.0, 1.5], 1.0);
+        let twice = [UnitBank {
+            serial: "a",
+            bank: &close,
+        }];
+        assert!(matches!(
+            summarize_lot("lot", &twice),
+            Err(LotError::AmbiguousTemperature { .. })
+        ));
+        let repeated = [units[0], units[0]];
+        assert_eq!(
+            summarize_lot("lot", &repeated),
+            Err(LotError::DuplicateSerial("a".into()))
+        );
+        assert_eq!(summarize_lot("lot", &[]), Err(LotError::NoUnits));
+    }
 }
