@@ -369,6 +369,20 @@ fn bad_manifests_are_refused_with_the_line() {
     ]));
     assert_eq!(status, 2);
     assert!(stderr.contains("has 1 units (expected 0 to 0)"), "{stderr}");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "characterize",
+        "--manifest",
+        arg(&dir.path().join("lot.toml")),
+        "--unit",
+        "B",
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(status, 2);
+    assert!(
+        stderr.contains("--unit B: no such unit") && stderr.contains("serials: A)"),
+        "{stderr}"
+    );
 }
 
 // The example manifest parses (the index is out of range, so nothing runs).
