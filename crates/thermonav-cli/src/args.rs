@@ -34,6 +34,8 @@ pub enum Command {
     Characterize(CharacterizeArgs),
     /// Read a model bank.
     Bank(BankArgs),
+    /// Production lots: summarise the banks that `characterize --manifest` wrote.
+    Lot(LotArgs),
     /// Simulate thermal-chamber records, a vessel survey, or write the built-in sensor profile.
     Simulate(SimulateArgs),
     /// GNSS/INS integration (21-state EKF or UKF) with the bank's noise model at a temperature.
@@ -261,14 +263,30 @@ pub struct ArArgs {
 #[derive(Debug, Args)]
 pub struct CharacterizeArgs {
     /// Static IMU CSVs, one per temperature point.
-    #[arg(required = true)]
+    #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
     /// Temperatures of the files, °C, comma-separated (default: the mean of each file's temp_c).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        conflicts_with = "manifest"
+    )]
     pub temperature_c: Vec<f64>,
-    /// Output bank (JSON).
+    /// Output bank (JSON); with --manifest, the output folder (DIR/SERIAL/bank.json and
+    /// DIR/lot-summary.json).
     #[arg(long)]
     pub out: PathBuf,
+    /// A production-lot manifest (TOML): characterise its units, one bank each, and summarise
+    /// the lot when every unit is run.
+    #[arg(long)]
+    pub manifest: Option<PathBuf>,
+    /// With --manifest: only the unit with this serial.
+    #[arg(long, requires = "manifest", conflicts_with = "unit_index")]
+    pub unit: Option<String>,
+    /// With --manifest: only the unit at this 0-based position (e.g. $SLURM_ARRAY_TASK_ID).
+    #[arg(long, requires = "manifest")]
+    pub unit_index: Option<usize>,
     /// Kaiser cut-off of the conditioning before AR modelling, Hz.
     #[arg(long, default_value_t = 0.4)]
     pub cutoff_hz: f64,
@@ -296,6 +314,35 @@ pub struct BankArgs {
 pub enum BankAction {
     /// Show the bank, or the model selected for an operating temperature.
     Show(BankShowArgs),
+}
+
+/// Arguments of `lot`.
+#[derive(Debug, Args)]
+pub struct LotArgs {
+    /// What to do with the lot.
+    #[command(subcommand)]
+    pub action: LotAction,
+}
+
+/// Lot actions.
+#[derive(Debug, Subcommand)]
+pub enum LotAction {
+    /// Build DIR/lot-summary.json from DIR/SERIAL/bank.json of every unit of the manifest
+    /// (written by separate `characterize --manifest --unit-index N` jobs).
+    Summarize(LotSummarizeArgs),
+}
+
+/// Arguments of `lot summarize`.
+#[derive(Debug, Args)]
+pub struct LotSummarizeArgs {
+    /// The folder the unit jobs wrote (their --out).
+    pub dir: PathBuf,
+    /// The lot manifest (TOML).
+    #[arg(long)]
+    pub manifest: PathBuf,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Model selection rules.

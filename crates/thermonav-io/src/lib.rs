@@ -35,6 +35,9 @@
 //! ## Sensor profiles
 //! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
 //!
+//! ## Production lots
+//! [`lot`]: lot manifests (TOML): the units of a production lot and their chamber records.
+//!
 //! ## Streaming
 //! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
 //! holding a single line buffer; `read_*` functions collect whole files.
@@ -52,6 +55,7 @@ pub mod imu;
 pub mod kf_gins;
 mod layout;
 mod lines;
+pub mod lot;
 pub mod motion;
 pub mod nmea;
 pub mod profile;

@@ -103,6 +103,9 @@ struct ChannelSummary<'a> {
 
 /// Runs `characterize`.
 pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
+    if let Some(manifest) = &args.manifest {
+        return super::lot::characterize_lot(args, manifest);
+    }
     if !args.temperature_c.is_empty() && args.temperature_c.len() != args.files.len() {
         return Err(Failure::Usage(anyhow!(
             "--temperature-c has {} values for {} files",

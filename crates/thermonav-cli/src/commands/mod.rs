@@ -11,6 +11,7 @@ mod filter;
 mod fir;
 mod inspect;
 mod integrate;
+mod lot;
 mod plot;
 mod report;
 mod simulate;
@@ -29,6 +30,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Ar(args) => ar::run(&args),
         Command::Characterize(args) => characterize::run(&args),
         Command::Bank(args) => bank::run(&args),
+        Command::Lot(args) => lot::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),

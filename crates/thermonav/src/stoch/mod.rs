@@ -6,5 +6,6 @@ pub mod ar;
 pub mod bank;
 pub mod characterize;
 pub mod gauss_markov;
+pub mod lot;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
