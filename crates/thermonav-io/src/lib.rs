@@ -26,7 +26,9 @@
 //! - [`rtklib_pos`]: RTKLIB solutions (`.pos`), latitude/longitude or ECEF form, `Q` filter;
 //! - [`nmea`]: NMEA 0183 GGA, RMC, VTG, HDT, THS with checksums, combined per epoch;
 //! - [`kf_gins`]: KF-GINS IMU increments, GNSS positions and `.nav` trajectories;
-//! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`).
+//! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
+//! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
+//!   GNSS of a flight log ([`ulog::px4`]).
 //!
 //! They share one absolute time scale, [`gpst`]: seconds since 1970 counted in GPST without
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
@@ -61,6 +63,7 @@ pub mod rtklib_pos;
 pub mod solution;
 mod text;
 pub mod trajectory;
+pub mod ulog;
 
 pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
