@@ -87,7 +87,8 @@ pub struct Ulog {
     pub formats: BTreeMap<String, FormatDefinition>,
     /// 'I' information values by key (`char[5] sys_name` → `sys_name`).
     pub info: BTreeMap<String, InfoValue>,
-    /// Keys of 'M' multi-part information, with their number of parts.
+    /// Keys of 'M' multi-part information, with their number of values (a value is a
+    /// message with `is_continued` = 0 and the messages continuing it).
     pub multi_info: BTreeMap<String, usize>,
     /// Number of parameters in the definitions ('P').
     pub initial_parameters: usize,
@@ -268,7 +269,11 @@ impl Decoder<'_> {
             b'M' => {
                 short(2, "continuation flag, key length")?;
                 let (key, _) = self.key_value(&payload[1..], offset)?;
-                *self.log.multi_info.entry(key).or_insert(0) += 1;
+                // A value spans one message with is_continued = 0 and those continuing it.
+                let values = self.log.multi_info.entry(key).or_insert(0);
+                if payload[0] == 0 || *values == 0 {
+                    *values += 1;
+                }
                 Ok(())
             }
             b'P' => {

@@ -12,3 +12,4 @@ mod round_trip;
 mod rtklib_pos;
 mod support;
 mod trajectory;
+mod ulog;
