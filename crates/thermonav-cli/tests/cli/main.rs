@@ -3,6 +3,7 @@
 mod bad_input;
 mod commands;
 mod convert;
+mod convert_ulog;
 mod modelling;
 mod navigation;
 mod plots;
