@@ -7,8 +7,7 @@ use std::path::{Path, PathBuf};
 use thermonav_io::{Strictness, read_gnss_file, read_imu_file};
 
 fn sample() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../thermonav-io/tests/data/ulog/px4_sitl_v1.8.ulg")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../thermonav-io/tests/data/ulog/px4_sitl_v1.8.ulg")
 }
 
 #[test]
@@ -27,7 +26,10 @@ fn a_ulog_is_detected_and_gives_imu_gnss_and_a_sidecar() {
     let (status, stdout, stderr) = outcome(&thermonav(&args));
     assert_eq!(status, 0, "{stderr}");
     assert!(stdout.contains("4445 IMU samples (rates)"), "{stdout}");
-    assert!(stderr.contains("seconds since the autopilot booted"), "{stderr}");
+    assert!(
+        stderr.contains("seconds since the autopilot booted"),
+        "{stderr}"
+    );
     // pyulog 1.3.0: sensor_combined 4445 records, first timestamp 375484685 µs;
     // vehicle_gps_position 260 records (all fix_type 3), first 375408345 µs.
     let series = read_imu_file(&imu, Strictness::Strict).unwrap();
@@ -72,12 +74,21 @@ fn failing(bytes: &[u8]) -> String {
 fn bad_ulogs_fail_cleanly_with_the_place_and_the_expectation() {
     let good = std::fs::read(sample()).unwrap();
     let stderr = failing(b"t_s,gx_rad_s\n1,2\n");
-    assert!(stderr.contains("log.ulg: at byte 0: expected the ULog magic"), "{stderr}");
+    assert!(
+        stderr.contains("log.ulg: at byte 0: expected the ULog magic"),
+        "{stderr}"
+    );
     let stderr = failing(&good[..3000]);
-    assert!(stderr.contains("ends inside a message of the definitions"), "{stderr}");
+    assert!(
+        stderr.contains("ends inside a message of the definitions"),
+        "{stderr}"
+    );
     assert!(stderr.contains("log.ulg: at byte "), "{stderr}");
     let stderr = failing(&good[..0]);
-    assert!(stderr.contains("ends inside the 16-byte ULog header"), "{stderr}");
+    assert!(
+        stderr.contains("ends inside the 16-byte ULog header"),
+        "{stderr}"
+    );
     // The GNSS topic renamed away (same length, in its format and subscription).
     let mut renamed = good.clone();
     let name = b"vehicle_gps_position";
@@ -112,5 +123,8 @@ fn gnss_out_belongs_to_ulog_only() {
     ];
     let (status, _, stderr) = outcome(&thermonav(&args));
     assert_eq!(status, 2, "{stderr}");
-    assert!(stderr.contains("--gnss-out goes with --format px4-ulog only"), "{stderr}");
+    assert!(
+        stderr.contains("--gnss-out goes with --format px4-ulog only"),
+        "{stderr}"
+    );
 }

@@ -236,7 +236,9 @@ fn append_fields(
     depth: usize,
 ) -> Result<usize, String> {
     if depth > MAX_NESTING {
-        return Err(format!("type {name} nests deeper than {MAX_NESTING} levels"));
+        return Err(format!(
+            "type {name} nests deeper than {MAX_NESTING} levels"
+        ));
     }
     let format = formats
         .get(name)

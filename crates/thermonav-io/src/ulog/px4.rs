@@ -168,12 +168,9 @@ fn required<'a>(
     name: &str,
     input: &str,
 ) -> Result<&'a super::format::FlatField, ReadError> {
-    topic.field(name).ok_or_else(|| {
-        topic_error(
-            input,
-            format!("topic {} has no field {name}", topic.name()),
-        )
-    })
+    topic
+        .field(name)
+        .ok_or_else(|| topic_error(input, format!("topic {} has no field {name}", topic.name())))
 }
 
 /// Fields `base[0]`, `base[1]`, `base[2]` of `topic`.
@@ -399,7 +396,10 @@ pub fn gnss_fixes(log: &Ulog, input: &str, scale: TimeScale) -> Result<GnssExtra
             continue;
         }
         let fix = fields.fix(topic, i, scale, input)?;
-        if fixes.last().is_some_and(|previous| fix.time <= previous.time) {
+        if fixes
+            .last()
+            .is_some_and(|previous| fix.time <= previous.time)
+        {
             return Err(topic_error(
                 input,
                 format!(
@@ -514,8 +514,11 @@ impl<'a> GnssFields<'a> {
             .and_then(|us| scale.at(us))
             .ok_or_else(|| bad("no usable timestamp"))?;
         let value = |(field, unit): (&super::format::FlatField, f64)| topic.real(field, i) * unit;
-        let (lat_deg, lon_deg, height_m) =
-            (value(self.latitude), value(self.longitude), value(self.height));
+        let (lat_deg, lon_deg, height_m) = (
+            value(self.latitude),
+            value(self.longitude),
+            value(self.height),
+        );
         if !(lat_deg.is_finite() && lon_deg.is_finite() && height_m.is_finite())
             || lat_deg.abs() > 90.0
             || lon_deg.abs() > 180.0
@@ -574,7 +577,11 @@ mod tests {
 
     #[test]
     fn nearest_values_match_a_full_scan_including_ties_and_ends() {
-        let ts = |v: &[i64]| v.iter().map(|&n| Timestamp::from_nanos(n)).collect::<Vec<_>>();
+        let ts = |v: &[i64]| {
+            v.iter()
+                .map(|&n| Timestamp::from_nanos(n))
+                .collect::<Vec<_>>()
+        };
         let times = ts(&[10, 20, 40, 41, 100]);
         let values = [1.0, 2.0, 3.0, 4.0, 5.0];
         // Before the first, ties (15, 30), between, equal, after the last.

@@ -86,7 +86,11 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
     write_imu_file(&args.out, &imu.series).data()?;
     if let (Some(path), Some(gnss)) = (&args.gnss_out, &gnss) {
         let (count, what) = super::write_fixes(path, gnss.fixes.clone())?;
-        println!("{}: {count} {what} written to {}", args.input.display(), path.display());
+        println!(
+            "{}: {count} {what} written to {}",
+            args.input.display(),
+            path.display()
+        );
     }
     write_json_atomically(sidecar_path(&args.out), &record).data()?;
     let what = match imu.topic {
