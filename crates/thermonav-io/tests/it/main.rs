@@ -13,3 +13,4 @@ mod rtklib_pos;
 mod support;
 mod trajectory;
 mod ulog;
+mod ulog_built;

@@ -85,6 +85,18 @@ fn header_definitions_and_counts_match_pyulog() {
     assert_eq!(counts[&("vehicle_magnetometer".to_string(), 0)], 2304);
     assert!(log.skipped.unknown_types.is_empty());
     assert_eq!(log.skipped.truncated_tail_bytes, 0);
+    // pyulog ulog_info "(multi id, message size in bytes)": sensor_combined 44 (its format
+    // ends in uint8_t[4] _padding0, not logged), vehicle_gps_position 91 (ends in
+    // _padding0[5]), position_setpoint_triplet 320 (three nested position_setpoint, each
+    // ending in _padding0[1], which is logged inside the nest), estimator_status 272.
+    let size = |name: &str| {
+        let s = log.subscriptions.iter().find(|s| s.name == name).unwrap();
+        s.layout.size
+    };
+    assert_eq!(size("sensor_combined"), 44);
+    assert_eq!(size("vehicle_gps_position"), 91);
+    assert_eq!(size("position_setpoint_triplet"), 320);
+    assert_eq!(size("estimator_status"), 272);
 }
 
 #[test]
