@@ -108,6 +108,24 @@ fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
     }
 }
 
+/// The bytes of the file at `path`, with the path as the input's name; a missing or
+/// forbidden file is [`ReadErrorKind::Open`], a failure part-way [`ReadErrorKind::Read`].
+fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
+    let input = path.display().to_string();
+    match std::fs::read(path) {
+        Ok(bytes) => Ok((bytes, input)),
+        Err(e) => {
+            let kind = match e.kind() {
+                std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied => {
+                    ReadErrorKind::Open(e)
+                }
+                _ => ReadErrorKind::Read(e),
+            };
+            Err(ReadError::new(input, None, kind))
+        }
+    }
+}
+
 /// Strict check that a latitude lies within ±90°.
 fn check_latitude(latitude_rad: f64) -> Result<(), ReadErrorKind> {
     let limit_rad = thermonav::units::deg_to_rad(90.0);

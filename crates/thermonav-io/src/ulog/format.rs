@@ -65,22 +65,10 @@ impl Primitive {
     /// The value at the start of `bytes` (at least [`Primitive::size`] long) as an `f64`
     /// (64-bit integers beyond 2⁵³ round).
     pub fn decode_f64(self, bytes: &[u8]) -> f64 {
-        let b = |n: usize| -> [u8; 8] {
-            let mut out = [0; 8];
-            out[..n].copy_from_slice(&bytes[..n]);
-            out
-        };
         match self {
-            Self::I8 => f64::from(bytes[0] as i8),
-            Self::U8 | Self::Bool | Self::Char => f64::from(bytes[0]),
-            Self::I16 => f64::from(i16::from_le_bytes([bytes[0], bytes[1]])),
-            Self::U16 => f64::from(u16::from_le_bytes([bytes[0], bytes[1]])),
-            Self::I32 => f64::from(i32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]])),
-            Self::U32 => f64::from(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]])),
             Self::F32 => f64::from(f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]])),
-            Self::I64 => i64::from_le_bytes(b(8)) as f64,
-            Self::U64 => u64::from_le_bytes(b(8)) as f64,
-            Self::F64 => f64::from_le_bytes(b(8)),
+            Self::F64 => f64::from_le_bytes(std::array::from_fn(|i| bytes[i])),
+            _ => self.decode_integer(bytes).map_or(f64::NAN, |v| v as f64),
         }
     }
 

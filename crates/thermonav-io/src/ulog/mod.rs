@@ -8,7 +8,7 @@
 //! unsubscribe, 'D' data, 'L' log text, 'C' tagged log text, 'S' sync, 'O' dropout.
 //!
 //! [`decode_ulog`] keeps the records of every subscription as raw bytes and flattens each format
-//! ([`format`]) into primitive fields at byte offsets, so any topic can be read by field name
+//! ([`format`](mod@format)) into primitive fields at byte offsets, so any topic can be read by field name
 //! ([`Topic`]). [`px4`] extracts the IMU, its temperature and GNSS into thermonav's series.
 //!
 //! What is skipped, and counted: messages of unknown type (the format allows new types and
@@ -126,17 +126,7 @@ pub enum InfoValue {
 /// # Errors
 /// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`], and those of [`decode_ulog`].
 pub fn read_ulog_file(path: impl AsRef<Path>) -> Result<Ulog, ReadError> {
-    let path = path.as_ref();
-    let input = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
-        let kind = match e.kind() {
-            std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied => {
-                ReadErrorKind::Open(e)
-            }
-            _ => ReadErrorKind::Read(e),
-        };
-        ReadError::new(input.as_str(), None, kind)
-    })?;
+    let (bytes, input) = crate::read_whole_file(path.as_ref())?;
     decode_ulog(&bytes, &input)
 }
 

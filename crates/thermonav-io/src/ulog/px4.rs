@@ -25,6 +25,7 @@
 //! given by the caller since the log does not carry it). Otherwise times stay seconds since
 //! boot, and [`TimeScale::Boot`] says so.
 
+use super::format::FlatField;
 use super::{Topic, Ulog};
 use crate::error::{ReadError, ReadErrorKind};
 use crate::gpst::GPST_MINUS_UTC_S;
@@ -163,11 +164,7 @@ pub fn imu_series(log: &Ulog, input: &str, scale: TimeScale) -> Result<ImuExtrac
 }
 
 /// Field `name` of `topic`, or an error naming both.
-fn required<'a>(
-    topic: Topic<'a>,
-    name: &str,
-    input: &str,
-) -> Result<&'a super::format::FlatField, ReadError> {
+fn required<'a>(topic: Topic<'a>, name: &str, input: &str) -> Result<&'a FlatField, ReadError> {
     topic
         .field(name)
         .ok_or_else(|| topic_error(input, format!("topic {} has no field {name}", topic.name())))
@@ -178,7 +175,7 @@ fn vector_fields<'a>(
     topic: Topic<'a>,
     base: &str,
     input: &str,
-) -> Result<[&'a super::format::FlatField; 3], ReadError> {
+) -> Result<[&'a FlatField; 3], ReadError> {
     Ok([
         required(topic, &format!("{base}[0]"), input)?,
         required(topic, &format!("{base}[1]"), input)?,
@@ -195,6 +192,37 @@ struct SeriesBuilder<'a> {
 }
 
 impl SeriesBuilder<'_> {
+    /// Adds record `index`: its time from `stamp` (µs since boot), its gyro and accelerometer
+    /// vectors from the three fields of each.
+    fn push_record(
+        &mut self,
+        index: usize,
+        stamp: &FlatField,
+        gyro: [&FlatField; 3],
+        accel: [&FlatField; 3],
+    ) -> Result<(), ReadError> {
+        let topic = self.topic;
+        let g = gyro.map(|f| topic.real(f, index));
+        let a = accel.map(|f| topic.real(f, index));
+        self.push(index, topic.integer(stamp, index), g, a)
+    }
+
+    /// The extract, with the accelerometer-offset figures of `sensor_combined`.
+    fn finish(self, invalid_accelerometer_samples: usize, max_offset_us: i64) -> ImuExtract {
+        let topic = match self.topic.name() {
+            "vehicle_imu" => "vehicle_imu",
+            _ => "sensor_combined",
+        };
+        ImuExtract {
+            series: self.series,
+            topic,
+            temperature_source: None,
+            temperature_assignment: NEAREST,
+            invalid_accelerometer_samples,
+            max_accelerometer_offset_us: max_offset_us,
+        }
+    }
+
     /// Adds record `index`, timed at `boot_us`.
     fn push(
         &mut self,
@@ -269,18 +297,9 @@ fn rates_from_sensor_combined(
             continue;
         }
         max_offset = max_offset.max(offset.abs());
-        let g = gyro.map(|f| topic.real(f, i));
-        let a = accel.map(|f| topic.real(f, i));
-        builder.push(i, topic.integer(stamp, i), g, a)?;
+        builder.push_record(i, stamp, gyro, accel)?;
     }
-    Ok(ImuExtract {
-        series: builder.series,
-        topic: "sensor_combined",
-        temperature_source: None,
-        temperature_assignment: NEAREST,
-        invalid_accelerometer_samples: invalid,
-        max_accelerometer_offset_us: max_offset as i64,
-    })
+    Ok(builder.finish(invalid, max_offset as i64))
 }
 
 /// How temperatures are assigned.
@@ -304,18 +323,9 @@ fn increments_from_vehicle_imu(
         series: ImuSeries::new(SampleKind::Increments),
     };
     for i in 0..topic.len() {
-        let g = angle.map(|f| topic.real(f, i));
-        let a = velocity.map(|f| topic.real(f, i));
-        builder.push(i, topic.integer(stamp, i), g, a)?;
+        builder.push_record(i, stamp, angle, velocity)?;
     }
-    Ok(ImuExtract {
-        series: builder.series,
-        topic: "vehicle_imu",
-        temperature_source: None,
-        temperature_assignment: NEAREST,
-        invalid_accelerometer_samples: 0,
-        max_accelerometer_offset_us: 0,
-    })
+    Ok(builder.finish(0, 0))
 }
 
 /// Temperature records (name, times, °C) from the first topic that has them.
@@ -429,16 +439,16 @@ pub fn gnss_fixes(log: &Ulog, input: &str, scale: TimeScale) -> Result<GnssExtra
 
 /// The GNSS fields of a topic and how to scale them.
 struct GnssFields<'a> {
-    stamp: &'a super::format::FlatField,
-    fix_type: &'a super::format::FlatField,
-    latitude: (&'a super::format::FlatField, f64),
-    longitude: (&'a super::format::FlatField, f64),
-    height: (&'a super::format::FlatField, f64),
+    stamp: &'a FlatField,
+    fix_type: &'a FlatField,
+    latitude: (&'a FlatField, f64),
+    longitude: (&'a FlatField, f64),
+    height: (&'a FlatField, f64),
     height_text: &'static str,
-    eph: Option<&'a super::format::FlatField>,
-    epv: Option<&'a super::format::FlatField>,
-    velocity: Option<[&'a super::format::FlatField; 3]>,
-    velocity_valid: Option<&'a super::format::FlatField>,
+    eph: Option<&'a FlatField>,
+    epv: Option<&'a FlatField>,
+    velocity: Option<[&'a FlatField; 3]>,
+    velocity_valid: Option<&'a FlatField>,
 }
 
 impl<'a> GnssFields<'a> {
@@ -513,7 +523,7 @@ impl<'a> GnssFields<'a> {
             .and_then(|us| u64::try_from(us).ok())
             .and_then(|us| scale.at(us))
             .ok_or_else(|| bad("no usable timestamp"))?;
-        let value = |(field, unit): (&super::format::FlatField, f64)| topic.real(field, i) * unit;
+        let value = |(field, unit): (&FlatField, f64)| topic.real(field, i) * unit;
         let (lat_deg, lon_deg, height_m) = (
             value(self.latitude),
             value(self.longitude),
