@@ -196,6 +196,11 @@ impl FlatLayout {
     }
 }
 
+/// The largest record a 'D' message can carry: its u16 size less the message id, bytes. A
+/// format that flattens to more can never be logged (and checking it bounds the work and
+/// memory a hostile definition can ask for).
+const MAX_RECORD_BYTES: usize = u16::MAX as usize - 2;
+
 /// Nesting deeper than this is taken as a cycle in the definitions.
 const MAX_NESTING: usize = 16;
 
@@ -239,6 +244,11 @@ fn append_fields(
                 .collect(),
         };
         for element in names {
+            if offset > MAX_RECORD_BYTES {
+                return Err(format!(
+                    "type {name} is larger than a ULog message can hold ({MAX_RECORD_BYTES} bytes)"
+                ));
+            }
             offset = match Primitive::from_name(&field.type_name) {
                 Some(primitive) => {
                     if !field.is_padding() {
@@ -332,6 +342,13 @@ mod tests {
         assert!(parse_format("a:float[0] x;").is_err());
         assert!(parse_format("a:float[3 x;").is_err());
         assert!(parse_format("no colon").is_err());
+        // 65 536 × 65 536 × 8 bytes: refused long before it is expanded.
+        let huge = formats(&["a:b[65536] x;", "b:double[65536] y;"]);
+        assert!(
+            flatten("a", &huge)
+                .unwrap_err()
+                .contains("larger than a ULog message")
+        );
     }
 
     #[test]
