@@ -128,3 +128,21 @@ fn gnss_out_belongs_to_ulog_only() {
         "{stderr}"
     );
 }
+
+#[test]
+fn a_log_still_being_written_converts_its_whole_records_and_says_so() {
+    // The last 7 bytes missing: the final message is partial, as when the logger is cut off.
+    let good = std::fs::read(sample()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("live.ulg");
+    std::fs::write(&input, &good[..good.len() - 7]).unwrap();
+    let imu = dir.path().join("imu.csv");
+    let (status, _, stderr) = outcome(&thermonav(&["convert", arg(&input), "--out", arg(&imu)]));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stderr.contains("ends in a partial message"), "{stderr}");
+    let sidecar: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("imu.csv.json")).unwrap())
+            .unwrap();
+    let tail = sidecar["log"]["truncated_tail_bytes"].as_u64().unwrap();
+    assert!(tail > 0 && tail < 100, "{tail}");
+}
