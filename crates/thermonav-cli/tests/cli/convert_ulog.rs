@@ -10,6 +10,12 @@ fn sample() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../thermonav-io/tests/data/ulog/px4_sitl_v1.8.ulg")
 }
 
+/// The `imu.csv.json` sidecar in `dir`.
+fn sidecar_of(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("imu.csv.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
 #[test]
 fn a_ulog_is_detected_and_gives_imu_gnss_and_a_sidecar() {
     let dir = tempfile::tempdir().unwrap();
@@ -38,9 +44,7 @@ fn a_ulog_is_detected_and_gives_imu_gnss_and_a_sidecar() {
     let fixes = read_gnss_file(&gnss, Strictness::Strict).unwrap();
     assert_eq!(fixes.len(), 260);
     assert_eq!(fixes[0].time.as_nanos(), 375_408_345_000);
-    let sidecar: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("imu.csv.json")).unwrap())
-            .unwrap();
+    let sidecar = sidecar_of(dir.path());
     assert_eq!(sidecar["time_scale"]["scale"], "boot");
     assert_eq!(sidecar["imu"]["topic"], "sensor_combined");
     assert_eq!(sidecar["log"]["dropouts"], 0);
@@ -140,9 +144,7 @@ fn a_log_still_being_written_converts_its_whole_records_and_says_so() {
     let (status, _, stderr) = outcome(&thermonav(&["convert", arg(&input), "--out", arg(&imu)]));
     assert_eq!(status, 0, "{stderr}");
     assert!(stderr.contains("ends in a partial message"), "{stderr}");
-    let sidecar: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("imu.csv.json")).unwrap())
-            .unwrap();
+    let sidecar = sidecar_of(dir.path());
     let tail = sidecar["log"]["truncated_tail_bytes"].as_u64().unwrap();
     assert!(tail > 0 && tail < 100, "{tail}");
 }
