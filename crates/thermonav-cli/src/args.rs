@@ -43,7 +43,8 @@ pub enum Command {
     /// The temperature-model tournament: every bank model through the filter, GNSS outages,
     /// errors against a reference, ranking and its Monte Carlo significance.
     Evaluate(EvaluateArgs),
-    /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag) to a canonical CSV.
+    /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag, PX4 ULog) to a
+    /// canonical CSV.
     Convert(ConvertArgs),
     /// Build DIR/report.html (one self-contained page) from what demo or evaluate wrote there.
     Report(ReportArgs),
@@ -579,6 +580,9 @@ pub enum ForeignFormatArg {
     KfGinsNav,
     /// Raw IMU CSV (g, deg/s, ms tick) timed by its RTKLIB .tag file → IMU CSV (rates).
     RawImuTag,
+    /// PX4 ULog (.ulg): sensor_combined or vehicle_imu → IMU CSV (--out, with temp_c when
+    /// logged), vehicle_gps_position or sensor_gps → GNSS CSV (--gnss-out), OUT.json sidecar.
+    Px4Ulog,
 }
 
 /// Axes of a raw IMU file's output.
@@ -598,9 +602,12 @@ pub struct ConvertArgs {
     /// Its format; detected from the content when omitted and unambiguous.
     #[arg(long, value_enum)]
     pub format: Option<ForeignFormatArg>,
-    /// The canonical CSV to write (atomically; nothing is written on error).
+    /// The canonical CSV to write (atomically; nothing is written on error); px4-ulog: the IMU.
     #[arg(long)]
     pub out: PathBuf,
+    /// px4-ulog: also write the GNSS fixes to this canonical GNSS CSV.
+    #[arg(long)]
+    pub gnss_out: Option<PathBuf>,
     /// raw-imu-tag: the time-tag file (default: INPUT.tag).
     #[arg(long)]
     pub tag: Option<PathBuf>,
@@ -616,7 +623,7 @@ pub struct ConvertArgs {
     /// kf-gins-imu, kf-gins-gnss: GPS week of the seconds-of-week times (put on the GPST scale).
     #[arg(long)]
     pub gps_week: Option<u32>,
-    /// nmea: GPST minus UTC, s.
+    /// nmea, px4-ulog: GPST minus UTC, s.
     #[arg(long, default_value_t = 18)]
     pub leap_seconds: i64,
     /// nmea: UTC date of the first epoch (YYYY-MM-DD) when the log has no RMC sentence.

@@ -26,7 +26,9 @@
 //! - [`rtklib_pos`]: RTKLIB solutions (`.pos`), latitude/longitude or ECEF form, `Q` filter;
 //! - [`nmea`]: NMEA 0183 GGA, RMC, VTG, HDT, THS with checksums, combined per epoch;
 //! - [`kf_gins`]: KF-GINS IMU increments, GNSS positions and `.nav` trajectories;
-//! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`).
+//! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
+//! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
+//!   GNSS of a flight log ([`ulog::px4`]).
 //!
 //! They share one absolute time scale, [`gpst`]: seconds since 1970 counted in GPST without
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
@@ -65,6 +67,7 @@ pub mod rtklib_pos;
 pub mod solution;
 mod text;
 pub mod trajectory;
+pub mod ulog;
 
 pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
@@ -106,6 +109,24 @@ fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
     match File::open(path) {
         Ok(file) => Ok((BufReader::with_capacity(FILE_BUFFER_BYTES, file), input)),
         Err(error) => Err(ReadError::new(input, None, ReadErrorKind::Open(error))),
+    }
+}
+
+/// The bytes of the file at `path`, with the path as the input's name; a missing or
+/// forbidden file is [`ReadErrorKind::Open`], a failure part-way [`ReadErrorKind::Read`].
+fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
+    let input = path.display().to_string();
+    match std::fs::read(path) {
+        Ok(bytes) => Ok((bytes, input)),
+        Err(e) => {
+            let kind = match e.kind() {
+                std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied => {
+                    ReadErrorKind::Open(e)
+                }
+                _ => ReadErrorKind::Read(e),
+            };
+            Err(ReadError::new(input, None, kind))
+        }
     }
 }
 

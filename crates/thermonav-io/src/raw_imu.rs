@@ -114,17 +114,7 @@ pub fn decode_time_tag(bytes: &[u8], input: &str) -> Result<TimeTag, ReadError> 
 /// # Errors
 /// [`ReadErrorKind::Open`] or [`ReadErrorKind::Read`], and those of [`decode_time_tag`].
 pub fn read_time_tag_file(path: impl AsRef<Path>) -> Result<TimeTag, ReadError> {
-    let path = path.as_ref();
-    let input = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
-        let kind = match e.kind() {
-            std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied => {
-                ReadErrorKind::Open(e)
-            }
-            _ => ReadErrorKind::Read(e),
-        };
-        ReadError::new(input.as_str(), None, kind)
-    })?;
+    let (bytes, input) = crate::read_whole_file(path.as_ref())?;
     decode_time_tag(&bytes, &input)
 }
 

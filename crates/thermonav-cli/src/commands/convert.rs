@@ -1,6 +1,8 @@
-//! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag) to the
-//! canonical GNSS, IMU or trajectory CSV. The whole input is read before anything is written,
+//! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag, PX4 ULog)
+//! to the canonical GNSS, IMU or trajectory CSV. The whole input is read before anything is written,
 //! and the output is written atomically, so a bad input leaves no output behind.
+
+mod ulog;
 
 use crate::args::{ConvertArgs, ForeignFormatArg, ImuFrameArg};
 use crate::failure::{Classify, Failure};
@@ -23,6 +25,9 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
         Some(format) => format,
         None => detect_format(&args.input, &tag_path(args))?,
     };
+    if format != ForeignFormatArg::Px4Ulog {
+        ulog::reject_gnss_out(args)?;
+    }
     let strictness = match args.lenient {
         true => Strictness::Lenient,
         false => Strictness::Strict,
@@ -58,6 +63,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
             write_imu_file(&args.out, &series).data()?;
             (series.len(), "IMU samples (rates)")
         }
+        ForeignFormatArg::Px4Ulog => ulog::convert(args)?,
         ForeignFormatArg::KfGinsNav => {
             let points = read_kf_gins_nav_file(&args.input, strictness).data()?;
             write_trajectory_file(&args.out, &points).data()?;
@@ -169,6 +175,9 @@ fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> 
         ))
         .usage()
     };
+    if head.starts_with(&thermonav_io::ulog::MAGIC) {
+        return Ok(ForeignFormatArg::Px4Ulog);
+    }
     if head.starts_with(b"TIMETAG") {
         return unknown("an RTKLIB time-tag file: convert the IMU CSV it belongs to");
     }

@@ -3,6 +3,7 @@
 mod bad_input;
 mod commands;
 mod convert;
+mod convert_ulog;
 mod lot;
 mod modelling;
 mod navigation;

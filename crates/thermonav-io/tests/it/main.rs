@@ -12,3 +12,5 @@ mod round_trip;
 mod rtklib_pos;
 mod support;
 mod trajectory;
+mod ulog;
+mod ulog_built;

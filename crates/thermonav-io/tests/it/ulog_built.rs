@@ -1,0 +1,195 @@
+//! A ULog assembled byte by byte from the format description, with values chosen in advance
+//! (exact in binary32), for what the PX4 v1.8 sample lacks: `vehicle_imu` increments,
+//! `sensor_accel` temperature, the newer `sensor_gps` with f64 degrees and UTC time, 'M'
+//! continuation, 'O' dropouts, unknown message types and unsubscribed data.
+
+use thermonav::imu::{Channel, SampleKind};
+use thermonav::time::Duration;
+use thermonav::units::deg_to_rad;
+use thermonav_io::ulog::decode_ulog;
+use thermonav_io::ulog::px4::{TimeScale, gnss_fixes, imu_series, time_scale};
+
+/// Appends one message of type `kind`.
+fn message(out: &mut Vec<u8>, kind: u8, payload: &[u8]) {
+    out.extend_from_slice(&(payload.len() as u16).to_le_bytes());
+    out.push(kind);
+    out.extend_from_slice(payload);
+}
+
+fn format(out: &mut Vec<u8>, text: &str) {
+    message(out, b'F', text.as_bytes());
+}
+
+fn subscribe(out: &mut Vec<u8>, msg_id: u16, name: &str) {
+    let mut payload = vec![0];
+    payload.extend_from_slice(&msg_id.to_le_bytes());
+    payload.extend_from_slice(name.as_bytes());
+    message(out, b'A', &payload);
+}
+
+fn data(out: &mut Vec<u8>, msg_id: u16, record: &[u8]) {
+    let mut payload = msg_id.to_le_bytes().to_vec();
+    payload.extend_from_slice(record);
+    message(out, b'D', &payload);
+}
+
+/// Little-endian concatenation helper.
+#[derive(Default)]
+struct Record(Vec<u8>);
+
+impl Record {
+    fn u64(mut self, v: u64) -> Self {
+        self.0.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    fn f32(mut self, v: f32) -> Self {
+        self.0.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    fn f64(mut self, v: f64) -> Self {
+        self.0.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    fn u16(mut self, v: u16) -> Self {
+        self.0.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    fn u8(mut self, v: u8) -> Self {
+        self.0.push(v);
+        self
+    }
+}
+
+/// UTC µs of the GNSS records minus their boot µs: 1.7e15 µs = 2023-11-14 22:13:20 UTC.
+const BOOT_TO_UTC_US: u64 = 1_700_000_000_000_000;
+
+fn built_log() -> Vec<u8> {
+    let mut out = b"ULog\x01\x12\x35".to_vec();
+    out.push(1);
+    out.extend_from_slice(&1_000_u64.to_le_bytes());
+    message(&mut out, b'B', &[0; 40]);
+    format(
+        &mut out,
+        "vehicle_imu:uint64_t timestamp;uint64_t timestamp_sample;float[3] delta_angle;\
+         float[3] delta_velocity;uint16_t delta_angle_dt;uint16_t delta_velocity_dt;\
+         uint8_t[4] _padding0;",
+    );
+    format(
+        &mut out,
+        "sensor_accel:uint64_t timestamp;float x;float y;float z;float temperature;",
+    );
+    format(
+        &mut out,
+        "sensor_gps:uint64_t timestamp;uint64_t time_utc_usec;double latitude_deg;\
+         double longitude_deg;double altitude_msl_m;double altitude_ellipsoid_m;float eph;\
+         float epv;float vel_n_m_s;float vel_e_m_s;float vel_d_m_s;uint8_t fix_type;\
+         bool vel_ned_valid;",
+    );
+    // A multi-part information value in two messages: one value.
+    let mut multi = vec![0, 9];
+    multi.extend_from_slice(b"char[3] a");
+    multi.extend_from_slice(b"abc");
+    message(&mut out, b'M', &multi);
+    multi[0] = 1;
+    message(&mut out, b'M', &multi);
+    subscribe(&mut out, 0, "vehicle_imu");
+    subscribe(&mut out, 1, "sensor_accel");
+    subscribe(&mut out, 2, "sensor_gps");
+    // Temperatures 20.5 °C at 1.000 s, 21.5 °C at 1.010 s (boot).
+    for (t, c) in [(1_000_000, 20.5), (1_010_000, 21.5)] {
+        let r = Record::default().u64(t).f32(0.0).f32(0.0).f32(-9.75).f32(c);
+        data(&mut out, 1, &r.0);
+    }
+    // IMU samples at 1.002, 1.004, …, 1.012 s (timestamp_sample), published 100 µs later.
+    for k in 1..=6_u64 {
+        let t = 1_000_000 + 2_000 * k;
+        let r = Record::default()
+            .u64(t + 100)
+            .u64(t)
+            .f32(0.001 * k as f32)
+            .f32(-0.25)
+            .f32(0.5)
+            .f32(0.125)
+            .f32(0.0)
+            .f32(-0.019_5)
+            .u16(2_000)
+            .u16(2_000);
+        data(&mut out, 0, &r.0);
+    }
+    message(&mut out, b'O', &25_u16.to_le_bytes());
+    message(&mut out, b'Z', &[1, 2, 3]);
+    data(&mut out, 9, &[0; 8]);
+    // Two GNSS records: fix_type 2 (left out), then 3 with velocity.
+    for (t, fix) in [(1_005_000_u64, 2_u8), (1_011_000, 3)] {
+        let r = Record::default()
+            .u64(t)
+            .u64(BOOT_TO_UTC_US + t)
+            .f64(47.397_742_5)
+            .f64(8.545_594)
+            .f64(488.25)
+            .f64(535.5)
+            .f32(0.75)
+            .f32(1.5)
+            .f32(1.0)
+            .f32(-2.0)
+            .f32(0.25)
+            .u8(fix)
+            .u8(1);
+        data(&mut out, 2, &r.0);
+    }
+    out
+}
+
+#[test]
+fn a_built_log_decodes_to_the_values_written_into_it() {
+    let log = decode_ulog(&built_log(), "built.ulg").unwrap();
+    assert_eq!(log.start_timestamp_us, 1_000);
+    assert_eq!(log.multi_info.get("a"), Some(&1));
+    assert_eq!(log.dropouts_ms, [25]);
+    assert_eq!(log.skipped.unknown_types.get(&b'Z'), Some(&1));
+    assert_eq!(log.skipped.unsubscribed_data, 1);
+    assert_eq!(log.last_timestamp_us, 1_012_100);
+
+    // Only the 3D fix sets the time scale: GPST = boot + 1.7e15 µs + 18 s.
+    let scale = time_scale(&log, Duration::from_nanos(18_000_000_000));
+    let boot_to_gpst_ns = (BOOT_TO_UTC_US as i64) * 1_000 + 18_000_000_000;
+    assert_eq!(
+        scale,
+        TimeScale::Gpst {
+            boot_to_gpst_ns,
+            gpst_minus_utc_s: 18
+        }
+    );
+
+    let imu = imu_series(&log, "built.ulg", scale).unwrap();
+    assert_eq!(imu.topic, "vehicle_imu");
+    let series = &imu.series;
+    assert_eq!(series.kind, Some(SampleKind::Increments));
+    assert_eq!(series.len(), 6);
+    assert_eq!(series.time[0].as_nanos(), 1_002_000_000 + boot_to_gpst_ns);
+    assert_eq!(series.channel(Channel::Gx)[2], f64::from(0.001_f32 * 3.0));
+    assert_eq!(series.channel(Channel::Gy)[0], -0.25);
+    assert_eq!(series.channel(Channel::Az)[5], f64::from(-0.019_5_f32));
+    // Nearest temperature: 1.002-1.004 s → 20.5 (1.000 s), 1.006-1.012 s → 21.5 (1.010 s);
+    // 1.005 s would be a tie, none falls on it.
+    assert_eq!(
+        series.temperature_c.as_deref(),
+        Some(&[20.5, 20.5, 21.5, 21.5, 21.5, 21.5][..])
+    );
+    assert_eq!(
+        imu.temperature_source.as_deref(),
+        Some("sensor_accel.temperature")
+    );
+
+    let gnss = gnss_fixes(&log, "built.ulg", scale).unwrap();
+    assert_eq!(gnss.topic, "sensor_gps");
+    assert_eq!(gnss.records_without_3d_fix, 1);
+    assert!(gnss.height.starts_with("ellipsoidal"));
+    let fix = gnss.fixes[0];
+    assert_eq!(fix.time.as_nanos(), 1_011_000_000 + boot_to_gpst_ns);
+    assert_eq!(fix.latitude_rad, deg_to_rad(47.397_742_5));
+    assert_eq!(fix.longitude_rad, deg_to_rad(8.545_594));
+    assert_eq!(fix.height_m, 535.5);
+    assert_eq!(fix.position_sd_ned_m, Some([0.75, 0.75, 1.5]));
+    assert_eq!(fix.velocity_ned_m_s, Some([1.0, -2.0, 0.25]));
+}
