@@ -185,7 +185,7 @@ fn running_sum_into(y: &[f64], mean: f64, out: &mut [f64]) -> f64 {
 
 /// 2 m² n, n = phase points − 2m: the Allan-variance denominator in units of τ₀ (τ₀ cancels
 /// because the phase is in rate × samples).
-fn avar_denominator(phase_len: usize, m: usize) -> f64 {
+pub(super) fn avar_denominator(phase_len: usize, m: usize) -> f64 {
     2.0 * (m as f64).powi(2) * (phase_len - 2 * m) as f64
 }
 
@@ -247,7 +247,7 @@ fn slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64
 }
 
 /// Independent accumulators in [`add_second_differences`].
-const LANES: usize = 8;
+pub(super) const LANES: usize = 8;
 
 /// A chunk from `chunks_exact(LANES)` as an array, so the compiler drops the bounds checks.
 fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
@@ -261,7 +261,7 @@ fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
 /// three additions per term (the adders are the bottleneck without FMA); eight independent
 /// accumulators let the compiler keep several vector registers busy instead of waiting on one
 /// chain of additions.
-fn add_second_differences(
+pub(super) fn add_second_differences(
     acc: &mut [f64; LANES],
     s: &[f64],
     range: std::ops::Range<usize>,
@@ -292,7 +292,7 @@ fn add_second_differences(
 }
 
 /// 4 Σ acc: the sum of squared second differences from the quarter-squares in the lanes.
-fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
+pub(super) fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
     4.0 * acc.iter().sum::<f64>()
 }
 
