@@ -8,3 +8,4 @@ pub mod characterize;
 pub mod gauss_markov;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
+pub mod streaming;
