@@ -25,9 +25,7 @@ pub fn streams(path: &Path, reading: ReadingArg) -> bool {
     match reading {
         ReadingArg::InMemory => false,
         ReadingArg::Streaming => true,
-        ReadingArg::Auto => {
-            std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_STREAMING_BYTES)
-        }
+        ReadingArg::Auto => std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_STREAMING_BYTES),
     }
 }
 
@@ -55,8 +53,11 @@ pub fn characterize_streaming(
     });
     fed?;
     if stream.samples() == 0 {
-        return Err(anyhow!("{}: the file has a header but no data rows", path.display()))
-            .data();
+        return Err(anyhow!(
+            "{}: the file has a header but no data rows",
+            path.display()
+        ))
+        .data();
     }
     let temperature_c = match given.or(stream.mean_temperature_c()) {
         Some(t) => t,
@@ -90,7 +91,9 @@ fn read_pieces(
                 return;
             }
         }
-        if piece.len() == PIECE_ROWS && !deliver(Ok(std::mem::replace(&mut piece, ImuSeries::new(kind)))) {
+        if piece.len() == PIECE_ROWS
+            && !deliver(Ok(std::mem::replace(&mut piece, ImuSeries::new(kind))))
+        {
             return;
         }
     }

@@ -62,12 +62,19 @@ fn streaming_gives_the_in_memory_bank() {
         let (a, b) = (coefficients(mc), coefficients(sc));
         assert_eq!(a.len(), b.len());
         for (x, y) in a.iter().zip(&b) {
-            assert!((number(x) / number(y) - 1.0).abs() < 1e-9, "{channel}: {x} vs {y}");
+            assert!(
+                (number(x) / number(y) - 1.0).abs() < 1e-9,
+                "{channel}: {x} vs {y}"
+            );
         }
         let tau = mc["allan"]["tau_s"].as_array().unwrap();
         let (ma, sa) = (&mc["allan"]["adev"], &sc["allan"]["adev"]);
         for (i, t) in tau.iter().enumerate() {
-            let tolerance = if number(t) * 100.0 <= 8192.5 { 1e-9 } else { 1e-2 };
+            let tolerance = if number(t) * 100.0 <= 8192.5 {
+                1e-9
+            } else {
+                1e-2
+            };
             let r = (number(&sa[i]) / number(&ma[i]) - 1.0).abs();
             assert!(r < tolerance, "{channel} tau {t}: {r}");
         }

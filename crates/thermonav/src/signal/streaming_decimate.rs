@@ -65,8 +65,7 @@ impl StreamingDecimator {
             });
         }
         let head_missing = (self.delay + 1).saturating_sub(self.head.len());
-        self.head
-            .extend_from_slice(&x[..head_missing.min(x.len())]);
+        self.head.extend_from_slice(&x[..head_missing.min(x.len())]);
         self.window.extend_from_slice(x);
         self.samples += x.len();
         while self.next_output + self.delay < self.samples {

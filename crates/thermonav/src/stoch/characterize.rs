@@ -17,9 +17,7 @@
 //! BIC up to 4; ACF fit up to the first zero crossing; ML on 0.5 s block means.
 
 use super::acf::{Demean, autocovariance};
-use super::allan::{
-    AllanCurve, AllanIntervals, TauGrid, confidence_intervals, overlapping_adev,
-};
+use super::allan::{AllanCurve, AllanIntervals, TauGrid, confidence_intervals, overlapping_adev};
 use super::ar::order::{Criterion, Order, fit_ar_order};
 use super::ar::{ArMethod, ArModel, fit_ar};
 use super::bank::{

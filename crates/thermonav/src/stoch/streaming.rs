@@ -23,7 +23,7 @@
 //! decimation would be wrong) and the provisional mean the Allan phase is centred on. A record
 //! that ends within the prefix is characterised by [`characterize`] itself.
 
-use super::allan::{CiSettings, ChiSquareQuantile, StreamingAllan, StreamingAllanSettings};
+use super::allan::{ChiSquareQuantile, CiSettings, StreamingAllan, StreamingAllanSettings};
 use super::bank::TemperatureEntry;
 use super::characterize::{
     ChannelInputs, ChannelReport, CharacterizeError, CharacterizeSettings, Conditioning,
@@ -390,8 +390,11 @@ fn append(series: &mut ImuSeries, piece: &ImuSeries) {
     for channel in Channel::ALL {
         series.channels[channel.index()].extend_from_slice(piece.channel(channel));
     }
-    series.temperature_c = match (had_temperature, series.temperature_c.take(), &piece.temperature_c)
-    {
+    series.temperature_c = match (
+        had_temperature,
+        series.temperature_c.take(),
+        &piece.temperature_c,
+    ) {
         (true, Some(mut column), Some(more)) => {
             column.extend_from_slice(more);
             Some(column)

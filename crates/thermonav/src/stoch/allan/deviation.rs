@@ -29,18 +29,7 @@ pub fn overlapping_adev(
     sample_rate_hz: f64,
     grid: &TauGrid,
 ) -> Result<AllanCurve, AllanError> {
-    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
-        return Err(AllanError::Rate {
-            rate_hz: sample_rate_hz,
-        });
-    }
-    if y.len() < 3 {
-        return Err(AllanError::TooShort { samples: y.len() });
-    }
-    let factors = grid.factors(y.len());
-    if factors.is_empty() {
-        return Err(AllanError::EmptyGrid { samples: y.len() });
-    }
+    let factors = checked_factors(y.len(), sample_rate_hz, grid)?;
     let sums = piece_sums(y);
     let total: f64 = sums.iter().sum();
     if !total.is_finite() {
@@ -49,21 +38,52 @@ pub fn overlapping_adev(
         }
     }
     let phase = centred_phase(y, total / y.len() as f64);
-    let tau0_s = 1.0 / sample_rate_hz;
-    let n = y.len();
     let adev = sums_of_squared_second_differences(&phase, &factors)
         .iter()
         .zip(&factors)
         .map(|(sum, &m)| (sum / avar_denominator(phase.len(), m)).sqrt())
         .collect();
-    Ok(AllanCurve {
+    Ok(curve_of(factors, adev, y.len(), sample_rate_hz))
+}
+
+/// The factors of `grid` for `n` samples at `sample_rate_hz`, refusing a bad rate, fewer than
+/// 3 samples, or a grid with no factor that fits.
+pub(super) fn checked_factors(
+    n: usize,
+    sample_rate_hz: f64,
+    grid: &TauGrid,
+) -> Result<Vec<usize>, AllanError> {
+    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
+        return Err(AllanError::Rate {
+            rate_hz: sample_rate_hz,
+        });
+    }
+    if n < 3 {
+        return Err(AllanError::TooShort { samples: n });
+    }
+    let factors = grid.factors(n);
+    if factors.is_empty() {
+        return Err(AllanError::EmptyGrid { samples: n });
+    }
+    Ok(factors)
+}
+
+/// The curve of deviations `adev` at `factors` for `n` samples at `sample_rate_hz`.
+pub(super) fn curve_of(
+    factors: Vec<usize>,
+    adev: Vec<f64>,
+    n: usize,
+    sample_rate_hz: f64,
+) -> AllanCurve {
+    let tau0_s = 1.0 / sample_rate_hz;
+    AllanCurve {
         tau_s: factors.iter().map(|&m| m as f64 * tau0_s).collect(),
         adev,
         n_terms: factors.iter().map(|&m| n - 2 * m + 1).collect(),
         averaging_factor: factors,
         n_samples: n,
         tau0_s,
-    })
+    }
 }
 
 /// Samples per piece of the passes over the series. Fixed, so that every sum is added up in

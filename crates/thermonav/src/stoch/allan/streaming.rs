@@ -29,7 +29,9 @@
 //! Memory per channel: 2 `exact_max_factor` + N/D + a few per factor f64 values (N/D =
 //! 5.4 M values, 43 MB, for 24 h at 1 kHz and D = 16).
 
-use super::deviation::{LANES, add_second_differences, avar_denominator, total_of_lanes};
+use super::deviation::{
+    LANES, add_second_differences, avar_denominator, checked_factors, curve_of, total_of_lanes,
+};
 use super::noise_id::{MAX_DIFFERENCES, lag1_decision, noise_of_block_means};
 use super::{
     AllanCurve, AllanError, AllanIntervals, CiSettings, MIN_AVERAGES_FOR_NOISE_ID, NoiseIdMethod,
@@ -129,7 +131,11 @@ impl AveragesNoise {
     fn identify(&self, n_samples: usize) -> Option<NoiseIdentification> {
         let n_averages = self.levels[0].count;
         if n_averages < MIN_AVERAGES_FOR_NOISE_ID {
-            return noise_of_block_means(self.first_averages.clone(), n_samples, phase_noise_unknown);
+            return noise_of_block_means(
+                self.first_averages.clone(),
+                n_samples,
+                phase_noise_unknown,
+            );
         }
         Some(NoiseIdentification {
             noise: lag1_decision(|d| self.levels[d].r1())?,
@@ -237,7 +243,10 @@ impl StreamingAllan {
     /// multiples of the stride.
     fn extend_phase(&mut self, y: &[f64]) {
         let stride = self.settings.stride;
-        let mut s = *self.recent.last().expect("the window holds S_0 from the start");
+        let mut s = *self
+            .recent
+            .last()
+            .expect("the window holds S_0 from the start");
         for &v in y {
             s += v - self.offset;
             self.samples += 1;
@@ -270,19 +279,8 @@ impl StreamingAllan {
         sample_rate_hz: f64,
         ci: &CiSettings,
     ) -> Result<(AllanCurve, AllanIntervals), AllanError> {
-        if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
-            return Err(AllanError::Rate {
-                rate_hz: sample_rate_hz,
-            });
-        }
         let n = self.samples;
-        if n < 3 {
-            return Err(AllanError::TooShort { samples: n });
-        }
-        let factors = self.grid.factors(n);
-        if factors.is_empty() {
-            return Err(AllanError::EmptyGrid { samples: n });
-        }
+        let factors = checked_factors(n, sample_rate_hz, &self.grid)?;
         let mut adev = Vec::with_capacity(factors.len());
         let mut alpha = Vec::with_capacity(factors.len());
         for &m in &factors {
@@ -296,15 +294,7 @@ impl StreamingAllan {
             adev.push(avar.sqrt());
             alpha.push(noise.map_or(0, |id| id.noise.alpha()));
         }
-        let tau0_s = 1.0 / sample_rate_hz;
-        let curve = AllanCurve {
-            tau_s: factors.iter().map(|&m| m as f64 * tau0_s).collect(),
-            adev,
-            n_terms: factors.iter().map(|&m| n - 2 * m + 1).collect(),
-            averaging_factor: factors,
-            n_samples: n,
-            tau0_s,
-        };
+        let curve = curve_of(factors, adev, n, sample_rate_hz);
         let intervals = intervals_for_noise(&curve, alpha, ci);
         Ok((curve, intervals))
     }
@@ -325,10 +315,7 @@ impl StreamingAllan {
         let averages: Vec<f64> = (0..n / m)
             .map(|k| (p[(k + 1) * q] - p[k * q]) / m as f64)
             .collect();
-        Ok((
-            avar,
-            noise_of_block_means(averages, n, phase_noise_unknown),
-        ))
+        Ok((avar, noise_of_block_means(averages, n, phase_noise_unknown)))
     }
 }
 
