@@ -9,12 +9,12 @@
 //! | Allan deviation + limits | raw rates | [`StreamingAllan`] | exact for m ≤ 8192, decimated overlap above (bounded in its docs) | 2·8192 + N/16 values |
 //! | Kaiser low-pass + decimation | raw rates | [`StreamingDecimator`] | yes (rounding) | taps + F values, + N/F outputs |
 //! | AR, AR-based GM, ACF fit | the decimated series | in memory at the end | yes | N/F values (86 400 for 24 h at 1 Hz) |
-//! | exact GM likelihood | 0.5 s block means of the raw rates and of the times | running block sums | bit for bit | 2N/(0.5 s × rate) values |
+//! | exact GM likelihood | 0.5 s block means of the raw rates and of the times | running block sums | bit for bit | N/(0.5 s × rate) values, + as many times shared by the channels |
 //! | temperature | mean of temp_c | running sum | bit for bit | — |
 //!
 //! So the memory grows with the record only through the decimated series, the block means and
-//! the strided Allan phase: about 52 MB per channel for 24 h at 1 kHz, against 5.5 GB for the
-//! whole record as f64.
+//! the strided Allan phase: about 46 MB per channel for 24 h at 1 kHz (43 MB of it the strided
+//! phase), against 5.5 GB for the whole record as f64.
 //!
 //! Two things are fixed by the first `prefix_samples` samples, which are held until then:
 //! the nominal rate (the in-memory path takes the median interval of the whole record; the
