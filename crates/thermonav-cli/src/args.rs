@@ -297,9 +297,24 @@ pub struct CharacterizeArgs {
     /// Rate of the conditioned series, Hz.
     #[arg(long, default_value_t = 1.0)]
     pub modelling_rate_hz: f64,
+    /// How each record is read: whole into memory, or streamed in pieces in bounded memory
+    /// (for long logs); auto streams files of at least 1 GiB.
+    #[arg(long, value_enum, default_value_t = ReadingArg::Auto)]
+    pub reading: ReadingArg,
     /// Print one JSON document (a summary) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// How `characterize` reads a record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ReadingArg {
+    /// Streaming for files of at least 1 GiB, in memory otherwise.
+    Auto,
+    /// The whole record in memory.
+    InMemory,
+    /// In pieces, in memory independent of the record length (see the README).
+    Streaming,
 }
 
 /// Arguments of `bank`.

@@ -1,6 +1,7 @@
 //! `thermonav characterize`: the temperature model bank from static records.
 
-use crate::args::CharacterizeArgs;
+use super::characterize_streaming::{characterize_streaming, streams};
+use crate::args::{CharacterizeArgs, ReadingArg};
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
 use anyhow::anyhow;
@@ -34,18 +35,22 @@ fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result
     })
 }
 
-/// Characterises one file.
+/// Characterises one file, whole in memory or streamed as `reading` says.
 pub fn characterize_file(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
+    reading: ReadingArg,
 ) -> Result<TemperatureEntry, Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
-    let temperature_c = temperature_of(path, &series, given)?;
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
+    if streams(path, reading) {
+        return characterize_streaming(path, given, settings, &name);
+    }
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let temperature_c = temperature_of(path, &series, given)?;
     let (entry, _) = characterize(&series, temperature_c, &name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()?;
@@ -59,13 +64,24 @@ pub fn build_bank(
     settings: &CharacterizeSettings,
     out: &Path,
 ) -> Result<ModelBank, Failure> {
+    build_bank_reading(files, temperatures, settings, ReadingArg::Auto, out)
+}
+
+/// [`build_bank`] with each file read as `reading` says.
+pub fn build_bank_reading(
+    files: &[&Path],
+    temperatures: &[f64],
+    settings: &CharacterizeSettings,
+    reading: ReadingArg,
+    out: &Path,
+) -> Result<ModelBank, Failure> {
     use rayon::prelude::*;
     let progress = crate::progress::bar(files.len(), "characterising static records");
     let entries: Vec<Result<TemperatureEntry, Failure>> = files
         .par_iter()
         .enumerate()
         .map(|(k, path)| {
-            let entry = characterize_file(path, temperatures.get(k).copied(), settings);
+            let entry = characterize_file(path, temperatures.get(k).copied(), settings, reading);
             progress.inc(1);
             entry
         })
@@ -114,7 +130,13 @@ pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
         )));
     }
     let files: Vec<&Path> = args.files.iter().map(|p| p.as_path()).collect();
-    let bank = build_bank(&files, &args.temperature_c, &settings_of(args), &args.out)?;
+    let bank = build_bank_reading(
+        &files,
+        &args.temperature_c,
+        &settings_of(args),
+        args.reading,
+        &args.out,
+    )?;
     let summary = summarize(&bank, &args.out);
     if args.json {
         return print_json(&summary);

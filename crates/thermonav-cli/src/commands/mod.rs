@@ -4,6 +4,7 @@ mod allan;
 mod ar;
 mod bank;
 mod characterize;
+mod characterize_streaming;
 mod convert;
 mod demo;
 mod evaluate;

@@ -7,6 +7,7 @@
 pub mod convolution;
 pub mod decimate;
 pub mod kaiser;
+pub mod streaming_decimate;
 pub mod timestamps;
 pub mod zero_phase;
 

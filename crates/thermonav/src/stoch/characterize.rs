@@ -17,7 +17,7 @@
 //! BIC up to 4; ACF fit up to the first zero crossing; ML on 0.5 s block means.
 
 use super::acf::{Demean, autocovariance};
-use super::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
+use super::allan::{AllanCurve, AllanIntervals, TauGrid, confidence_intervals, overlapping_adev};
 use super::ar::order::{Criterion, Order, fit_ar_order};
 use super::ar::{ArMethod, ArModel, fit_ar};
 use super::bank::{
@@ -107,6 +107,16 @@ pub enum CharacterizeError {
     /// Bad settings.
     #[error("{0}")]
     Settings(String),
+    /// A streamed record whose median sampling interval is not its first part's.
+    #[error(
+        "the record's median sampling interval gives {record_rate_hz} Hz, its first part {prefix_rate_hz} Hz: the filter and decimation chosen from the first part do not fit (characterise it in memory, or split it where the rate changes)"
+    )]
+    RateChanged {
+        /// Rate from the first part, Hz.
+        prefix_rate_hz: f64,
+        /// Rate from the whole record, Hz.
+        record_rate_hz: f64,
+    },
 }
 
 /// Everything computed for one channel, beyond what the bank keeps.
@@ -138,30 +148,10 @@ pub fn characterize(
         samples: series.len(),
         needed: 2,
     })?;
-    let rate_hz = stats.nominal_rate_hz();
-    let spec = KaiserSpec::new(
-        rate_hz,
-        settings.cutoff_hz,
-        settings.transition_hz,
-        settings.ripple_db,
-    )
-    .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
-    let filter = design_kaiser_lowpass(&spec)
-        .map_err(|e| CharacterizeError::Settings(e.to_string()))?
-        .with_odd_taps(&spec);
-    let factor = decimation_factor(rate_hz, settings.modelling_rate_hz)
-        .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
-    if settings.cutoff_hz + settings.transition_hz / 2.0 > settings.modelling_rate_hz / 2.0 {
-        return Err(CharacterizeError::Settings(format!(
-            "cut-off {} Hz plus half the transition {} Hz exceeds the Nyquist frequency of the {} Hz modelling rate",
-            settings.cutoff_hz, settings.transition_hz, settings.modelling_rate_hz
-        )));
-    }
+    let conditioning = Conditioning::new(stats.nominal_rate_hz(), settings)?;
     let times_s = series.seconds_from_start();
     let context = Context {
-        rate_hz,
-        filter: &filter,
-        factor,
+        conditioning: &conditioning,
         times_s: &times_s,
         settings,
     };
@@ -175,31 +165,165 @@ pub fn characterize(
         .collect();
     let reports: BTreeMap<Channel, ChannelReport> =
         results.into_iter().collect::<Result<_, _>>()?;
-    let entry = TemperatureEntry {
-        temperature_c,
-        source: source.to_string(),
-        preprocessing: Preprocessing {
-            input_rate_hz: rate_hz,
-            filter: Some(FilterSummary {
-                cutoff_hz: settings.cutoff_hz,
-                transition_hz: settings.transition_hz,
-                ripple_db: settings.ripple_db,
-                num_taps: filter.num_taps(),
-                beta: filter.beta(),
-                mode: "zero-phase".into(),
-            }),
-            decimation_factor: factor,
-            modelling_rate_hz: rate_hz / factor as f64,
-        },
-        channels: reports.iter().map(|(c, r)| (*c, r.model.clone())).collect(),
-    };
+    let entry = conditioning.entry(temperature_c, source, settings, &reports);
     Ok((entry, reports))
 }
 
+/// The conditioning of a record at `rate_hz`: the Kaiser low-pass and the decimation factor.
+#[derive(Debug, Clone)]
+pub(crate) struct Conditioning {
+    pub(crate) rate_hz: f64,
+    pub(crate) filter: FirFilter,
+    pub(crate) factor: usize,
+}
+
+impl Conditioning {
+    /// Designs the filter and the decimation for a record at `rate_hz`.
+    pub(crate) fn new(
+        rate_hz: f64,
+        settings: &CharacterizeSettings,
+    ) -> Result<Self, CharacterizeError> {
+        let spec = KaiserSpec::new(
+            rate_hz,
+            settings.cutoff_hz,
+            settings.transition_hz,
+            settings.ripple_db,
+        )
+        .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
+        let filter = design_kaiser_lowpass(&spec)
+            .map_err(|e| CharacterizeError::Settings(e.to_string()))?
+            .with_odd_taps(&spec);
+        let factor = decimation_factor(rate_hz, settings.modelling_rate_hz)
+            .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
+        if settings.cutoff_hz + settings.transition_hz / 2.0 > settings.modelling_rate_hz / 2.0 {
+            return Err(CharacterizeError::Settings(format!(
+                "cut-off {} Hz plus half the transition {} Hz exceeds the Nyquist frequency of the {} Hz modelling rate",
+                settings.cutoff_hz, settings.transition_hz, settings.modelling_rate_hz
+            )));
+        }
+        Ok(Self {
+            rate_hz,
+            filter,
+            factor,
+        })
+    }
+
+    /// Interval of the conditioned series, s.
+    pub(crate) fn modelling_dt_s(&self) -> f64 {
+        self.factor as f64 / self.rate_hz
+    }
+
+    /// Samples per block mean of the exact likelihood.
+    pub(crate) fn samples_per_ml_block(&self, settings: &CharacterizeSettings) -> usize {
+        ((settings.ml_block_s * self.rate_hz).round() as usize).max(1)
+    }
+
+    /// The bank entry of a record from its channel reports.
+    pub(crate) fn entry(
+        &self,
+        temperature_c: f64,
+        source: &str,
+        settings: &CharacterizeSettings,
+        reports: &BTreeMap<Channel, ChannelReport>,
+    ) -> TemperatureEntry {
+        TemperatureEntry {
+            temperature_c,
+            source: source.to_string(),
+            preprocessing: Preprocessing {
+                input_rate_hz: self.rate_hz,
+                filter: Some(FilterSummary {
+                    cutoff_hz: settings.cutoff_hz,
+                    transition_hz: settings.transition_hz,
+                    ripple_db: settings.ripple_db,
+                    num_taps: self.filter.num_taps(),
+                    beta: self.filter.beta(),
+                    mode: "zero-phase".into(),
+                }),
+                decimation_factor: self.factor,
+                modelling_rate_hz: self.rate_hz / self.factor as f64,
+            },
+            channels: reports.iter().map(|(c, r)| (*c, r.model.clone())).collect(),
+        }
+    }
+}
+
+/// What the models of one channel are computed from: the Allan curve and its limits of the raw
+/// rates, the conditioned series, and the block means (with their times) for the likelihood.
+#[derive(Debug, Clone)]
+pub(crate) struct ChannelInputs {
+    pub(crate) allan: AllanCurve,
+    pub(crate) limits: AllanIntervals,
+    pub(crate) conditioned: Vec<f64>,
+    pub(crate) block_times_s: Vec<f64>,
+    pub(crate) block_means: Vec<f64>,
+}
+
+/// Every model of one channel from its inputs.
+pub(crate) fn channel_report(
+    channel: Channel,
+    inputs: ChannelInputs,
+    dt_s: f64,
+    settings: &CharacterizeSettings,
+) -> Result<ChannelReport, CharacterizeError> {
+    let fail = |message: String| CharacterizeError::Channel {
+        channel: channel.name(),
+        message,
+    };
+    let ChannelInputs {
+        allan,
+        limits,
+        conditioned,
+        block_times_s,
+        block_means,
+    } = inputs;
+    let terms = fit_noise_terms(&allan);
+    let chosen = fit_ar_order(&conditioned, settings.ar_order, settings.ar_method)
+        .map_err(|e| fail(e.to_string()))?;
+    let ar1 = fit_ar(&conditioned, 1, settings.ar_method).map_err(|e| fail(e.to_string()))?;
+    let acf = acf_model(&conditioned, dt_s, settings.acf_window);
+    let ml = block_ml(&block_times_s, &block_means);
+    let model = ChannelModel {
+        unit: channel.si_unit(SampleKind::Rates).to_string(),
+        allan: AllanSummary {
+            tau_s: allan.tau_s.clone(),
+            adev: allan.adev.clone(),
+            white_noise_density: terms.random_walk.map(|t| t.value),
+            bias_instability: terms.bias_instability.map(|t| t.value),
+            rate_random_walk: terms.rate_random_walk.map(|t| t.value),
+        },
+        ar: ar_summary(&chosen, dt_s),
+        gauss_markov: GaussMarkovModels {
+            ar_based: estimate(ar_based(&ar1_estimate(&ar1, dt_s))),
+            irregular_ml: ml,
+            acf_fit: acf,
+        },
+    };
+    Ok(ChannelReport {
+        model,
+        allan,
+        allan_limits: (limits.low, limits.high),
+    })
+}
+
+/// Exact GM + white likelihood on block means of the raw record at their mean times.
+fn block_ml(times_s: &[f64], means: &[f64]) -> GaussMarkovEstimate {
+    match fit_noisy_gauss_markov(times_s, means) {
+        Ok(NoisyGaussMarkovOutcome::Model(fit)) => GaussMarkovEstimate::Model {
+            correlation_time_s: fit.correlation_time_s,
+            sigma: fit.sigma,
+            ci95_correlation_time_s: fit.ci95_correlation_time_s,
+        },
+        Ok(NoisyGaussMarkovOutcome::NoEquivalent { reason }) => {
+            GaussMarkovEstimate::NoEquivalent { reason }
+        }
+        Err(e) => GaussMarkovEstimate::NoEquivalent {
+            reason: e.to_string(),
+        },
+    }
+}
+
 struct Context<'a> {
-    rate_hz: f64,
-    filter: &'a FirFilter,
-    factor: usize,
+    conditioning: &'a Conditioning,
     times_s: &'a [f64],
     settings: &'a CharacterizeSettings,
 }
@@ -214,75 +338,33 @@ impl Context<'_> {
             channel: channel.name(),
             message,
         };
-        let allan = overlapping_adev(values, self.rate_hz, &self.settings.allan_grid)
+        let c = self.conditioning;
+        let allan = overlapping_adev(values, c.rate_hz, &self.settings.allan_grid)
             .map_err(|e| fail(e.to_string()))?;
         let limits = confidence_intervals(values, &allan, self.settings.ci_level);
-        let terms = fit_noise_terms(&allan);
         let conditioned = decimate(
-            &filter_zero_phase(self.filter, values, ZeroPhaseMode::DelayCompensated)
+            &filter_zero_phase(&c.filter, values, ZeroPhaseMode::DelayCompensated)
                 .map_err(|e| fail(e.to_string()))?,
-            self.factor,
+            c.factor,
         );
-        let dt_s = self.factor as f64 / self.rate_hz;
-        let chosen = fit_ar_order(
-            &conditioned,
-            self.settings.ar_order,
-            self.settings.ar_method,
-        )
-        .map_err(|e| fail(e.to_string()))?;
-        let ar1 =
-            fit_ar(&conditioned, 1, self.settings.ar_method).map_err(|e| fail(e.to_string()))?;
-        let acf = acf_model(&conditioned, dt_s, self.settings.acf_window);
-        let ml = self.block_ml(values);
-        let model = ChannelModel {
-            unit: channel.si_unit(SampleKind::Rates).to_string(),
-            allan: AllanSummary {
-                tau_s: allan.tau_s.clone(),
-                adev: allan.adev.clone(),
-                white_noise_density: terms.random_walk.map(|t| t.value),
-                bias_instability: terms.bias_instability.map(|t| t.value),
-                rate_random_walk: terms.rate_random_walk.map(|t| t.value),
-            },
-            ar: ar_summary(&chosen, dt_s),
-            gauss_markov: GaussMarkovModels {
-                ar_based: estimate(ar_based(&ar1_estimate(&ar1, dt_s))),
-                irregular_ml: ml,
-                acf_fit: acf,
-            },
-        };
-        Ok(ChannelReport {
-            model,
+        let per_block = c.samples_per_ml_block(self.settings);
+        let inputs = ChannelInputs {
             allan,
-            allan_limits: (limits.low, limits.high),
-        })
+            limits,
+            conditioned,
+            block_times_s: block_means(self.times_s, per_block),
+            block_means: block_means(values, per_block),
+        };
+        channel_report(channel, inputs, c.modelling_dt_s(), self.settings)
     }
+}
 
-    /// Exact GM + white likelihood on block means of the raw record at their mean times.
-    fn block_ml(&self, values: &[f64]) -> GaussMarkovEstimate {
-        let per_block = ((self.settings.ml_block_s * self.rate_hz).round() as usize).max(1);
-        let times: Vec<f64> = self
-            .times_s
-            .chunks_exact(per_block)
-            .map(|c| c.iter().sum::<f64>() / c.len() as f64)
-            .collect();
-        let means: Vec<f64> = values
-            .chunks_exact(per_block)
-            .map(|c| c.iter().sum::<f64>() / c.len() as f64)
-            .collect();
-        match fit_noisy_gauss_markov(&times, &means) {
-            Ok(NoisyGaussMarkovOutcome::Model(fit)) => GaussMarkovEstimate::Model {
-                correlation_time_s: fit.correlation_time_s,
-                sigma: fit.sigma,
-                ci95_correlation_time_s: fit.ci95_correlation_time_s,
-            },
-            Ok(NoisyGaussMarkovOutcome::NoEquivalent { reason }) => {
-                GaussMarkovEstimate::NoEquivalent { reason }
-            }
-            Err(e) => GaussMarkovEstimate::NoEquivalent {
-                reason: e.to_string(),
-            },
-        }
-    }
+/// Means of consecutive whole blocks of `per_block` values (a partial last block is dropped).
+fn block_means(values: &[f64], per_block: usize) -> Vec<f64> {
+    values
+        .chunks_exact(per_block)
+        .map(|c| c.iter().sum::<f64>() / c.len() as f64)
+        .collect()
 }
 
 fn ar1_estimate(ar1: &ArModel, dt_s: f64) -> Ar1Estimate {

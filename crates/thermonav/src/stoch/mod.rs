@@ -9,3 +9,4 @@ pub mod gauss_markov;
 pub mod lot;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
+pub mod streaming;

@@ -12,6 +12,7 @@ mod ins;
 mod navigation;
 mod round_trip;
 mod signal;
+mod streaming;
 mod ukf;
 mod vessel;
 

@@ -97,23 +97,47 @@ pub fn confidence_intervals_with(
                 .map_or(0, |id| id.noise.alpha())
         })
         .collect();
-    let edf: Vec<f64> = curve
+    if matches {
+        return intervals_for_noise(curve, alpha, &settings);
+    }
+    let edf = edf_of(curve, &alpha);
+    AllanIntervals {
+        level: settings.level,
+        alpha,
+        edf,
+        low: curve.adev.clone(),
+        high: curve.adev.clone(),
+    }
+}
+
+/// Greenhall's EDF at every point of `curve` for the noise exponents `alpha`.
+fn edf_of(curve: &AllanCurve, alpha: &[i32]) -> Vec<f64> {
+    curve
         .averaging_factor
         .iter()
-        .zip(&alpha)
+        .zip(alpha)
         .map(|(&m, &a)| edf_overlapping_adev(curve.n_samples + 1, m, a))
-        .collect();
+        .collect()
+}
+
+/// Confidence limits for every point of `curve` given the noise exponent α at each point
+/// (already identified, e.g. by a streaming pass): EDF and chi-square bounds as in
+/// [`confidence_intervals_with`]. A level outside (0, 1) means [`ONE_SIGMA_CONFIDENCE`].
+pub fn intervals_for_noise(
+    curve: &AllanCurve,
+    alpha: Vec<i32>,
+    settings: &CiSettings,
+) -> AllanIntervals {
+    let settings = CiSettings {
+        level: valid_level_or_one_sigma(settings.level),
+        quantile: settings.quantile,
+    };
+    let edf = edf_of(curve, &alpha);
     let (low, high) = curve
         .adev
         .iter()
         .zip(&edf)
-        .map(|(&sigma, &e)| {
-            if matches {
-                interval_from_edf(sigma, e, &settings).unwrap_or((sigma, sigma))
-            } else {
-                (sigma, sigma)
-            }
-        })
+        .map(|(&sigma, &e)| interval_from_edf(sigma, e, &settings).unwrap_or((sigma, sigma)))
         .unzip();
     AllanIntervals {
         level: settings.level,

@@ -29,18 +29,7 @@ pub fn overlapping_adev(
     sample_rate_hz: f64,
     grid: &TauGrid,
 ) -> Result<AllanCurve, AllanError> {
-    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
-        return Err(AllanError::Rate {
-            rate_hz: sample_rate_hz,
-        });
-    }
-    if y.len() < 3 {
-        return Err(AllanError::TooShort { samples: y.len() });
-    }
-    let factors = grid.factors(y.len());
-    if factors.is_empty() {
-        return Err(AllanError::EmptyGrid { samples: y.len() });
-    }
+    let factors = checked_factors(y.len(), sample_rate_hz, grid)?;
     let sums = piece_sums(y);
     let total: f64 = sums.iter().sum();
     if !total.is_finite() {
@@ -49,21 +38,52 @@ pub fn overlapping_adev(
         }
     }
     let phase = centred_phase(y, total / y.len() as f64);
-    let tau0_s = 1.0 / sample_rate_hz;
-    let n = y.len();
     let adev = sums_of_squared_second_differences(&phase, &factors)
         .iter()
         .zip(&factors)
         .map(|(sum, &m)| (sum / avar_denominator(phase.len(), m)).sqrt())
         .collect();
-    Ok(AllanCurve {
+    Ok(curve_of(factors, adev, y.len(), sample_rate_hz))
+}
+
+/// The factors of `grid` for `n` samples at `sample_rate_hz`, refusing a bad rate, fewer than
+/// 3 samples, or a grid with no factor that fits.
+pub(super) fn checked_factors(
+    n: usize,
+    sample_rate_hz: f64,
+    grid: &TauGrid,
+) -> Result<Vec<usize>, AllanError> {
+    if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
+        return Err(AllanError::Rate {
+            rate_hz: sample_rate_hz,
+        });
+    }
+    if n < 3 {
+        return Err(AllanError::TooShort { samples: n });
+    }
+    let factors = grid.factors(n);
+    if factors.is_empty() {
+        return Err(AllanError::EmptyGrid { samples: n });
+    }
+    Ok(factors)
+}
+
+/// The curve of deviations `adev` at `factors` for `n` samples at `sample_rate_hz`.
+pub(super) fn curve_of(
+    factors: Vec<usize>,
+    adev: Vec<f64>,
+    n: usize,
+    sample_rate_hz: f64,
+) -> AllanCurve {
+    let tau0_s = 1.0 / sample_rate_hz;
+    AllanCurve {
         tau_s: factors.iter().map(|&m| m as f64 * tau0_s).collect(),
         adev,
         n_terms: factors.iter().map(|&m| n - 2 * m + 1).collect(),
         averaging_factor: factors,
         n_samples: n,
         tau0_s,
-    })
+    }
 }
 
 /// Samples per piece of the passes over the series. Fixed, so that every sum is added up in
@@ -185,7 +205,7 @@ fn running_sum_into(y: &[f64], mean: f64, out: &mut [f64]) -> f64 {
 
 /// 2 m² n, n = phase points − 2m: the Allan-variance denominator in units of τ₀ (τ₀ cancels
 /// because the phase is in rate × samples).
-fn avar_denominator(phase_len: usize, m: usize) -> f64 {
+pub(super) fn avar_denominator(phase_len: usize, m: usize) -> f64 {
     2.0 * (m as f64).powi(2) * (phase_len - 2 * m) as f64
 }
 
@@ -247,7 +267,7 @@ fn slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64
 }
 
 /// Independent accumulators in [`add_second_differences`].
-const LANES: usize = 8;
+pub(super) const LANES: usize = 8;
 
 /// A chunk from `chunks_exact(LANES)` as an array, so the compiler drops the bounds checks.
 fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
@@ -261,7 +281,7 @@ fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
 /// three additions per term (the adders are the bottleneck without FMA); eight independent
 /// accumulators let the compiler keep several vector registers busy instead of waiting on one
 /// chain of additions.
-fn add_second_differences(
+pub(super) fn add_second_differences(
     acc: &mut [f64; LANES],
     s: &[f64],
     range: std::ops::Range<usize>,
@@ -292,7 +312,7 @@ fn add_second_differences(
 }
 
 /// 4 Σ acc: the sum of squared second differences from the quarter-squares in the lanes.
-fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
+pub(super) fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
     4.0 * acc.iter().sum::<f64>()
 }
 

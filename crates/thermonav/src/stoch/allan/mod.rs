@@ -26,14 +26,16 @@ mod confidence;
 mod deviation;
 mod edf;
 mod noise_id;
+mod streaming;
 
 pub use confidence::{
     ChiSquareQuantile, CiSettings, ONE_SIGMA_CONFIDENCE, chi_square_quantile, confidence_intervals,
-    confidence_intervals_with, interval_from_edf,
+    confidence_intervals_with, interval_from_edf, intervals_for_noise,
 };
 pub use deviation::overlapping_adev;
 pub use edf::edf_overlapping_adev;
 pub use noise_id::{NoiseIdMethod, NoiseIdentification, PowerLawNoise, identify_noise};
+pub use streaming::{StreamingAllan, StreamingAllanSettings};
 
 use serde::Serialize;
 
@@ -103,6 +105,26 @@ pub enum AllanError {
     /// Equivalent degrees of freedom that are not finite and positive.
     #[error("equivalent degrees of freedom must be finite and > 0, got {0}")]
     InvalidEdf(f64),
+    /// A streaming pass needs a positive exact bound and stride.
+    #[error(
+        "streaming Allan settings need a positive exact bound and stride, got {exact_max_factor} and {stride}"
+    )]
+    StreamingSettings {
+        /// The exact bound given.
+        exact_max_factor: usize,
+        /// The stride given.
+        stride: usize,
+    },
+    /// A factor above a streaming pass's exact bound that its strided phase cannot serve.
+    #[error(
+        "averaging factor {factor} is above the streaming exact bound and not a multiple of the phase stride {stride} (use the octave or decade grid)"
+    )]
+    StreamingFactor {
+        /// The factor.
+        factor: usize,
+        /// The stride.
+        stride: usize,
+    },
 }
 
 impl TauGrid {

@@ -102,12 +102,22 @@ pub fn identify_noise(y: &[f64], m: usize) -> Option<NoiseIdentification> {
     if m == 0 || 2 * m > y.len() {
         return None;
     }
-    let z = block_means(y, m);
+    noise_of_block_means(block_means(y, m), y.len(), || phase_noise_by_rn(y, m))
+}
+
+/// The decision of [`identify_noise`] from the block means `z` of a series of `n_samples`,
+/// with `phase_noise` deciding between the phase-noise types when B1 says phase noise (it
+/// needs the whole series).
+pub(super) fn noise_of_block_means(
+    z: Vec<f64>,
+    n_samples: usize,
+    phase_noise: impl FnOnce() -> (PowerLawNoise, NoiseIdMethod),
+) -> Option<NoiseIdentification> {
     let n_averages = z.len();
     let (noise, method) = if n_averages >= MIN_AVERAGES_FOR_NOISE_ID {
         (lag1_noise_type(z)?, NoiseIdMethod::Lag1Autocorrelation)
     } else {
-        b1_noise_type(y, &z, m)?
+        b1_noise_type(&z, n_samples, phase_noise)?
     };
     Some(NoiseIdentification {
         noise,
@@ -130,20 +140,34 @@ fn lag1_autocorrelation(z: &[f64]) -> Option<f64> {
     (denominator > 0.0).then_some(numerator / denominator)
 }
 
-fn lag1_noise_type(mut z: Vec<f64>) -> Option<PowerLawNoise> {
-    const MAX_DIFFERENCES: i32 = 2;
+/// Differences of the averaged series the lag-1 method may take (d = 0, 1, 2).
+pub(super) const MAX_DIFFERENCES: usize = 2;
+
+fn lag1_noise_type(z: Vec<f64>) -> Option<PowerLawNoise> {
+    let mut level = z;
+    lag1_decision(|d| {
+        if d > 0 {
+            level = level.windows(2).map(|w| w[1] - w[0]).collect();
+        }
+        lag1_autocorrelation(&level)
+    })
+}
+
+/// The lag-1 rule given r1 of the averaged series differenced d times (`r1_of(d)`, asked for
+/// d = 0, 1, 2 in order): delta = r1 / (1 + r1); difference again while delta >= 0.25;
+/// alpha = -round(2 delta) - 2d. `None` when an r1 is undefined (a constant series).
+pub(super) fn lag1_decision(mut r1_of: impl FnMut(usize) -> Option<f64>) -> Option<PowerLawNoise> {
     for d in 0..=MAX_DIFFERENCES {
-        let r1 = lag1_autocorrelation(&z)?;
+        let r1 = r1_of(d)?;
         if 1.0 + r1 <= 0.0 {
             // r1 = -1: perfectly alternating, delta -> -inf: the bluest type.
             return Some(PowerLawNoise::WhitePhase);
         }
         let delta = r1 / (1.0 + r1);
         if delta < 0.25 || d == MAX_DIFFERENCES {
-            let alpha = -(2.0 * delta).round() as i32 - 2 * d;
+            let alpha = -(2.0 * delta).round() as i32 - 2 * d as i32;
             return Some(PowerLawNoise::from_alpha_clamped(alpha));
         }
-        z = z.windows(2).map(|w| w[1] - w[0]).collect();
     }
     unreachable!("the loop returns at d == MAX_DIFFERENCES")
 }
@@ -178,20 +202,24 @@ fn nearest_on_log_scale<T: Copy>(measured: f64, candidates: &[(T, f64)]) -> T {
         .expect("candidate lists are non-empty")
 }
 
-fn b1_noise_type(y: &[f64], z: &[f64], m: usize) -> Option<(PowerLawNoise, NoiseIdMethod)> {
+fn b1_noise_type(
+    z: &[f64],
+    n_samples: usize,
+    phase_noise: impl FnOnce() -> (PowerLawNoise, NoiseIdMethod),
+) -> Option<(PowerLawNoise, NoiseIdMethod)> {
     let avar = non_overlapping_avar(z);
     if z.len() < 2 || avar <= 0.0 {
         return None;
     }
     let b1 = sample_variance(z) / avar;
-    let n = y.len() as f64;
+    let n = n_samples as f64;
     let candidates: Vec<(i32, f64)> = (-2..=2).map(|mu| (mu, b1_theory(n, mu))).collect();
     let mu = nearest_on_log_scale(b1, &candidates);
     if mu > -2 {
         let noise = PowerLawNoise::from_alpha_clamped(-mu - 1);
         return Some((noise, NoiseIdMethod::B1Ratio));
     }
-    Some(phase_noise_by_rn(y, m))
+    Some(phase_noise())
 }
 
 /// R(n) = Mod AVAR / AVAR of the phase noises and white FM (NIST SP 1065 Table 4 formulas).

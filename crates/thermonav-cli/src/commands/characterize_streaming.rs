@@ -1,0 +1,103 @@
+//! `characterize --reading streaming`: one record read in pieces and characterised in memory
+//! independent of its length (see `thermonav::stoch::streaming`). A reader thread parses the
+//! next piece while the six channels of the previous one are processed in parallel.
+
+use crate::args::ReadingArg;
+use crate::failure::{Classify, Failure};
+use anyhow::anyhow;
+use std::path::Path;
+use std::sync::mpsc::sync_channel;
+use thermonav::imu::{ImuSeries, SampleKind};
+use thermonav::stoch::bank::TemperatureEntry;
+use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
+use thermonav_io::{ImuReader, ReadError, Strictness};
+
+/// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
+/// a full-precision 6-channel CSV, whose in-memory characterisation peaks near 2 GB).
+pub const AUTO_STREAMING_BYTES: u64 = 1 << 30;
+
+/// Rows per piece handed from the reader thread to the characterisation.
+const PIECE_ROWS: usize = 1 << 16;
+
+/// Whether `path` is streamed under `reading`.
+pub fn streams(path: &Path, reading: ReadingArg) -> bool {
+    match reading {
+        ReadingArg::InMemory => false,
+        ReadingArg::Streaming => true,
+        ReadingArg::Auto => std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_STREAMING_BYTES),
+    }
+}
+
+/// Characterises the record in `path` in pieces; `name` is its source label.
+pub fn characterize_streaming(
+    path: &Path,
+    given: Option<f64>,
+    settings: &CharacterizeSettings,
+    name: &str,
+) -> Result<TemperatureEntry, Failure> {
+    let reader = ImuReader::open(path, Strictness::Strict).data()?;
+    let kind = reader.kind();
+    let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
+    let fed: Result<(), Failure> = std::thread::scope(|scope| {
+        let (send, receive) = sync_channel::<Result<ImuSeries, ReadError>>(2);
+        scope.spawn(move || read_pieces(reader, kind, |piece| send.send(piece).is_ok()));
+        for piece in receive {
+            let piece = piece.data()?;
+            stream
+                .push(&piece)
+                .map_err(|e| anyhow!("{}: {e}", path.display()))
+                .data()?;
+        }
+        Ok(())
+    });
+    fed?;
+    if stream.samples() == 0 {
+        return Err(anyhow!(
+            "{}: the file has a header but no data rows",
+            path.display()
+        ))
+        .data();
+    }
+    let temperature_c = match given.or(stream.mean_temperature_c()) {
+        Some(t) => t,
+        None => {
+            return Err(Failure::Usage(anyhow!(
+                "{}: no temp_c column; give the temperature with --temperature-c",
+                path.display()
+            )));
+        }
+    };
+    let (entry, _) = stream
+        .finish(temperature_c, name)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()?;
+    Ok(entry)
+}
+
+/// Parses the file into pieces of [`PIECE_ROWS`] samples and hands each to `deliver`
+/// (stopping when it returns false); a read error is delivered as the last item.
+fn read_pieces(
+    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    kind: SampleKind,
+    mut deliver: impl FnMut(Result<ImuSeries, ReadError>) -> bool,
+) {
+    let mut piece = ImuSeries::new(kind);
+    for sample in reader {
+        match sample {
+            Ok(sample) => piece.push(&sample),
+            Err(e) => {
+                deliver(Err(e));
+                return;
+            }
+        }
+        if piece.len() == PIECE_ROWS
+            && !deliver(Ok(std::mem::replace(&mut piece, ImuSeries::new(kind))))
+        {
+            return;
+        }
+    }
+    if !piece.is_empty() {
+        deliver(Ok(piece));
+    }
+}
