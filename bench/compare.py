@@ -117,12 +117,17 @@ def kaiser_taps_odd(fs, cutoff, width, ripple):
 def ar_based_numpy(x, taps, factor, dt_s):
     """The paper's pipeline in NumPy/SciPy: odd extension by 3 N at each end (SciPy's filtfilt
     padding), one FIR pass read (N-1)/2 samples later (zero phase), every factor-th sample,
-    statsmodels Burg AR(1), Tc = -dt/ln c1, sigma^2 = var(w)/(1 - c1^2)."""
+    statsmodels Burg AR(1), Tc = -dt/ln c1, sigma^2 = var(w)/(1 - c1^2). Like thermonav, only
+    the kept samples are filtered: scipy.signal.upfirdn(taps, x, down=factor) evaluates the full
+    convolution at multiples of factor, so the input is first trimmed by (pad + delay) mod factor
+    samples to put the wanted samples on that grid."""
     from statsmodels.regression.linear_model import burg
     n, pad, delay = len(x), 3 * len(taps), (len(taps) - 1) // 2
     extended = np.concatenate((2 * x[0] - x[pad:0:-1], x, 2 * x[-1] - x[-2:-pad - 2:-1]))
-    filtered = signal.oaconvolve(extended, taps, mode="full")[pad + delay:pad + delay + n]
-    rho, sigma2 = burg(filtered[::factor], 1)
+    skip = (pad + delay) % factor
+    first, kept = (pad + delay - skip) // factor, -(-n // factor)
+    conditioned = signal.upfirdn(taps, extended[skip:], up=1, down=factor)[first:first + kept]
+    rho, sigma2 = burg(conditioned, 1)
     c1 = float(rho[0])
     return c1, -dt_s / np.log(c1), float(np.sqrt(sigma2 / (1 - c1 * c1)))
 

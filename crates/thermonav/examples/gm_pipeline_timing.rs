@@ -10,9 +10,9 @@
 
 use rayon::prelude::*;
 use std::time::Instant;
-use thermonav::signal::decimate::{decimate, decimation_factor};
+use thermonav::signal::decimate::decimation_factor;
 use thermonav::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
-use thermonav::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
+use thermonav::signal::streaming_decimate::filter_and_decimate;
 use thermonav::stoch::ar::{ArMethod, fit_ar};
 use thermonav::stoch::gauss_markov::{Ar1Estimate, GaussMarkovOutcome, ar_based};
 
@@ -86,9 +86,7 @@ fn ar_based_fit(
     factor: usize,
     rate_hz: f64,
 ) -> Result<ChannelFit, String> {
-    let filtered =
-        filter_zero_phase(filter, x, ZeroPhaseMode::DelayCompensated).map_err(|e| e.to_string())?;
-    let conditioned = decimate(&filtered, factor);
+    let conditioned = filter_and_decimate(filter, x, factor).map_err(|e| e.to_string())?;
     let ar1 = fit_ar(&conditioned, 1, ArMethod::Burg).map_err(|e| e.to_string())?;
     let estimate = Ar1Estimate {
         c1: ar1.coefficients[0],

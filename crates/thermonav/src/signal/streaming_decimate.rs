@@ -142,6 +142,24 @@ impl StreamingDecimator {
     }
 }
 
+/// The delay-compensated low-pass output of `filter` on the whole record `x`, keeping every
+/// `factor`-th sample: equal to `decimate(&filter_zero_phase(filter, x, DelayCompensated)?,
+/// factor)` to rounding, at taps/factor multiplications per input sample instead of a full
+/// FFT convolution, because only the kept outputs are computed.
+///
+/// # Errors
+/// As [`StreamingDecimator::new`], [`StreamingDecimator::push`] and
+/// [`StreamingDecimator::finish`].
+pub fn filter_and_decimate(
+    filter: &FirFilter,
+    x: &[f64],
+    factor: usize,
+) -> Result<Vec<f64>, SignalError> {
+    let mut decimator = StreamingDecimator::new(filter, factor)?;
+    decimator.push(x)?;
+    decimator.finish()
+}
+
 /// Σ a_k b_k over equal lengths, in [`LANES`] partial sums.
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut lanes = [0.0; LANES];

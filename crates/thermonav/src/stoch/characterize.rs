@@ -5,7 +5,8 @@
 //!    white-noise density), its confidence limits and IEEE 952 terms.
 //! 2. The paper's conditioning: Kaiser low-pass at `cutoff_hz` (zero-phase), then decimation to
 //!    `modelling_rate_hz`, a rate consistent with the cut-off, so the AR fit does not measure
-//!    the filter's own correlation.
+//!    the filter's own correlation. Only the kept samples are filtered
+//!    ([`filter_and_decimate`]), taps/factor multiplications per input sample.
 //! 3. On the conditioned series: the chosen AR model, the AR(1) fit and its AR-based
 //!    Gauss-Markov model (the paper's), and the classical fit to the autocorrelation.
 //! 4. On block means of the raw record with their actual times: the exact Gauss-Markov +
@@ -30,10 +31,10 @@ use super::gauss_markov::{
 use super::noise_terms::fit_noise_terms;
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use crate::imu::{Channel, ImuSeries, SampleKind};
-use crate::signal::decimate::{decimate, decimation_factor};
+use crate::signal::decimate::decimation_factor;
 use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
+use crate::signal::streaming_decimate::filter_and_decimate;
 use crate::signal::timestamps::interval_stats;
-use crate::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -342,11 +343,8 @@ impl Context<'_> {
         let allan = overlapping_adev(values, c.rate_hz, &self.settings.allan_grid)
             .map_err(|e| fail(e.to_string()))?;
         let limits = confidence_intervals(values, &allan, self.settings.ci_level);
-        let conditioned = decimate(
-            &filter_zero_phase(&c.filter, values, ZeroPhaseMode::DelayCompensated)
-                .map_err(|e| fail(e.to_string()))?,
-            c.factor,
-        );
+        let conditioned =
+            filter_and_decimate(&c.filter, values, c.factor).map_err(|e| fail(e.to_string()))?;
         let per_block = c.samples_per_ml_block(self.settings);
         let inputs = ChannelInputs {
             allan,
