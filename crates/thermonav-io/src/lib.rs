@@ -32,7 +32,8 @@
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
 //! up. Lines of these formats are numbered like the canonical CSVs' in errors.
 //!
-//! ## Sensor profiles
+//! ## Model banks and sensor profiles
+//! [`bank`]: the model bank JSON written by `thermonav characterize`, validated on reading.
 //! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
 //!
 //! ## Streaming
@@ -44,6 +45,7 @@
 //! file renamed into place on success.
 
 pub mod atomic;
+pub mod bank;
 pub mod error;
 mod fixed;
 pub mod gnss;
