@@ -36,6 +36,10 @@
 //! [`bank`]: the model bank JSON written by `thermonav characterize`, validated on reading.
 //! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
 //!
+//! ## Fuzzing
+//! [`parsers::Parser`] names every reader above and parses from bytes: the entry point of the
+//! fuzz targets in `fuzz/` and of the test that replays their corpus.
+//!
 //! ## Streaming
 //! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
 //! holding a single line buffer; `read_*` functions collect whole files.
@@ -56,6 +60,7 @@ mod layout;
 mod lines;
 pub mod motion;
 pub mod nmea;
+pub mod parsers;
 pub mod profile;
 pub mod raw_imu;
 mod rows;
