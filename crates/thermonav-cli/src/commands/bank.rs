@@ -3,8 +3,8 @@
 use super::characterize::print_bank_table;
 use crate::args::{BankAction, BankArgs, BankShowArgs, GmSourceArg, SelectArg};
 use crate::failure::{Classify, Failure};
-use anyhow::anyhow;
 use crate::report::print_json;
+use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
