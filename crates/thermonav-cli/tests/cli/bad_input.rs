@@ -683,3 +683,63 @@ fn gaps_are_reported_with_their_line_not_refused() {
         "{stderr}"
     );
 }
+
+#[test]
+fn plot_inputs_and_motion_files_refuse_spoiled_files() {
+    let fixtures = fixtures();
+    let name_at =
+        |name: &str, line: usize, what: &str| vec![format!("{name}:{line}:"), what.into()];
+    for kind in ["allan", "outage-errors", "rms-temperature"] {
+        let command: &[&str] = &["plot", kind, "@", "--out", "@out.svg"];
+        for spoiled in [
+            Spoiled::new("empty", "", &name_at("in.json", 1, "not JSON")),
+            Spoiled::new(
+                "cut",
+                "{\"channels\": [1,\n2",
+                &name_at("in.json", 2, "not JSON"),
+            ),
+        ] {
+            refuses(fixtures.path(), command, "in.json", &spoiled);
+        }
+    }
+    let innovations: &[&str] = &["plot", "innovations", "@", "--out", "@out.svg"];
+    let header =
+        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
+    let row = "1.000000000,position,m,0.1,0.2,0.3,1,1,1,0.14,1,0";
+    for spoiled in [
+        Spoiled::new(
+            "empty",
+            "",
+            &name_at("in.csv", 1, "expected the innovations header"),
+        ),
+        Spoiled::new("binary", GARBAGE, &name_at("in.csv", 1, "expected")),
+        Spoiled::new(
+            "still being written",
+            format!("{header}\n{row}\n1.1,posi"),
+            &name_at("in.csv", 3, "expected"),
+        ),
+        Spoiled::new(
+            "NaN",
+            format!("{header}\n{}\n", row.replace("0.2", "NaN")),
+            &name_at("in.csv", 2, "finite"),
+        ),
+        Spoiled::new(
+            "no accepted update",
+            format!("{header}\n{}\n", row.replace(",1,0", ",0,0")),
+            &["in.csv".into(), "no accepted update".into()],
+        ),
+    ] {
+        refuses(fixtures.path(), innovations, "in.csv", &spoiled);
+    }
+    let motion: &[&str] = &["simulate", "vessel", "--motion", "@", "--out", "@out"];
+    for spoiled in [
+        Spoiled::new("empty", "", &["motion.toml".into(), "missing field".into()]),
+        Spoiled::new(
+            "cut",
+            "start = {lat_deg = 1\n",
+            &["motion.toml".into(), "line 1".into()],
+        ),
+    ] {
+        refuses(fixtures.path(), motion, "motion.toml", &spoiled);
+    }
+}
