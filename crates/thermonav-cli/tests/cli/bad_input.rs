@@ -351,17 +351,17 @@ fn fixtures() -> tempfile::TempDir {
     dir
 }
 
-/// Runs `command` with `@` replaced by the spoiled file's path (in a fresh folder, as `name`),
+/// Runs `command` (words) with `@` replaced by the spoiled file's path (in a fresh folder, as `name`),
 /// `@dir` by that folder, `@out*` by outputs in it and `%x` by the fixture `x`; checks the
 /// failure's shape.
-fn refuses(fixtures: &Path, command: &[&str], name: &str, spoiled: &Spoiled) {
+fn refuses(fixtures: &Path, command: &str, name: &str, spoiled: &Spoiled) {
     let dir = tempfile::tempdir().unwrap();
     let input = write_file(dir.path(), name, "");
     std::fs::write(&input, &spoiled.bytes).unwrap();
     let before = files_in(dir.path());
     let args: Vec<String> = command
-        .iter()
-        .map(|a| match *a {
+        .split_whitespace()
+        .map(|a| match a {
             "@" => arg(&input).to_string(),
             "@dir" => arg(dir.path()).to_string(),
             a if a.starts_with("@out") => arg(&dir.path().join(&a[1..])).to_string(),
@@ -371,7 +371,7 @@ fn refuses(fixtures: &Path, command: &[&str], name: &str, spoiled: &Spoiled) {
         .collect();
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let (status, stdout, stderr) = outcome(&thermonav(&args));
-    let case = format!("{} on {name} ({}): {stderr}", command[0], spoiled.what);
+    let case = format!("{command} on {name} ({}): {stderr}", spoiled.what);
     assert_eq!(status, 1, "{case}");
     assert!(stdout.is_empty(), "{case}\nstdout: {stdout}");
     assert!(!stderr.contains("panicked"), "{case}");
@@ -385,36 +385,14 @@ fn refuses(fixtures: &Path, command: &[&str], name: &str, spoiled: &Spoiled) {
 }
 
 /// Every subcommand that reads a canonical IMU CSV (strictly), with `@` for it.
-const IMU_COMMANDS: &[&[&str]] = &[
-    &["filter", "@", "--cutoff-hz", "5", "--out", "@out.csv"],
-    &["allan", "@", "--json"],
-    &["ar", "@", "--method", "burg", "--order", "2", "--json"],
-    &["characterize", "@", "--out", "@out.json", "--json"],
-    &["plot", "autocorrelation", "@", "--out", "@out.svg"],
-    &[
-        "integrate",
-        "--imu",
-        "@",
-        "--gnss",
-        "%gnss.csv",
-        "--profile",
-        "%profile.toml",
-        "--out",
-        "@out.csv",
-    ],
-    &[
-        "evaluate",
-        "--imu",
-        "@",
-        "--gnss",
-        "%gnss.csv",
-        "--reference",
-        "%reference.csv",
-        "--bank",
-        "%bank.json",
-        "--out",
-        "@out",
-    ],
+const IMU_COMMANDS: &[&str] = &[
+    "filter @ --cutoff-hz 5 --out @out.csv",
+    "allan @ --json",
+    "ar @ --method burg --order 2 --json",
+    "characterize @ --out @out.json --json",
+    "plot autocorrelation @ --out @out.svg",
+    "integrate --imu @ --gnss %gnss.csv --profile %profile.toml --out @out.csv",
+    "evaluate --imu @ --gnss %gnss.csv --reference %reference.csv --bank %bank.json --out @out",
 ];
 
 #[test]
@@ -432,74 +410,23 @@ fn every_imu_reader_refuses_every_spoiled_imu_csv() {
         }
     }
     for spoiled in spoiled_csvs("imu.csv", IMU_T_HEADER, &static_imu_rows(600, 1.0), true) {
-        refuses(
-            fixtures.path(),
-            &["inspect", "@", "--json"],
-            "imu.csv",
-            &spoiled,
-        );
+        refuses(fixtures.path(), "inspect @ --json", "imu.csv", &spoiled);
     }
 }
 
 #[test]
 fn every_gnss_and_reference_reader_refuses_spoiled_files() {
     let fixtures = fixtures();
-    let gnss_commands: &[&[&str]] = &[
-        &[
-            "integrate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "@",
-            "--profile",
-            "%profile.toml",
-            "--out",
-            "@out.csv",
-        ],
-        &[
-            "evaluate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "@",
-            "--reference",
-            "%reference.csv",
-            "--bank",
-            "%bank.json",
-            "--out",
-            "@out",
-        ],
+    let gnss_commands: &[&str] = &[
+        "integrate --imu %imu.csv --gnss @ --profile %profile.toml --out @out.csv",
+        "evaluate --imu %imu.csv --gnss @ --reference %reference.csv --bank %bank.json --out @out",
     ];
-    let reference_commands: &[&[&str]] = &[
-        &[
-            "evaluate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "%gnss.csv",
-            "--reference",
-            "@",
-            "--bank",
-            "%bank.json",
-            "--out",
-            "@out",
-        ],
-        &[
-            "integrate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "%gnss.csv",
-            "--profile",
-            "%profile.toml",
-            "--initial-from",
-            "@",
-            "--out",
-            "@out.csv",
-        ],
-        &["plot", "trajectory", "@", "--out", "@out.svg"],
+    let reference_commands: &[&str] = &[
+        "evaluate --imu %imu.csv --gnss %gnss.csv --reference @ --bank %bank.json --out @out",
+        "integrate --imu %imu.csv --gnss %gnss.csv --profile %profile.toml --initial-from @ --out @out.csv",
+        "plot trajectory @ --out @out.svg",
     ];
-    let inspect: &[&str] = &["inspect", "@", "--json"];
+    let inspect = "inspect @ --json";
     for (name, header, rows, commands) in [
         ("gnss.csv", GNSS_HEADER, gnss_rows(), gnss_commands),
         (
@@ -580,36 +507,12 @@ fn spoiled_profiles(text: &str) -> Vec<Spoiled> {
 #[test]
 fn every_bank_and_profile_reader_refuses_spoiled_files() {
     let fixtures = fixtures();
-    let bank_commands: &[&[&str]] = &[
-        &["bank", "show", "@", "--json"],
-        &[
-            "integrate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "%gnss.csv",
-            "--bank",
-            "@",
-            "--model-temperature-c",
-            "20",
-            "--out",
-            "@out.csv",
-        ],
-        &[
-            "evaluate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "%gnss.csv",
-            "--reference",
-            "%reference.csv",
-            "--bank",
-            "@",
-            "--out",
-            "@out",
-        ],
-        &["plot", "correlation-time", "@", "--out", "@out.svg"],
-        &["report", "@dir"],
+    let bank_commands: &[&str] = &[
+        "bank show @ --json",
+        "integrate --imu %imu.csv --gnss %gnss.csv --bank @ --model-temperature-c 20 --out @out.csv",
+        "evaluate --imu %imu.csv --gnss %gnss.csv --reference %reference.csv --bank @ --out @out",
+        "plot correlation-time @ --out @out.svg",
+        "report @dir",
     ];
     let bank = std::fs::read_to_string(fixtures.path().join("bank.json")).unwrap();
     for command in bank_commands {
@@ -617,38 +520,10 @@ fn every_bank_and_profile_reader_refuses_spoiled_files() {
             refuses(fixtures.path(), command, "bank.json", spoiled);
         }
     }
-    let profile_commands: &[&[&str]] = &[
-        &[
-            "simulate",
-            "chamber",
-            "--profile",
-            "@",
-            "--duration-s",
-            "10",
-            "--out",
-            "@out",
-        ],
-        &[
-            "simulate",
-            "vessel",
-            "--profile",
-            "@",
-            "--duration-s",
-            "10",
-            "--out",
-            "@out",
-        ],
-        &[
-            "integrate",
-            "--imu",
-            "%imu.csv",
-            "--gnss",
-            "%gnss.csv",
-            "--profile",
-            "@",
-            "--out",
-            "@out.csv",
-        ],
+    let profile_commands: &[&str] = &[
+        "simulate chamber --profile @ --duration-s 10 --out @out",
+        "simulate vessel --profile @ --duration-s 10 --out @out",
+        "integrate --imu %imu.csv --gnss %gnss.csv --profile @ --out @out.csv",
     ];
     let profile = std::fs::read_to_string(fixtures.path().join("profile.toml")).unwrap();
     for command in profile_commands {
@@ -690,7 +565,7 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
     let name_at =
         |name: &str, line: usize, what: &str| vec![format!("{name}:{line}:"), what.into()];
     for kind in ["allan", "outage-errors", "rms-temperature"] {
-        let command: &[&str] = &["plot", kind, "@", "--out", "@out.svg"];
+        let command = format!("plot {kind} @ --out @out.svg");
         for spoiled in [
             Spoiled::new("empty", "", &name_at("in.json", 1, "not JSON")),
             Spoiled::new(
@@ -699,10 +574,10 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
                 &name_at("in.json", 2, "not JSON"),
             ),
         ] {
-            refuses(fixtures.path(), command, "in.json", &spoiled);
+            refuses(fixtures.path(), &command, "in.json", &spoiled);
         }
     }
-    let innovations: &[&str] = &["plot", "innovations", "@", "--out", "@out.svg"];
+    let innovations = "plot innovations @ --out @out.svg";
     let header =
         "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
     let row = "1.000000000,position,m,0.1,0.2,0.3,1,1,1,0.14,1,0";
@@ -731,7 +606,7 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
     ] {
         refuses(fixtures.path(), innovations, "in.csv", &spoiled);
     }
-    let motion: &[&str] = &["simulate", "vessel", "--motion", "@", "--out", "@out"];
+    let motion = "simulate vessel --motion @ --out @out";
     for spoiled in [
         Spoiled::new("empty", "", &["motion.toml".into(), "missing field".into()]),
         Spoiled::new(
