@@ -60,7 +60,9 @@ pub enum ReadErrorKind {
     #[error("header only, no data rows")]
     HeaderOnly,
     /// The header line is not UTF-8 text.
-    #[error("header line is not valid UTF-8")]
+    #[error(
+        "header line is not valid UTF-8 text (expected comma-separated column names such as t_s)"
+    )]
     HeaderNotUtf8,
     /// A line has no end within the limit (not a text file, or a broken one).
     #[error("line longer than {limit_bytes} bytes")]
@@ -214,6 +216,19 @@ pub enum ReadErrorKind {
         offset: u64,
         /// What the format has there.
         expected: &'static str,
+    },
+    /// Accelerations whose mean magnitude is near 1 where the header declares m/s² (or m/s
+    /// increments): values in g under an SI column name, rejected under strict reading.
+    #[error(
+        "mean |a| over the {samples} samples is {mean_m_s2:.3} m/s^2, near 1: the accelerations \
+         look like they are in g (expected m/s^2, about 9.81 at rest; name the columns \
+         ax_g,ay_g,az_g for values in g)"
+    )]
+    AccelerationInG {
+        /// Samples averaged.
+        samples: usize,
+        /// Mean magnitude of the specific force, in the unit the header declares.
+        mean_m_s2: f64,
     },
     /// The input, taken as a whole, cannot be used; the text says why and what is needed.
     #[error("{0}")]

@@ -198,7 +198,9 @@ pub fn read_imu(
     input: impl Into<String>,
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
-    collect_series(ImuReader::new(reader, input, strictness)?, None)
+    let input = input.into();
+    let series = collect_series(ImuReader::new(reader, input.clone(), strictness)?, None)?;
+    check_gravity_magnitude(series, &input, strictness)
 }
 
 /// Reads a whole IMU CSV file into a series.
@@ -214,15 +216,68 @@ pub fn read_imu_file(
     let split = file_bytes
         .filter(|&b| b >= PARALLEL_MIN_BYTES)
         .and_then(|b| split_point(path, b));
-    if let Some((header, boundary, bytes)) = split {
-        if let Some(series) = read_halves(path, strictness, &header, boundary, bytes) {
-            return Ok(series);
-        }
+    let halves = split.and_then(|(header, boundary, bytes)| {
+        read_halves(path, strictness, &header, boundary, bytes)
+    });
+    let series = match halves {
+        Some(series) => series,
+        // Small files, and any file on which a half failed: one pass, which also gives the
+        // exact error (line numbers counted from the top).
+        None => collect_series(ImuReader::open(path, strictness)?, file_bytes)?,
+    };
+    check_gravity_magnitude(series, &path.display().to_string(), strictness)
+}
+
+/// Mean |a| (m/s²) below which, down to [`G_UNITS_LOW_M_S2`], a record in m/s² is taken for
+/// one in g: a static or driving record in g averages 1.00-1.05, one in m/s² 9.8-10.3, and only
+/// free fall gives a mean magnitude near 1 m/s². The band stays narrow (±10 %) so that
+/// synthetic records of unit-size values (|a| = √3 or 1.2) still read.
+const G_UNITS_HIGH_M_S2: f64 = 1.1;
+/// Lower end of the band of [`G_UNITS_HIGH_M_S2`].
+const G_UNITS_LOW_M_S2: f64 = 0.9;
+
+/// The series, or (strict reading) [`ReadErrorKind::AccelerationInG`] at the header line when
+/// the mean specific-force magnitude is near 1: values in g under an m/s² column name.
+fn check_gravity_magnitude(
+    series: ImuSeries,
+    input: &str,
+    strictness: Strictness,
+) -> Result<ImuSeries, ReadError> {
+    let mean = mean_specific_force_m_s2(&series);
+    let in_g = (G_UNITS_LOW_M_S2..=G_UNITS_HIGH_M_S2).contains(&mean);
+    match strictness == Strictness::Strict && in_g {
+        false => Ok(series),
+        true => Err(ReadError::new(
+            input,
+            Some(1),
+            ReadErrorKind::AccelerationInG {
+                samples: series.len(),
+                mean_m_s2: mean,
+            },
+        )),
     }
-    // Small files, and any file on which a half failed: one pass, which also gives the exact
-    // error (line numbers counted from the top).
-    let reader = ImuReader::open(path, strictness)?;
-    collect_series(reader, file_bytes)
+}
+
+/// Mean magnitude of the specific force over the record, m/s² (increments divided by the
+/// record's mean interval); NaN for fewer than two samples of increments or none of rates.
+fn mean_specific_force_m_s2(series: &ImuSeries) -> f64 {
+    let [_, _, _, ax, ay, az] = &series.channels;
+    let norms = ax
+        .iter()
+        .zip(ay)
+        .zip(az)
+        .map(|((x, y), z)| x.hypot(*y).hypot(*z));
+    let mean_norm = norms.sum::<f64>() / series.len() as f64;
+    match series.kind {
+        Some(SampleKind::Increments) => {
+            let span_s = match (series.time.first(), series.time.last()) {
+                (Some(&first), Some(&last)) => last.since(first).as_seconds(),
+                _ => f64::NAN,
+            };
+            mean_norm * (series.len() - 1) as f64 / span_s
+        }
+        _ => mean_norm,
+    }
 }
 
 /// Files at least this large are parsed as two halves on two threads.

@@ -34,11 +34,16 @@
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
 //! up. Lines of these formats are numbered like the canonical CSVs' in errors.
 //!
-//! ## Sensor profiles
+//! ## Model banks and sensor profiles
+//! [`bank`]: the model bank JSON written by `thermonav characterize`, validated on reading.
 //! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
 //!
 //! ## Production lots
 //! [`lot`]: lot manifests (TOML): the units of a production lot and their chamber records.
+//!
+//! ## Fuzzing
+//! [`parsers::Parser`] names every reader above and parses from bytes: the entry point of the
+//! fuzz targets in `fuzz/` and of the test that replays their corpus.
 //!
 //! ## Streaming
 //! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
@@ -49,6 +54,7 @@
 //! file renamed into place on success.
 
 pub mod atomic;
+pub mod bank;
 pub mod error;
 mod fixed;
 pub mod gnss;
@@ -60,6 +66,7 @@ mod lines;
 pub mod lot;
 pub mod motion;
 pub mod nmea;
+pub mod parsers;
 pub mod profile;
 pub mod raw_imu;
 mod rows;

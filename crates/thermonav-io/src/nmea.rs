@@ -185,8 +185,20 @@ fn decode_sentence(
         return Ok(());
     }
     match kind {
-        b"GGA" => add_gga(fields, epoch_at(epochs, time_of_day(field(1))?), strictness),
-        b"RMC" => add_rmc(fields, epoch_at(epochs, time_of_day(field(1))?), strictness),
+        b"GGA" => {
+            let time = time_of_day(field(1))?;
+            if strictness == Strictness::Strict {
+                check_epoch_order(epochs, time, field(1), true)?;
+            }
+            add_gga(fields, epoch_at(epochs, time), strictness)
+        }
+        b"RMC" => {
+            let time = time_of_day(field(1))?;
+            if strictness == Strictness::Strict {
+                check_epoch_order(epochs, time, field(1), false)?;
+            }
+            add_rmc(fields, epoch_at(epochs, time), strictness)
+        }
         b"VTG" => add_vtg(fields, epochs.last_mut(), strictness),
         b"HDT" | b"THS" => {
             let valid = kind == b"HDT" || field(2) != b"V";
@@ -265,6 +277,37 @@ fn epoch_at(epochs: &mut Vec<Epoch>, time_of_day: i64) -> &mut Epoch {
     }
     let last = epochs.len() - 1;
     &mut epochs[last]
+}
+
+/// Times of day further back than this from the previous epoch are a day rollover (a log
+/// running across midnight UTC); nearer ones are times going backwards.
+const ROLLOVER_MIN_BACK_NS: i64 = 12 * 3600 * NANOS_PER_SECOND;
+
+/// Strict reading: refuses a GGA/RMC time before the previous epoch's (unless it crosses
+/// midnight) and, for GGA, a second position fix at the same time (a duplicate epoch).
+fn check_epoch_order(
+    epochs: &[Epoch],
+    time_of_day: i64,
+    field: &[u8],
+    gga: bool,
+) -> Result<(), ReadErrorKind> {
+    let Some(last) = epochs.last() else {
+        return Ok(());
+    };
+    let back_ns = last.time_of_day - time_of_day;
+    let expected = match back_ns {
+        0 if gga && last.position.is_some() => "one GGA fix per epoch (this time already has one)",
+        1..ROLLOVER_MIN_BACK_NS => {
+            "a time after the previous epoch's (a time of day goes back only across midnight)"
+        }
+        _ => return Ok(()),
+    };
+    Err(ReadErrorKind::BadField {
+        index: 2,
+        column: "UTC time",
+        expected,
+        found: shown(field),
+    })
 }
 
 /// Field `index` as a number, or `None` when empty.

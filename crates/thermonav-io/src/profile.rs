@@ -304,17 +304,37 @@ pub fn parse_profile(text: &str, path: &str) -> Result<SensorProfile, ProfileFil
     Ok(profile)
 }
 
+/// Parses a profile from the bytes of a file named `path`, which must be UTF-8 text.
+///
+/// # Errors
+/// As [`parse_profile`], plus [`ProfileFileError::Parse`] with the line of the first byte that
+/// is not UTF-8.
+pub fn parse_profile_bytes(bytes: &[u8], path: &str) -> Result<SensorProfile, ProfileFileError> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        ProfileFileError::Parse {
+            path: path.to_string(),
+            message: format!("line {line}: not UTF-8 text (expected a TOML sensor profile)"),
+        }
+    })?;
+    parse_profile(text, path)
+}
+
 /// Reads a profile file.
 ///
 /// # Errors
-/// As [`parse_profile`], plus an unreadable file.
+/// As [`parse_profile_bytes`], plus an unreadable file.
 pub fn read_profile(path: &Path) -> Result<SensorProfile, ProfileFileError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| ProfileFileError::Read {
+    let bytes = std::fs::read(path).map_err(|source| ProfileFileError::Read {
         path: name.clone(),
         source,
     })?;
-    parse_profile(&text, &name)
+    parse_profile_bytes(&bytes, &name)
 }
 
 /// A profile as TOML text in the file schema (edge units).

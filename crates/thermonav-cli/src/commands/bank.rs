@@ -20,16 +20,7 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
 
 /// Reads and validates a bank file.
 pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
-        .data()?;
-    let bank: ModelBank = serde_json::from_str(&text)
-        .map_err(|e| anyhow!("{}:{}: not a model bank: {e}", path.display(), e.line()))
-        .data()?;
-    bank.validate()
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()?;
-    Ok(bank)
+    thermonav_io::bank::read_bank_file(path).data()
 }
 
 /// The library source of a `--model` choice.

@@ -131,10 +131,10 @@ struct AllanJson {
 }
 
 fn read_json(path: &Path) -> Result<serde_json::Value, Failure> {
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
         .data()?;
-    serde_json::from_str(&text)
+    serde_json::from_slice(&bytes)
         .map_err(|e| anyhow!("{}:{}: not JSON: {e}", path.display(), e.line()))
         .data()
 }

@@ -278,15 +278,22 @@ fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
 /// Position (north, east, down) and heading innovations of an `integrate` innovations file,
 /// accepted updates only, times from the first update.
 pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
-    let csv = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
         .data()?;
-    let rows: Vec<Vec<&str>> = csv
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .filter(|f: &Vec<&str>| f.len() == 12 && f[10] == "1")
+    // Bytes that are not UTF-8 become U+FFFD and fail the check of their line.
+    let csv = String::from_utf8_lossy(&bytes);
+    let rows: Vec<Vec<&str>> = checked_innovation_rows(path, &csv)?
+        .into_iter()
+        .filter(|f| f.len() == 12 && f[10] == "1")
         .collect();
+    if rows.is_empty() {
+        return Err(anyhow!(
+            "{}: no accepted update (expected rows with accepted = 1)",
+            path.display()
+        ))
+        .data();
+    }
     let t0 = rows
         .first()
         .and_then(|r| r[0].parse::<f64>().ok())
@@ -316,6 +323,48 @@ pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
     .into_iter()
     .filter(|c| !c.time_s.is_empty())
     .collect())
+}
+
+/// Header of the innovations CSV that `integrate` writes.
+const INNOVATIONS_HEADER: &str =
+    "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
+
+/// The rows of an innovations CSV split into fields, each checked: the header, then `t_s`,
+/// kind, unit, finite numbers, and 0 or 1 for `accepted` and `forced`; the error names the line.
+fn checked_innovation_rows<'a>(path: &Path, csv: &'a str) -> Result<Vec<Vec<&'a str>>, Failure> {
+    let mut lines = csv.lines();
+    if lines.next() != Some(INNOVATIONS_HEADER) {
+        return Err(anyhow!(
+            "{}:1: expected the innovations header {INNOVATIONS_HEADER}",
+            path.display()
+        ))
+        .data();
+    }
+    lines
+        .enumerate()
+        .map(|(k, line)| {
+            let fields: Vec<&str> = line.split(',').collect();
+            match is_innovation_row(&fields) {
+                true => Ok(fields),
+                false => Err(anyhow!(
+                    "{}:{}: expected {INNOVATIONS_HEADER} (finite numbers, accepted and forced 0 or 1)",
+                    path.display(),
+                    k + 2
+                ))
+                .data(),
+            }
+        })
+        .collect()
+}
+
+/// Whether `fields` is one innovations row: time, kind, unit, numbers, then two flags.
+fn is_innovation_row(fields: &[&str]) -> bool {
+    let finite = |f: &&str| f.parse::<f64>().is_ok_and(f64::is_finite);
+    let flag = |f: &&str| matches!(*f, "0" | "1");
+    fields.len() >= 6
+        && finite(&fields[0])
+        && fields[3..fields.len() - 2].iter().all(finite)
+        && fields[fields.len() - 2..].iter().all(flag)
 }
 
 /// The first outage's errors of every model of `filter`, from their CSVs.

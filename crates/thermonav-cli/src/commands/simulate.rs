@@ -171,7 +171,7 @@ pub struct VesselFiles {
 pub fn vessel_run(args: &VesselArgs) -> Result<(SensorProfile, VesselRun), Failure> {
     let profile = load_profile(args.profile.as_deref())?;
     let motion = match &args.motion {
-        Some(path) => read_motion(path).usage()?,
+        Some(path) => read_motion(path).data()?,
         None if args.duration_s.is_finite() && args.duration_s >= 60.0 => {
             harbour_survey(args.duration_s)
         }

@@ -171,3 +171,450 @@ fn unknown_flag_is_a_usage_error() {
     assert_eq!(outcome(&thermonav(&["inspect", "--frobnicate"])).0, 2);
     assert_eq!(outcome(&thermonav(&["nonsense"])).0, 2);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The suite: every reader's file spoiled in every way that applies, fed to every subcommand
+// that reads it. Each run must exit 1, print nothing on stdout, name the file and the line (or
+// say what the whole file lacks) and what was expected, never panic, and leave the folder as it
+// was: no output, no temporary file.
+
+/// Binary garbage with a few newlines.
+const GARBAGE: &[u8] = b"\x00\x01\x02\xff\xfe\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xc3\x28\n";
+
+/// A spoiled input: what was done, its bytes, and what the message must contain.
+struct Spoiled {
+    what: &'static str,
+    bytes: Vec<u8>,
+    needles: Vec<String>,
+}
+
+impl Spoiled {
+    fn new(what: &'static str, bytes: impl Into<Vec<u8>>, needles: &[String]) -> Self {
+        Self {
+            what,
+            bytes: bytes.into(),
+            needles: needles.to_vec(),
+        }
+    }
+}
+
+/// A header and its rows joined into a file.
+fn csv_text(header: &str, rows: &[String]) -> String {
+    rows.iter()
+        .fold(format!("{header}\n"), |text, row| text + row + "\n")
+}
+
+/// Rows `0..n` with row `a` moved after row `b` (`a < b`): time goes backwards at `b`'s line.
+fn moved_back(rows: &[String], a: usize, b: usize) -> Vec<String> {
+    let mut out = rows.to_vec();
+    let row = out.remove(a);
+    out.insert(b, row);
+    out
+}
+
+/// Rows with row `k` repeated right after itself.
+fn repeated(rows: &[String], k: usize) -> Vec<String> {
+    let mut out = rows.to_vec();
+    out.insert(k + 1, rows[k].clone());
+    out
+}
+
+/// Rows with the third field of row `k` replaced by `value`.
+fn with_value(rows: &[String], k: usize, value: &str) -> Vec<String> {
+    let mut out = rows.to_vec();
+    let mut fields: Vec<&str> = rows[k].split(',').collect();
+    fields[2] = value;
+    out[k] = fields.join(",");
+    out
+}
+
+/// Every way to spoil a canonical CSV named `name`. Header is line 1, row `k` line `k + 2`.
+/// `lenient` keeps only the spoils that a lenient reader (`inspect`) refuses too.
+fn spoiled_csvs(name: &str, header: &str, rows: &[String], lenient: bool) -> Vec<Spoiled> {
+    let at = |line: usize, what: &str| vec![format!("{name}:{line}:"), what.to_string()];
+    let n = rows.len();
+    let partial: String = rows[n - 1].chars().take(8).collect();
+    let mut cases = vec![
+        Spoiled::new(
+            "empty",
+            "",
+            &[format!("{name}: file is empty"), "expected".into()],
+        ),
+        Spoiled::new("binary", GARBAGE, &at(1, "expected")),
+        Spoiled::new(
+            "semicolons",
+            csv_text(header, rows).replace(',', ";"),
+            &at(1, "expected"),
+        ),
+        Spoiled::new(
+            "still being written",
+            csv_text(header, rows) + &partial,
+            &at(n + 2, "expected"),
+        ),
+    ];
+    if !lenient {
+        cases.extend([
+            Spoiled::new(
+                "backwards",
+                csv_text(header, &moved_back(rows, 4, 6)),
+                &at(8, "does not increase"),
+            ),
+            Spoiled::new(
+                "duplicate epoch",
+                csv_text(header, &repeated(rows, 5)),
+                &at(8, "does not increase"),
+            ),
+            Spoiled::new(
+                "NaN",
+                csv_text(header, &with_value(rows, 5, "NaN")),
+                &at(7, "not finite"),
+            ),
+            Spoiled::new(
+                "inf",
+                csv_text(header, &with_value(rows, 5, "-inf")),
+                &at(7, "not finite"),
+            ),
+        ]);
+    }
+    cases
+}
+
+/// A static IMU record in m/s² (`rows` at 100 Hz, small deterministic wiggles, 20 °C).
+fn static_imu_rows(rows: usize, scale: f64) -> Vec<String> {
+    (0..rows)
+        .map(|k| {
+            let t = k as f64 / 100.0;
+            let w = |c: f64| 1e-3 * (t * (7.0 + c)).sin();
+            let a = [w(1.0), w(2.0), -9.80665 + w(3.0)].map(|v| v * scale);
+            format!(
+                "{t:.9},{},{},{},{},{},{},20",
+                w(4.0),
+                w(5.0),
+                w(6.0),
+                a[0],
+                a[1],
+                a[2]
+            )
+        })
+        .collect()
+}
+
+const IMU_T_HEADER: &str = "t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c";
+const GNSS_HEADER: &str = "t_s,lat_deg,lon_deg,h_m";
+const REFERENCE_HEADER: &str =
+    "t_s,lat_deg,lon_deg,h_m,vn_m_s,ve_m_s,vd_m_s,roll_deg,pitch_deg,yaw_deg";
+
+fn gnss_rows() -> Vec<String> {
+    (0..=12)
+        .map(|k| {
+            format!(
+                "{:.9},48.1,11.5,{}",
+                k as f64 * 0.5,
+                500.0 + k as f64 * 0.01
+            )
+        })
+        .collect()
+}
+
+fn reference_rows() -> Vec<String> {
+    (0..=60)
+        .map(|k| format!("{:.9},48.1,11.5,500,0,0,0,0,0,{}", k as f64 * 0.1, k))
+        .collect()
+}
+
+/// Good inputs every case can lean on: `imu.csv`, `gnss.csv`, `reference.csv`, `bank.json`
+/// (characterised from the IMU) and `profile.toml` (the built-in one).
+fn fixtures() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let imu = write_file(
+        dir.path(),
+        "imu.csv",
+        &csv_text(IMU_T_HEADER, &static_imu_rows(6000, 1.0)),
+    );
+    write_file(dir.path(), "gnss.csv", &csv_text(GNSS_HEADER, &gnss_rows()));
+    write_file(
+        dir.path(),
+        "reference.csv",
+        &csv_text(REFERENCE_HEADER, &reference_rows()),
+    );
+    let bank = dir.path().join("bank.json");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "characterize",
+        arg(&imu),
+        "--out",
+        arg(&bank),
+    ]));
+    assert_eq!(status, 0, "{stderr}");
+    let profile = dir.path().join("profile.toml");
+    let (status, _, stderr) = outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)]));
+    assert_eq!(status, 0, "{stderr}");
+    dir
+}
+
+/// Runs `command` (words) with `@` replaced by the spoiled file's path (in a fresh folder, as `name`),
+/// `@dir` by that folder, `@out*` by outputs in it and `%x` by the fixture `x`; checks the
+/// failure's shape.
+fn refuses(fixtures: &Path, command: &str, name: &str, spoiled: &Spoiled) {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_file(dir.path(), name, "");
+    std::fs::write(&input, &spoiled.bytes).unwrap();
+    let before = files_in(dir.path());
+    let args: Vec<String> = command
+        .split_whitespace()
+        .map(|a| match a {
+            "@" => arg(&input).to_string(),
+            "@dir" => arg(dir.path()).to_string(),
+            a if a.starts_with("@out") => arg(&dir.path().join(&a[1..])).to_string(),
+            a if a.starts_with('%') => arg(&fixtures.join(&a[1..])).to_string(),
+            a => a.to_string(),
+        })
+        .collect();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (status, stdout, stderr) = outcome(&thermonav(&args));
+    let case = format!("{command} on {name} ({}): {stderr}", spoiled.what);
+    assert_eq!(status, 1, "{case}");
+    assert!(stdout.is_empty(), "{case}\nstdout: {stdout}");
+    assert!(!stderr.contains("panicked"), "{case}");
+    for needle in &spoiled.needles {
+        assert!(
+            stderr.contains(needle.as_str()),
+            "{case}\nmissing: {needle}"
+        );
+    }
+    assert_eq!(files_in(dir.path()), before, "{case}: outputs left behind");
+}
+
+/// Every subcommand that reads a canonical IMU CSV (strictly), with `@` for it.
+const IMU_COMMANDS: &[&str] = &[
+    "filter @ --cutoff-hz 5 --out @out.csv",
+    "allan @ --json",
+    "ar @ --method burg --order 2 --json",
+    "characterize @ --out @out.json --json",
+    "plot autocorrelation @ --out @out.svg",
+    "integrate --imu @ --gnss %gnss.csv --profile %profile.toml --out @out.csv",
+    "evaluate --imu @ --gnss %gnss.csv --reference %reference.csv --bank %bank.json --out @out",
+];
+
+#[test]
+fn every_imu_reader_refuses_every_spoiled_imu_csv() {
+    let fixtures = fixtures();
+    let mut cases = spoiled_csvs("imu.csv", IMU_T_HEADER, &static_imu_rows(600, 1.0), false);
+    cases.push(Spoiled::new(
+        "accelerations in g under m/s^2",
+        csv_text(IMU_T_HEADER, &static_imu_rows(600, 1.0 / 9.80665)),
+        &["imu.csv:1:".into(), "in g".into(), "expected m/s^2".into()],
+    ));
+    for command in IMU_COMMANDS {
+        for spoiled in &cases {
+            refuses(fixtures.path(), command, "imu.csv", spoiled);
+        }
+    }
+    for spoiled in spoiled_csvs("imu.csv", IMU_T_HEADER, &static_imu_rows(600, 1.0), true) {
+        refuses(fixtures.path(), "inspect @ --json", "imu.csv", &spoiled);
+    }
+}
+
+#[test]
+fn every_gnss_and_reference_reader_refuses_spoiled_files() {
+    let fixtures = fixtures();
+    let gnss_commands: &[&str] = &[
+        "integrate --imu %imu.csv --gnss @ --profile %profile.toml --out @out.csv",
+        "evaluate --imu %imu.csv --gnss @ --reference %reference.csv --bank %bank.json --out @out",
+    ];
+    let reference_commands: &[&str] = &[
+        "evaluate --imu %imu.csv --gnss %gnss.csv --reference @ --bank %bank.json --out @out",
+        "integrate --imu %imu.csv --gnss %gnss.csv --profile %profile.toml --initial-from @ --out @out.csv",
+        "plot trajectory @ --out @out.svg",
+    ];
+    let inspect = "inspect @ --json";
+    for (name, header, rows, commands) in [
+        ("gnss.csv", GNSS_HEADER, gnss_rows(), gnss_commands),
+        (
+            "reference.csv",
+            REFERENCE_HEADER,
+            reference_rows(),
+            reference_commands,
+        ),
+    ] {
+        for command in commands {
+            for spoiled in &spoiled_csvs(name, header, &rows, false) {
+                refuses(fixtures.path(), command, name, spoiled);
+            }
+        }
+        for spoiled in &spoiled_csvs(name, header, &rows, true) {
+            refuses(fixtures.path(), inspect, name, spoiled);
+        }
+    }
+}
+
+/// 1-based line of byte `offset` in `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset].matches('\n').count() + 1
+}
+
+/// Every way to spoil the good bank `text` (JSON), named `bank.json`.
+fn spoiled_banks(text: &str) -> Vec<Spoiled> {
+    let at = |line: usize, what: &str| vec![format!("bank.json:{line}:"), what.to_string()];
+    let half = text.len() / 2;
+    let number = text.find(|c: char| c.is_ascii_digit()).unwrap();
+    let end = number
+        + text[number..]
+            .find(|c: char| !c.is_ascii_digit() && c != '.')
+            .unwrap();
+    let nan = format!("{}NaN{}", &text[..number], &text[end..]);
+    vec![
+        Spoiled::new("empty", "", &at(1, "not a model bank")),
+        Spoiled::new("binary", GARBAGE, &at(1, "not a model bank")),
+        Spoiled::new(
+            "still being written",
+            &text.as_bytes()[..half],
+            &at(line_of(text, half), "not a model bank"),
+        ),
+        Spoiled::new("NaN", nan, &at(line_of(text, number), "not a model bank")),
+        Spoiled::new(
+            "CSV",
+            csv_text(GNSS_HEADER, &gnss_rows()),
+            &at(1, "not a model bank"),
+        ),
+    ]
+}
+
+/// Every way to spoil the good profile `text` (TOML), named `profile.toml`.
+fn spoiled_profiles(text: &str) -> Vec<Spoiled> {
+    let needles = |what: &str| vec!["profile.toml".to_string(), what.to_string()];
+    let cut = text.find("correlation_time_s = ").unwrap() + "correlation_time_s = ".len();
+    vec![
+        Spoiled::new("empty", "", &needles("missing")),
+        Spoiled::new("binary", GARBAGE, &needles("line 1")),
+        Spoiled::new(
+            "still being written",
+            &text.as_bytes()[..cut],
+            &needles(&format!("line {}", line_of(text, cut))),
+        ),
+        Spoiled::new(
+            "wrong units",
+            text.replacen("white_noise_m_s_per_sqrt_h", "white_noise_g_per_sqrt_hz", 1),
+            &needles("white_noise_g_per_sqrt_hz"),
+        ),
+        Spoiled::new(
+            "NaN",
+            text.replacen("correlation_time_s = 60.0", "correlation_time_s = nan", 1),
+            &needles("correlation"),
+        ),
+    ]
+}
+
+#[test]
+fn every_bank_and_profile_reader_refuses_spoiled_files() {
+    let fixtures = fixtures();
+    let bank_commands: &[&str] = &[
+        "bank show @ --json",
+        "integrate --imu %imu.csv --gnss %gnss.csv --bank @ --model-temperature-c 20 --out @out.csv",
+        "evaluate --imu %imu.csv --gnss %gnss.csv --reference %reference.csv --bank @ --out @out",
+        "plot correlation-time @ --out @out.svg",
+        "report @dir",
+    ];
+    let bank = std::fs::read_to_string(fixtures.path().join("bank.json")).unwrap();
+    for command in bank_commands {
+        for spoiled in &spoiled_banks(&bank) {
+            refuses(fixtures.path(), command, "bank.json", spoiled);
+        }
+    }
+    let profile_commands: &[&str] = &[
+        "simulate chamber --profile @ --duration-s 10 --out @out",
+        "simulate vessel --profile @ --duration-s 10 --out @out",
+        "integrate --imu %imu.csv --gnss %gnss.csv --profile @ --out @out.csv",
+    ];
+    let profile = std::fs::read_to_string(fixtures.path().join("profile.toml")).unwrap();
+    for command in profile_commands {
+        for spoiled in &spoiled_profiles(&profile) {
+            refuses(fixtures.path(), command, "profile.toml", spoiled);
+        }
+    }
+}
+
+#[test]
+fn gaps_are_reported_with_their_line_not_refused() {
+    // A gap is not an error: the readers keep the actual timestamps, the estimators that
+    // need even spacing say so. `inspect` names where the gap starts.
+    let dir = tempfile::tempdir().unwrap();
+    let mut rows = static_imu_rows(2000, 1.0);
+    rows.drain(100..150);
+    let path = write_file(dir.path(), "gap.csv", &csv_text(IMU_T_HEADER, &rows));
+    let (status, stdout, stderr) = outcome(&thermonav(&["inspect", arg(&path), "--json"]));
+    assert_eq!(status, 0, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(json["gap_count"], 1, "{stdout}");
+    // Row 99 (line 101) is the last before the gap; 0.51 s between it and the next sample.
+    assert_eq!(json["gaps"][0]["start_line"], 101, "{stdout}");
+    let length_s = json["gaps"][0]["length_s"].as_f64().unwrap();
+    assert!((length_s - 0.51).abs() < 1e-9, "{stdout}");
+    let out = dir.path().join("out.csv");
+    let args = ["filter", arg(&path), "--cutoff-hz", "5", "--out", arg(&out)];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(
+        stderr.contains("gap.csv") && stderr.contains("1 gaps"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn plot_inputs_and_motion_files_refuse_spoiled_files() {
+    let fixtures = fixtures();
+    let name_at =
+        |name: &str, line: usize, what: &str| vec![format!("{name}:{line}:"), what.into()];
+    for kind in ["allan", "outage-errors", "rms-temperature"] {
+        let command = format!("plot {kind} @ --out @out.svg");
+        for spoiled in [
+            Spoiled::new("empty", "", &name_at("in.json", 1, "not JSON")),
+            Spoiled::new(
+                "cut",
+                "{\"channels\": [1,\n2",
+                &name_at("in.json", 2, "not JSON"),
+            ),
+        ] {
+            refuses(fixtures.path(), &command, "in.json", &spoiled);
+        }
+    }
+    let innovations = "plot innovations @ --out @out.svg";
+    let header =
+        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
+    let row = "1.000000000,position,m,0.1,0.2,0.3,1,1,1,0.14,1,0";
+    for spoiled in [
+        Spoiled::new(
+            "empty",
+            "",
+            &name_at("in.csv", 1, "expected the innovations header"),
+        ),
+        Spoiled::new("binary", GARBAGE, &name_at("in.csv", 1, "expected")),
+        Spoiled::new(
+            "still being written",
+            format!("{header}\n{row}\n1.1,posi"),
+            &name_at("in.csv", 3, "expected"),
+        ),
+        Spoiled::new(
+            "NaN",
+            format!("{header}\n{}\n", row.replace("0.2", "NaN")),
+            &name_at("in.csv", 2, "finite"),
+        ),
+        Spoiled::new(
+            "no accepted update",
+            format!("{header}\n{}\n", row.replace(",1,0", ",0,0")),
+            &["in.csv".into(), "no accepted update".into()],
+        ),
+    ] {
+        refuses(fixtures.path(), innovations, "in.csv", &spoiled);
+    }
+    let motion = "simulate vessel --motion @ --out @out";
+    for spoiled in [
+        Spoiled::new("empty", "", &["motion.toml".into(), "missing field".into()]),
+        Spoiled::new(
+            "cut",
+            "start = {lat_deg = 1\n",
+            &["motion.toml".into(), "line 1".into()],
+        ),
+    ] {
+        refuses(fixtures.path(), motion, "motion.toml", &spoiled);
+    }
+}

@@ -161,7 +161,7 @@ const BINARY: &[u8] = b"\x00\x01\x02\xff\xfe garbage \x03\x04\n\x05\x06\x07\n\x0
 /// Each format's bad inputs: (name, content, expected part of the message).
 fn bad_inputs() -> Vec<(&'static str, &'static str, Vec<u8>, &'static str)> {
     let text = |s: String| s.into_bytes();
-    vec![
+    let mut cases = vec![
         ("a.pos", "rtklib-pos", vec![], "a.pos: no data"),
         (
             "b.pos",
@@ -317,7 +317,98 @@ fn bad_inputs() -> Vec<(&'static str, &'static str, Vec<u8>, &'static str)> {
             text(format!("x\n{RAW}0,0,nan,0,0,0,110\nx\n")),
             "e.csv:3: column az (g) (field 3): value \"nan\"",
         ),
+    ];
+    cases.extend(time_order_inputs());
+    cases
+}
+
+/// Times that go backwards (`f.*`) or repeat (`g.*`) in every format: refused at the line
+/// of the later record.
+fn time_order_inputs() -> Vec<(&'static str, &'static str, Vec<u8>, &'static str)> {
+    let text = |s: String| s.into_bytes();
+    let earlier_pos = POS_LINE.replace("19:34:18.499", "19:34:18.299");
+    let earlier_gga =
+        nmea_sentence("GPGGA,123518,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,");
+    vec![
+        (
+            "f.pos",
+            "rtklib-pos",
+            text(format!("{POS_HEADER}{POS_LINE}{earlier_pos}")),
+            "f.pos:3: time",
+        ),
+        (
+            "g.pos",
+            "rtklib-pos",
+            text(format!("{POS_HEADER}{POS_LINE}{POS_LINE}")),
+            "g.pos:3: time",
+        ),
+        (
+            "f.nmea",
+            "nmea",
+            text(format!("{RMC}{GGA}{earlier_gga}")),
+            "f.nmea:3:",
+        ),
+        (
+            "g.nmea",
+            "nmea",
+            text(format!("{RMC}{GGA}{GGA}")),
+            "g.nmea:3:",
+        ),
+        (
+            "f.imu",
+            "kf-gins-imu",
+            text("1 0 0 0 0 0 0\n0.5 0 0 0 0 0 0\n".into()),
+            "f.imu:2: time",
+        ),
+        (
+            "g.imu",
+            "kf-gins-imu",
+            text("1 0 0 0 0 0 0\n1 0 0 0 0 0 0\n".into()),
+            "g.imu:2: time",
+        ),
+        (
+            "f.gnss",
+            "kf-gins-gnss",
+            text("2 30 114 20 0.01 0.01 0.02\n1 30 114 20 0.01 0.01 0.02\n".into()),
+            "f.gnss:2: time",
+        ),
+        (
+            "g.gnss",
+            "kf-gins-gnss",
+            text("2 30 114 20 0.01 0.01 0.02\n2 30 114 20 0.01 0.01 0.02\n".into()),
+            "g.gnss:2: time",
+        ),
+        (
+            "f.nav",
+            "kf-gins-nav",
+            text("0 2 30 114 20 0 0 0 0 0 0\n0 1 30 114 20 0 0 0 0 0 0\n".into()),
+            "f.nav:2: time",
+        ),
+        (
+            "g.nav",
+            "kf-gins-nav",
+            text("0 2 30 114 20 0 0 0 0 0 0\n0 2 30 114 20 0 0 0 0 0 0\n".into()),
+            "g.nav:2: time",
+        ),
+        (
+            "f.csv",
+            "raw-imu-tag",
+            text(format!("x\n0,0,1,0,0,0,110\n{RAW}x\n")),
+            "f.csv:3:",
+        ),
+        (
+            "g.csv",
+            "raw-imu-tag",
+            text(format!("x\n{RAW}{RAW}x\n")),
+            "g.csv:3:",
+        ),
     ]
+}
+
+/// `$body*XX` with its checksum, and a newline.
+fn nmea_sentence(body: &str) -> String {
+    let checksum = body.bytes().fold(0_u8, |x, b| x ^ b);
+    format!("${body}*{checksum:02X}\n")
 }
 
 /// A valid time-tag file (start 1000.5 s, span 2 s).

@@ -252,7 +252,9 @@ fn header_that_is_not_utf8_and_endless_lines_are_rejected() {
         thermonav_io::read_imu(&b"t_s,\xff\xfe\n0\n"[..], NAME, Strictness::Strict).unwrap_err();
     assert_eq!(
         error.to_string(),
-        format!("{NAME}:1: header line is not valid UTF-8")
+        format!(
+            "{NAME}:1: header line is not valid UTF-8 text (expected comma-separated column names such as t_s)"
+        )
     );
 
     let endless = vec![b'1'; 3 << 20];

@@ -69,3 +69,31 @@ fn exact_times_keep_every_nanosecond_of_an_epoch_time() {
     // The third has ten decimals: 3.5 ns rounds to 4 ns.
     assert_eq!(nanos, [epoch + 1, epoch + 5_000_002, epoch + 10_000_004]);
 }
+
+/// A static increments record at 100 Hz whose velocity increments are `g_value` per second.
+fn static_increments(g_value: f64) -> String {
+    (0..50).fold(
+        "t_s,dthx_rad,dthy_rad,dthz_rad,dvx_m_s,dvy_m_s,dvz_m_s\n".to_string(),
+        |text, k| text + &format!("{:.2},0,0,0,0,0,{}\n", k as f64 / 100.0, -g_value / 100.0),
+    )
+}
+
+#[test]
+fn accelerations_in_g_under_si_names_are_refused_at_the_header() {
+    // Closed form: a static record holds |a| = 9.80665 m/s² (standard gravity). Written in g it
+    // holds 1.0, which strict reading refuses at line 1, the header that names the unit; rates
+    // with |a| = √(0.6² + 0.8²) = 1 likewise. Increments: |dv| / dt = 0.0980665 / 0.01.
+    let error = read(&static_increments(1.0), Strictness::Strict).unwrap_err();
+    assert_eq!(error.line, Some(1));
+    assert!(
+        error
+            .to_string()
+            .contains("mean |a| over the 50 samples is 1.000 m/s^2"),
+        "{error}"
+    );
+    let rates = "t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2\n0,0,0,0,0.6,0,0.8\n";
+    assert!(read(rates, Strictness::Strict).is_err());
+    assert!(read(&static_increments(9.80665), Strictness::Strict).is_ok());
+    // Lenient reading (inspect) keeps the record to report on it.
+    assert!(read(&static_increments(1.0), Strictness::Lenient).is_ok());
+}

@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav-io file formats: readers, writers and atomic output.
 
 mod atomic;
+mod fuzz_corpus;
 mod gnss;
 mod imu_errors;
 mod imu_units;

@@ -1,0 +1,129 @@
+//! Every reader of this crate behind one enum, parsing from bytes: what the fuzz targets
+//! (`fuzz/fuzz_targets/*.rs`) call and what the corpus replay test feeds the saved inputs to.
+//!
+//! Each parser runs strictly with default settings, except where a setting opens more code to
+//! the input (NMEA keeps headings and level velocities; the raw IMU reader uses a fixed tag).
+
+use crate::raw_imu::{RawImuSettings, TimeTag};
+use crate::{Strictness, bank, kf_gins, nmea, profile, raw_imu, rtklib_pos};
+use std::io::Cursor;
+use thermonav::time::{Duration, Timestamp};
+
+/// One reader of this crate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parser {
+    /// Canonical IMU CSV ([`crate::read_imu`]).
+    CanonicalImu,
+    /// Canonical GNSS CSV ([`crate::read_gnss`]).
+    CanonicalGnss,
+    /// Canonical reference-trajectory CSV ([`crate::read_trajectory`]).
+    CanonicalTrajectory,
+    /// Model bank JSON ([`bank::parse_bank`]).
+    BankJson,
+    /// Sensor profile TOML ([`profile::parse_profile_bytes`]).
+    ProfileToml,
+    /// RTKLIB `.pos` ([`rtklib_pos::read_rtklib_pos`]).
+    RtklibPos,
+    /// NMEA 0183 ([`nmea::read_nmea`]).
+    Nmea,
+    /// KF-GINS IMU increments ([`kf_gins::read_kf_gins_imu`]).
+    KfGinsImu,
+    /// KF-GINS GNSS positions ([`kf_gins::read_kf_gins_gnss`]).
+    KfGinsGnss,
+    /// KF-GINS `.nav` trajectory ([`kf_gins::read_kf_gins_nav`]).
+    KfGinsNav,
+    /// Raw IMU CSV timed by a fixed tag ([`raw_imu::read_raw_imu`]).
+    RawImu,
+    /// RTKLIB time-tag file ([`raw_imu::decode_time_tag`]).
+    TimeTag,
+}
+
+/// Why a parser refused its input (any reader's error, as text).
+pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
+
+impl Parser {
+    /// Every parser, in the order of the fuzz targets.
+    pub const ALL: [Parser; 12] = [
+        Parser::CanonicalImu,
+        Parser::CanonicalGnss,
+        Parser::CanonicalTrajectory,
+        Parser::BankJson,
+        Parser::ProfileToml,
+        Parser::RtklibPos,
+        Parser::Nmea,
+        Parser::KfGinsImu,
+        Parser::KfGinsGnss,
+        Parser::KfGinsNav,
+        Parser::RawImu,
+        Parser::TimeTag,
+    ];
+
+    /// The fuzz target's name (also the corpus folder's).
+    pub fn target_name(self) -> &'static str {
+        match self {
+            Parser::CanonicalImu => "canonical_imu",
+            Parser::CanonicalGnss => "canonical_gnss",
+            Parser::CanonicalTrajectory => "canonical_trajectory",
+            Parser::BankJson => "bank_json",
+            Parser::ProfileToml => "profile_toml",
+            Parser::RtklibPos => "rtklib_pos",
+            Parser::Nmea => "nmea",
+            Parser::KfGinsImu => "kf_gins_imu",
+            Parser::KfGinsGnss => "kf_gins_gnss",
+            Parser::KfGinsNav => "kf_gins_nav",
+            Parser::RawImu => "raw_imu",
+            Parser::TimeTag => "time_tag",
+        }
+    }
+
+    /// Parses `bytes` (named `input` in errors) and returns how many records it found.
+    ///
+    /// # Errors
+    /// The reader's own error for input it refuses; never a panic.
+    pub fn record_count(self, bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+        let text = || Cursor::new(bytes);
+        Ok(match self {
+            Parser::CanonicalImu => crate::read_imu(text(), input, Strictness::Strict)?.len(),
+            Parser::CanonicalGnss => crate::read_gnss(text(), input, Strictness::Strict)?.len(),
+            Parser::CanonicalTrajectory => {
+                crate::read_trajectory(text(), input, Strictness::Strict)?.len()
+            }
+            Parser::BankJson => bank::parse_bank(bytes, input)?.entries.len(),
+            Parser::ProfileToml => profile::parse_profile_bytes(bytes, input)?.channels.len(),
+            Parser::RtklibPos => {
+                rtklib_pos::read_rtklib_pos(text(), input, Default::default())?.len()
+            }
+            Parser::Nmea => nmea::read_nmea(text(), input, nmea_settings())?.len(),
+            Parser::KfGinsImu => {
+                kf_gins::read_kf_gins_imu(text(), input, None, Strictness::Strict)?.len()
+            }
+            Parser::KfGinsGnss => {
+                kf_gins::read_kf_gins_gnss(text(), input, None, Strictness::Strict)?.len()
+            }
+            Parser::KfGinsNav => {
+                kf_gins::read_kf_gins_nav(text(), input, Strictness::Strict)?.len()
+            }
+            Parser::RawImu => {
+                raw_imu::read_raw_imu(text(), input, &FIXED_TAG, RawImuSettings::default())?.len()
+            }
+            Parser::TimeTag => raw_imu::decode_time_tag(bytes, input)?.pairs,
+        })
+    }
+}
+
+/// NMEA settings that keep headings and level velocities, so that every sentence is decoded.
+fn nmea_settings() -> nmea::NmeaSettings {
+    nmea::NmeaSettings {
+        heading_sd_rad: Some(0.01),
+        level_velocity: true,
+        ..Default::default()
+    }
+}
+
+/// The tag of the raw IMU parser: a log starting 2024-01-01 that lasted an hour.
+const FIXED_TAG: TimeTag = TimeTag {
+    start: Timestamp::from_nanos(1_704_067_200 * 1_000_000_000),
+    start_tick_ms: 0,
+    span: Duration::from_nanos(3_600 * 1_000_000_000),
+    pairs: 2,
+};
