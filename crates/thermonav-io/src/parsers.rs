@@ -5,7 +5,7 @@
 //! the input (NMEA keeps headings and level velocities; the raw IMU reader uses a fixed tag).
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
-use crate::{Strictness, bank, kf_gins, nmea, profile, raw_imu, rtklib_pos};
+use crate::{Strictness, bank, kf_gins, nmea, profile, raw_imu, rtklib_pos, ulog};
 use std::io::Cursor;
 use thermonav::time::{Duration, Timestamp};
 
@@ -36,6 +36,9 @@ pub enum Parser {
     RawImu,
     /// RTKLIB time-tag file ([`raw_imu::decode_time_tag`]).
     TimeTag,
+    /// PX4 ULog ([`ulog::decode_ulog`]), then its IMU and GNSS extraction
+    /// ([`ulog::px4::imu_series`], [`ulog::px4::gnss_fixes`]).
+    Ulog,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -43,7 +46,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 12] = [
+    pub const ALL: [Parser; 13] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -56,6 +59,7 @@ impl Parser {
         Parser::KfGinsNav,
         Parser::RawImu,
         Parser::TimeTag,
+        Parser::Ulog,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -73,6 +77,7 @@ impl Parser {
             Parser::KfGinsNav => "kf_gins_nav",
             Parser::RawImu => "raw_imu",
             Parser::TimeTag => "time_tag",
+            Parser::Ulog => "ulog",
         }
     }
 
@@ -107,8 +112,19 @@ impl Parser {
                 raw_imu::read_raw_imu(text(), input, &FIXED_TAG, RawImuSettings::default())?.len()
             }
             Parser::TimeTag => raw_imu::decode_time_tag(bytes, input)?.pairs,
+            Parser::Ulog => ulog_record_count(bytes, input)?,
         })
     }
+}
+
+/// The records of a ULog, after its IMU and GNSS extraction has run (a log without those
+/// topics is still counted: the extraction's refusal is an answer, not a failure).
+fn ulog_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+    let log = ulog::decode_ulog(bytes, input)?;
+    let scale = ulog::px4::time_scale(&log, ulog::px4::default_gpst_minus_utc());
+    let _ = ulog::px4::imu_series(&log, input, scale);
+    let _ = ulog::px4::gnss_fixes(&log, input, scale);
+    Ok(log.record_counts().values().sum())
 }
 
 /// NMEA settings that keep headings and level velocities, so that every sentence is decoded.
