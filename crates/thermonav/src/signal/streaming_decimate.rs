@@ -68,13 +68,22 @@ impl StreamingDecimator {
         self.head.extend_from_slice(&x[..head_missing.min(x.len())]);
         self.window.extend_from_slice(x);
         self.samples += x.len();
+        pulp::Arch::new().dispatch(ReadyOutputs(self));
+        self.forget_used_samples();
+        Ok(())
+    }
+
+    /// Every output whose inputs have all arrived. Run through [`pulp::Arch::dispatch`], so
+    /// the dot products are compiled for the widest vector instructions the processor has
+    /// (found at run time); the result does not depend on which, because the sums are fused
+    /// multiply-adds in a fixed order on every path.
+    #[inline(always)]
+    fn compute_ready_outputs(&mut self) {
         while self.next_output + self.delay < self.samples {
             let y = self.output_at(self.next_output, None);
             self.output.push(y);
             self.next_output += self.factor;
         }
-        self.forget_used_samples();
-        Ok(())
     }
 
     /// Drops the samples no future output reads (before next output − delay), in batches.
@@ -88,6 +97,7 @@ impl StreamingDecimator {
     }
 
     /// Output j; `last` is x_{n−1} once the record has ended (for the reflection at the end).
+    #[inline(always)]
     fn output_at(&self, j: usize, end: Option<usize>) -> f64 {
         let inside = j >= self.delay && end.is_none_or(|n| j + self.delay < n);
         if inside {
@@ -143,30 +153,128 @@ impl StreamingDecimator {
 }
 
 /// The delay-compensated low-pass output of `filter` on the whole record `x`, keeping every
-/// `factor`-th sample: equal to `decimate(&filter_zero_phase(filter, x, DelayCompensated)?,
-/// factor)` to rounding, at taps/factor multiplications per input sample instead of a full
-/// FFT convolution, because only the kept outputs are computed.
+/// `factor`-th sample: the output of [`StreamingDecimator`] fed `x` in one piece, bit for bit
+/// (same products in the same order), read from `x` in place instead of a copied window.
+/// Equal to `decimate(&filter_zero_phase(filter, x, DelayCompensated)?, factor)` to rounding,
+/// at taps/factor multiplications per input sample instead of a full FFT convolution.
 ///
 /// # Errors
-/// As [`StreamingDecimator::new`], [`StreamingDecimator::push`] and
-/// [`StreamingDecimator::finish`].
+/// [`SignalError::EvenTaps`], [`SignalError::TooShort`] (not longer than 3 × taps, as the
+/// in-memory filter), [`SignalError::NonFinite`].
 pub fn filter_and_decimate(
     filter: &FirFilter,
     x: &[f64],
     factor: usize,
 ) -> Result<Vec<f64>, SignalError> {
-    let mut decimator = StreamingDecimator::new(filter, factor)?;
-    decimator.push(x)?;
-    decimator.finish()
+    let taps = filter.taps();
+    if taps.len() % 2 == 0 {
+        return Err(SignalError::EvenTaps { taps: taps.len() });
+    }
+    if x.len() <= 3 * taps.len() {
+        return Err(SignalError::TooShort {
+            samples: x.len(),
+            needed: 3 * taps.len() + 1,
+            taps: taps.len(),
+        });
+    }
+    let record = WholeRecord {
+        reversed_taps: taps.iter().rev().copied().collect(),
+        x,
+        factor: factor.max(1),
+    };
+    let output = pulp::Arch::new().dispatch(&record);
+    // Every output window is taps long and they are `factor` apart: when they overlap up to
+    // both ends, a NaN or infinity anywhere reaches some output (0 × NaN is NaN), so one
+    // check of the short output stands for the scan of the whole record.
+    let covered = record.factor <= record.delay() + 1;
+    if !covered || output.iter().any(|v| !v.is_finite()) {
+        if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+            return Err(SignalError::NonFinite { index });
+        }
+    }
+    Ok(output)
 }
 
-/// Σ a_k b_k over equal lengths, in [`LANES`] partial sums.
+/// The kept outputs of a whole record, as a [`pulp::WithSimd`] task.
+struct WholeRecord<'a> {
+    reversed_taps: Vec<f64>,
+    x: &'a [f64],
+    factor: usize,
+}
+
+impl WholeRecord<'_> {
+    fn delay(&self) -> usize {
+        (self.reversed_taps.len() - 1) / 2
+    }
+
+    /// Output j: a dot product inside the record, the odd reflections of
+    /// [`StreamingDecimator`] at its ends.
+    #[inline(always)]
+    fn output_at(&self, j: usize) -> f64 {
+        let (n, delay) = (self.x.len(), self.delay());
+        if j >= delay && j + delay < n {
+            let from = j - delay;
+            return dot(
+                &self.reversed_taps,
+                &self.x[from..from + self.reversed_taps.len()],
+            );
+        }
+        let reflected = |q: isize| -> f64 {
+            if q < 0 {
+                2.0 * self.x[0] - self.x[q.unsigned_abs()]
+            } else if q as usize >= n {
+                2.0 * self.x[n - 1] - self.x[2 * (n - 1) - q as usize]
+            } else {
+                self.x[q as usize]
+            }
+        };
+        self.reversed_taps
+            .iter()
+            .enumerate()
+            .map(|(k, h)| h * reflected(j as isize - delay as isize + k as isize))
+            .sum()
+    }
+}
+
+impl pulp::WithSimd for &WholeRecord<'_> {
+    type Output = Vec<f64>;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Vec<f64> {
+        // A plain loop, not an iterator adaptor: a closure would be compiled outside this
+        // instruction-set context, and its fused multiply-adds would become library calls.
+        let mut output = Vec::with_capacity(self.x.len().div_ceil(self.factor));
+        let mut j = 0;
+        while j < self.x.len() {
+            output.push(self.output_at(j));
+            j += self.factor;
+        }
+        output
+    }
+}
+
+/// [`StreamingDecimator::compute_ready_outputs`] as a [`pulp::WithSimd`] task: compiled once per
+/// instruction set, the best one chosen at run time.
+struct ReadyOutputs<'a>(&'a mut StreamingDecimator);
+
+impl pulp::WithSimd for ReadyOutputs<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        self.0.compute_ready_outputs();
+    }
+}
+
+/// Σ a_k b_k over equal lengths, in [`LANES`] partial sums of fused multiply-adds (one
+/// rounding per term on every processor, so every dispatch path gives the same bits).
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut lanes = [0.0; LANES];
+    let mut lanes = [0.0_f64; LANES];
     let chunks = a.chunks_exact(LANES).zip(b.chunks_exact(LANES));
     for (x, y) in chunks {
         for l in 0..LANES {
-            lanes[l] += x[l] * y[l];
+            lanes[l] = x[l].mul_add(y[l], lanes[l]);
         }
     }
     let tail = a.len() - a.len() % LANES;
@@ -227,5 +335,62 @@ mod tests {
             stream.push(&[1.0, f64::NAN]),
             Err(SignalError::NonFinite { index: 11 })
         );
+    }
+
+    // The whole-record form against the streaming decimator fed in pieces (the same products
+    // in the same order, so equal bit for bit) and against the in-memory FFT path (rounding of
+    // sums of ~taps unit-scale products: 1e-12).
+    #[test]
+    fn whole_record_equals_the_pieces_bit_for_bit() {
+        let spec = KaiserSpec::new(100.0, 2.0, 1.0, 60.0).unwrap();
+        let filter = design_kaiser_lowpass(&spec).unwrap().with_odd_taps(&spec);
+        let mut rng = named_rng(6, "whole-record decimator");
+        let x: Vec<f64> = (0..20_000)
+            .map(|k| (k as f64 * 0.013).cos() + rng.random_range(-1.0..1.0))
+            .collect();
+        for (factor, piece) in [(10, 333), (7, 1), (1, 5000), (400, 20_000)] {
+            let mut stream = StreamingDecimator::new(&filter, factor).unwrap();
+            for chunk in x.chunks(piece) {
+                stream.push(chunk).unwrap();
+            }
+            let whole = filter_and_decimate(&filter, &x, factor).unwrap();
+            assert_eq!(whole, stream.finish().unwrap(), "factor {factor}");
+            let expected = decimate(
+                &filter_zero_phase(&filter, &x, ZeroPhaseMode::DelayCompensated).unwrap(),
+                factor,
+            );
+            let worst = whole
+                .iter()
+                .zip(&expected)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-12, "factor {factor}: {worst}");
+        }
+    }
+
+    // A NaN or infinity is found and located whether the output windows cover the whole
+    // record (factor 10 <= delay + 1: found through the outputs) or leave gaps (factor 400,
+    // more than the taps: found by the scan), at the start, inside and at the end.
+    #[test]
+    fn whole_record_refuses_non_finite_samples_wherever_they_are() {
+        let spec = KaiserSpec::new(100.0, 2.0, 1.0, 60.0).unwrap();
+        let filter = design_kaiser_lowpass(&spec).unwrap().with_odd_taps(&spec);
+        for factor in [10, 400] {
+            for index in [0, 777, 9_999] {
+                for bad in [f64::NAN, f64::INFINITY] {
+                    let mut x = vec![0.5; 10_000];
+                    x[index] = bad;
+                    assert_eq!(
+                        filter_and_decimate(&filter, &x, factor),
+                        Err(SignalError::NonFinite { index }),
+                        "factor {factor}, index {index}"
+                    );
+                }
+            }
+        }
+        assert!(matches!(
+            filter_and_decimate(&filter, &[1.0; 10], 10),
+            Err(SignalError::TooShort { .. })
+        ));
     }
 }
