@@ -252,16 +252,48 @@ fn swept_sums(s: &[f64], factors: &[usize], parallel: bool) -> Vec<f64> {
 /// s_{i+m'} for m' = 2m right after, still in cache.
 const BLOCK: usize = 2048;
 
-/// The sums of [`sums_of_squared_second_differences`] restricted to start ≤ i < end.
+/// The sums of [`sums_of_squared_second_differences`] restricted to start ≤ i < end, compiled
+/// for the widest vector instructions the processor has (pulp's run-time dispatch; fused
+/// multiply-adds, so every path gives the same bits).
 fn slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64> {
+    pulp::Arch::new().dispatch(Slice {
+        s,
+        factors,
+        start,
+        end,
+    })
+}
+
+/// One slice of the sweep as a [`pulp::WithSimd`] task.
+struct Slice<'a> {
+    s: &'a [f64],
+    factors: &'a [usize],
+    start: usize,
+    end: usize,
+}
+
+impl pulp::WithSimd for Slice<'_> {
+    type Output = Vec<f64>;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Vec<f64> {
+        blocked_slice_sums(self.s, self.factors, self.start, self.end)
+    }
+}
+
+/// [`slice_sums`]' body: block by block, every factor's squared second differences.
+#[inline(always)]
+fn blocked_slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64> {
     let mut acc = vec![[0.0; LANES]; factors.len()];
-    for block in (start..end).step_by(BLOCK) {
+    let mut block = start;
+    while block < end {
         for (acc, &m) in acc.iter_mut().zip(factors) {
             let stop = (block + BLOCK).min(end).min(s.len() - 2 * m);
             if block < stop {
                 add_second_differences(acc, s, block..stop, m);
             }
         }
+        block += BLOCK;
     }
     acc.iter().map(total_of_lanes).collect()
 }
@@ -270,6 +302,7 @@ fn slice_sums(s: &[f64], factors: &[usize], start: usize, end: usize) -> Vec<f64
 pub(super) const LANES: usize = 8;
 
 /// A chunk from `chunks_exact(LANES)` as an array, so the compiler drops the bounds checks.
+#[inline(always)]
 fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
     chunk
         .try_into()
@@ -277,10 +310,13 @@ fn as_lanes(chunk: &[f64]) -> &[f64; LANES] {
 }
 
 /// Adds ((s_i + s_{i+2m})/2 − s_{i+m})² for i in `range` to the lanes of `acc`: a quarter of
-/// each squared second difference. The halving is exact and runs on the multiplier, leaving
-/// three additions per term (the adders are the bottleneck without FMA); eight independent
+/// each squared second difference. The halving is exact and the square is accumulated by a
+/// fused multiply-add (one rounding, the same on every processor); eight independent
 /// accumulators let the compiler keep several vector registers busy instead of waiting on one
-/// chain of additions.
+/// chain of additions. Inlined into a [`pulp`] dispatch ([`slice_sums`],
+/// [`add_second_differences_dispatched`]): called elsewhere, the fused multiply-add would be a
+/// library call.
+#[inline(always)]
 pub(super) fn add_second_differences(
     acc: &mut [f64; LANES],
     s: &[f64],
@@ -301,13 +337,41 @@ pub(super) fn add_second_differences(
         let (a, b, c) = (as_lanes(a), as_lanes(b), as_lanes(c));
         for l in 0..LANES {
             let half = 0.5 * (a[l] + c[l]) - b[l];
-            acc[l] += half * half;
+            acc[l] = half.mul_add(half, acc[l]);
         }
     }
     let tail = a.len() - a.len() % LANES;
     for (l, i) in (tail..a.len()).enumerate() {
         let half = 0.5 * (a[i] + c[i]) - b[i];
-        acc[l] += half * half;
+        acc[l] = half.mul_add(half, acc[l]);
+    }
+}
+
+/// [`add_second_differences`] called on its own (the streaming path adds a piece at a time),
+/// through the same run-time instruction-set dispatch as the in-memory sweep.
+pub(super) fn add_second_differences_dispatched(
+    acc: &mut [f64; LANES],
+    s: &[f64],
+    range: std::ops::Range<usize>,
+    m: usize,
+) {
+    pulp::Arch::new().dispatch(Piece { acc, s, range, m });
+}
+
+/// One call of [`add_second_differences`] as a [`pulp::WithSimd`] task.
+struct Piece<'a> {
+    acc: &'a mut [f64; LANES],
+    s: &'a [f64],
+    range: std::ops::Range<usize>,
+    m: usize,
+}
+
+impl pulp::WithSimd for Piece<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        add_second_differences(self.acc, self.s, self.range, self.m);
     }
 }
 

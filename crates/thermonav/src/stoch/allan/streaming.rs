@@ -30,7 +30,8 @@
 //! 5.4 M values, 43 MB, for 24 h at 1 kHz and D = 16).
 
 use super::deviation::{
-    LANES, add_second_differences, avar_denominator, checked_factors, curve_of, total_of_lanes,
+    LANES, add_second_differences_dispatched, avar_denominator, checked_factors, curve_of,
+    total_of_lanes,
 };
 use super::noise_id::{MAX_DIFFERENCES, lag1_decision, noise_of_block_means};
 use super::{
@@ -333,7 +334,7 @@ fn add_new_terms(
         let first = (old_end + 1).saturating_sub(2 * m);
         let last = new_end - 2 * m;
         if first <= last {
-            add_second_differences(
+            add_second_differences_dispatched(
                 &mut factor.lanes,
                 recent,
                 first - start..last + 1 - start,
