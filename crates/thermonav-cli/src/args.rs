@@ -270,7 +270,7 @@ pub struct CharacterizeArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         conflicts_with = "manifest"
     )]
     pub temperature_c: Vec<f64>,
@@ -429,7 +429,7 @@ pub struct ChamberArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         default_value = "-40,-20,0,20,40,60"
     )]
     pub temperatures_c: Vec<f64>,

@@ -187,3 +187,41 @@ fn inspect_reads_gnss_and_reference_files_by_their_header() {
     assert_eq!(json["content"], "reference_trajectory");
     assert_eq!(json["nominal_rate_hz"], 2.0);
 }
+
+// A comma-separated list that starts with a negative number (`-20,20`) is a value, not an
+// unknown flag: the chamber writes one file per set point, and characterize takes the same list.
+#[test]
+fn negative_temperature_lists_are_values() {
+    let dir = tempfile::tempdir().unwrap();
+    let chamber = dir.path().join("chamber");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "simulate",
+        "chamber",
+        "--temperatures-c",
+        "-20,20",
+        "--duration-s",
+        "60",
+        "--rate-hz",
+        "100",
+        "--quiet",
+        "--out",
+        arg(&chamber),
+    ]));
+    assert_eq!(status, 0, "stderr: {stderr}");
+    let cold = chamber.join("imu_-20C.csv");
+    let warm = chamber.join("imu_20C.csv");
+    assert!(cold.exists() && warm.exists());
+    let bank = dir.path().join("bank.json");
+    let json = json_of(&[
+        "characterize",
+        arg(&cold),
+        arg(&warm),
+        "--temperature-c",
+        "-20,20",
+        "--quiet",
+        "--out",
+        arg(&bank),
+        "--json",
+    ]);
+    assert_eq!(json["temperatures_c"], serde_json::json!([-20.0, 20.0]));
+}
