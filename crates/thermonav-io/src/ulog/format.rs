@@ -262,14 +262,23 @@ fn append_fields(
                 }
                 None => {
                     let nested_prefix = format!("{element}.");
-                    append_fields(
+                    let end = append_fields(
                         &field.type_name,
                         &nested_prefix,
                         offset,
                         formats,
                         out,
                         depth + 1,
-                    )?
+                    )?;
+                    // Every element must take bytes: the size guard above then bounds the
+                    // work, which arrays of an empty type would otherwise multiply unseen.
+                    if end == offset {
+                        return Err(format!(
+                            "field {element} has type {}, which occupies no bytes",
+                            field.type_name
+                        ));
+                    }
+                    end
                 }
             };
         }

@@ -181,6 +181,7 @@ pub fn decode_ulog(bytes: &[u8], input: &str) -> Result<Ulog, ReadError> {
         },
         by_msg_id: HashMap::new(),
         in_data: false,
+        layout_fields: 0,
     };
     let mut offset = HEADER_BYTES;
     while offset < bytes.len() {
@@ -219,7 +220,14 @@ struct Decoder<'a> {
     by_msg_id: HashMap<u16, usize>,
     /// Past the definitions (after the first 'A', 'D', 'L' or 'C').
     in_data: bool,
+    /// Fields in the layouts of all subscriptions so far.
+    layout_fields: usize,
 }
+
+/// Most fields the layouts of all subscriptions may hold together: each 'A' message flattens
+/// its format again, so a small file of many subscriptions to a wide format could otherwise
+/// ask for gigabytes.
+const MAX_LAYOUT_FIELDS: usize = 1 << 20;
 
 /// Little-endian u64 at `offset` (the caller checked the length).
 fn u64_at(bytes: &[u8], offset: usize) -> u64 {
@@ -385,6 +393,16 @@ impl Decoder<'_> {
         }
         let layout = flatten(&name, &self.log.formats)
             .map_err(|e| at(self.input, offset, format!("format {name}: {e}")))?;
+        self.layout_fields += layout.fields.len();
+        if self.layout_fields > MAX_LAYOUT_FIELDS {
+            return Err(at(
+                self.input,
+                offset,
+                format!(
+                    "the subscriptions so far lay out more than {MAX_LAYOUT_FIELDS} fields in                      all (a PX4 log has a few thousand): a corrupt file?"
+                ),
+            ));
+        }
         self.by_msg_id.insert(msg_id, self.log.subscriptions.len());
         self.log.subscriptions.push(Subscription {
             name,

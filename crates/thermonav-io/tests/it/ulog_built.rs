@@ -64,10 +64,7 @@ impl Record {
 const BOOT_TO_UTC_US: u64 = 1_700_000_000_000_000;
 
 fn built_log() -> Vec<u8> {
-    let mut out = b"ULog\x01\x12\x35".to_vec();
-    out.push(1);
-    out.extend_from_slice(&1_000_u64.to_le_bytes());
-    message(&mut out, b'B', &[0; 40]);
+    let mut out = log_start();
     format(
         &mut out,
         "vehicle_imu:uint64_t timestamp;uint64_t timestamp_sample;float[3] delta_angle;\
@@ -192,4 +189,48 @@ fn a_built_log_decodes_to_the_values_written_into_it() {
     assert_eq!(fix.height_m, 535.5);
     assert_eq!(fix.position_sd_ned_m, Some([0.75, 0.75, 1.5]));
     assert_eq!(fix.velocity_ned_m_s, Some([1.0, -2.0, 0.25]));
+}
+
+/// The header and flag bits of a log, before its formats.
+fn log_start() -> Vec<u8> {
+    let mut out = b"ULog\x01\x12\x35".to_vec();
+    out.push(1);
+    out.extend_from_slice(&1_000_u64.to_le_bytes());
+    message(&mut out, b'B', &[0; 40]);
+    out
+}
+
+// Arrays of a type without bytes would make flattening loop 2^32 times in a 100-byte file
+// (every element passes the size guard because none advances the offset): refused at the
+// first element, naming it.
+#[test]
+fn nested_arrays_of_an_empty_type_are_refused_at_once() {
+    let mut out = log_start();
+    format(&mut out, "empty:");
+    format(&mut out, "wide:empty[65535] inner;");
+    format(&mut out, "wider:wide[65535] outer;");
+    subscribe(&mut out, 1, "wider");
+    let error = decode_ulog(&out, "empty.ulg").unwrap_err().to_string();
+    assert!(
+        error.contains("empty.ulg") && error.contains("outer[0].inner[0]"),
+        "{error}"
+    );
+}
+
+// Each 'A' message lays its format out again: 600 subscriptions to a 2000-field format
+// (1.2 M fields, a file of about 30 KB) pass the cap of 2^20 fields and are refused, while a
+// real log's few thousand stay far below it.
+#[test]
+fn subscriptions_beyond_the_layout_cap_are_refused() {
+    let mut out = log_start();
+    let fields: String = (0..2000).map(|k| format!("uint8_t f{k};")).collect();
+    format(&mut out, &format!("wide:{fields}"));
+    for id in 0..600 {
+        subscribe(&mut out, id, "wide");
+    }
+    let error = decode_ulog(&out, "many.ulg").unwrap_err().to_string();
+    assert!(
+        error.contains("many.ulg") && error.contains("1048576 fields"),
+        "{error}"
+    );
 }
