@@ -110,6 +110,18 @@ fn raw_imu_settings(args: &ConvertArgs, strictness: Strictness) -> Result<RawImu
     })
 }
 
+/// `--leap-seconds` as a duration: GPST minus UTC, at most an hour either way.
+fn gpst_minus_utc(args: &ConvertArgs) -> Result<Duration, Failure> {
+    if args.leap_seconds.abs() > 3600 {
+        return Err(anyhow!(
+            "--leap-seconds is GPST minus UTC (18 since 2017), not {}",
+            args.leap_seconds
+        ))
+        .usage();
+    }
+    Ok(Duration::from_nanos(args.leap_seconds * 1_000_000_000))
+}
+
 fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSettings, Failure> {
     let heading_sd_rad = match args.heading_sd_deg {
         Some(sd) if !(sd.is_finite() && sd > 0.0) => {
@@ -120,14 +132,7 @@ fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSetti
         }
         sd => sd.map(f64::to_radians),
     };
-    if args.leap_seconds.abs() > 3600 {
-        return Err(anyhow!(
-            "--leap-seconds is GPST minus UTC (18 since 2017), not {}",
-            args.leap_seconds
-        ))
-        .usage();
-    }
-    let gpst_minus_utc = Duration::from_nanos(args.leap_seconds * 1_000_000_000);
+    let gpst_minus_utc = gpst_minus_utc(args)?;
     Ok(NmeaSettings {
         strictness,
         gpst_minus_utc,

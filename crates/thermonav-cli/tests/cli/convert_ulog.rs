@@ -148,3 +148,41 @@ fn a_log_still_being_written_converts_its_whole_records_and_says_so() {
     let tail = sidecar["log"]["truncated_tail_bytes"].as_u64().unwrap();
     assert!(tail > 0 && tail < 100, "{tail}");
 }
+
+// A GNSS output that cannot be written (its folder is missing) fails the run before the IMU
+// CSV or its record is written; an absurd --leap-seconds is a usage error, not an overflow.
+#[test]
+fn a_failed_ulog_conversion_writes_nothing_and_leap_seconds_are_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = sample();
+    let imu = dir.path().join("imu.csv");
+    let gnss = dir.path().join("missing").join("gnss.csv");
+    let args = [
+        "convert",
+        arg(&input),
+        "--out",
+        arg(&imu),
+        "--gnss-out",
+        arg(&gnss),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        files_in(dir.path()).is_empty(),
+        "{:?}",
+        files_in(dir.path())
+    );
+    let args = [
+        "convert",
+        arg(&input),
+        "--out",
+        arg(&imu),
+        "--leap-seconds",
+        "10000000000",
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("--leap-seconds"), "{stderr}");
+    assert!(files_in(dir.path()).is_empty());
+}

@@ -8,7 +8,6 @@ use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-use thermonav::time::Duration;
 use thermonav_io::ulog::px4::{
     GnssExtract, ImuExtract, TimeScale, gnss_fixes, imu_series, time_scale,
 };
@@ -59,8 +58,8 @@ impl LogSummary {
 /// Converts a ULog; returns the number of IMU samples and what they are.
 pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
     let input = args.input.display().to_string();
+    let leap = super::gpst_minus_utc(args)?;
     let log = read_ulog_file(&args.input).data()?;
-    let leap = Duration::from_nanos(args.leap_seconds * 1_000_000_000);
     let scale = time_scale(&log, leap);
     let imu = imu_series(&log, &input, scale).data()?;
     let gnss = match &args.gnss_out {
@@ -83,16 +82,16 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
         log: LogSummary::of(&log),
     };
     report_notes(&record);
-    write_imu_file(&args.out, &imu.series).data()?;
-    if let (Some(path), Some(gnss)) = (&args.gnss_out, &gnss) {
-        let (count, what) = super::write_fixes(path, gnss.fixes.clone())?;
-        println!(
-            "{}: {count} {what} written to {}",
-            args.input.display(),
-            path.display()
-        );
+    // Three files, each written atomically; if a later one fails, the earlier ones of this run
+    // are removed, so a failed run leaves no half of a conversion behind.
+    let mut written: Vec<PathBuf> = Vec::new();
+    let outcome = write_outputs(args, &imu, gnss.as_ref(), &record, &mut written);
+    if outcome.is_err() {
+        written.iter().for_each(|path| {
+            let _ = std::fs::remove_file(path);
+        });
     }
-    write_json_atomically(sidecar_path(&args.out), &record).data()?;
+    outcome?;
     let what = match imu.topic {
         "vehicle_imu" => "IMU samples (increments)",
         _ => "IMU samples (rates)",
@@ -136,4 +135,28 @@ pub fn reject_gnss_out(args: &ConvertArgs) -> Result<(), Failure> {
         Some(_) => Err(anyhow!("--gnss-out goes with --format px4-ulog only")).usage(),
         None => Ok(()),
     }
+}
+
+/// Writes the GNSS CSV (with `--gnss-out`), the IMU CSV and its JSON record, in that order,
+/// pushing each path onto `written` once it is complete.
+fn write_outputs(
+    args: &ConvertArgs,
+    imu: &ImuExtract,
+    gnss: Option<&GnssExtract>,
+    record: &UlogRecord,
+    written: &mut Vec<PathBuf>,
+) -> Result<(), Failure> {
+    if let (Some(path), Some(gnss)) = (&args.gnss_out, gnss) {
+        let (count, what) = super::write_fixes(path, gnss.fixes.clone())?;
+        written.push(path.clone());
+        println!(
+            "{}: {count} {what} written to {}",
+            args.input.display(),
+            path.display()
+        );
+    }
+    write_imu_file(&args.out, &imu.series).data()?;
+    written.push(args.out.clone());
+    write_json_atomically(sidecar_path(&args.out), record).data()?;
+    Ok(())
 }
