@@ -3,8 +3,8 @@
 //! separate jobs wrote, e.g. a Slurm array with `--unit-index $SLURM_ARRAY_TASK_ID`).
 
 use super::bank::read_bank;
-use super::characterize::{build_bank, settings_of};
-use crate::args::{CharacterizeArgs, LotAction, LotArgs, LotSummarizeArgs};
+use super::characterize::{build_bank_reading, settings_of};
+use crate::args::{CharacterizeArgs, LotAction, LotArgs, LotSummarizeArgs, ReadingArg};
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
 use anyhow::anyhow;
@@ -60,12 +60,17 @@ pub fn characterize_lot(args: &CharacterizeArgs, manifest_path: &Path) -> Result
     let settings = lot_settings(settings_of(args), &manifest.conditioning);
     let results: Vec<Result<ModelBank, String>> = units
         .par_iter()
-        .map(|unit| characterize_unit(unit, &settings, &args.out))
+        .map(|unit| characterize_unit(unit, &settings, args.reading, &args.out))
         .collect();
     let every_unit_done = units.len() == manifest.units.len() && results.iter().all(Result::is_ok);
     let summary = match every_unit_done {
         true => Some(summarize_written_banks(&manifest, &args.out)?),
-        false => None,
+        false => {
+            // Some bank changed or failed: an earlier summary no longer describes the lot
+            // (`lot summarize` writes the new one once every unit's job has run).
+            remove_if_present(&args.out.join(SUMMARY_FILE))?;
+            None
+        }
     };
     let outcomes = outcomes_of(&units, &results, &args.out);
     let failures: Vec<&str> = outcomes.iter().filter_map(|o| o.error.as_deref()).collect();
@@ -124,9 +129,13 @@ fn lot_settings(mut settings: CharacterizeSettings, given: &Conditioning) -> Cha
 }
 
 /// Characterises one unit into `DIR/SERIAL/bank.json`; the error names the unit.
+///
+/// A unit that fails loses the bank an earlier run wrote for it, so that no summary can mix
+/// that stale bank with the new ones.
 fn characterize_unit(
     unit: &LotUnit,
     settings: &CharacterizeSettings,
+    reading: ReadingArg,
     dir: &Path,
 ) -> Result<ModelBank, String> {
     let fail = |what: String| format!("unit {}: {what}", unit.serial);
@@ -139,13 +148,23 @@ fn characterize_unit(
     })?;
     let files: Vec<&Path> = unit.files.iter().map(PathBuf::as_path).collect();
     let temperatures = unit.temperatures_c.as_deref().unwrap_or(&[]);
-    build_bank(
-        &files,
-        temperatures,
-        settings,
-        &bank_path(dir, &unit.serial),
-    )
-    .map_err(|failure| fail(failure.to_string()))
+    let bank = bank_path(dir, &unit.serial);
+    build_bank_reading(&files, temperatures, settings, reading, &bank).map_err(|failure| {
+        let stale = remove_if_present(&bank).err().map(|e| format!("; {e}"));
+        fail(format!("{failure}{}", stale.unwrap_or_default()))
+    })
+}
+
+/// Removes `path` if it exists (a stale output of an earlier run).
+fn remove_if_present(path: &Path) -> Result<(), Failure> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(anyhow!(
+            "{}: cannot remove the stale file: {e}",
+            path.display()
+        ))
+        .data(),
+        _ => Ok(()),
+    }
 }
 
 /// Each unit's bank path or error.

@@ -270,18 +270,27 @@ fn unit_jobs_and_summarize_equal_the_all_units_run() {
 }
 
 // A failing unit is named with its file (and line), the others complete, nothing partial is
-// left, and the run exits 1.
+// left, and the run exits 1. The folder held a whole earlier run: the failed units' banks and
+// the lot summary from it are removed, so no summary can mix stale banks with new ones.
 #[test]
 fn a_failing_unit_does_not_stop_the_others() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = simulate_lot(dir.path());
+    let out = dir.path().join("out");
+    run_ok(&[
+        "characterize",
+        "--manifest",
+        arg(&manifest),
+        "--out",
+        arg(&out),
+    ]);
+    assert!(out.join("lot-summary.json").exists() && out.join("SN001/bank.json").exists());
     let broken = dir.path().join("SN001/imu_20C.csv");
     let text = std::fs::read_to_string(&broken).unwrap();
     let mut lines: Vec<&str> = text.lines().collect();
     lines[4] = "1.0,not-a-number,0,0,0,0,0,20";
     std::fs::write(&broken, lines.join("\n")).unwrap();
     std::fs::remove_file(dir.path().join("SN003/imu_0C.csv")).unwrap();
-    let out = dir.path().join("out");
     let (status, stdout, stderr) = outcome(&thermonav(&[
         "characterize",
         "--manifest",
