@@ -20,6 +20,7 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSample, ImuSeries, SampleKind};
+use thermonav::time::Timestamp;
 
 /// First slot of the rate columns (gx..az), then of the increment columns (dthx..dvz).
 const RATE_SLOT: usize = 0;
@@ -243,40 +244,75 @@ fn check_gravity_magnitude(
     input: &str,
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
-    let mean = mean_specific_force_m_s2(&series);
-    let in_g = (G_UNITS_LOW_M_S2..=G_UNITS_HIGH_M_S2).contains(&mean);
-    match strictness == Strictness::Strict && in_g {
-        false => Ok(series),
-        true => Err(ReadError::new(
-            input,
-            Some(1),
-            ReadErrorKind::AccelerationInG {
-                samples: series.len(),
-                mean_m_s2: mean,
-            },
-        )),
-    }
+    let mut check = GravityCheck::default();
+    check.add(&series);
+    check.verdict(input, strictness)?;
+    Ok(series)
 }
 
-/// Mean magnitude of the specific force over the record, m/s² (increments divided by the
-/// record's mean interval); NaN for fewer than two samples of increments or none of rates.
-fn mean_specific_force_m_s2(series: &ImuSeries) -> f64 {
-    let [_, _, _, ax, ay, az] = &series.channels;
-    let norms = ax
-        .iter()
-        .zip(ay)
-        .zip(az)
-        .map(|((x, y), z)| x.hypot(*y).hypot(*z));
-    let mean_norm = norms.sum::<f64>() / series.len() as f64;
-    match series.kind {
-        Some(SampleKind::Increments) => {
-            let span_s = match (series.time.first(), series.time.last()) {
-                (Some(&first), Some(&last)) => last.since(first).as_seconds(),
-                _ => f64::NAN,
-            };
-            mean_norm * (series.len() - 1) as f64 / span_s
+/// The check that accelerations in g were not written under m/s² names, for a record read
+/// whole or piece by piece: the running mean magnitude of the specific force, and the verdict
+/// once the record has been read (the band is [`G_UNITS_LOW_M_S2`]..=[`G_UNITS_HIGH_M_S2`]).
+#[derive(Debug, Clone, Default)]
+pub struct GravityCheck {
+    kind: Option<SampleKind>,
+    norm_sum: f64,
+    samples: usize,
+    first: Option<Timestamp>,
+    last: Option<Timestamp>,
+}
+
+impl GravityCheck {
+    /// Adds the samples of the next piece of the record.
+    pub fn add(&mut self, piece: &ImuSeries) {
+        let [_, _, _, ax, ay, az] = &piece.channels;
+        self.norm_sum += ax
+            .iter()
+            .zip(ay)
+            .zip(az)
+            .map(|((x, y), z)| x.hypot(*y).hypot(*z))
+            .sum::<f64>();
+        self.samples += piece.len();
+        self.kind = self.kind.or(piece.kind);
+        self.first = self.first.or(piece.time.first().copied());
+        self.last = piece.time.last().copied().or(self.last);
+    }
+
+    /// Mean magnitude of the specific force so far, m/s² (increments divided by the record's
+    /// mean interval); NaN for fewer than two samples of increments or none of rates.
+    pub fn mean_m_s2(&self) -> f64 {
+        let mean_norm = self.norm_sum / self.samples as f64;
+        match self.kind {
+            Some(SampleKind::Increments) => {
+                let span_s = match (self.first, self.last) {
+                    (Some(first), Some(last)) => last.since(first).as_seconds(),
+                    _ => f64::NAN,
+                };
+                mean_norm * (self.samples as f64 - 1.0) / span_s
+            }
+            _ => mean_norm,
         }
-        _ => mean_norm,
+    }
+
+    /// Under strict reading, [`ReadErrorKind::AccelerationInG`] at the header line of `input`
+    /// when the mean magnitude lies in the band of values in g.
+    ///
+    /// # Errors
+    /// As above.
+    pub fn verdict(&self, input: &str, strictness: Strictness) -> Result<(), ReadError> {
+        let mean = self.mean_m_s2();
+        let in_g = (G_UNITS_LOW_M_S2..=G_UNITS_HIGH_M_S2).contains(&mean);
+        match strictness == Strictness::Strict && in_g {
+            false => Ok(()),
+            true => Err(ReadError::new(
+                input,
+                Some(1),
+                ReadErrorKind::AccelerationInG {
+                    samples: self.samples,
+                    mean_m_s2: mean,
+                },
+            )),
+        }
     }
 }
 

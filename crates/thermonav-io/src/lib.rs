@@ -82,7 +82,8 @@ pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
 };
 pub use imu::{
-    ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu, write_imu_file,
+    GravityCheck, ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu,
+    write_imu_file,
 };
 pub use trajectory::{
     TrajectoryReader, read_trajectory, read_trajectory_file, write_trajectory,

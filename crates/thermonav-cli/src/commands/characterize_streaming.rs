@@ -11,7 +11,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::{ImuReader, ReadError, Strictness};
+use thermonav_io::{GravityCheck, ImuReader, ReadError, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
 /// a full-precision 6-channel CSV, whose in-memory characterisation peaks near 2 GB).
@@ -39,11 +39,13 @@ pub fn characterize_streaming(
     let reader = ImuReader::open(path, Strictness::Strict).data()?;
     let kind = reader.kind();
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
+    let mut gravity = GravityCheck::default();
     let fed: Result<(), Failure> = std::thread::scope(|scope| {
         let (send, receive) = sync_channel::<Result<ImuSeries, ReadError>>(2);
         scope.spawn(move || read_pieces(reader, kind, |piece| send.send(piece).is_ok()));
         for piece in receive {
             let piece = piece.data()?;
+            gravity.add(&piece);
             stream
                 .push(&piece)
                 .map_err(|e| anyhow!("{}: {e}", path.display()))
@@ -59,6 +61,9 @@ pub fn characterize_streaming(
         ))
         .data();
     }
+    gravity
+        .verdict(&path.display().to_string(), Strictness::Strict)
+        .data()?;
     let temperature_c = match given.or(stream.mean_temperature_c()) {
         Some(t) => t,
         None => {

@@ -106,3 +106,36 @@ fn a_bad_row_deep_in_a_streamed_file_names_its_line_and_writes_nothing() {
     );
     assert!(!out.exists());
 }
+
+// The streamed record is checked for accelerations in g like one read whole: 300 000 rows
+// (beyond the in-memory prefix) whose z acceleration is 1 ± 1e-3 under an m/s^2 name are
+// refused at the header line, on both paths, and no bank is written.
+#[test]
+fn a_streamed_record_in_g_is_refused_like_one_read_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = imu_csv(300_000, 100.0, |c, t| {
+        let k = (t * 100.0).round() as u64;
+        let level = if c == 5 { 1.0 } else { 0.0 };
+        level + 1e-3 * noise(6 * k + c as u64)
+    });
+    let imu = write_file(dir.path(), "in_g.csv", &text);
+    let out = dir.path().join("b.json");
+    for reading in ["streaming", "in-memory"] {
+        let (status, _, stderr) = outcome(&thermonav(&[
+            "characterize",
+            arg(&imu),
+            "--out",
+            arg(&out),
+            "--temperature-c",
+            "20",
+            "--reading",
+            reading,
+        ]));
+        assert_eq!(status, 1, "{reading}: {stderr}");
+        assert!(
+            stderr.contains("in_g.csv:1:") && stderr.contains("in g"),
+            "{reading}: {stderr}"
+        );
+        assert!(!out.exists(), "{reading}");
+    }
+}
