@@ -3,6 +3,7 @@
 
 use crate::{arg, imu_csv, outcome, thermonav, write_file};
 use serde_json::Value;
+use std::path::Path;
 
 /// A uniform value in [−1, 1) from a counter (SplitMix64): reproducible noise for a CSV.
 fn noise(counter: u64) -> f64 {
@@ -27,6 +28,20 @@ fn bank(args: &[&str]) -> Value {
     assert_eq!(status, 0, "{stderr}");
     let out = args[args.iter().position(|a| *a == "--out").unwrap() + 1];
     serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap()
+}
+
+/// `characterize IMU --out OUT --temperature-c 20 --reading READING`: status, stdout, stderr.
+fn characterize_at_20c(imu: &Path, out: &Path, reading: &str) -> (i32, String, String) {
+    outcome(&thermonav(&[
+        "characterize",
+        arg(imu),
+        "--out",
+        arg(out),
+        "--temperature-c",
+        "20",
+        "--reading",
+        reading,
+    ]))
 }
 
 fn number(v: &Value) -> f64 {
@@ -89,16 +104,7 @@ fn a_bad_row_deep_in_a_streamed_file_names_its_line_and_writes_nothing() {
     text.insert_str(at + 1, "12.5,not-a-number,0,0,0,0,0\n");
     let imu = write_file(dir.path(), "bad.csv", &text);
     let out = dir.path().join("b.json");
-    let (status, _, stderr) = outcome(&thermonav(&[
-        "characterize",
-        arg(&imu),
-        "--out",
-        arg(&out),
-        "--temperature-c",
-        "20",
-        "--reading",
-        "streaming",
-    ]));
+    let (status, _, stderr) = characterize_at_20c(&imu, &out, "streaming");
     assert_eq!(status, 1, "{stderr}");
     assert!(
         stderr.contains("bad.csv") && stderr.contains("280002"),
@@ -121,16 +127,7 @@ fn a_streamed_record_in_g_is_refused_like_one_read_whole() {
     let imu = write_file(dir.path(), "in_g.csv", &text);
     let out = dir.path().join("b.json");
     for reading in ["streaming", "in-memory"] {
-        let (status, _, stderr) = outcome(&thermonav(&[
-            "characterize",
-            arg(&imu),
-            "--out",
-            arg(&out),
-            "--temperature-c",
-            "20",
-            "--reading",
-            reading,
-        ]));
+        let (status, _, stderr) = characterize_at_20c(&imu, &out, reading);
         assert_eq!(status, 1, "{reading}: {stderr}");
         assert!(
             stderr.contains("in_g.csv:1:") && stderr.contains("in g"),
