@@ -339,13 +339,16 @@ fn temperature_records(log: &Ulog, scale: TimeScale) -> Option<(String, Vec<Time
         let topic = log.topic(topic_name, 0)?;
         let field = topic.field(field_name)?;
         let stamp = topic.field("timestamp")?;
-        let (times, values): (Vec<_>, Vec<_>) = (0..topic.len())
+        let mut records: Vec<(Timestamp, f64)> = (0..topic.len())
             .filter_map(|i| {
                 let value = topic.real(field, i);
                 let boot_us = u64::try_from(topic.integer(stamp, i)?).ok()?;
                 value.is_finite().then_some((scale.at(boot_us)?, value))
             })
-            .unzip();
+            .collect();
+        // In time order for the nearest-record lookup (a log may hold them otherwise).
+        records.sort_by_key(|&(time, _)| time);
+        let (times, values): (Vec<_>, Vec<_>) = records.into_iter().unzip();
         (!times.is_empty()).then(|| (format!("{topic_name}.{field_name}"), times, values))
     })
 }

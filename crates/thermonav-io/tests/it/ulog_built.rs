@@ -63,7 +63,15 @@ impl Record {
 /// UTC µs of the GNSS records minus their boot µs: 1.7e15 µs = 2023-11-14 22:13:20 UTC.
 const BOOT_TO_UTC_US: u64 = 1_700_000_000_000_000;
 
+/// Temperatures 20.5 °C at 1.000 s and 21.5 °C at 1.010 s (boot), in log order.
+const TEMPERATURES: [(u64, f32); 2] = [(1_000_000, 20.5), (1_010_000, 21.5)];
+
 fn built_log() -> Vec<u8> {
+    built_log_with(TEMPERATURES)
+}
+
+/// The built log with its `sensor_accel` records in the order given.
+fn built_log_with(temperatures: [(u64, f32); 2]) -> Vec<u8> {
     let mut out = log_start();
     format(
         &mut out,
@@ -92,8 +100,7 @@ fn built_log() -> Vec<u8> {
     subscribe(&mut out, 0, "vehicle_imu");
     subscribe(&mut out, 1, "sensor_accel");
     subscribe(&mut out, 2, "sensor_gps");
-    // Temperatures 20.5 °C at 1.000 s, 21.5 °C at 1.010 s (boot).
-    for (t, c) in [(1_000_000, 20.5), (1_010_000, 21.5)] {
+    for (t, c) in temperatures {
         let r = Record::default().u64(t).f32(0.0).f32(0.0).f32(-9.75).f32(c);
         data(&mut out, 1, &r.0);
     }
@@ -233,4 +240,25 @@ fn subscriptions_beyond_the_layout_cap_are_refused() {
         error.contains("many.ulg") && error.contains("1048576 fields"),
         "{error}"
     );
+}
+
+// Temperature records logged out of time order (two sensor instances merged, or a clock
+// step) still give each IMU sample the nearest record in time: the same temp_c as in order.
+#[test]
+fn temperatures_out_of_order_give_the_nearest_in_time() {
+    let [first, second] = TEMPERATURES;
+    let temp_c = |bytes: Vec<u8>| {
+        let log = decode_ulog(&bytes, "built.ulg").unwrap();
+        let scale = time_scale(&log, Duration::from_nanos(18_000_000_000));
+        imu_series(&log, "built.ulg", scale)
+            .unwrap()
+            .series
+            .temperature_c
+    };
+    let reversed = temp_c(built_log_with([second, first]));
+    assert_eq!(
+        reversed.as_deref(),
+        Some(&[20.5, 20.5, 21.5, 21.5, 21.5, 21.5][..])
+    );
+    assert_eq!(reversed, temp_c(built_log()));
 }
