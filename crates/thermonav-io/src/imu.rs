@@ -252,7 +252,7 @@ fn check_gravity_magnitude(
 
 /// The check that accelerations in g were not written under m/s² names, for a record read
 /// whole or piece by piece: the running mean magnitude of the specific force, and the verdict
-/// once the record has been read (the band is [`G_UNITS_LOW_M_S2`]..=[`G_UNITS_HIGH_M_S2`]).
+/// once the record has been read (values in g: a mean magnitude of 0.9 to 1.1).
 #[derive(Debug, Clone, Default)]
 pub struct GravityCheck {
     kind: Option<SampleKind>,
