@@ -10,6 +10,18 @@ fn sample() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../thermonav-io/tests/data/ulog/px4_sitl_v1.8.ulg")
 }
 
+/// `thermonav convert INPUT --out OUT --gnss-out GNSS`: status, stdout, stderr.
+fn convert_with_gnss(input: &Path, out: &Path, gnss: &Path) -> (i32, String, String) {
+    outcome(&thermonav(&[
+        "convert",
+        arg(input),
+        "--out",
+        arg(out),
+        "--gnss-out",
+        arg(gnss),
+    ]))
+}
+
 /// The `imu.csv.json` sidecar in `dir`.
 fn sidecar_of(dir: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(dir.join("imu.csv.json")).unwrap();
@@ -21,15 +33,7 @@ fn a_ulog_is_detected_and_gives_imu_gnss_and_a_sidecar() {
     let dir = tempfile::tempdir().unwrap();
     let (imu, gnss) = (dir.path().join("imu.csv"), dir.path().join("gnss.csv"));
     let input = sample();
-    let args = [
-        "convert",
-        arg(&input),
-        "--out",
-        arg(&imu),
-        "--gnss-out",
-        arg(&gnss),
-    ];
-    let (status, stdout, stderr) = outcome(&thermonav(&args));
+    let (status, stdout, stderr) = convert_with_gnss(&input, &imu, &gnss);
     assert_eq!(status, 0, "{stderr}");
     assert!(stdout.contains("4445 IMU samples (rates)"), "{stdout}");
     assert!(
@@ -117,15 +121,7 @@ fn gnss_out_belongs_to_ulog_only() {
     std::fs::write(&input, "% RTKLIB\n").unwrap();
     let out = dir.path().join("o.csv");
     let gnss = dir.path().join("g.csv");
-    let args = [
-        "convert",
-        arg(&input),
-        "--out",
-        arg(&out),
-        "--gnss-out",
-        arg(&gnss),
-    ];
-    let (status, _, stderr) = outcome(&thermonav(&args));
+    let (status, _, stderr) = convert_with_gnss(&input, &out, &gnss);
     assert_eq!(status, 2, "{stderr}");
     assert!(
         stderr.contains("--gnss-out goes with --format px4-ulog only"),
@@ -157,15 +153,7 @@ fn a_failed_ulog_conversion_writes_nothing_and_leap_seconds_are_bounded() {
     let input = sample();
     let imu = dir.path().join("imu.csv");
     let gnss = dir.path().join("missing").join("gnss.csv");
-    let args = [
-        "convert",
-        arg(&input),
-        "--out",
-        arg(&imu),
-        "--gnss-out",
-        arg(&gnss),
-    ];
-    let (status, _, stderr) = outcome(&thermonav(&args));
+    let (status, _, stderr) = convert_with_gnss(&input, &imu, &gnss);
     assert_eq!(status, 1, "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(
