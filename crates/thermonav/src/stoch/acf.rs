@@ -206,8 +206,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
-/// Σ a_i with [`LANES`] independent accumulators.
-fn sum_of(a: &[f64]) -> f64 {
+/// Σ a_i with [`LANES`] independent accumulators (vectorisable, and more accurate than one
+/// chain); also the sums of the Allan deviation's passes.
+pub(crate) fn sum_of(a: &[f64]) -> f64 {
     let mut acc = [0.0_f64; LANES];
     let a8 = a.chunks_exact(LANES);
     let tail: f64 = a8.remainder().iter().sum();

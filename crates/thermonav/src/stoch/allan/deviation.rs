@@ -3,6 +3,8 @@
 
 use rayon::prelude::*;
 
+use crate::stoch::acf::sum_of;
+
 use super::{AllanCurve, AllanError, TauGrid};
 
 /// The overlapping Allan deviation of rate samples `y` at `sample_rate_hz` on `grid`.
@@ -97,28 +99,15 @@ const PARALLEL_SAMPLES: usize = 1 << 18;
 /// its piece's sum non-finite, so one pass serves both the mean and the finiteness check.
 fn piece_sums(y: &[f64]) -> Vec<f64> {
     if y.len() < PARALLEL_SAMPLES {
-        y.chunks(PIECE).map(sum).collect()
+        y.chunks(PIECE).map(sum_of).collect()
     } else {
-        y.par_chunks(PIECE).map(sum).collect()
+        y.par_chunks(PIECE).map(sum_of).collect()
     }
 }
 
-/// Σ y by eight interleaved partial sums (vectorisable, and more accurate than one chain).
-fn sum(y: &[f64]) -> f64 {
-    let mut partial = [0.0_f64; 8];
-    let chunks = y.chunks_exact(8);
-    let rest: f64 = chunks.remainder().iter().sum();
-    for chunk in chunks {
-        for (p, v) in partial.iter_mut().zip(chunk) {
-            *p += v;
-        }
-    }
-    partial.iter().sum::<f64>() + rest
-}
-
-/// The mean of y (see [`sum`]).
+/// The mean of y (see [`sum_of`]).
 pub(crate) fn mean(y: &[f64]) -> f64 {
-    sum(y) / y.len() as f64
+    sum_of(y) / y.len() as f64
 }
 
 /// S_i = Σ_{j<i} (y_j − ȳ), i = 0..=N: the phase in units of τ₀.
