@@ -96,7 +96,7 @@ impl StreamingDecimator {
         }
     }
 
-    /// Output j; `last` is x_{n−1} once the record has ended (for the reflection at the end).
+    /// Output j; `end` is the record's length once it has ended (for the reflection there).
     #[inline(always)]
     fn output_at(&self, j: usize, end: Option<usize>) -> f64 {
         let inside = j >= self.delay && end.is_none_or(|n| j + self.delay < n);
@@ -107,25 +107,8 @@ impl StreamingDecimator {
                 &self.window[from..from + self.reversed_taps.len()],
             );
         }
-        self.reversed_taps
-            .iter()
-            .enumerate()
-            .map(|(k, h)| h * self.extended(j as isize - self.delay as isize + k as isize, end))
-            .sum()
-    }
-
-    /// x̃_q: the sample, or its odd reflection about the first (q < 0) or the last (q ≥ n,
-    /// once the record has ended) sample.
-    fn extended(&self, q: isize, end: Option<usize>) -> f64 {
         let at = |i: usize| self.window[i - self.window_start];
-        if q < 0 {
-            return 2.0 * self.head[0] - self.head[q.unsigned_abs()];
-        }
-        let q = q as usize;
-        match end {
-            Some(n) if q >= n => 2.0 * at(n - 1) - at(2 * (n - 1) - q),
-            _ => at(q),
-        }
+        edge_output(&self.reversed_taps, j, self.delay, end, &self.head, at)
     }
 
     /// The decimated, filtered record.
@@ -219,20 +202,9 @@ impl WholeRecord<'_> {
                 &self.x[from..from + self.reversed_taps.len()],
             );
         }
-        let reflected = |q: isize| -> f64 {
-            if q < 0 {
-                2.0 * self.x[0] - self.x[q.unsigned_abs()]
-            } else if q as usize >= n {
-                2.0 * self.x[n - 1] - self.x[2 * (n - 1) - q as usize]
-            } else {
-                self.x[q as usize]
-            }
-        };
-        self.reversed_taps
-            .iter()
-            .enumerate()
-            .map(|(k, h)| h * reflected(j as isize - delay as isize + k as isize))
-            .sum()
+        edge_output(&self.reversed_taps, j, delay, Some(n), self.x, |i| {
+            self.x[i]
+        })
     }
 }
 
@@ -251,6 +223,34 @@ impl pulp::WithSimd for &WholeRecord<'_> {
         }
         output
     }
+}
+
+/// Output j near an end of the record: Σ_k h_k x̃_{j−D+k} with x̃ the record continued by odd
+/// reflection about its first sample (from `head`, the first D + 1 samples) and, once its length
+/// `end` is known, about its last; `at(i)` is sample i.
+fn edge_output(
+    reversed_taps: &[f64],
+    j: usize,
+    delay: usize,
+    end: Option<usize>,
+    head: &[f64],
+    at: impl Fn(usize) -> f64,
+) -> f64 {
+    let extended = |q: isize| -> f64 {
+        if q < 0 {
+            return 2.0 * head[0] - head[q.unsigned_abs()];
+        }
+        let q = q as usize;
+        match end {
+            Some(n) if q >= n => 2.0 * at(n - 1) - at(2 * (n - 1) - q),
+            _ => at(q),
+        }
+    };
+    reversed_taps
+        .iter()
+        .enumerate()
+        .map(|(k, h)| h * extended(j as isize - delay as isize + k as isize))
+        .sum()
 }
 
 /// [`StreamingDecimator::compute_ready_outputs`] as a [`pulp::WithSimd`] task: compiled once per
