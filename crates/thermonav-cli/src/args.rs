@@ -2,6 +2,26 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use thermonav::nav::engine::EngineSettings;
+use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::outage::OutageSpec;
+use thermonav::sim::chamber::CampaignSettings;
+use thermonav::sim::rng::DEFAULT_SEED;
+use thermonav::sim::vessel::SurveySettings;
+use thermonav::stoch::allan::DEFAULT_CONFIDENCE;
+use thermonav::stoch::characterize::CharacterizeSettings;
+
+fn engine() -> EngineSettings {
+    EngineSettings::default()
+}
+
+fn campaign() -> CampaignSettings {
+    CampaignSettings::default()
+}
+
+fn conditioning() -> CharacterizeSettings {
+    CharacterizeSettings::default()
+}
 
 /// Temperature-dependent stochastic modelling of MEMS IMU errors and GNSS/INS filtering.
 #[derive(Debug, Parser)]
@@ -89,18 +109,18 @@ pub struct EvaluateArgs {
     pub filter: FiltersArg,
     /// Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT.
     #[arg(long, default_value = "spread:8,100")]
-    pub outages: String,
+    pub outages: OutageSpec,
     /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
     #[arg(long, default_value_t = 1)]
     pub monte_carlo: usize,
     /// Seed of the outage shifts.
-    #[arg(long, default_value_t = 2009)]
+    #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
     /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.0, 0.0, 0.0])]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().lever_arm_body_m)]
     pub lever_arm_m: Vec<f64>,
     /// Dual-antenna baseline direction in body axes (primary to secondary).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1.0, 0.0, 0.0])]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().baseline_body)]
     pub baseline: Vec<f64>,
     /// Output folder (evaluation.json and errors/*.csv).
     #[arg(long)]
@@ -159,30 +179,31 @@ pub struct IntegrateArgs {
     /// GNSS outages: START+DURATION[,START+DURATION...] or every:FIRST,DURATION,PERIOD,COUNT
     /// (seconds on the files' t_s scale).
     #[arg(long, default_value = "none")]
-    pub outages: String,
+    pub outages: OutageSpec,
     /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.0, 0.0, 0.0])]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().lever_arm_body_m)]
     pub lever_arm_m: Vec<f64>,
     /// Dual-antenna baseline direction in body axes (primary to secondary).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1.0, 0.0, 0.0])]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().baseline_body)]
     pub baseline: Vec<f64>,
     /// Start from this reference trajectory's state at the first GNSS epoch instead of
     /// aligning from GNSS and the accelerometers.
     #[arg(long)]
     pub initial_from: Option<PathBuf>,
     /// Covariance propagation rate, Hz (the nominal state is mechanized at every IMU sample).
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 1.0 / engine().covariance_interval_s)]
     pub covariance_rate_hz: f64,
     /// Solution output rate, Hz.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 1.0 / engine().output_interval_s)]
     pub output_rate_hz: f64,
     /// Probability of the chi-square innovation gate (e.g. 0.9999), or 1 to accept every
     /// update.
-    #[arg(long, default_value_t = 0.9999)]
+    #[arg(long, default_value_t = engine().gate_probability.unwrap_or(1.0))]
     pub gate_probability: f64,
-    /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none).
-    #[arg(long, default_value_t = 0.05)]
-    pub velocity_sd_m_s: f64,
+    /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none): one
+    /// value for all three axes, or north,east,down.
+    #[arg(long, value_delimiter = ',', default_values_t = engine().velocity_sd_m_s)]
+    pub velocity_sd_m_s: Vec<f64>,
     /// Multiplies the white-noise densities (ARW, VRW) of the model: vibration on a vehicle
     /// raises the effective noise above a static record's (1 = the model as characterised).
     #[arg(long, default_value_t = 1.0)]
@@ -221,7 +242,7 @@ pub struct AllanArgs {
     #[arg(long, value_enum, default_value_t = TausArg::Octave)]
     pub taus: TausArg,
     /// Confidence level of the limits (0.683 is Stable32's).
-    #[arg(long, default_value_t = 0.683)]
+    #[arg(long, default_value_t = DEFAULT_CONFIDENCE)]
     pub confidence: f64,
     /// Print one JSON document instead of text.
     #[arg(long)]
@@ -289,13 +310,13 @@ pub struct CharacterizeArgs {
     #[arg(long, requires = "manifest")]
     pub unit_index: Option<usize>,
     /// Kaiser cut-off of the conditioning before AR modelling, Hz.
-    #[arg(long, default_value_t = 0.4)]
+    #[arg(long, default_value_t = conditioning().cutoff_hz)]
     pub cutoff_hz: f64,
     /// Kaiser transition width, Hz.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = conditioning().transition_hz)]
     pub transition_hz: f64,
     /// Rate of the conditioned series, Hz.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = conditioning().modelling_rate_hz)]
     pub modelling_rate_hz: f64,
     /// How each record is read: whole into memory, or streamed in pieces in bounded memory
     /// (for long logs); auto streams files of at least 1 GiB.
@@ -430,26 +451,26 @@ pub struct ChamberArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "-40,-20,0,20,40,60"
+        default_values_t = campaign().temperatures_c
     )]
     pub temperatures_c: Vec<f64>,
     /// Record length per temperature, s.
-    #[arg(long, default_value_t = 10800.0)]
+    #[arg(long, default_value_t = campaign().duration_s)]
     pub duration_s: f64,
     /// Sample rate, Hz.
-    #[arg(long, default_value_t = 200.0)]
+    #[arg(long, default_value_t = campaign().rate_hz)]
     pub rate_hz: f64,
     /// Timestamp jitter (standard deviation), µs.
-    #[arg(long, default_value_t = 50.0)]
+    #[arg(long, default_value_t = campaign().jitter_s * 1e6)]
     pub jitter_us: f64,
     /// Probability that a sample is dropped.
-    #[arg(long, default_value_t = 0.001)]
+    #[arg(long, default_value_t = campaign().drop_probability)]
     pub drop_probability: f64,
     /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
     #[arg(long)]
     pub profile: Option<PathBuf>,
     /// Seed of every random draw.
-    #[arg(long, default_value_t = 2009)]
+    #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
     /// Print one JSON document (the truth) instead of text.
     #[arg(long)]
@@ -463,10 +484,10 @@ pub struct VesselArgs {
     #[arg(long)]
     pub out: PathBuf,
     /// Sensor temperature during the survey, °C.
-    #[arg(long, default_value_t = 17.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = SurveySettings::default().temperature_c, allow_negative_numbers = true)]
     pub temperature_c: f64,
     /// Survey length, s (ignored with --motion, whose segments set the length).
-    #[arg(long, default_value_t = 3600.0)]
+    #[arg(long, default_value_t = SurveySettings::default().duration_s)]
     pub duration_s: f64,
     /// A motion-definition file (TOML: start, segments, optional waves) instead of the
     /// built-in harbour survey: cars and other platforms (see examples/motion/car.toml).
@@ -476,7 +497,7 @@ pub struct VesselArgs {
     #[arg(long)]
     pub profile: Option<PathBuf>,
     /// Seed of every random draw.
-    #[arg(long, default_value_t = 2009)]
+    #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
     /// Print one JSON document instead of text.
     #[arg(long)]
@@ -501,7 +522,7 @@ pub struct DemoArgs {
     #[arg(long)]
     pub quick: bool,
     /// Seed of every random draw.
-    #[arg(long, default_value_t = 2009)]
+    #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
     /// Print one JSON document instead of text.
     #[arg(long)]
@@ -727,7 +748,7 @@ pub struct PlotArgs {
     pub max_lag_s: f64,
     /// GNSS outages to highlight, as for `integrate` (trajectory).
     #[arg(long, default_value = "none")]
-    pub outages: String,
+    pub outages: OutageSpec,
     /// Filter whose models to draw (outage-errors): ukf or ekf; default the report's first.
     #[arg(long)]
     pub filter: Option<String>,
@@ -744,4 +765,74 @@ pub struct PlotArgs {
 pub struct ReportArgs {
     /// The folder demo (or characterize + evaluate) wrote: bank.json, evaluation/, vessel/.
     pub dir: PathBuf,
+}
+
+impl From<GmSourceArg> for thermonav::stoch::bank::GaussMarkovSource {
+    fn from(m: GmSourceArg) -> Self {
+        match m {
+            GmSourceArg::IrregularMl => Self::IrregularMl,
+            GmSourceArg::ArBased => Self::ArBased,
+            GmSourceArg::AcfFit => Self::AcfFit,
+        }
+    }
+}
+
+impl From<SelectArg> for thermonav::stoch::bank::Selection {
+    fn from(m: SelectArg) -> Self {
+        match m {
+            SelectArg::Nearest => Self::Nearest,
+            SelectArg::Linear => Self::Linear,
+        }
+    }
+}
+
+impl From<FilterArg> for thermonav::nav::engine::FilterKind {
+    fn from(f: FilterArg) -> Self {
+        match f {
+            FilterArg::Ekf => Self::Ekf,
+            FilterArg::Ukf => Self::Ukf,
+        }
+    }
+}
+
+impl FiltersArg {
+    /// The filters of the choice, UKF first (the paper's filter).
+    pub fn kinds(self) -> Vec<thermonav::nav::engine::FilterKind> {
+        use thermonav::nav::engine::FilterKind;
+        match self {
+            FiltersArg::Ekf => vec![FilterKind::Ekf],
+            FiltersArg::Ukf => vec![FilterKind::Ukf],
+            FiltersArg::Both => vec![FilterKind::Ukf, FilterKind::Ekf],
+        }
+    }
+}
+
+impl From<TausArg> for thermonav::stoch::allan::TauGrid {
+    fn from(t: TausArg) -> Self {
+        match t {
+            TausArg::Octave => Self::Octave,
+            TausArg::Decade => Self::Decade,
+            TausArg::Dense => Self::Dense { per_decade: 20 },
+        }
+    }
+}
+
+impl From<ArMethodArg> for thermonav::stoch::ar::ArMethod {
+    fn from(m: ArMethodArg) -> Self {
+        match m {
+            ArMethodArg::YuleWalker => Self::YuleWalker,
+            ArMethodArg::Burg => Self::Burg,
+            ArMethodArg::Covariance => Self::Covariance,
+            ArMethodArg::ModifiedCovariance => Self::ModifiedCovariance,
+        }
+    }
+}
+
+impl From<ModeArg> for thermonav::signal::zero_phase::ZeroPhaseMode {
+    fn from(m: ModeArg) -> Self {
+        match m {
+            ModeArg::ZeroPhase => Self::DelayCompensated,
+            ModeArg::Filtfilt => Self::ForwardBackward,
+        }
+    }
 }

@@ -2,11 +2,23 @@
 //! handed to one function per subcommand.
 
 mod args;
+mod bank_building;
+mod bank_streaming;
+mod bank_tables;
+mod campaign;
 mod commands;
 mod failure;
+mod figure_data;
+mod fir_design;
+mod html_report;
+mod inputs;
+mod integration;
 mod noise_units;
+mod production_lot;
 mod progress;
 mod report;
+mod settings;
+mod tournament_files;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -1,18 +1,15 @@
 //! `thermonav allan`: overlapping Allan deviation of every channel.
 
-use crate::args::{AllanArgs, TausArg};
+use crate::args::AllanArgs;
 use crate::failure::{Classify, Failure};
 use crate::noise_units::{TermsJson, terms_json, terms_line};
 use crate::report::print_json;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::Path;
-use thermonav::imu::{Channel, ImuSeries, SampleKind};
-use thermonav::signal::timestamps::interval_stats;
+use thermonav::imu::{Channel, SampleKind};
 use thermonav::stoch::allan::{TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::fit_noise_terms;
-use thermonav_io::{Strictness, read_imu_file};
 
 /// The JSON document of `allan --json`.
 #[derive(Debug, Serialize)]
@@ -35,31 +32,6 @@ struct ChannelJson {
     terms: TermsJson,
 }
 
-/// The grid of a `--taus` choice.
-pub fn grid_of(taus: TausArg) -> TauGrid {
-    match taus {
-        TausArg::Octave => TauGrid::Octave,
-        TausArg::Decade => TauGrid::Decade,
-        TausArg::Dense => TauGrid::Dense { per_decade: 20 },
-    }
-}
-
-/// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
-/// rates in the error for a file of increments.
-pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
-    if series.kind == Some(SampleKind::Increments) {
-        return Err(Failure::Data(anyhow!(
-            "{}: {purpose} needs rates; the file holds increments",
-            path.display()
-        )));
-    }
-    let rate_hz = interval_stats(&series.time)
-        .map(|s| s.nominal_rate_hz())
-        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", path.display())))?;
-    Ok((series, rate_hz))
-}
-
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     if !(args.confidence > 0.0 && args.confidence < 1.0) {
@@ -68,8 +40,8 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
             args.confidence
         )));
     }
-    let (series, rate_hz) = read_rates(&args.file, "Allan deviation")?;
-    let grid = grid_of(args.taus);
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
+    let grid: TauGrid = args.taus.into();
     let mut channels = BTreeMap::new();
     for channel in Channel::ALL {
         let y = series.channel(channel);

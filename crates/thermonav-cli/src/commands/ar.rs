@@ -1,6 +1,6 @@
 //! `thermonav ar`: an AR model per channel and its Gauss-Markov equivalent.
 
-use crate::args::{ArArgs, ArMethodArg};
+use crate::args::ArArgs;
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
 use anyhow::anyhow;
@@ -47,16 +47,6 @@ enum GaussMarkovJson {
     },
 }
 
-/// The library method of a `--method` choice.
-pub fn method_of(m: ArMethodArg) -> ArMethod {
-    match m {
-        ArMethodArg::YuleWalker => ArMethod::YuleWalker,
-        ArMethodArg::Burg => ArMethod::Burg,
-        ArMethodArg::Covariance => ArMethod::Covariance,
-        ArMethodArg::ModifiedCovariance => ArMethod::ModifiedCovariance,
-    }
-}
-
 fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
     if text == "auto" {
         return Ok(Order::Auto {
@@ -75,7 +65,7 @@ fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
 /// Runs `ar`.
 pub fn run(args: &ArArgs) -> Result<(), Failure> {
     let order = order_of(&args.order, args.max_order)?;
-    let method = method_of(args.method);
+    let method: ArMethod = args.method.into();
     let series = read_imu_file(&args.file, Strictness::Strict).data()?;
     if series.kind == Some(SampleKind::Increments) {
         return Err(Failure::Data(anyhow!(

@@ -1,42 +1,20 @@
 //! `thermonav bank show`: the bank, or the model selected for an operating temperature.
 
-use super::characterize::print_bank_table;
-use crate::args::{BankAction, BankArgs, BankShowArgs, GmSourceArg, SelectArg};
+use crate::args::{BankAction, BankArgs, BankShowArgs};
+use crate::bank_tables::print_bank_table;
 use crate::failure::{Classify, Failure};
+use crate::inputs::read_bank;
 use crate::report::print_json;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::Path;
 use thermonav::imu::Channel;
-use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
+use thermonav::stoch::bank::{GaussMarkovSource, SelectedModel, Selection};
 
 /// Runs `bank`.
 pub fn run(args: &BankArgs) -> Result<(), Failure> {
     match &args.action {
         BankAction::Show(show) => run_show(show),
-    }
-}
-
-/// Reads and validates a bank file.
-pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
-    thermonav_io::bank::read_bank_file(path).data()
-}
-
-/// The library source of a `--model` choice.
-pub fn source_of(m: GmSourceArg) -> GaussMarkovSource {
-    match m {
-        GmSourceArg::IrregularMl => GaussMarkovSource::IrregularMl,
-        GmSourceArg::ArBased => GaussMarkovSource::ArBased,
-        GmSourceArg::AcfFit => GaussMarkovSource::AcfFit,
-    }
-}
-
-/// The library rule of a `--method` choice.
-pub fn selection_of(m: SelectArg) -> Selection {
-    match m {
-        SelectArg::Nearest => Selection::Nearest,
-        SelectArg::Linear => Selection::Linear,
     }
 }
 
@@ -57,7 +35,8 @@ fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
         print_bank_table(&bank);
         return Ok(());
     };
-    let (selection, source) = (selection_of(args.method), source_of(args.model));
+    let (selection, source): (Selection, GaussMarkovSource) =
+        (args.method.into(), args.model.into());
     let mut channels = BTreeMap::new();
     for channel in Channel::ALL {
         let model = bank

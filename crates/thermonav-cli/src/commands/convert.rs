@@ -21,6 +21,7 @@ use thermonav_io::{
 
 /// Runs `convert`.
 pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
+    crate::settings::analysis::check_convert(args, &tag_path(args))?;
     let format = match args.format {
         Some(format) => format,
         None => detect_format(&args.input, &tag_path(args))?,

@@ -9,26 +9,36 @@
 //!    data-sheet baselines through GNSS outages spread over the survey, with a Monte Carlo
 //!    over simulation seeds (new IMU errors and GNSS noise per replicate) for significance.
 
-use super::characterize::{build_bank, show_estimate};
-use super::evaluate::{
-    EvaluationJson, ScenarioFiles, TournamentPlan, print_tournament_table, run_plan,
-    scenario_from_files, scenario_of,
-};
-use super::integrate::{Summary as IntegrateSummary, integrate_files};
-use super::simulate::{VesselFiles, run_chamber, simulate_vessel_files, vessel_run};
-use crate::args::{
-    ChamberArgs, DemoArgs, FilterArg, GmSourceArg, IntegrateArgs, SelectArg, VesselArgs,
-};
+use crate::args::DemoArgs;
+use crate::bank_building::build_bank;
+use crate::bank_tables::show_estimate;
+use crate::campaign::{VesselFiles, create_folder, run_chamber, simulate_vessel_files, vessel_run};
 use crate::failure::{Classify, Failure};
+use crate::integration::{Summary as IntegrateSummary, integrate};
 use crate::report::print_json;
+use crate::settings::navigation::{
+    IntegrateSettings, ModelTemperature, NoiseSource, ScenarioFiles, SolutionFiles,
+};
+use crate::settings::simulation::{VesselSettings, chamber_settings};
+use crate::tournament_files::{
+    EvaluationFile, print_tournament_table, run_and_write, scenario_from_files, scenario_of,
+};
+use anyhow::anyhow;
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
+use thermonav::evaluation::candidates::DatasheetValues;
+use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::tournament::Scenario;
 use thermonav::imu::Channel;
-use thermonav::nav::engine::{FilterKind, increments_from_series};
+use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
 use thermonav::nav::measurement::AntennaGeometry;
-use thermonav::sim::vessel::{GnssSettings, VesselRun, simulate_vessel};
-use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank};
+use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::sim::chamber::{CampaignSettings, RunTruth};
+use thermonav::sim::profile::SensorProfile;
+use thermonav::sim::vessel::{GnssSettings, SurveySettings, VesselRun, simulate_vessel};
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank, Selection};
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::write_json_atomically;
@@ -38,7 +48,7 @@ struct Plan {
     duration_s: f64,
     rate_hz: f64,
     vessel_s: f64,
-    outages: &'static str,
+    outages: OutageSpec,
     replicates: u64,
 }
 
@@ -48,7 +58,10 @@ fn plan(quick: bool) -> Plan {
             duration_s: 1800.0,
             rate_hz: 100.0,
             vessel_s: 600.0,
-            outages: "spread:4,60",
+            outages: OutageSpec::Spread {
+                count: 4,
+                duration_s: 60.0,
+            },
             replicates: 3,
         }
     } else {
@@ -56,7 +69,10 @@ fn plan(quick: bool) -> Plan {
             duration_s: 10_800.0,
             rate_hz: 200.0,
             vessel_s: 1800.0,
-            outages: "spread:8,100",
+            outages: OutageSpec::Spread {
+                count: 8,
+                duration_s: 100.0,
+            },
             replicates: 5,
         }
     }
@@ -85,7 +101,7 @@ struct DemoSummary {
     recovery: Vec<Recovery>,
     ml_intervals_covering_truth: usize,
     ml_intervals: usize,
-    tournament: EvaluationJson,
+    tournament: EvaluationFile,
     solution: IntegrateSummary,
     elapsed_s: f64,
 }
@@ -94,54 +110,24 @@ struct DemoSummary {
 pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     let started = Instant::now();
     let p = plan(args.quick);
-    let chamber_dir = args.out.join("chamber");
-    let chamber = ChamberArgs {
-        out: chamber_dir.clone(),
-        temperatures_c: vec![-40.0, -20.0, 0.0, 20.0, 40.0, 60.0],
-        duration_s: p.duration_s,
-        rate_hz: p.rate_hz,
-        jitter_us: 50.0,
-        drop_probability: 0.001,
-        profile: None,
-        seed: args.seed,
-        json: false,
-    };
-    say(
-        args,
-        &format!(
-            "1/4 simulating 6 chamber records of {} s at {} Hz ...",
-            p.duration_s, p.rate_hz
-        ),
-    );
-    let truth = run_chamber(&chamber)?;
-    say(
-        args,
-        "2/4 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
-    );
-    let files: Vec<&Path> = truth.files.iter().map(|p| p.as_path()).collect();
-    let bank_path = args.out.join("bank.json");
-    let bank = build_bank(
-        &files,
-        &chamber.temperatures_c,
-        &CharacterizeSettings::default(),
-        &bank_path,
-    )?;
-    say(
-        args,
-        &format!(
-            "3/4 simulating the {} s vessel survey at 17 °C ...",
-            p.vessel_s
-        ),
-    );
-    let vessel = VesselArgs {
+    let (truth, bank) = chamber_and_bank(args, &p)?;
+    let vessel = VesselSettings {
         out: args.out.join("vessel"),
-        temperature_c: 17.0,
-        duration_s: p.vessel_s,
+        survey: SurveySettings {
+            duration_s: p.vessel_s,
+            ..SurveySettings::default()
+        },
         motion: None,
         profile: None,
         seed: args.seed,
-        json: false,
     };
+    say(
+        args,
+        &format!(
+            "3/4 simulating the {} s vessel survey at {} °C ...",
+            p.vessel_s, vessel.survey.temperature_c
+        ),
+    );
     let vessel_files = simulate_vessel_files(&vessel)?.files;
     say(
         args,
@@ -151,32 +137,10 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         ),
     );
     let tournament = tournament(&bank, &vessel, &vessel_files, &p, &args.out)?;
-    let solution = interpolated_solution(&vessel_files, &p, &args.out)?;
-    let recovery = recovery_table(&bank, &truth.temperatures);
-    let covered = recovery
-        .iter()
-        .filter(|r| r.truth_inside_ml_interval == Some(true))
-        .count();
-    let judged = recovery
-        .iter()
-        .filter(|r| r.truth_inside_ml_interval.is_some())
-        .count();
-    let summary = DemoSummary {
-        out: args.out.display().to_string(),
-        seed: args.seed,
-        quick: args.quick,
-        chamber_duration_s: p.duration_s,
-        chamber_rate_hz: p.rate_hz,
-        bank: bank_path.display().to_string(),
-        recovery,
-        ml_intervals_covering_truth: covered,
-        ml_intervals: judged,
-        tournament,
-        solution,
-        elapsed_s: started.elapsed().as_secs_f64(),
-    };
+    let solution = interpolated_solution(&vessel, &vessel_files, &p, &args.out)?;
+    let summary = summarize(args, &p, &bank, &truth, tournament, solution, started);
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
-    let report = super::report::write_report(&args.out)?;
+    let report = crate::html_report::write_report(&args.out)?;
     say(args, &format!("report: {}", report.display()));
     if args.json {
         return print_json(&summary);
@@ -185,99 +149,177 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Steps 1 and 2: the simulated chamber campaign and its bank.
+fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBank), Failure> {
+    let campaign = CampaignSettings {
+        duration_s: p.duration_s,
+        rate_hz: p.rate_hz,
+        ..CampaignSettings::default()
+    };
+    let chamber = chamber_settings(args.out.join("chamber"), campaign, None, args.seed)?;
+    say(
+        args,
+        &format!(
+            "1/4 simulating {} chamber records of {} s at {} Hz ...",
+            chamber.campaign.temperatures_c.len(),
+            p.duration_s,
+            p.rate_hz
+        ),
+    );
+    let truth = run_chamber(&chamber)?;
+    say(
+        args,
+        "2/4 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
+    );
+    let files: Vec<&Path> = truth.files.iter().map(|p| p.as_path()).collect();
+    let bank = build_bank(
+        &files,
+        &chamber.campaign.temperatures_c,
+        &CharacterizeSettings::default(),
+        &args.out.join("bank.json"),
+    )?;
+    Ok((truth.temperatures, bank))
+}
+
+fn summarize(
+    args: &DemoArgs,
+    p: &Plan,
+    bank: &ModelBank,
+    truth: &[RunTruth],
+    tournament: EvaluationFile,
+    solution: IntegrateSummary,
+    started: Instant,
+) -> DemoSummary {
+    let recovery = recovery_table(bank, truth);
+    let judged: Vec<bool> = recovery
+        .iter()
+        .filter_map(|r| r.truth_inside_ml_interval)
+        .collect();
+    DemoSummary {
+        out: args.out.display().to_string(),
+        seed: args.seed,
+        quick: args.quick,
+        chamber_duration_s: p.duration_s,
+        chamber_rate_hz: p.rate_hz,
+        bank: args.out.join("bank.json").display().to_string(),
+        recovery,
+        ml_intervals_covering_truth: judged.iter().filter(|&&inside| inside).count(),
+        ml_intervals: judged.len(),
+        tournament,
+        solution,
+        elapsed_s: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// The antennas of the simulated survey.
+fn survey_geometry() -> AntennaGeometry {
+    let gnss = GnssSettings::default();
+    AntennaGeometry {
+        lever_arm_body_m: gnss.lever_arm_body_m,
+        baseline_body: gnss.baseline_body_m,
+    }
+}
+
 /// The tournament on the survey files, with replicates re-simulated under other seeds.
 fn tournament(
     bank: &ModelBank,
-    vessel: &VesselArgs,
+    vessel: &VesselSettings,
     files: &VesselFiles,
     p: &Plan,
     out: &Path,
-) -> Result<EvaluationJson, Failure> {
-    let gnss = GnssSettings::default();
-    let geometry = AntennaGeometry {
-        lever_arm_body_m: gnss.lever_arm_body_m,
-        baseline_body: gnss.baseline_body_m,
+) -> Result<EvaluationFile, Failure> {
+    let engine = EngineSettings {
+        geometry: survey_geometry(),
+        ..EngineSettings::default()
+    };
+    let scenario_files = ScenarioFiles {
+        imu: files.imu.clone(),
+        gnss: files.gnss.clone(),
+        reference: files.reference.clone(),
     };
     let (main, operating_c) = scenario_from_files(
-        &ScenarioFiles {
-            imu: &files.imu,
-            gnss: &files.gnss,
-            reference: &files.reference,
-        },
-        geometry,
-        p.outages,
-        Some(vessel.temperature_c),
+        &scenario_files,
+        engine,
+        &p.outages,
+        Some(vessel.survey.temperature_c),
     )?;
-    let (profile, run) = vessel_run(vessel)?;
-    let replicates = (1..p.replicates)
-        .map(|k| {
-            let run = VesselRun {
-                seed: vessel.seed.wrapping_add(k),
-                ..run.clone()
-            };
-            let record = simulate_vessel(&profile, &run).usage()?;
-            let reference = record
-                .reference
-                .states
-                .iter()
-                .map(TrajectoryPoint::from_nav_state)
-                .collect();
-            scenario_of(
-                increments_from_series(&record.imu),
-                record.gnss,
-                reference,
-                main.settings.clone(),
-                &files.reference,
-            )
-        })
-        .collect::<Result<Vec<_>, Failure>>()?;
     let plan = TournamentPlan {
         bank,
         operating_temperature_c: operating_c,
         source: GaussMarkovSource::IrregularMl,
         filters: vec![FilterKind::Ukf, FilterKind::Ekf],
-        replicate_kind: "simulation seeds (new IMU errors and GNSS noise per replicate)",
-        out: &out.join("evaluation"),
+        datasheet: Some(DatasheetValues::adis16364()),
+        scale: ScaleFactorPrior::default(),
     };
-    run_plan(&plan, &main, &replicates)
+    let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
+    let (profile, run) = vessel_run(vessel)?;
+    let make = |k: usize| resimulated(&profile, &run, &main, k, &files.reference);
+    let replicates = Replicates::Made {
+        extra: p.replicates.saturating_sub(1) as usize,
+        differ_by: "simulation seeds (new IMU errors and GNSS noise per replicate)",
+        make: &make,
+    };
+    run_and_write(&tournament, &main, &replicates, &out.join("evaluation"))
 }
 
-/// The UKF solution with the model interpolated at 17 °C through the same outages, with its
-/// state and innovation files, under DIR/solution.
+/// The survey simulated again with the seed moved by `k`, as a scenario like `main`.
+fn resimulated(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    main: &Scenario,
+    k: usize,
+    reference_name: &Path,
+) -> Result<Scenario, String> {
+    let run = VesselRun {
+        seed: run.seed.wrapping_add(k as u64),
+        ..run.clone()
+    };
+    let record = simulate_vessel(profile, &run).map_err(|e| e.to_string())?;
+    let reference = record
+        .reference
+        .states
+        .iter()
+        .map(TrajectoryPoint::from_nav_state)
+        .collect();
+    scenario_of(
+        increments_from_series(&record.imu),
+        record.gnss,
+        reference,
+        main.settings.clone(),
+        reference_name,
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// The UKF solution with the model interpolated at the survey temperature through the same
+/// outages, with its state and innovation files, under DIR/solution.
 fn interpolated_solution(
+    vessel: &VesselSettings,
     files: &VesselFiles,
     p: &Plan,
     out: &Path,
 ) -> Result<IntegrateSummary, Failure> {
-    let gnss = GnssSettings::default();
-    let args = IntegrateArgs {
+    create_folder(&out.join("solution"))?;
+    let settings = IntegrateSettings {
         imu: files.imu.clone(),
         gnss: files.gnss.clone(),
-        bank: Some(out.join("bank.json")),
-        profile: None,
-        model_temperature_c: None,
-        operating_temperature_c: Some(17.0),
-        select: SelectArg::Linear,
-        model: GmSourceArg::IrregularMl,
-        filter: FilterArg::Ukf,
-        outages: p.outages.to_string(),
-        lever_arm_m: gnss.lever_arm_body_m.to_vec(),
-        baseline: gnss.baseline_body_m.to_vec(),
+        noise: NoiseSource::Bank(out.join("bank.json")),
+        temperature: ModelTemperature::Operating {
+            given_c: Some(vessel.survey.temperature_c),
+            selection: Selection::Linear,
+        },
+        gauss_markov: GaussMarkovSource::IrregularMl,
+        engine: EngineSettings {
+            filter: FilterKind::Ukf,
+            geometry: survey_geometry(),
+            ..EngineSettings::default()
+        },
+        outages: p.outages.clone(),
         initial_from: Some(files.reference.clone()),
-        covariance_rate_hz: 10.0,
-        output_rate_hz: 10.0,
-        gate_probability: 0.9999,
-        velocity_sd_m_s: 0.05,
         process_noise_scale: 1.0,
-        no_velocity: false,
-        no_heading: false,
-        out: out.join("solution/solution.csv"),
-        json: true,
+        outputs: SolutionFiles::beside(&out.join("solution/solution.csv")),
     };
-    std::fs::create_dir_all(out.join("solution"))
-        .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))
-        .data()?;
-    integrate_files(&args)
+    integrate(&settings)
 }
 
 fn say(args: &DemoArgs, line: &str) {
@@ -286,7 +328,7 @@ fn say(args: &DemoArgs, line: &str) {
     }
 }
 
-fn recovery_table(bank: &ModelBank, truth: &[thermonav::sim::chamber::RunTruth]) -> Vec<Recovery> {
+fn recovery_table(bank: &ModelBank, truth: &[RunTruth]) -> Vec<Recovery> {
     let mut rows = Vec::new();
     for (entry, run) in bank.entries.iter().zip(truth) {
         for channel in Channel::ALL {

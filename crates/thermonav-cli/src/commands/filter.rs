@@ -1,12 +1,12 @@
 //! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
 
-use super::fir::{FirDesign, describe, design};
 use crate::args::{FilterArgs, ModeArg};
 use crate::failure::{Classify, Failure};
+use crate::fir_design::{FirDesign, describe, design};
 use crate::report::{print_json, print_rows};
 use anyhow::anyhow;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::signal::decimate::{decimate, decimation_factor};
 use thermonav::signal::kaiser::FirFilter;
@@ -33,6 +33,7 @@ pub struct FilterRecord {
 
 /// Runs `filter`.
 pub fn run(args: &FilterArgs) -> Result<(), Failure> {
+    crate::settings::analysis::check_filter(args)?;
     let series = read_imu_file(&args.input, Strictness::Strict).data()?;
     let timing = check_timestamps(&series.time);
     let nominal_rate_hz = timing
@@ -43,7 +44,7 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
         })?;
     let design_rate_hz = args.fs_hz.unwrap_or(nominal_rate_hz);
     let (spec, designed) = design(design_rate_hz, &args.kaiser)?;
-    let mode = zero_phase_mode(args.mode);
+    let mode = args.mode.into();
     // One-pass zero phase needs a whole-sample delay: an even design gets one more tap.
     let filter = match mode {
         ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(&spec),
@@ -74,13 +75,6 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
         );
     }
     report(args.json, &record)
-}
-
-fn zero_phase_mode(mode: ModeArg) -> ZeroPhaseMode {
-    match mode {
-        ModeArg::ZeroPhase => ZeroPhaseMode::DelayCompensated,
-        ModeArg::Filtfilt => ZeroPhaseMode::ForwardBackward,
-    }
 }
 
 fn mode_name(mode: ModeArg) -> &'static str {
@@ -130,16 +124,9 @@ pub fn filter_series(
     Ok(out)
 }
 
-/// The sidecar's path: the output path with `.json` appended.
-pub fn sidecar_path(out: &Path) -> PathBuf {
-    let mut name = out.as_os_str().to_owned();
-    name.push(".json");
-    PathBuf::from(name)
-}
-
 fn write_outputs(out: &Path, series: &ImuSeries, record: &FilterRecord) -> Result<(), Failure> {
     write_imu_file(out, series).data()?;
-    write_json_atomically(sidecar_path(out), record).data()
+    write_json_atomically(crate::settings::analysis::json_sidecar(out), record).data()
 }
 
 fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
@@ -174,7 +161,7 @@ fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
         ),
         (
             "record",
-            sidecar_path(Path::new(&record.output))
+            crate::settings::analysis::json_sidecar(Path::new(&record.output))
                 .display()
                 .to_string(),
         ),

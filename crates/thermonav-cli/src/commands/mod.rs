@@ -4,7 +4,6 @@ mod allan;
 mod ar;
 mod bank;
 mod characterize;
-mod characterize_streaming;
 mod convert;
 mod demo;
 mod evaluate;

@@ -1,10 +1,9 @@
 //! `thermonav plot`: a figure from a file thermonav wrote, as SVG (or PNG).
 
-use super::allan::read_rates;
-use super::bank::{read_bank, source_of};
-use super::report::{innovations_of, outage_errors, rms_series};
 use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
+use crate::figure_data::{innovations_of, outage_errors, rms_series};
+use crate::inputs::{read_bank, read_rates};
 use anyhow::anyhow;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -12,7 +11,6 @@ use std::io::Write as _;
 use std::path::Path;
 use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
-use thermonav::nav::outage::Outages;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
@@ -223,7 +221,7 @@ fn allan_curve(channel: Channel, c: AllanChannelJson, confidence: f64) -> AllanC
 
 fn correlation_svg(args: &PlotArgs) -> Result<String, Failure> {
     let bank = read_bank(&args.input)?;
-    let families: Vec<_> = args.families.iter().map(|&f| source_of(f)).collect();
+    let families: Vec<_> = args.families.iter().map(|&f| f.into()).collect();
     let series = correlation_time_series(&bank, &families);
     if series.is_empty() {
         return Err(Failure::Data(anyhow!(
@@ -297,7 +295,9 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
             args.input.display()
         )));
     };
-    let outages = Outages::from_spec(&args.outages, (first.time, last.time))
+    let outages = args
+        .outages
+        .resolve((first.time, last.time))
         .map_err(|e| anyhow!("--outages: {e}"))
         .usage()?;
     let position = |i: usize| Geodetic {

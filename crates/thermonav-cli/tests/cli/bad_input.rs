@@ -522,7 +522,7 @@ fn every_bank_and_profile_reader_refuses_spoiled_files() {
     }
     let profile_commands: &[&str] = &[
         "simulate chamber --profile @ --duration-s 10 --out @out",
-        "simulate vessel --profile @ --duration-s 10 --out @out",
+        "simulate vessel --profile @ --duration-s 60 --out @out",
         "integrate --imu %imu.csv --gnss %gnss.csv --profile @ --out @out.csv",
     ];
     let profile = std::fs::read_to_string(fixtures.path().join("profile.toml")).unwrap();

@@ -55,7 +55,14 @@ pub struct Candidate {
 impl Candidate {
     /// The temperature a candidate stands for, if any.
     pub fn temperature_c(&self) -> Option<f64> {
-        match self.kind {
+        self.kind.temperature_c()
+    }
+}
+
+impl CandidateKind {
+    /// The temperature a candidate of this kind stands for, if any.
+    pub fn temperature_c(self) -> Option<f64> {
+        match self {
             CandidateKind::Entry { temperature_c }
             | CandidateKind::Interpolated { temperature_c } => Some(temperature_c),
             CandidateKind::Pooled | CandidateKind::Datasheet => None,

@@ -129,6 +129,28 @@ impl Metric {
     }
 }
 
+/// Checks that the reference trajectory covers every outage window, before any run.
+///
+/// # Errors
+/// [`MetricsError::ReferenceCoverage`] for the first window that it does not cover (with NaN
+/// bounds for an empty reference).
+pub fn check_reference_covers(
+    reference: &[TrajectoryPoint],
+    outages: &[Outage],
+) -> Result<(), MetricsError> {
+    let span = reference.first().zip(reference.last());
+    let covered = |w: &Outage| span.is_some_and(|(a, b)| a.time <= w.start && w.end <= b.time);
+    match outages.iter().find(|w| !covered(w)) {
+        None => Ok(()),
+        Some(w) => Err(MetricsError::ReferenceCoverage {
+            start_s: w.start.as_seconds(),
+            end_s: w.end.as_seconds(),
+            first_s: span.map_or(f64::NAN, |(a, _)| a.time.as_seconds()),
+            last_s: span.map_or(f64::NAN, |(_, b)| b.time.as_seconds()),
+        }),
+    }
+}
+
 /// Why a solution cannot be evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MetricsError {

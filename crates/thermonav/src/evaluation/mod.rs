@@ -8,10 +8,16 @@
 //!   operating temperature, the temperature-blind mean of the bank, and data-sheet values.
 //! - [`tournament`]: every candidate through the same filter on the same data, in parallel,
 //!   and the ranking.
+//! - [`experiment`]: a tournament with its replicates (shifted outages, or scenarios the
+//!   caller makes), bounded in memory, giving the [`report`].
+//! - [`report`]: the report's types, which are the `evaluation.json` contract, and the
+//!   ranking.
 //! - [`significance`]: Monte Carlo summaries (mean and 95 % interval per metric) and the
 //!   paired test of the winner against the runner-up.
 
 pub mod candidates;
+pub mod experiment;
 pub mod metrics;
+pub mod report;
 pub mod significance;
 pub mod tournament;

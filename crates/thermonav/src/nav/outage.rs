@@ -170,61 +170,13 @@ impl Outages {
         Self::from_start_duration(&pairs)
     }
 
-    /// Parses a specification: `none`; a list `START+DURATION[,START+DURATION...]`; a
-    /// periodic generator `every:FIRST,DURATION,PERIOD,COUNT`; or `spread:COUNT,DURATION`,
-    /// spread over the data span `data` as [`Outages::spread`] does. Seconds on the data's
-    /// time scale.
+    /// Parses a specification and lays it over the data span `data`: see [`OutageSpec`].
     ///
     /// # Errors
     /// [`OutageError::Spec`] for text that does not parse; otherwise as
-    /// [`Outages::from_start_duration`].
+    /// [`OutageSpec::resolve`].
     pub fn from_spec(spec: &str, data: (Timestamp, Timestamp)) -> Result<Self, OutageError> {
-        let bad = |reason: &str| OutageError::Spec {
-            spec: spec.to_owned(),
-            reason: reason.to_owned(),
-        };
-        let number = |text: &str| {
-            text.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(&format!("\"{}\" is not a finite number", text.trim())))
-        };
-        let text = spec.trim();
-        if text.eq_ignore_ascii_case("none") || text.is_empty() {
-            return Ok(Self::none());
-        }
-        if let Some(rest) = text.strip_prefix("spread:") {
-            let Some((count, duration)) = rest.split_once(',') else {
-                return Err(bad("spread: takes two values"));
-            };
-            let count: usize = count
-                .trim()
-                .parse()
-                .map_err(|_| bad(&format!("count \"{}\" is not a whole number", count.trim())))?;
-            return Self::spread(data.0, data.1, count, number(duration)?);
-        }
-        if let Some(rest) = text.strip_prefix("every:") {
-            let fields: Vec<&str> = rest.split(',').collect();
-            let [first, duration, period, count] = fields[..] else {
-                return Err(bad("every: takes four values"));
-            };
-            let count: usize = count
-                .trim()
-                .parse()
-                .map_err(|_| bad(&format!("count \"{}\" is not a whole number", count.trim())))?;
-            return Self::periodic(number(first)?, number(duration)?, number(period)?, count);
-        }
-        let pairs = text
-            .split(',')
-            .map(|item| {
-                let (start, duration) = item
-                    .split_once('+')
-                    .ok_or_else(|| bad(&format!("\"{}\" is not START+DURATION", item.trim())))?;
-                Ok((number(start)?, number(duration)?))
-            })
-            .collect::<Result<Vec<_>, OutageError>>()?;
-        Self::from_start_duration(&pairs)
+        spec.parse::<OutageSpec>()?.resolve(data)
     }
 
     /// Checks that every window lies within [first, last] of the data.
@@ -257,6 +209,216 @@ impl Outages {
     pub fn windows(&self) -> &[Outage] {
         &self.windows
     }
+}
+
+/// An outage specification as written, checked for form but not yet laid over any data.
+///
+/// Text forms (seconds on the data's time scale): `none`; a list
+/// `START+DURATION[,START+DURATION...]`; a periodic generator
+/// `every:FIRST,DURATION,PERIOD,COUNT`; or `spread:COUNT,DURATION`, spread over the data span
+/// as [`Outages::spread`] does. Parsing needs no data, so a command can refuse a bad
+/// specification before it reads a file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutageSpec {
+    /// No outage.
+    None,
+    /// Explicit windows, (start, duration) in seconds.
+    List(Vec<(f64, f64)>),
+    /// `count` windows of `duration_s` every `period_s` from `first_start_s`.
+    Every {
+        /// Start of the first window, s.
+        first_start_s: f64,
+        /// Length of each window, s.
+        duration_s: f64,
+        /// Start-to-start period, s.
+        period_s: f64,
+        /// Number of windows.
+        count: usize,
+    },
+    /// `count` windows of `duration_s` spread over the data.
+    Spread {
+        /// Number of windows.
+        count: usize,
+        /// Length of each window, s.
+        duration_s: f64,
+    },
+}
+
+impl std::str::FromStr for OutageSpec {
+    type Err = OutageError;
+
+    fn from_str(spec: &str) -> Result<Self, OutageError> {
+        let text = spec.trim();
+        let parsed = if text.eq_ignore_ascii_case("none") || text.is_empty() {
+            Ok(Self::None)
+        } else if let Some(rest) = text.strip_prefix("spread:") {
+            parse_spread(rest)
+        } else if let Some(rest) = text.strip_prefix("every:") {
+            parse_every(rest)
+        } else {
+            text.split(',')
+                .map(parse_start_duration)
+                .collect::<Result<Vec<_>, String>>()
+                .map(Self::List)
+        };
+        let spec = parsed.map_err(|reason| OutageError::Spec {
+            spec: spec.to_owned(),
+            reason,
+        })?;
+        spec.check_durations()?;
+        Ok(spec)
+    }
+}
+
+impl std::fmt::Display for OutageSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::None => write!(f, "none"),
+            Self::List(pairs) => {
+                let items: Vec<String> = pairs.iter().map(|(s, d)| format!("{s}+{d}")).collect();
+                write!(f, "{}", items.join(","))
+            }
+            Self::Every {
+                first_start_s,
+                duration_s,
+                period_s,
+                count,
+            } => write!(f, "every:{first_start_s},{duration_s},{period_s},{count}"),
+            Self::Spread { count, duration_s } => write!(f, "spread:{count},{duration_s}"),
+        }
+    }
+}
+
+fn finite_number(text: &str) -> Result<f64, String> {
+    text.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| format!("\"{}\" is not a finite number", text.trim()))
+}
+
+fn whole_number(text: &str) -> Result<usize, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("count \"{}\" is not a whole number", text.trim()))
+}
+
+fn parse_spread(rest: &str) -> Result<OutageSpec, String> {
+    let (count, duration) = rest
+        .split_once(',')
+        .ok_or_else(|| "spread: takes two values".to_string())?;
+    Ok(OutageSpec::Spread {
+        count: whole_number(count)?,
+        duration_s: finite_number(duration)?,
+    })
+}
+
+fn parse_every(rest: &str) -> Result<OutageSpec, String> {
+    let fields: Vec<&str> = rest.split(',').collect();
+    let [first, duration, period, count] = fields[..] else {
+        return Err("every: takes four values".into());
+    };
+    Ok(OutageSpec::Every {
+        first_start_s: finite_number(first)?,
+        duration_s: finite_number(duration)?,
+        period_s: finite_number(period)?,
+        count: whole_number(count)?,
+    })
+}
+
+fn parse_start_duration(item: &str) -> Result<(f64, f64), String> {
+    let (start, duration) = item
+        .split_once('+')
+        .ok_or_else(|| format!("\"{}\" is not START+DURATION", item.trim()))?;
+    Ok((finite_number(start)?, finite_number(duration)?))
+}
+
+impl OutageSpec {
+    /// Every window must last a positive time.
+    fn check_durations(&self) -> Result<(), OutageError> {
+        let (start_s, duration_s) = match self {
+            Self::None => return Ok(()),
+            Self::List(pairs) => match pairs.iter().find(|(_, d)| *d <= 0.0) {
+                Some(&pair) => pair,
+                None => return Ok(()),
+            },
+            Self::Every {
+                first_start_s,
+                duration_s,
+                ..
+            } => (*first_start_s, *duration_s),
+            Self::Spread { duration_s, .. } => (0.0, *duration_s),
+        };
+        if duration_s > 0.0 {
+            Ok(())
+        } else {
+            Err(OutageError::Empty { start_s })
+        }
+    }
+
+    /// The windows over the data span `data`, each inside it.
+    ///
+    /// A periodic list whose last window would end after the data is refused from its closed
+    /// form before any window is made, so the memory used is bounded by the data, never by the
+    /// count asked for.
+    ///
+    /// # Errors
+    /// [`OutageError::OutsideData`] for a window outside the data, [`OutageError::Spec`] for
+    /// spread outages that do not fit, and otherwise as [`Outages::from_start_duration`].
+    pub fn resolve(&self, data: (Timestamp, Timestamp)) -> Result<Outages, OutageError> {
+        let outages = match self {
+            Self::None => Outages::none(),
+            Self::List(pairs) => Outages::from_start_duration(pairs)?,
+            Self::Every {
+                first_start_s,
+                duration_s,
+                period_s,
+                count,
+            } => {
+                check_periodic_fits(*first_start_s, *duration_s, *period_s, *count, data)?;
+                Outages::periodic(*first_start_s, *duration_s, *period_s, *count)?
+            }
+            Self::Spread { count, duration_s } => {
+                Outages::spread(data.0, data.1, *count, *duration_s)?
+            }
+        };
+        outages.check_within(data.0, data.1)?;
+        Ok(outages)
+    }
+}
+
+/// Refuses a periodic list whose first or last window leaves the data, from the closed form
+/// of the last window (no list is built).
+fn check_periodic_fits(
+    first_start_s: f64,
+    duration_s: f64,
+    period_s: f64,
+    count: usize,
+    data: (Timestamp, Timestamp),
+) -> Result<(), OutageError> {
+    let Some(last_index) = count.checked_sub(1) else {
+        return Ok(());
+    };
+    if last_index > 0 && period_s.abs() < duration_s {
+        return Err(OutageError::Overlap {
+            first_start_s,
+            second_start_s: first_start_s + period_s,
+        });
+    }
+    let last_start_s = first_start_s + last_index as f64 * period_s;
+    let (lo, hi) = (data.0.as_seconds(), data.1.as_seconds());
+    let outside = |start_s: f64| start_s < lo || start_s + duration_s > hi;
+    for start_s in [first_start_s, last_start_s] {
+        if outside(start_s) {
+            return Err(OutageError::OutsideData {
+                start_s,
+                end_s: start_s + duration_s,
+                data_start_s: lo,
+                data_end_s: hi,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Whole seconds as a timestamp (for tests and generators).
@@ -311,5 +473,32 @@ mod tests {
         assert!((1800.0 - w[7].end.as_seconds() - gap / 2.0).abs() < 1e-6);
         assert_eq!(o.shifted(5.0).unwrap().windows()[0].start, seconds(105));
         assert!(o.check_within(seconds(0), seconds(200)).is_err());
+    }
+
+    // A specification parses without data; laying it over the data refuses windows outside
+    // it. A periodic list that cannot fit is refused from the closed form of its last window:
+    // 1e12 windows would need 16 TB if they were built first.
+    #[test]
+    fn specifications_parse_alone_and_huge_periodic_lists_are_refused_unbuilt() {
+        let spec: OutageSpec = "every:100,30,60,3".parse().unwrap();
+        assert_eq!(spec.to_string(), "every:100,30,60,3");
+        let data = (seconds(0), seconds(1000));
+        assert_eq!(spec.resolve(data).unwrap().windows().len(), 3);
+        for huge in ["every:10,5,20,1000000000000", "every:10,5,0,1000000000000"] {
+            let spec: OutageSpec = huge.parse().unwrap();
+            assert!(spec.resolve(data).is_err(), "{huge}");
+        }
+        assert!(matches!(
+            "spread:2,0".parse::<OutageSpec>(),
+            Err(OutageError::Empty { .. })
+        ));
+        assert!(matches!(
+            "bogus".parse::<OutageSpec>(),
+            Err(OutageError::Spec { .. })
+        ));
+        assert!(matches!(
+            "990+20".parse::<OutageSpec>().unwrap().resolve(data),
+            Err(OutageError::OutsideData { .. })
+        ));
     }
 }

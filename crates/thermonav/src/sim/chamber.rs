@@ -41,6 +41,41 @@ pub struct ChamberWander {
     pub correlation_time_s: f64,
 }
 
+/// A whole campaign's plan, as the paper ran it: six set points from −40 to +60 °C, 3 h at
+/// 200 Hz each, a clock with 50 µs of jitter that drops one sample in a thousand, and a chamber
+/// temperature wandering by 0.05 °C with a 10 min correlation time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CampaignSettings {
+    /// Chamber set points, °C.
+    pub temperatures_c: Vec<f64>,
+    /// Record length per set point, s.
+    pub duration_s: f64,
+    /// Sampling rate, Hz.
+    pub rate_hz: f64,
+    /// Timestamp jitter (standard deviation), s.
+    pub jitter_s: f64,
+    /// Probability that a sample is dropped.
+    pub drop_probability: f64,
+    /// Slow wander of the chamber temperature.
+    pub wander: ChamberWander,
+}
+
+impl Default for CampaignSettings {
+    fn default() -> Self {
+        Self {
+            temperatures_c: vec![-40.0, -20.0, 0.0, 20.0, 40.0, 60.0],
+            duration_s: 10_800.0,
+            rate_hz: 200.0,
+            jitter_s: 50e-6,
+            drop_probability: 0.001,
+            wander: ChamberWander {
+                sigma_c: 0.05,
+                correlation_time_s: 600.0,
+            },
+        }
+    }
+}
+
 /// What to simulate at one temperature.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ChamberRun {

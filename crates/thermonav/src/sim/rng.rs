@@ -7,6 +7,9 @@ use rand_chacha::ChaCha12Rng;
 /// platforms and releases of `rand_chacha`).
 pub type SimRng = ChaCha12Rng;
 
+/// The seed every command uses unless told otherwise (the paper's year).
+pub const DEFAULT_SEED: u64 = 2009;
+
 /// A generator for the quantity called `name`, derived from the user's `seed`.
 ///
 /// The seed selects the key, the name selects one of 2⁶⁴ independent ChaCha streams (FNV-1a

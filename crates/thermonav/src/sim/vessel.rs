@@ -149,6 +149,32 @@ pub fn harbour_survey(duration_s: f64) -> MotionDefinition {
     }
 }
 
+/// The survey of the paper's field test: 1 h at 17 °C (the temperature between the
+/// campaign's set points that the tournament asks about), the IMU at 200 Hz with 50 µs of
+/// timestamp jitter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SurveySettings {
+    /// Sensor temperature during the survey, °C.
+    pub temperature_c: f64,
+    /// Survey length, s.
+    pub duration_s: f64,
+    /// IMU sampling rate, Hz.
+    pub imu_rate_hz: f64,
+    /// IMU timestamp jitter (standard deviation), s.
+    pub imu_jitter_s: f64,
+}
+
+impl Default for SurveySettings {
+    fn default() -> Self {
+        Self {
+            temperature_c: 17.0,
+            duration_s: 3600.0,
+            imu_rate_hz: 200.0,
+            imu_jitter_s: 50e-6,
+        }
+    }
+}
+
 /// A vessel run: motion, operating temperature, IMU clock, GNSS set-up, seed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VesselRun {

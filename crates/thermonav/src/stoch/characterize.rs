@@ -18,7 +18,9 @@
 //! BIC up to 4; ACF fit up to the first zero crossing; ML on 0.5 s block means.
 
 use super::acf::{Demean, autocovariance};
-use super::allan::{AllanCurve, AllanIntervals, TauGrid, confidence_intervals, overlapping_adev};
+use super::allan::{
+    AllanCurve, AllanIntervals, DEFAULT_CONFIDENCE, TauGrid, confidence_intervals, overlapping_adev,
+};
 use super::ar::order::{Criterion, Order, fit_ar_order};
 use super::ar::{ArMethod, ArModel, fit_ar};
 use super::bank::{
@@ -67,7 +69,7 @@ impl Default for CharacterizeSettings {
     fn default() -> Self {
         Self {
             allan_grid: TauGrid::Octave,
-            ci_level: 0.683,
+            ci_level: DEFAULT_CONFIDENCE,
             cutoff_hz: 0.4,
             transition_hz: 0.2,
             ripple_db: 60.0,

@@ -7,7 +7,7 @@ use crate::args::ConvertArgs;
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use thermonav_io::ulog::px4::{
     GnssExtract, ImuExtract, TimeScale, gnss_fixes, imu_series, time_scale,
 };
@@ -122,13 +122,6 @@ fn report_notes(record: &UlogRecord<'_>) {
     }
 }
 
-/// The sidecar's path: the output path with `.json` appended.
-fn sidecar_path(out: &Path) -> PathBuf {
-    let mut name = out.as_os_str().to_owned();
-    name.push(".json");
-    PathBuf::from(name)
-}
-
 /// The error for options that make no sense with a ULog.
 pub fn reject_gnss_out(args: &ConvertArgs) -> Result<(), Failure> {
     match &args.gnss_out {
@@ -157,6 +150,6 @@ fn write_outputs(
     }
     write_imu_file(&args.out, &imu.series).data()?;
     written.push(args.out.clone());
-    write_json_atomically(sidecar_path(&args.out), record).data()?;
+    write_json_atomically(crate::settings::analysis::json_sidecar(&args.out), record).data()?;
     Ok(())
 }

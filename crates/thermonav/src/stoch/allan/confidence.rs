@@ -12,6 +12,10 @@ use super::{AllanCurve, AllanError, AllanIntervals};
 /// with 0.683 itself (the tail probabilities implied by its printed limits are 0.1586).
 pub const ONE_SIGMA_CONFIDENCE: f64 = 0.682_689_492_137_085_9;
 
+/// The confidence level used unless told otherwise: 0.683, as Stable32 prints its "1-sigma"
+/// confidence factor (so that a user comparing with it types the same number).
+pub const DEFAULT_CONFIDENCE: f64 = 0.683;
+
 /// How the chi-square quantiles are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ChiSquareQuantile {

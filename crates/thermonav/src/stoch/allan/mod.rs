@@ -29,8 +29,8 @@ mod noise_id;
 mod streaming;
 
 pub use confidence::{
-    ChiSquareQuantile, CiSettings, ONE_SIGMA_CONFIDENCE, chi_square_quantile, confidence_intervals,
-    confidence_intervals_with, interval_from_edf, intervals_for_noise,
+    ChiSquareQuantile, CiSettings, DEFAULT_CONFIDENCE, ONE_SIGMA_CONFIDENCE, chi_square_quantile,
+    confidence_intervals, confidence_intervals_with, interval_from_edf, intervals_for_noise,
 };
 pub use deviation::overlapping_adev;
 pub use edf::edf_overlapping_adev;

@@ -64,9 +64,10 @@ pub fn characterize_streaming(
     gravity
         .verdict(&path.display().to_string(), Strictness::Strict)
         .data()?;
-    let temperature_c = match given.or(stream.mean_temperature_c()) {
-        Some(t) => t,
-        None => {
+    let temperature_c = match (given, stream.mean_temperature_c()) {
+        (Some(t), _) => t,
+        (None, Some(mean)) => crate::bank_building::recorded_temperature(path, mean)?,
+        (None, None) => {
             return Err(Failure::Usage(anyhow!(
                 "{}: no temp_c column; give the temperature with --temperature-c",
                 path.display()

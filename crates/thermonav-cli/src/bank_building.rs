@@ -1,0 +1,105 @@
+//! Model banks from static records: each file characterised whole in memory or streamed in
+//! pieces (see [`crate::bank_streaming`]), the files in parallel, the bank written atomically.
+
+use crate::args::ReadingArg;
+use crate::bank_streaming::{characterize_streaming, streams};
+use crate::failure::{Classify, Failure};
+use crate::settings::characterization::BankJob;
+use anyhow::anyhow;
+use std::path::Path;
+use thermonav::imu::ImuSeries;
+use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
+use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
+use thermonav_io::{Strictness, read_imu_file, write_json_atomically};
+
+/// The temperature of a record: given, or the mean of its temp_c column.
+fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
+    if let Some(t) = given {
+        return Ok(t);
+    }
+    let mean = series.mean_temperature_c().ok_or_else(|| {
+        Failure::Usage(anyhow!(
+            "{}: no temp_c column; give the temperature with --temperature-c",
+            path.display()
+        ))
+    })?;
+    recorded_temperature(path, mean)
+}
+
+/// A record's mean temp_c when it is a temperature a sensor is characterised at (else the
+/// column holds something else, or another unit): a data error naming the file.
+pub fn recorded_temperature(path: &Path, mean_c: f64) -> Result<f64, Failure> {
+    let source = format!("{}: the mean of temp_c", path.display());
+    crate::settings::characterization::check_temperature(&source, mean_c)
+        .map_err(|e| Failure::Data(anyhow!("{e}")))
+}
+
+/// Characterises one file, whole in memory or streamed as `reading` says.
+pub fn characterize_file(
+    path: &Path,
+    given: Option<f64>,
+    settings: &CharacterizeSettings,
+    reading: ReadingArg,
+) -> Result<TemperatureEntry, Failure> {
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    if streams(path, reading) {
+        return characterize_streaming(path, given, settings, &name);
+    }
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let temperature_c = temperature_of(path, &series, given)?;
+    let (entry, _) = characterize(&series, temperature_c, &name, settings)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()?;
+    Ok(entry)
+}
+
+/// Builds the bank of a job and writes it atomically.
+pub fn build_job_bank(job: &BankJob) -> Result<ModelBank, Failure> {
+    let files: Vec<&Path> = job.files.iter().map(|p| p.as_path()).collect();
+    build_bank_reading(
+        &files,
+        &job.temperatures_c,
+        &job.conditioning,
+        job.reading,
+        &job.out,
+    )
+}
+
+/// Builds the bank of `files` (in parallel) and writes it atomically.
+pub fn build_bank(
+    files: &[&Path],
+    temperatures: &[f64],
+    settings: &CharacterizeSettings,
+    out: &Path,
+) -> Result<ModelBank, Failure> {
+    build_bank_reading(files, temperatures, settings, ReadingArg::Auto, out)
+}
+
+/// [`build_bank`] with each file read as `reading` says.
+pub fn build_bank_reading(
+    files: &[&Path],
+    temperatures: &[f64],
+    settings: &CharacterizeSettings,
+    reading: ReadingArg,
+    out: &Path,
+) -> Result<ModelBank, Failure> {
+    use rayon::prelude::*;
+    let progress = crate::progress::bar(files.len(), "characterising static records");
+    let entries: Vec<Result<TemperatureEntry, Failure>> = files
+        .par_iter()
+        .enumerate()
+        .map(|(k, path)| {
+            let entry = characterize_file(path, temperatures.get(k).copied(), settings, reading);
+            progress.inc(1);
+            entry
+        })
+        .collect();
+    progress.finish_and_clear();
+    let entries = entries.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let bank = ModelBank::new(entries).data()?;
+    write_json_atomically(out, &bank).data()?;
+    Ok(bank)
+}

@@ -1,0 +1,164 @@
+//! Figure data read back from files that thermonav wrote (innovations CSVs, evaluation.json
+//! and its per-model error CSVs), shared by `plot` and the HTML report.
+
+use crate::failure::{Classify, Failure};
+use anyhow::anyhow;
+use serde_json::Value;
+use std::path::Path;
+use thermonav_plot::figures::navigation::{Innovations, ModelErrors, RmsSeries};
+
+/// The number at `key` of a JSON object, if any.
+pub fn number(v: &Value, key: &str) -> Option<f64> {
+    v.get(key).and_then(Value::as_f64)
+}
+
+pub fn text(v: &Value, key: &str) -> String {
+    v.get(key)
+        .and_then(Value::as_str)
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// Position (north, east, down) and heading innovations of an `integrate` innovations file,
+/// accepted updates only, times from the first update.
+pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
+        .data()?;
+    // Bytes that are not UTF-8 become U+FFFD and fail the check of their line.
+    let csv = String::from_utf8_lossy(&bytes);
+    let rows: Vec<Vec<&str>> = checked_innovation_rows(path, &csv)?
+        .into_iter()
+        .filter(|f| f.len() == 12 && f[10] == "1")
+        .collect();
+    if rows.is_empty() {
+        return Err(anyhow!(
+            "{}: no accepted update (expected rows with accepted = 1)",
+            path.display()
+        ))
+        .data();
+    }
+    let t0 = rows
+        .first()
+        .and_then(|r| r[0].parse::<f64>().ok())
+        .unwrap_or(0.0);
+    let component = |kind: &str, k: usize, name: &str| {
+        let of_kind: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == kind).collect();
+        let column = |c: usize| -> Vec<f64> {
+            of_kind
+                .iter()
+                .map(|r| r[c].parse().unwrap_or(f64::NAN))
+                .collect()
+        };
+        Innovations {
+            name: name.into(),
+            unit: of_kind.first().map_or("", |r| r[2]).into(),
+            time_s: column(0).iter().map(|t| t - t0).collect(),
+            innovation: column(3 + k),
+            sigma: column(6 + k),
+        }
+    };
+    Ok([
+        component("position", 0, "north position"),
+        component("position", 1, "east position"),
+        component("position", 2, "down position"),
+        component("heading", 0, "heading"),
+    ]
+    .into_iter()
+    .filter(|c| !c.time_s.is_empty())
+    .collect())
+}
+
+/// Header of the innovations CSV that `integrate` writes.
+const INNOVATIONS_HEADER: &str =
+    "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
+
+/// The rows of an innovations CSV split into fields, each checked: the header, then `t_s`,
+/// kind, unit, finite numbers, and 0 or 1 for `accepted` and `forced`; the error names the line.
+fn checked_innovation_rows<'a>(path: &Path, csv: &'a str) -> Result<Vec<Vec<&'a str>>, Failure> {
+    let mut lines = csv.lines();
+    if lines.next() != Some(INNOVATIONS_HEADER) {
+        return Err(anyhow!(
+            "{}:1: expected the innovations header {INNOVATIONS_HEADER}",
+            path.display()
+        ))
+        .data();
+    }
+    lines
+        .enumerate()
+        .map(|(k, line)| {
+            let fields: Vec<&str> = line.split(',').collect();
+            match is_innovation_row(&fields) {
+                true => Ok(fields),
+                false => Err(anyhow!(
+                    "{}:{}: expected {INNOVATIONS_HEADER} (finite numbers, accepted and forced 0 or 1)",
+                    path.display(),
+                    k + 2
+                ))
+                .data(),
+            }
+        })
+        .collect()
+}
+
+/// Whether `fields` is one innovations row: time, kind, unit, numbers, then two flags.
+fn is_innovation_row(fields: &[&str]) -> bool {
+    let finite = |f: &&str| f.parse::<f64>().is_ok_and(f64::is_finite);
+    let flag = |f: &&str| matches!(*f, "0" | "1");
+    fields.len() >= 6
+        && finite(&fields[0])
+        && fields[3..fields.len() - 2].iter().all(finite)
+        && fields[fields.len() - 2..].iter().all(flag)
+}
+
+/// The first outage's errors of every model of `filter`, from their CSVs.
+pub fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>, Failure> {
+    let mut out = Vec::new();
+    for m in models.iter().filter(|m| text(m, "filter") == filter) {
+        let Some(path) = m.get("errors_csv").and_then(Value::as_str) else {
+            continue;
+        };
+        let csv = std::fs::read_to_string(path)
+            .map_err(|e| anyhow!("{path}: cannot read: {e}"))
+            .data()?;
+        let rows: Vec<Vec<f64>> = csv
+            .lines()
+            .skip(1)
+            .filter(|l| l.starts_with("1,"))
+            .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
+            .filter(|v: &Vec<f64>| v.len() == 7)
+            .collect();
+        let column = |k: usize| rows.iter().map(|r| r[k]).collect();
+        out.push(ModelErrors {
+            model: text(m, "label"),
+            time_s: column(2),
+            north_m: column(3),
+            east_m: column(4),
+            heading_deg: column(6),
+        });
+    }
+    Ok(out)
+}
+
+/// Per filter, the bank entries' values at their temperatures, and the interpolated model at
+/// the operating temperature as its own series.
+pub fn rms_series(models: &[Value], filters: &[String], key: &str) -> Vec<RmsSeries> {
+    let mut series = Vec::new();
+    for filter in filters {
+        for (kind, name) in [("entry", "bank models"), ("interpolated", "interpolated")] {
+            let points: Vec<(f64, f64)> = models
+                .iter()
+                .filter(|m| text(m, "filter") == *filter && text(m, "kind") == kind)
+                .filter_map(|m| Some((number(m, "temperature_c")?, number(m, key)?)))
+                .collect();
+            if !points.is_empty() {
+                series.push(RmsSeries {
+                    model: format!("{} ({})", name, filter.to_uppercase()),
+                    temperature_c: points.iter().map(|p| p.0).collect(),
+                    rms: points.iter().map(|p| p.1).collect(),
+                });
+            }
+        }
+    }
+    series
+}

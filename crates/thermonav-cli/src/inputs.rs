@@ -1,0 +1,36 @@
+//! Input files read into library types, each failure classified as bad data (exit 1) and
+//! naming the file.
+
+use crate::failure::{Classify, Failure};
+use anyhow::anyhow;
+use std::path::Path;
+use thermonav::imu::{ImuSeries, SampleKind};
+use thermonav::signal::timestamps::interval_stats;
+use thermonav::stoch::bank::ModelBank;
+use thermonav_io::{Strictness, read_imu_file};
+
+/// Reads and validates a bank file.
+pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
+    thermonav_io::bank::read_bank_file(path).data()
+}
+
+/// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
+/// rates in the error for a file of increments.
+pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failure> {
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    if series.kind == Some(SampleKind::Increments) {
+        return Err(Failure::Data(anyhow!(
+            "{}: {purpose} needs rates; the file holds increments",
+            path.display()
+        )));
+    }
+    let rate_hz = nominal_rate_hz(&series, path)?;
+    Ok((series, rate_hz))
+}
+
+/// The nominal sample rate of a series (its median interval), Hz.
+pub fn nominal_rate_hz(series: &ImuSeries, path: &Path) -> Result<f64, Failure> {
+    interval_stats(&series.time)
+        .map(|s| s.nominal_rate_hz())
+        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", path.display())))
+}

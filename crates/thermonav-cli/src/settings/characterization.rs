@@ -1,0 +1,133 @@
+//! Settings of `characterize` (files or a production lot).
+
+use super::paths::Io;
+use crate::args::{CharacterizeArgs, ReadingArg};
+use crate::failure::Failure;
+use anyhow::anyhow;
+use std::path::PathBuf;
+use thermonav::stoch::characterize::CharacterizeSettings;
+
+/// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
+/// MEMS data sheets (-55..+125 °C) with a margin; anything else is a typo or a unit mix-up.
+pub const TEMPERATURE_RANGE_C: (f64, f64) = (-80.0, 150.0);
+
+/// Which units of a lot a run characterises.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum UnitChoice {
+    /// Every unit of the manifest.
+    All,
+    /// The unit with this serial.
+    Serial(String),
+    /// The unit at this 0-based position.
+    Index(usize),
+}
+
+/// A bank from files, one per temperature.
+#[derive(Debug, Clone)]
+pub struct BankJob {
+    /// Static records.
+    pub files: Vec<PathBuf>,
+    /// Their temperatures, °C (empty: each file's mean temp_c).
+    pub temperatures_c: Vec<f64>,
+    /// Conditioning and estimators.
+    pub conditioning: CharacterizeSettings,
+    /// How each record is read.
+    pub reading: ReadingArg,
+    /// The bank written.
+    pub out: PathBuf,
+}
+
+/// A production lot from its manifest.
+#[derive(Debug, Clone)]
+pub struct LotJob {
+    /// The manifest (TOML).
+    pub manifest: PathBuf,
+    /// Which units.
+    pub units: UnitChoice,
+    /// Conditioning (the manifest's `[defaults]` take precedence).
+    pub conditioning: CharacterizeSettings,
+    /// How each record is read.
+    pub reading: ReadingArg,
+    /// The output folder.
+    pub out: PathBuf,
+}
+
+/// What `characterize` does.
+#[derive(Debug, Clone)]
+pub enum CharacterizeJob {
+    /// One bank.
+    Bank(BankJob),
+    /// A lot.
+    Lot(LotJob),
+}
+
+/// Resolves `characterize`.
+pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure> {
+    let conditioning = conditioning(args)?;
+    match &args.manifest {
+        Some(manifest) => Ok(CharacterizeJob::Lot(LotJob {
+            manifest: manifest.clone(),
+            units: unit_choice(args),
+            conditioning,
+            reading: args.reading,
+            out: args.out.clone(),
+        })),
+        None => bank_job(args, conditioning).map(CharacterizeJob::Bank),
+    }
+}
+
+fn bank_job(
+    args: &CharacterizeArgs,
+    conditioning: CharacterizeSettings,
+) -> Result<BankJob, Failure> {
+    if !args.temperature_c.is_empty() && args.temperature_c.len() != args.files.len() {
+        return Err(Failure::Usage(anyhow!(
+            "--temperature-c has {} values for {} files",
+            args.temperature_c.len(),
+            args.files.len()
+        )));
+    }
+    for &t in &args.temperature_c {
+        check_temperature("--temperature-c", t)?;
+    }
+    Io::new()
+        .inputs("a record", &args.files)
+        .output("bank", &args.out)
+        .check()?;
+    Ok(BankJob {
+        files: args.files.clone(),
+        temperatures_c: args.temperature_c.clone(),
+        conditioning,
+        reading: args.reading,
+        out: args.out.clone(),
+    })
+}
+
+/// `t` when it lies in [`TEMPERATURE_RANGE_C`], else an error naming where it came from.
+pub fn check_temperature(source: &str, t: f64) -> Result<f64, Failure> {
+    let (lo, hi) = TEMPERATURE_RANGE_C;
+    if (lo..=hi).contains(&t) {
+        Ok(t)
+    } else {
+        Err(Failure::Usage(anyhow!(
+            "{source}: {t} °C is outside {lo}..{hi} °C, the range a MEMS sensor is characterised in"
+        )))
+    }
+}
+
+fn unit_choice(args: &CharacterizeArgs) -> UnitChoice {
+    match (&args.unit, args.unit_index) {
+        (Some(serial), _) => UnitChoice::Serial(serial.clone()),
+        (None, Some(index)) => UnitChoice::Index(index),
+        (None, None) => UnitChoice::All,
+    }
+}
+
+fn conditioning(args: &CharacterizeArgs) -> Result<CharacterizeSettings, Failure> {
+    Ok(CharacterizeSettings {
+        cutoff_hz: super::positive("--cutoff-hz", args.cutoff_hz)?,
+        transition_hz: super::positive("--transition-hz", args.transition_hz)?,
+        modelling_rate_hz: super::positive("--modelling-rate-hz", args.modelling_rate_hz)?,
+        ..CharacterizeSettings::default()
+    })
+}

@@ -1,0 +1,286 @@
+//! Settings of `integrate` and `evaluate`.
+
+use super::paths::Io;
+use super::{antenna_geometry, finite, positive};
+use crate::args::{EvaluateArgs, IntegrateArgs};
+use crate::failure::Failure;
+use anyhow::anyhow;
+use std::path::{Path, PathBuf};
+use thermonav::evaluation::experiment::MAX_REPLICATES;
+use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
+use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::outage::OutageSpec;
+use thermonav::stoch::bank::{GaussMarkovSource, Selection};
+
+/// Which temperature's model the filter uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModelTemperature {
+    /// The model of this temperature, °C (the nearest bank entry: the paper's "model of T").
+    Fixed(f64),
+    /// The model for the sensor's operating temperature, °C (given, or the mean of the IMU
+    /// file's temp_c), selected by the rule.
+    Operating {
+        /// Given on the command line.
+        given_c: Option<f64>,
+        /// Nearest entry or interpolation.
+        selection: Selection,
+    },
+}
+
+/// Where the noise model comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NoiseSource {
+    /// A bank from `characterize`.
+    Bank(PathBuf),
+    /// A sensor profile (TOML), at the model temperature or its reference temperature.
+    Profile(PathBuf),
+}
+
+/// The three files of one `integrate` run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolutionFiles {
+    /// The solution trajectory CSV.
+    pub solution: PathBuf,
+    /// STEM.states.csv beside it.
+    pub states: PathBuf,
+    /// STEM.innovations.csv beside it.
+    pub innovations: PathBuf,
+}
+
+impl SolutionFiles {
+    /// The solution at `solution` and its two sidecars beside it.
+    pub fn beside(solution: &Path) -> Self {
+        Self {
+            solution: solution.to_path_buf(),
+            states: sidecar(solution, "states"),
+            innovations: sidecar(solution, "innovations"),
+        }
+    }
+}
+
+/// STEM.SUFFIX.csv beside `out`.
+fn sidecar(out: &Path, suffix: &str) -> PathBuf {
+    let stem = out
+        .file_stem()
+        .map_or_else(|| "solution".into(), |s| s.to_string_lossy().into_owned());
+    out.with_file_name(format!("{stem}.{suffix}.csv"))
+}
+
+/// Everything `integrate` needs, validated.
+#[derive(Debug, Clone)]
+pub struct IntegrateSettings {
+    /// The IMU CSV.
+    pub imu: PathBuf,
+    /// The GNSS CSV.
+    pub gnss: PathBuf,
+    /// The noise model's source.
+    pub noise: NoiseSource,
+    /// Which temperature's model.
+    pub temperature: ModelTemperature,
+    /// Gauss-Markov family of a bank.
+    pub gauss_markov: GaussMarkovSource,
+    /// The filter's settings (the outages are laid over the data once it is read).
+    pub engine: EngineSettings,
+    /// The outages as given.
+    pub outages: OutageSpec,
+    /// Start from this reference trajectory instead of aligning.
+    pub initial_from: Option<PathBuf>,
+    /// Multiplier of the white-noise densities.
+    pub process_noise_scale: f64,
+    /// What is written.
+    pub outputs: SolutionFiles,
+}
+
+/// Resolves `integrate`.
+pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
+    let outputs = SolutionFiles::beside(&args.out);
+    let noise = noise_source(args)?;
+    let io = Io::new()
+        .input("--imu", &args.imu)
+        .input("--gnss", &args.gnss)
+        .input(noise_option(&noise), noise_path(&noise));
+    let io = match &args.initial_from {
+        Some(path) => io.input("--initial-from", path),
+        None => io,
+    };
+    io.output("solution", &outputs.solution)
+        .output("state file", &outputs.states)
+        .output("innovations file", &outputs.innovations)
+        .check()?;
+    Ok(IntegrateSettings {
+        imu: args.imu.clone(),
+        gnss: args.gnss.clone(),
+        noise,
+        temperature: model_temperature(args)?,
+        gauss_markov: args.model.into(),
+        engine: engine_settings(args)?,
+        outages: args.outages.clone(),
+        initial_from: args.initial_from.clone(),
+        process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
+        outputs,
+    })
+}
+
+fn noise_source(args: &IntegrateArgs) -> Result<NoiseSource, Failure> {
+    match (&args.bank, &args.profile) {
+        (Some(bank), None) => Ok(NoiseSource::Bank(bank.clone())),
+        (None, Some(profile)) => Ok(NoiseSource::Profile(profile.clone())),
+        _ => Err(Failure::Usage(anyhow!("give --bank or --profile"))),
+    }
+}
+
+fn noise_option(noise: &NoiseSource) -> &'static str {
+    match noise {
+        NoiseSource::Bank(_) => "--bank",
+        NoiseSource::Profile(_) => "--profile",
+    }
+}
+
+fn noise_path(noise: &NoiseSource) -> &Path {
+    match noise {
+        NoiseSource::Bank(p) | NoiseSource::Profile(p) => p,
+    }
+}
+
+fn model_temperature(args: &IntegrateArgs) -> Result<ModelTemperature, Failure> {
+    if let Some(t) = args.model_temperature_c {
+        return Ok(ModelTemperature::Fixed(finite("--model-temperature-c", t)?));
+    }
+    let given_c = args
+        .operating_temperature_c
+        .map(|t| finite("--operating-temperature-c", t))
+        .transpose()?;
+    Ok(ModelTemperature::Operating {
+        given_c,
+        selection: args.select.into(),
+    })
+}
+
+fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
+    Ok(EngineSettings {
+        filter: args.filter.into(),
+        covariance_interval_s: 1.0 / positive("--covariance-rate-hz", args.covariance_rate_hz)?,
+        gate_probability: gate_of(args.gate_probability)?,
+        velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
+        output_interval_s: 1.0 / positive("--output-rate-hz", args.output_rate_hz)?,
+        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
+        aiding: Aiding {
+            position: true,
+            velocity: !args.no_velocity,
+            heading: !args.no_heading,
+        },
+        ..EngineSettings::default()
+    })
+}
+
+/// `--velocity-sd-m-s`: one value for every axis, or north,east,down.
+fn velocity_sd(values: &[f64]) -> Result<[f64; 3], Failure> {
+    let sd = match values {
+        [v] => [*v; 3],
+        [n, e, d] => [*n, *e, *d],
+        _ => {
+            return Err(Failure::Usage(anyhow!(
+                "--velocity-sd-m-s takes one value or three (north,east,down)"
+            )));
+        }
+    };
+    for v in sd {
+        positive("--velocity-sd-m-s", v)?;
+    }
+    Ok(sd)
+}
+
+/// The gate from `--gate-probability`: `None` (accept all) at 1.
+fn gate_of(probability: f64) -> Result<Option<f64>, Failure> {
+    if probability == 1.0 {
+        Ok(None)
+    } else if probability > 0.0 && probability < 1.0 {
+        Ok(Some(probability))
+    } else {
+        Err(Failure::Usage(anyhow!(
+            "--gate-probability {probability} must be in (0, 1], 1 meaning no gate"
+        )))
+    }
+}
+
+/// The three input files of a tournament.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScenarioFiles {
+    /// IMU CSV.
+    pub imu: PathBuf,
+    /// GNSS CSV.
+    pub gnss: PathBuf,
+    /// Reference trajectory CSV.
+    pub reference: PathBuf,
+}
+
+/// Everything `evaluate` needs, validated.
+#[derive(Debug, Clone)]
+pub struct EvaluateSettings {
+    /// The data.
+    pub files: ScenarioFiles,
+    /// The bank.
+    pub bank: PathBuf,
+    /// Operating temperature, °C (default: the IMU's mean temp_c).
+    pub operating_temperature_c: Option<f64>,
+    /// Gauss-Markov family.
+    pub source: GaussMarkovSource,
+    /// Filters, in report order.
+    pub filters: Vec<FilterKind>,
+    /// Outages as given.
+    pub outages: OutageSpec,
+    /// Replicates beside the main run (shifted outages).
+    pub extra_replicates: usize,
+    /// Seed of the shifts.
+    pub seed: u64,
+    /// Antennas.
+    pub geometry: AntennaGeometry,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// Resolves `evaluate`.
+pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
+    let settings = EvaluateSettings {
+        files: ScenarioFiles {
+            imu: args.imu.clone(),
+            gnss: args.gnss.clone(),
+            reference: args.reference.clone(),
+        },
+        bank: args.bank.clone(),
+        operating_temperature_c: args
+            .operating_temperature_c
+            .map(|t| finite("--operating-temperature-c", t))
+            .transpose()?,
+        source: args.model.into(),
+        filters: args.filter.kinds(),
+        outages: args.outages.clone(),
+        extra_replicates: replicates(args.monte_carlo)? - 1,
+        seed: args.seed,
+        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
+        out: args.out.clone(),
+    };
+    tournament_io(&settings.files, &settings.bank, &settings.out).check()?;
+    Ok(settings)
+}
+
+/// What a tournament reads and writes.
+pub fn tournament_io(files: &ScenarioFiles, bank: &Path, out: &Path) -> Io {
+    Io::new()
+        .input("--imu", &files.imu)
+        .input("--gnss", &files.gnss)
+        .input("--reference", &files.reference)
+        .input("--bank", bank)
+        .output("report", &out.join("evaluation.json"))
+        .output_folder("per-model error folder", &out.join("errors"))
+}
+
+fn replicates(count: usize) -> Result<usize, Failure> {
+    match count {
+        0 => Err(Failure::Usage(anyhow!("--monte-carlo must be at least 1"))),
+        n if n > MAX_REPLICATES => Err(Failure::Usage(anyhow!(
+            "--monte-carlo {n}: at most {MAX_REPLICATES} replicates are run (each runs every model through every filter)"
+        ))),
+        n => Ok(n),
+    }
+}

@@ -1,0 +1,285 @@
+//! The tournament's file side (the tournament itself is `thermonav::evaluation::experiment`):
+//! the scenario read from its files, the run with a progress bar, the per-model error CSVs and
+//! `evaluation.json` written, and the table of the paper's Figures 13-15 printed. Shared by
+//! `evaluate` and `demo`.
+
+use crate::failure::{Classify, Failure};
+use crate::integration::{increments_with_span, operating_temperature, outages_in};
+use crate::settings::navigation::ScenarioFiles;
+use anyhow::anyhow;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use thermonav::evaluation::experiment::{Replicates, Tournament};
+use thermonav::evaluation::metrics::{EpochError, check_reference_covers};
+use thermonav::evaluation::report::{ModelReport, TournamentReport};
+use thermonav::evaluation::tournament::{ModelResult, Scenario};
+use thermonav::gnss::GnssFix;
+use thermonav::ins::state::Increment;
+use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
+use thermonav::nav::engine::EngineSettings;
+use thermonav::nav::outage::OutageSpec;
+use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::{
+    Strictness, WriteError, read_gnss_file, read_imu_file, read_trajectory_file, write_atomically,
+    write_json_atomically,
+};
+
+/// `evaluation.json`: the report and where it was written.
+#[derive(Debug, Serialize)]
+pub struct EvaluationFile {
+    /// The report.
+    #[serde(flatten)]
+    pub report: TournamentReport,
+    /// This file.
+    pub report_file: PathBuf,
+}
+
+/// The scenario of the files (start from the reference at the first fix, default initial
+/// covariance, `engine`'s settings with the outages of `outages`) and the operating
+/// temperature (given, or the IMU's mean temp_c).
+pub fn scenario_from_files(
+    files: &ScenarioFiles,
+    engine: EngineSettings,
+    outages: &OutageSpec,
+    operating_temperature_c: Option<f64>,
+) -> Result<(Scenario, f64), Failure> {
+    let series = read_imu_file(&files.imu, Strictness::Strict).data()?;
+    let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
+    let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
+    let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
+    let (increments, first, last) = increments_with_span(&series, &files.imu)?;
+    let engine = EngineSettings {
+        outages: outages_in(outages, first, last)?,
+        ..engine
+    };
+    check_reference_covers(&reference, engine.outages.windows())
+        .map_err(|e| anyhow!("{}: {e}", files.reference.display()))
+        .data()?;
+    let scenario = scenario_of(increments, gnss, reference, engine, &files.reference)?;
+    Ok((scenario, operating_c))
+}
+
+/// A scenario from in-memory data, started from the reference at the first fix.
+pub fn scenario_of(
+    increments: Vec<Increment>,
+    gnss: Vec<GnssFix>,
+    reference: Vec<TrajectoryPoint>,
+    settings: EngineSettings,
+    reference_name: &Path,
+) -> Result<Scenario, Failure> {
+    let initial = initial_from_reference(&reference, &gnss, reference_name)?;
+    Ok(Scenario {
+        increments,
+        gnss,
+        reference,
+        initial: uncorrected(initial.nav_state()),
+        initial_covariance: InitialUncertainty::default().covariance(),
+        settings,
+    })
+}
+
+/// The reference point at (or last before) the first GNSS fix: the common starting state.
+fn initial_from_reference(
+    reference: &[TrajectoryPoint],
+    gnss: &[GnssFix],
+    path: &Path,
+) -> Result<TrajectoryPoint, Failure> {
+    let start = gnss
+        .first()
+        .map(|f| f.time)
+        .ok_or_else(|| Failure::Data(anyhow!("the GNSS file has no fix")))?;
+    reference
+        .iter()
+        .rev()
+        .find(|p| p.time <= start)
+        .copied()
+        .ok_or_else(|| {
+            Failure::Data(anyhow!(
+                "{}: the reference starts after the first GNSS fix ({:.3} s)",
+                path.display(),
+                start.as_seconds()
+            ))
+        })
+}
+
+/// Runs the tournament (with a progress bar), writes the per-model error CSVs under
+/// `out/errors` and `out/evaluation.json`, and returns what was written.
+pub fn run_and_write(
+    tournament: &Tournament,
+    main: &Scenario,
+    replicates: &Replicates,
+    out: &Path,
+) -> Result<EvaluationFile, Failure> {
+    let bar = crate::progress::bar(tournament.runs(replicates), "tournament runs");
+    let outcome = tournament
+        .run(main, replicates, &|| bar.inc(1))
+        .map_err(|e| anyhow!("{e}"))
+        .data()?;
+    bar.finish_and_clear();
+    let mut report = outcome.report;
+    let errors_dir = out.join("errors");
+    for (model, result) in report.models.iter_mut().zip(&outcome.main) {
+        model.errors_csv = write_errors(&errors_dir, result)?;
+    }
+    let file = EvaluationFile {
+        report,
+        report_file: out.join("evaluation.json"),
+    };
+    write_json_atomically(&file.report_file, &file).data()?;
+    Ok(file)
+}
+
+/// A file-name-safe form of a label.
+fn slug(label: &str) -> String {
+    let mut out = String::new();
+    for c in label.chars() {
+        match c {
+            'a'..='z' | 'A'..='Z' | '0'..='9' => out.push(c.to_ascii_lowercase()),
+            '-' | '.' => out.push(c),
+            _ if !out.ends_with('_') => out.push('_'),
+            _ => {}
+        }
+    }
+    out.trim_matches('_').replace("_c", "c")
+}
+
+/// The per-epoch errors inside each outage of one run, as CSV.
+fn write_errors(dir: &Path, result: &ModelResult) -> Result<Option<PathBuf>, Failure> {
+    let Ok(evaluated) = &result.outcome else {
+        return Ok(None);
+    };
+    std::fs::create_dir_all(dir)
+        .map_err(|e| anyhow!("{}: cannot create: {e}", dir.display()))
+        .data()?;
+    let path = dir.join(format!(
+        "{}_{}.csv",
+        result.filter.name(),
+        slug(&result.label)
+    ));
+    write_atomically(&path, |file| write_error_rows(file, &evaluated.errors)).data()?;
+    Ok(Some(path))
+}
+
+fn write_error_rows(
+    out: &mut impl std::io::Write,
+    errors: &[Vec<EpochError>],
+) -> Result<(), WriteError> {
+    writeln!(
+        out,
+        "outage,t_s,since_outage_start_s,north_m,east_m,horizontal_m,heading_deg"
+    )?;
+    for (k, outage) in errors.iter().enumerate() {
+        for e in outage {
+            writeln!(
+                out,
+                "{},{:.9},{:.9},{},{},{},{}",
+                k + 1,
+                e.time_s,
+                e.since_outage_start_s,
+                e.north_m,
+                e.east_m,
+                e.horizontal_m,
+                e.heading_deg
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// The table of the paper's Figures 13-15, per filter, best marked with '*'.
+pub fn print_tournament_table(file: &EvaluationFile) {
+    let r = &file.report;
+    println!(
+        "\nINS-only errors in {} GNSS outages at {:.1} °C ({:?} models; mean of per-outage RMS; max drift = RMS of per-outage maxima)",
+        r.outages.len(),
+        r.operating_temperature_c,
+        r.gauss_markov_source
+    );
+    for filter in &r.filters {
+        print_filter_table(r, filter.name());
+    }
+    if r.significance.replicates > 1 {
+        print_significance(r);
+    }
+    for e in &r.excluded {
+        println!("excluded {}: {}", e.label, e.reason);
+    }
+    println!("\nwritten: {}", file.report_file.display());
+}
+
+const TABLE_KEYS: [&str; 5] = [
+    "rms_north_m",
+    "rms_east_m",
+    "rms_horizontal_m",
+    "rms_heading_deg",
+    "max_drift_horizontal_m",
+];
+
+fn print_filter_table(r: &TournamentReport, filter: &str) {
+    println!(
+        "\n{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
+        format!("{} model", filter.to_uppercase()),
+        "north m",
+        "east m",
+        "horizontal m",
+        "heading deg",
+        "max drift m"
+    );
+    let best = &r.best_by_filter[filter];
+    for m in r.models.iter().filter(|m| m.filter.name() == filter) {
+        let cells = TABLE_KEYS.map(|key| {
+            let mark = if best.get(key) == Some(&m.label) {
+                "*"
+            } else {
+                " "
+            };
+            table_cell(m, key, mark)
+        });
+        println!(
+            "{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
+            m.label, cells[0], cells[1], cells[2], cells[3], cells[4]
+        );
+    }
+}
+
+/// The mean ± half-width over replicates, or the single run's value, or "diverged".
+fn table_cell(m: &ModelReport, key: &str, mark: &str) -> String {
+    let single = match key {
+        "rms_north_m" => m.rms_north_m,
+        "rms_east_m" => m.rms_east_m,
+        "rms_horizontal_m" => m.rms_horizontal_m,
+        "rms_heading_deg" => m.rms_heading_deg,
+        _ => m.max_drift_horizontal_m,
+    };
+    match (m.ci95.get(key), single) {
+        (Some(c), _) => format!("{:.2} ±{:.2}{mark}", c.mean, (c.high - c.low) / 2.0),
+        (None, Some(x)) => format!("{x:.2}{mark}"),
+        (None, None) => "diverged ".into(),
+    }
+}
+
+fn print_significance(r: &TournamentReport) {
+    println!(
+        "\nValues are means over {} replicates ({}) ± the half-width of the 95 % interval of the mean; '*' marks the lowest mean.",
+        r.significance.replicates, r.significance.replicates_differ_by
+    );
+    for t in &r.significance.tests {
+        let Some(test) = &t.test else { continue };
+        println!(
+            "{} {}: {} beats {} by {:.2} (95 % [{:.2}, {:.2}]), paired t p = {:.3}: {}",
+            t.filter.name(),
+            t.metric.key(),
+            t.winner,
+            t.runner_up,
+            -test.mean_difference,
+            -test.ci95_difference[1],
+            -test.ci95_difference[0],
+            test.p_value,
+            if t.significant {
+                "significant"
+            } else {
+                "not significant (could be noise)"
+            }
+        );
+    }
+}

@@ -1,0 +1,293 @@
+//! The tournament as an experiment: the candidates of a bank, one main run of every candidate
+//! through every filter, replicates that differ from it in a stated way, and the report
+//! ([`super::report::TournamentReport`]) with the ranking and its significance.
+//!
+//! The main run keeps its per-epoch errors (for the caller to write or plot); a replicate keeps
+//! only its figures, and replicates are made one at a time, so memory stays that of the main
+//! run whatever the number of replicates.
+
+use super::candidates::{
+    Candidate, CandidateKind, DatasheetValues, Excluded, tournament_candidates,
+};
+use super::report::{TournamentReport, report_of};
+use super::tournament::{ModelResult, Scenario, run_tournament, summarize_replicates};
+use crate::nav::engine::FilterKind;
+use crate::nav::outage::OutageError;
+use crate::nav::sensor_model::ScaleFactorPrior;
+use crate::sim::rng::named_rng;
+use crate::stoch::bank::{GaussMarkovSource, ModelBank};
+
+/// The most replicates a tournament runs (each is a run of every candidate through every
+/// filter: 1000 replicates of the demo's 28 runs take hours already).
+pub const MAX_REPLICATES: usize = 1000;
+
+/// What a tournament compares.
+#[derive(Debug, Clone)]
+pub struct TournamentPlan<'a> {
+    /// The bank whose entries compete.
+    pub bank: &'a ModelBank,
+    /// The sensor's operating temperature, °C (where the interpolated candidate stands).
+    pub operating_temperature_c: f64,
+    /// The Gauss-Markov family of the bank used by every bank candidate.
+    pub source: GaussMarkovSource,
+    /// The filters, reported in this order.
+    pub filters: Vec<FilterKind>,
+    /// Data-sheet figures for the data-sheet candidate, when there is one.
+    pub datasheet: Option<DatasheetValues>,
+    /// Scale-factor prior of every candidate.
+    pub scale: ScaleFactorPrior,
+}
+
+/// How the replicates differ from the main run.
+pub enum Replicates<'a> {
+    /// No replicate: the ranking of the main run alone.
+    None,
+    /// `extra` replicates, each with every outage moved by one seeded shift, uniform within
+    /// ± half the smallest margin (between outages and to the data's ends), so that windows
+    /// never overlap or leave the data.
+    ShiftedOutages {
+        /// Replicates beside the main run.
+        extra: usize,
+        /// Seed of the shifts (stream "evaluate/outage-shift").
+        seed: u64,
+    },
+    /// `extra` replicates made by the caller (for instance surveys simulated anew).
+    Made {
+        /// Replicates beside the main run.
+        extra: usize,
+        /// How they differ, in words (for the report).
+        differ_by: &'static str,
+        /// Replicate `k` (1-based: the main run is 0).
+        make: &'a (dyn Fn(usize) -> Result<Scenario, String> + Sync),
+    },
+}
+
+impl Replicates<'_> {
+    /// Replicates beside the main run.
+    pub fn extra(&self) -> usize {
+        match self {
+            Self::None => 0,
+            Self::ShiftedOutages { extra, .. } | Self::Made { extra, .. } => *extra,
+        }
+    }
+
+    /// How the replicates differ, in words.
+    pub fn differ_by(&self) -> &'static str {
+        match self {
+            Self::None => "no replicates",
+            Self::ShiftedOutages { .. } => {
+                "shifted outage start times (one common random shift per replicate)"
+            }
+            Self::Made { differ_by, .. } => differ_by,
+        }
+    }
+}
+
+/// Why a tournament cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TournamentError {
+    /// No bank entry gave a usable model.
+    #[error("no model of the bank can be used:\n  {}", reasons.join("\n  "))]
+    NoUsableModel {
+        /// Each excluded candidate with its reason.
+        reasons: Vec<String>,
+    },
+    /// More replicates than [`MAX_REPLICATES`].
+    #[error("{asked} replicates asked for; at most {MAX_REPLICATES} are run")]
+    TooManyReplicates {
+        /// Replicates asked for, the main run included.
+        asked: usize,
+    },
+    /// A shifted outage list is unusable.
+    #[error("shifted outages: {0}")]
+    Outage(#[from] OutageError),
+    /// The caller could not make a replicate.
+    #[error("replicate {index}: {reason}")]
+    Replicate {
+        /// Its index (1-based).
+        index: usize,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// A tournament ready to run: its candidates and the ones left out.
+#[derive(Debug, Clone)]
+pub struct Tournament {
+    candidates: Vec<Candidate>,
+    excluded: Vec<Excluded>,
+    operating_temperature_c: f64,
+    source: GaussMarkovSource,
+    filters: Vec<FilterKind>,
+}
+
+/// What a tournament gave: the report and the main run's results (with per-epoch errors).
+#[derive(Debug, Clone)]
+pub struct TournamentOutcome {
+    /// The report (the `evaluation.json` contract).
+    pub report: TournamentReport,
+    /// The main run, candidate-major, in the report's model order.
+    pub main: Vec<ModelResult>,
+}
+
+impl Tournament {
+    /// The candidates of `plan`.
+    ///
+    /// # Errors
+    /// [`TournamentError::NoUsableModel`] when no bank entry (nor the interpolated model)
+    /// can be used: the pooled and data-sheet baselines alone answer no question.
+    pub fn new(plan: &TournamentPlan) -> Result<Self, TournamentError> {
+        let (candidates, excluded) = tournament_candidates(
+            plan.bank,
+            plan.operating_temperature_c,
+            plan.source,
+            &plan.scale,
+            plan.datasheet.as_ref(),
+        );
+        if !candidates.iter().any(is_from_bank) {
+            let reasons = excluded
+                .iter()
+                .map(|e| format!("{}: {}", e.label, e.reason))
+                .collect();
+            return Err(TournamentError::NoUsableModel { reasons });
+        }
+        Ok(Self {
+            candidates,
+            excluded,
+            operating_temperature_c: plan.operating_temperature_c,
+            source: plan.source,
+            filters: plan.filters.clone(),
+        })
+    }
+
+    /// The competing candidates.
+    pub fn candidates(&self) -> &[Candidate] {
+        &self.candidates
+    }
+
+    /// Filter runs in all, the replicates included (for progress).
+    pub fn runs(&self, replicates: &Replicates) -> usize {
+        self.candidates.len() * self.filters.len() * (1 + replicates.extra())
+    }
+
+    /// Runs the main scenario and the replicates; `on_done` is called after every run.
+    ///
+    /// # Errors
+    /// [`TournamentError`] for too many replicates or a replicate that cannot be made. A
+    /// diverging filter is not an error: it is that model's outcome.
+    pub fn run(
+        &self,
+        main: &Scenario,
+        replicates: &Replicates,
+        on_done: &(dyn Fn() + Sync),
+    ) -> Result<TournamentOutcome, TournamentError> {
+        let asked = 1 + replicates.extra();
+        if asked > MAX_REPLICATES {
+            return Err(TournamentError::TooManyReplicates { asked });
+        }
+        let shifts_s = match replicates {
+            Replicates::ShiftedOutages { extra, seed } => outage_shifts_s(main, *seed, *extra),
+            _ => Vec::new(),
+        };
+        let results = run_tournament(main, &self.candidates, &self.filters, on_done);
+        let mut all = vec![results.clone()];
+        for index in 1..asked {
+            let scenario = replicate(main, replicates, &shifts_s, index)?;
+            let mut run = run_tournament(&scenario, &self.candidates, &self.filters, on_done);
+            drop_epoch_errors(&mut run);
+            all.push(run);
+        }
+        let (summaries, tests) = summarize_replicates(&all);
+        let report = report_of(self, main, &results, &summaries, tests, replicates);
+        Ok(TournamentOutcome {
+            report,
+            main: results,
+        })
+    }
+
+    pub(super) fn excluded(&self) -> &[Excluded] {
+        &self.excluded
+    }
+
+    pub(super) fn operating_temperature_c(&self) -> f64 {
+        self.operating_temperature_c
+    }
+
+    pub(super) fn source(&self) -> GaussMarkovSource {
+        self.source
+    }
+
+    pub(super) fn filters(&self) -> &[FilterKind] {
+        &self.filters
+    }
+}
+
+fn is_from_bank(c: &Candidate) -> bool {
+    matches!(
+        c.kind,
+        CandidateKind::Entry { .. } | CandidateKind::Interpolated { .. }
+    )
+}
+
+fn drop_epoch_errors(run: &mut [ModelResult]) {
+    for m in run {
+        if let Ok(e) = &mut m.outcome {
+            e.errors.clear();
+        }
+    }
+}
+
+/// Replicate `index` (1-based) of `main`; `shifts_s` are the outage shifts of shifted
+/// replicates.
+fn replicate(
+    main: &Scenario,
+    replicates: &Replicates,
+    shifts_s: &[f64],
+    index: usize,
+) -> Result<Scenario, TournamentError> {
+    match replicates {
+        Replicates::None => Ok(main.clone()),
+        Replicates::ShiftedOutages { .. } => {
+            let mut scenario = main.clone();
+            scenario.settings.outages = main.settings.outages.shifted(shifts_s[index - 1])?;
+            Ok(scenario)
+        }
+        Replicates::Made { make, .. } => {
+            make(index).map_err(|reason| TournamentError::Replicate { index, reason })
+        }
+    }
+}
+
+/// The first `count` outage shifts of the seeded stream, s.
+fn outage_shifts_s(main: &Scenario, seed: u64, count: usize) -> Vec<f64> {
+    use rand::RngExt;
+    let half = shift_bound_s(main);
+    let mut rng = named_rng(seed, "evaluate/outage-shift");
+    (0..count)
+        .map(|_| {
+            if half.is_finite() && half > 0.0 {
+                rng.random_range(-half..half)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// Half the smallest margin between outages and between them and the data's ends, s (the
+/// ends count twice, as a window may move towards them only by half the margin either way).
+fn shift_bound_s(main: &Scenario) -> f64 {
+    let windows = main.settings.outages.windows();
+    let (Some(first), Some(last)) = (main.increments.first(), main.increments.last()) else {
+        return 0.0;
+    };
+    let mut margins: Vec<f64> = windows
+        .windows(2)
+        .map(|p| p[1].start.since(p[0].end).as_seconds())
+        .collect();
+    if let (Some(a), Some(b)) = (windows.first(), windows.last()) {
+        margins.push(2.0 * a.start.since(first.time).as_seconds());
+        margins.push(2.0 * last.time.since(b.end).as_seconds());
+    }
+    margins.iter().copied().fold(f64::INFINITY, f64::min) / 2.0
+}

@@ -1,0 +1,210 @@
+//! The tournament's report: these types are the `evaluation.json` contract (snake_case keys,
+//! units in the names), built from the runs by [`super::experiment::Tournament::run`].
+
+use super::candidates::{CandidateKind, Excluded};
+use super::experiment::{Replicates, Tournament};
+use super::metrics::{Metric, OutageMetrics, RunMetrics};
+use super::significance::MeanInterval;
+use super::tournament::{ModelResult, ModelSummary, Scenario, Significance};
+use crate::nav::engine::FilterKind;
+use crate::nav::solution::InnovationStatistics;
+use crate::stoch::bank::GaussMarkovSource;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// One outage window, s on the data's time scale.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OutageSpan {
+    /// First instant without GNSS, s.
+    pub start_s: f64,
+    /// First instant with GNSS again, s.
+    pub end_s: f64,
+}
+
+/// One model through one filter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelReport {
+    /// Candidate label.
+    pub label: String,
+    /// What the candidate is (`kind`, and the temperature of bank candidates).
+    #[serde(flatten)]
+    pub candidate: CandidateKind,
+    /// The temperature the candidate stands for, °C (null for pooled and data sheet).
+    pub temperature_c: Option<f64>,
+    /// The filter.
+    pub filter: FilterKind,
+    /// Why the main run failed, if it did.
+    pub failure: Option<String>,
+    /// Mean of per-outage RMS north error, m.
+    pub rms_north_m: Option<f64>,
+    /// Mean of per-outage RMS east error, m.
+    pub rms_east_m: Option<f64>,
+    /// Mean of per-outage RMS horizontal error, m.
+    pub rms_horizontal_m: Option<f64>,
+    /// Mean of per-outage RMS heading error, deg.
+    pub rms_heading_deg: Option<f64>,
+    /// RMS of per-outage maximum horizontal error, m.
+    pub max_drift_horizontal_m: Option<f64>,
+    /// RMS of per-outage maximum |north error|, m.
+    pub rms_of_max_north_m: Option<f64>,
+    /// RMS of per-outage maximum |east error|, m.
+    pub rms_of_max_east_m: Option<f64>,
+    /// RMS of per-outage maximum |heading error|, deg.
+    pub rms_of_max_heading_deg: Option<f64>,
+    /// Per outage of the main run.
+    pub per_outage: Vec<OutageMetrics>,
+    /// Per metric key, the mean over the replicates and its 95 % interval.
+    pub ci95: BTreeMap<&'static str, MeanInterval>,
+    /// Innovation statistics of the main run.
+    pub innovations: Vec<InnovationStatistics>,
+    /// Where the caller wrote the main run's per-epoch errors (none is written here).
+    pub errors_csv: Option<PathBuf>,
+}
+
+/// The significance section.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignificanceReport {
+    /// Replicates, the main run included.
+    pub replicates: usize,
+    /// How they differ, in words.
+    pub replicates_differ_by: &'static str,
+    /// Winner against runner-up, per filter and metric.
+    pub tests: Vec<Significance>,
+}
+
+/// The whole report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TournamentReport {
+    /// Operating temperature, °C.
+    pub operating_temperature_c: f64,
+    /// Gauss-Markov family of the bank candidates.
+    pub gauss_markov_source: GaussMarkovSource,
+    /// Filters, in report order.
+    pub filters: Vec<FilterKind>,
+    /// Outages of the main run.
+    pub outages: Vec<OutageSpan>,
+    /// Every model through every filter, candidate-major.
+    pub models: Vec<ModelReport>,
+    /// Candidates that could not be built.
+    pub excluded: Vec<Excluded>,
+    /// Per metric key, the best label of the first filter.
+    pub best: BTreeMap<&'static str, String>,
+    /// Per filter and metric key, the best label.
+    pub best_by_filter: BTreeMap<&'static str, BTreeMap<&'static str, String>>,
+    /// Whether the rankings are beyond the replicate noise.
+    pub significance: SignificanceReport,
+}
+
+/// A model's label, filter and the values it is ranked by (in [`Metric::ALL`] order).
+type Ranked = (String, FilterKind, [Option<f64>; 5]);
+
+pub(super) fn report_of(
+    tournament: &Tournament,
+    main: &Scenario,
+    results: &[ModelResult],
+    summaries: &[ModelSummary],
+    tests: Vec<Significance>,
+    replicates: &Replicates,
+) -> TournamentReport {
+    let models: Vec<ModelReport> = results
+        .iter()
+        .zip(summaries)
+        .map(|(r, s)| model_report(r, &s.ci95))
+        .collect();
+    let ranking = ranking_values(results, &models, replicates.extra() > 0);
+    let filters = tournament.filters().to_vec();
+    TournamentReport {
+        operating_temperature_c: tournament.operating_temperature_c(),
+        gauss_markov_source: tournament.source(),
+        outages: outage_spans(main),
+        excluded: tournament.excluded().to_vec(),
+        best: best_labels(&ranking, filters[0]),
+        best_by_filter: filters
+            .iter()
+            .map(|f| (f.name(), best_labels(&ranking, *f)))
+            .collect(),
+        significance: SignificanceReport {
+            replicates: 1 + replicates.extra(),
+            replicates_differ_by: replicates.differ_by(),
+            tests,
+        },
+        models,
+        filters,
+    }
+}
+
+fn outage_spans(main: &Scenario) -> Vec<OutageSpan> {
+    let windows = main.settings.outages.windows();
+    windows
+        .iter()
+        .map(|w| OutageSpan {
+            start_s: w.start.as_seconds(),
+            end_s: w.end.as_seconds(),
+        })
+        .collect()
+}
+
+/// The values each model is ranked by: the Monte Carlo means when there are replicates,
+/// the main run's values otherwise.
+fn ranking_values(
+    results: &[ModelResult],
+    models: &[ModelReport],
+    replicated: bool,
+) -> Vec<Ranked> {
+    if replicated {
+        models
+            .iter()
+            .map(|m| {
+                let mean = |metric: Metric| m.ci95.get(metric.key()).map(|c| c.mean);
+                (m.label.clone(), m.filter, Metric::ALL.map(mean))
+            })
+            .collect()
+    } else {
+        results
+            .iter()
+            .map(|r| (r.label.clone(), r.filter, Metric::ALL.map(|m| r.value(m))))
+            .collect()
+    }
+}
+
+/// The label with the lowest value of each metric among `filter`'s models.
+fn best_labels(values: &[Ranked], filter: FilterKind) -> BTreeMap<&'static str, String> {
+    Metric::ALL
+        .iter()
+        .enumerate()
+        .filter_map(|(k, metric)| {
+            values
+                .iter()
+                .filter(|(_, f, _)| *f == filter)
+                .filter_map(|(label, _, v)| v[k].map(|x| (label, x)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(label, _)| (metric.key(), label.clone()))
+        })
+        .collect()
+}
+
+fn model_report(result: &ModelResult, ci95: &[(Metric, MeanInterval)]) -> ModelReport {
+    let ok = result.outcome.as_ref().ok();
+    let metrics = ok.map(|e| &e.metrics);
+    let pick = |f: fn(&RunMetrics) -> f64| metrics.map(f);
+    ModelReport {
+        label: result.label.clone(),
+        candidate: result.candidate,
+        temperature_c: result.candidate.temperature_c(),
+        filter: result.filter,
+        failure: result.outcome.as_ref().err().cloned(),
+        rms_north_m: pick(|m| m.rms_north_m),
+        rms_east_m: pick(|m| m.rms_east_m),
+        rms_horizontal_m: pick(|m| m.rms_horizontal_m),
+        rms_heading_deg: pick(|m| m.rms_heading_deg),
+        max_drift_horizontal_m: pick(|m| m.max_drift_horizontal_m),
+        rms_of_max_north_m: pick(|m| m.rms_of_max_north_m),
+        rms_of_max_east_m: pick(|m| m.rms_of_max_east_m),
+        rms_of_max_heading_deg: pick(|m| m.rms_of_max_heading_deg),
+        per_outage: metrics.map(|m| m.per_outage.clone()).unwrap_or_default(),
+        ci95: ci95.iter().map(|(m, ci)| (m.key(), *ci)).collect(),
+        innovations: ok.map(|e| e.innovations.clone()).unwrap_or_default(),
+        errors_csv: None,
+    }
+}
