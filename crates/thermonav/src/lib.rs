@@ -149,6 +149,9 @@
 //! - Every quantity is SI inside the crate (rad/s, m/s², s); other units appear only at the
 //!   edges, through the named conversions in [`units`].
 //! - Choices are types (enums), never strings or booleans.
+//! - Frames and times are types: a body vector does not add to a NED one, rotations compose
+//!   only when their frames meet, a span is not an epoch. [`frames`] and [`time`] show each
+//!   refused mix-up as a doctest that must not compile, beside the code that does.
 //! - Estimators state their equation, assumptions and reference in their docs, and each is
 //!   tested against an independent oracle (SciPy, statsmodels, allantools, Stable32, R, MATLAB).
 //!
