@@ -30,7 +30,7 @@
 //! noise (ARW 2 °/√h) a gyro's Gauss-Markov bias is not yet significant against its white noise
 //! after ten minutes, at any rate (DESIGN.md, "Why does the bank carry a third Gauss-Markov
 //! model"); the rate only has to allow the AR conditioning (0.4 Hz low-pass, 1 Hz modelling
-//! rate). The whole test takes about a second in release mode.
+//! rate). The whole test takes about a second in release mode (about ten in a debug build).
 //!
 //! ```
 //! use thermonav::evaluation::metrics::evaluate_solution;
