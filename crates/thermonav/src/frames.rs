@@ -21,6 +21,107 @@
 //!
 //! Conventions (CONVENTIONS.md): Hamilton quaternions, scalar first; Euler angles ZYX with
 //! C_b^n = R_z(yaw) R_y(pitch) R_x(roll).
+//!
+//! ## Mix-ups that do not build
+//!
+//! Each example that must not compile is followed by the same code written correctly, which
+//! does, so that the first fails for the frame mix-up and not for a typo.
+//!
+//! Vectors add, subtract, dot and cross only within one frame. A lever arm measured on the
+//! vehicle (body axes) cannot be added to a navigation-frame offset as it stands:
+//!
+//! ```compile_fail
+//! use thermonav::frames::{Body, Ned, Vector};
+//! let lever_arm_b: Vector<Body> = Vector::new(0.3, 0.0, -2.5);
+//! let offset_n: Vector<Ned> = Vector::new(10.0, 0.0, 0.0);
+//! let antenna_n = offset_n + lever_arm_b; // body components added to north-east-down ones
+//! ```
+//!
+//! ```
+//! use thermonav::frames::{Body, Ned, Rotation, Vector};
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.0, 0.0, std::f64::consts::PI);
+//! let lever_arm_b: Vector<Body> = Vector::new(0.3, 0.0, -2.5);
+//! let offset_n: Vector<Ned> = Vector::new(10.0, 0.0, 0.0);
+//! let antenna_n = offset_n + c_b_n * lever_arm_b; // rotated into NED first
+//! assert!((antenna_n.x() - 9.7).abs() < 1e-12 && (antenna_n.z() + 2.5).abs() < 1e-12);
+//! ```
+//!
+//! The speed along the vehicle's forward axis needs the velocity in body axes, not its NED
+//! components:
+//!
+//! ```compile_fail
+//! use thermonav::frames::{Body, Ned, Rotation, Vector};
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.0, 0.0, 0.5);
+//! let velocity_n: Vector<Ned> = Vector::new(3.0, 4.0, 0.0);
+//! let forward_b: Vector<Body> = Vector::new(1.0, 0.0, 0.0);
+//! let speed = velocity_n.dot(&forward_b); // a dot product across frames
+//! ```
+//!
+//! ```
+//! use thermonav::frames::{Body, Ned, Rotation, Vector};
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.0, 0.0, 0.5);
+//! let velocity_n: Vector<Ned> = Vector::new(3.0, 4.0, 0.0);
+//! let forward_b: Vector<Body> = Vector::new(1.0, 0.0, 0.0);
+//! let speed = (c_b_n.inverse() * velocity_n).dot(&forward_b);
+//! assert!((speed - (3.0 * 0.5f64.cos() + 4.0 * 0.5f64.sin())).abs() < 1e-12);
+//! ```
+//!
+//! Rotations compose only when the inner frames meet: C_b^e = C_n^e C_b^n, never
+//! C_b^n C_n^e.
+//!
+//! ```compile_fail
+//! use thermonav::frames::{Body, Ecef, Ned, Rotation};
+//! use thermonav::geo::position::Geodetic;
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.1, -0.2, 1.0);
+//! let c_n_e: Rotation<Ned, Ecef> = Geodetic::from_degrees(44.6, -63.6, 5.0).ned_to_ecef();
+//! let c_b_e: Rotation<Body, Ecef> = c_b_n * c_n_e; // the product in the wrong order
+//! ```
+//!
+//! ```
+//! use thermonav::frames::{Body, Ecef, Ned, Rotation, Vector};
+//! use thermonav::geo::position::Geodetic;
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.1, -0.2, 1.0);
+//! let c_n_e: Rotation<Ned, Ecef> = Geodetic::from_degrees(44.6, -63.6, 5.0).ned_to_ecef();
+//! let c_b_e: Rotation<Body, Ecef> = c_n_e * c_b_n;
+//! let v_b: Vector<Body> = Vector::new(1.0, 2.0, 3.0);
+//! assert!((c_b_e * v_b - c_n_e * (c_b_n * v_b)).norm() < 1e-12);
+//! ```
+//!
+//! Roll, pitch and yaw describe the body relative to the local level frame only; other
+//! rotations are built from quaternions:
+//!
+//! ```compile_fail
+//! use thermonav::frames::{Ecef, Ned, Rotation};
+//! let c_n_e = Rotation::<Ned, Ecef>::from_euler_zyx(0.0, 0.0, 0.3); // not an attitude
+//! ```
+//!
+//! ```
+//! use thermonav::frames::{Body, Ned, Rotation};
+//! let c_b_n = Rotation::<Body, Ned>::from_euler_zyx(0.0, 0.0, 0.3);
+//! assert!((c_b_n.euler_zyx().2 - 0.3).abs() < 1e-15);
+//! ```
+//!
+//! A position moves by a NED offset ([`crate::geo::position::Geodetic::displaced`]); an offset
+//! in body axes must be rotated first (this is how the IMU position follows from the
+//! antenna's):
+//!
+//! ```compile_fail
+//! use thermonav::frames::{Body, Vector};
+//! use thermonav::geo::position::Geodetic;
+//! let antenna = Geodetic::from_degrees(44.6, -63.6, 5.0);
+//! let lever_arm_b: Vector<Body> = Vector::new(0.3, 0.0, -2.5);
+//! let imu = antenna.displaced(&(-lever_arm_b)); // body axes taken for north, east, down
+//! ```
+//!
+//! ```
+//! use thermonav::frames::{Body, Ned, Rotation, Vector};
+//! use thermonav::geo::position::Geodetic;
+//! let antenna = Geodetic::from_degrees(44.6, -63.6, 5.0);
+//! let lever_arm_b: Vector<Body> = Vector::new(0.3, 0.0, -2.5);
+//! let c_b_n: Rotation<Body, Ned> = Rotation::from_euler_zyx(0.0, 0.0, 0.0);
+//! let imu = antenna.displaced(&(-(c_b_n * lever_arm_b)));
+//! assert!((antenna.height_m - imu.height_m - 2.5).abs() < 1e-9);
+//! ```
 
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::marker::PhantomData;

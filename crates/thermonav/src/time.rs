@@ -4,6 +4,62 @@
 //! (±292 years of range). Arithmetic on sampling intervals is done in integer nanoseconds, so a
 //! 3-hour 200 Hz log accumulates no rounding in its time axis; conversion to `f64` seconds happens
 //! only where a formula needs it.
+//!
+//! ## Mix-ups that do not build
+//!
+//! A [`Timestamp`] is a point in time and a [`Duration`] a span; neither is a bare number.
+//! Each example that must not compile is followed by the same code written correctly.
+//!
+//! The span between two epochs needs two epochs, not an epoch and a span:
+//!
+//! ```compile_fail
+//! use thermonav::time::{Duration, Timestamp};
+//! let fix = Timestamp::from_nanos(12_000_000_000);
+//! let interval = Duration::from_nanos(5_000_000);
+//! let age = fix.since(interval); // a span where an epoch is expected
+//! ```
+//!
+//! ```
+//! use thermonav::time::{Duration, Timestamp};
+//! let fix = Timestamp::from_nanos(12_000_000_000);
+//! let sample = Timestamp::from_nanos(11_995_000_000);
+//! let age: Duration = fix.since(sample);
+//! assert_eq!(age, Duration::from_nanos(5_000_000));
+//! ```
+//!
+//! An epoch compares with epochs only, never with a span:
+//!
+//! ```compile_fail
+//! use thermonav::time::{Duration, Timestamp};
+//! let t = Timestamp::from_nanos(3_000_000_000);
+//! let limit = Duration::from_nanos(2_000_000_000);
+//! let late = t > limit; // is 3 s after the epoch later than "2 s long"?
+//! ```
+//!
+//! ```
+//! use thermonav::time::{Duration, Timestamp};
+//! let (start, t) = (Timestamp::from_nanos(0), Timestamp::from_nanos(3_000_000_000));
+//! let limit = Duration::from_nanos(2_000_000_000);
+//! assert!(t.since(start) > limit && t > start);
+//! ```
+//!
+//! Seconds as `f64` become time once, through a checked conversion, wherever they enter:
+//!
+//! ```compile_fail
+//! use thermonav::nav::outage::Outage;
+//! let outage = Outage { start: 210.0, end: 270.0 }; // f64 seconds where epochs are expected
+//! ```
+//!
+//! ```
+//! use thermonav::nav::outage::Outage;
+//! use thermonav::time::Timestamp;
+//! let outage = Outage {
+//!     start: Timestamp::from_seconds(210.0)?,
+//!     end: Timestamp::from_seconds(270.0)?,
+//! };
+//! assert_eq!(outage.duration_s(), 60.0);
+//! # Ok::<(), thermonav::time::TimeRangeError>(())
+//! ```
 
 use serde::{Deserialize, Serialize};
 
