@@ -29,6 +29,7 @@
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
+//! - [`rng`]: named, seeded random streams (simulation, Monte Carlo evaluation, tests).
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
 pub mod evaluation;
@@ -39,6 +40,7 @@ pub mod gnss;
 pub mod imu;
 pub mod ins;
 pub mod nav;
+pub mod rng;
 pub mod signal;
 pub mod sim;
 pub mod stoch;

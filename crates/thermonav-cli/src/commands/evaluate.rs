@@ -25,7 +25,7 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::nav::solution::InnovationStatistics;
-use thermonav::sim::rng::named_rng;
+use thermonav::rng::named_rng;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{

@@ -16,9 +16,9 @@
 use super::clock::{ClockError, SampleClock};
 use super::errors::{ChannelErrors, gauss_markov_step, standard_normal};
 use super::profile::{ChannelProfile, ProfileError, SensorProfile};
-use super::rng::{SimRng, named_rng};
 use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
+use crate::rng::{SimRng, named_rng};
 use crate::time::Timestamp;
 use serde::Serialize;
 use std::collections::BTreeMap;

@@ -2,7 +2,7 @@
 //!
 //! No public multi-temperature static IMU data exists, so the simulator is what lets every user
 //! and every test run the whole method. Every random draw comes from a generator named after
-//! what it draws ([`rng::named_rng`]), derived from one user seed: changing how one quantity is
+//! what it draws ([`crate::rng::named_rng`]), derived from one user seed: changing how one quantity is
 //! drawn never changes the draws of another.
 //!
 //! Processes are discretised exactly with each sample's actual interval dt_k (method.md
@@ -16,5 +16,4 @@ pub mod errors;
 pub mod ideal_imu;
 pub mod motion;
 pub mod profile;
-pub mod rng;
 pub mod vessel;

@@ -10,11 +10,11 @@ use super::motion::{
     WaveMotion, generate_trajectory_at,
 };
 use super::profile::{ProfileError, SensorProfile};
-use super::rng::{SimRng, named_rng};
 use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::ins::state::NavState;
+use crate::rng::{SimRng, named_rng};
 use crate::time::{Duration, NANOS_PER_SECOND, Timestamp};
 use serde::Serialize;
 

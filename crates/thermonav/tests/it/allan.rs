@@ -3,7 +3,7 @@
 
 use crate::{shared_column as read_column, shared_data};
 use rand_distr::{Distribution, StandardNormal};
-use thermonav::sim::rng::named_rng;
+use thermonav::rng::named_rng;
 use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::{
     avar_gauss_markov, avar_random_walk, avar_white, fit_noise_terms,

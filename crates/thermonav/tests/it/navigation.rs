@@ -373,7 +373,7 @@ fn velocity_updates_are_consistent() {
     let g = GnssSettings::default();
     let lever =
         thermonav::frames::Vector::<thermonav::frames::Body>::from_array(g.lever_arm_body_m);
-    let mut rng = thermonav::sim::rng::named_rng(31, "test/gnss-velocity");
+    let mut rng = thermonav::rng::named_rng(31, "test/gnss-velocity");
     let states = record.reference.states.clone();
     for fix in &mut record.gnss {
         let k = states
