@@ -30,6 +30,8 @@
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
 //! - [`rng`]: named, seeded random streams (simulation, Monte Carlo evaluation, tests).
+//! - [`sensor`]: sensor profiles (noise figures, temperature dependence, the data-sheet
+//!   ADIS16364-like profile) and the stochastic model they imply.
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
 pub mod evaluation;
@@ -41,6 +43,7 @@ pub mod imu;
 pub mod ins;
 pub mod nav;
 pub mod rng;
+pub mod sensor;
 pub mod signal;
 pub mod sim;
 pub mod stoch;

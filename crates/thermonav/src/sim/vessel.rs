@@ -9,12 +9,12 @@ use super::motion::{
     Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory,
     WaveMotion, generate_trajectory_at,
 };
-use super::profile::{ProfileError, SensorProfile};
 use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::ins::state::NavState;
 use crate::rng::{SimRng, named_rng};
+use crate::sensor::{ProfileError, SensorProfile};
 use crate::time::{Duration, NANOS_PER_SECOND, Timestamp};
 use serde::Serialize;
 

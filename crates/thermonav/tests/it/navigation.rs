@@ -11,8 +11,8 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav::nav::solution::Solution;
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::sim::vessel::{
     GnssSettings, VesselRecord, VesselRun, harbour_survey, simulate_vessel,
 };

@@ -5,8 +5,8 @@ use thermonav::frames::{Body, Vector};
 use thermonav::geo::position::Geodetic;
 use thermonav::ins::mechanization::mechanize;
 use thermonav::ins::state::Increment;
+use thermonav::sensor::{ChannelProfile, GaussMarkovPoint, adis16364_like};
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::{ChannelProfile, GaussMarkovPoint, adis16364_like};
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel, wrap_pi};
 
 fn run(seconds: f64) -> VesselRun {
@@ -19,7 +19,7 @@ fn run(seconds: f64) -> VesselRun {
     }
 }
 
-fn error_free_profile() -> thermonav::sim::profile::SensorProfile {
+fn error_free_profile() -> thermonav::sensor::SensorProfile {
     let negligible = GaussMarkovPoint {
         temperature_c: 0.0,
         correlation_time_s: 100.0,
