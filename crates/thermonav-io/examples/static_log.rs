@@ -8,8 +8,8 @@
 use std::fs::File;
 use std::io::BufWriter;
 use thermonav::imu::{ImuSample, SampleKind};
+use thermonav::rng::named_rng;
 use thermonav::sim::errors::{gauss_markov_step, standard_normal};
-use thermonav::sim::rng::named_rng;
 use thermonav::time::Timestamp;
 use thermonav_io::{ImuWriter, TemperatureColumn};
 

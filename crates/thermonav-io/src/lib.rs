@@ -36,7 +36,7 @@
 //!
 //! ## Model banks and sensor profiles
 //! [`bank`]: the model bank JSON written by `thermonav characterize`, validated on reading.
-//! [`profile`]: simulator sensor profiles as TOML with the unit in every key.
+//! [`profile`]: sensor profiles ([`thermonav::sensor`]) as TOML with the unit in every key.
 //!
 //! ## Production lots
 //! [`lot`]: lot manifests (TOML): the units of a production lot and their chamber records.

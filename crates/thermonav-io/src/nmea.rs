@@ -30,7 +30,7 @@ use crate::gpst;
 use std::io::BufRead;
 use std::path::Path;
 use thermonav::gnss::{GnssFix, HeadingObservation};
-use thermonav::time::{Duration, NANOS_PER_SECOND, Timestamp};
+use thermonav::time::{Duration, NANOS_PER_SECOND};
 use thermonav::units::deg_to_rad;
 
 /// How an NMEA log is read.
@@ -433,10 +433,7 @@ fn fixes_of(epochs: &[Epoch], settings: &NmeaSettings) -> Result<Vec<GnssFix>, R
         .filter_map(|(epoch, day)| {
             let [latitude, longitude, height] = epoch.position?;
             let utc = gpst::from_day_and_nanos(day, epoch.time_of_day)?;
-            let time = Timestamp::from_nanos(
-                utc.as_nanos()
-                    .saturating_add(settings.gpst_minus_utc.as_nanos()),
-            );
+            let time = utc + settings.gpst_minus_utc;
             let velocity = epoch
                 .course_speed
                 .filter(|_| settings.level_velocity)

@@ -33,9 +33,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, Sensor};
-use thermonav::sim::profile::{
-    ChannelProfile, GaussMarkovPoint, ScaleFactorGaussMarkov, SensorProfile,
-};
+use thermonav::sensor::{ChannelProfile, GaussMarkovPoint, ScaleFactorGaussMarkov, SensorProfile};
 use thermonav::units::{
     arw_deg_per_sqrt_h_to_rad_per_sqrt_s, arw_rad_per_sqrt_s_to_deg_per_sqrt_h,
     deg_per_h_to_rad_per_s, deg_to_rad, m_per_s2_to_mg, mg_to_m_per_s2, rad_per_s_to_deg_per_h,
@@ -76,7 +74,7 @@ pub enum ProfileFileError {
         /// File.
         path: String,
         /// The validation error.
-        source: thermonav::sim::profile::ProfileError,
+        source: thermonav::sensor::ProfileError,
     },
 }
 
@@ -364,7 +362,7 @@ pub fn profile_to_toml(profile: &SensorProfile) -> Result<String, toml::ser::Err
 #[cfg(test)]
 mod tests {
     use super::*;
-    use thermonav::sim::profile::adis16364_like;
+    use thermonav::sensor::adis16364_like;
 
     #[test]
     fn built_in_profile_round_trips_through_toml() {

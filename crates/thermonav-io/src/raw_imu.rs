@@ -270,16 +270,13 @@ fn series_from_rows(
              distinct ticks to map onto the tag file's span)"
         )));
     }
-    let start = tag
-        .start
-        .as_nanos()
-        .checked_add(settings.time_offset.as_nanos());
+    let start = tag.start.checked_add(settings.time_offset);
     let mut series = ImuSeries::new(SampleKind::Rates);
     for row in rows {
         let elapsed = row.tick_ms - first;
         let time = start
             .zip(stretched_nanos(elapsed, ticks, tag.span.as_nanos()))
-            .and_then(|(start, offset)| start.checked_add(offset))
+            .and_then(|(start, offset)| start.checked_add(Duration::from_nanos(offset)))
             .ok_or_else(|| {
                 ReadErrorKind::Unusable(format!(
                     "tick {} ms maps outside the time range (±292 years) with this tag file \
@@ -288,7 +285,7 @@ fn series_from_rows(
                 ))
             })?;
         series.push(&ImuSample {
-            time: Timestamp::from_nanos(time),
+            time,
             gyro: settings.frame.apply(row.gyro),
             accel: settings.frame.apply(row.accel),
             temperature_c: None,

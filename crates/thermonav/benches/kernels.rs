@@ -10,7 +10,7 @@ use std::hint::black_box;
 use thermonav::filter::ekf::{joseph_update, propagate_covariance};
 use thermonav::filter::sigma_points::SigmaPointScheme;
 use thermonav::filter::ukf::Ukf;
-use thermonav::sim::rng::named_rng;
+use thermonav::rng::named_rng;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::allan::{TauGrid, overlapping_adev};
 use thermonav::stoch::ar::{ArMethod, fit_ar};

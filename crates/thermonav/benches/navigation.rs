@@ -10,8 +10,8 @@ use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
 use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series, run};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
 
 fn one_hour(c: &mut Criterion) {

@@ -42,7 +42,7 @@
 //! use thermonav::nav::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior};
 //! use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
 //! use thermonav::sim::clock::SampleClock;
-//! use thermonav::sim::profile::adis16364_like;
+//! use thermonav::sensor::adis16364_like;
 //! use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
 //! use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Placement, Selection};
 //! use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
@@ -170,6 +170,9 @@
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
+//! - [`rng`]: named, seeded random streams (simulation, Monte Carlo evaluation, tests).
+//! - [`sensor`]: sensor profiles (noise figures, temperature dependence, the data-sheet
+//!   ADIS16364-like profile) and the stochastic model they imply.
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
 pub mod evaluation;
@@ -180,6 +183,8 @@ pub mod gnss;
 pub mod imu;
 pub mod ins;
 pub mod nav;
+pub mod rng;
+pub mod sensor;
 pub mod signal;
 pub mod sim;
 pub mod stoch;

@@ -35,8 +35,8 @@ use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series}
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::sensor::SensorProfile;
 use thermonav::sim::chamber::{CampaignSettings, RunTruth};
-use thermonav::sim::profile::SensorProfile;
 use thermonav::sim::vessel::{GnssSettings, SurveySettings, VesselRun, simulate_vessel};
 use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank, Selection};
 use thermonav::stoch::characterize::CharacterizeSettings;

@@ -6,7 +6,7 @@ use crate::failure::{Classify, Failure};
 use crate::report::{print_json, print_rows};
 use crate::settings::simulation::{chamber, vessel};
 use anyhow::anyhow;
-use thermonav::sim::profile::adis16364_like;
+use thermonav::sensor::adis16364_like;
 use thermonav_io::profile::profile_to_toml;
 use thermonav_io::write_atomically;
 

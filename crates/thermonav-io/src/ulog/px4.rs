@@ -362,8 +362,7 @@ pub fn nearest_values(at: &[Timestamp], times: &[Timestamp], values: &[f64]) -> 
             while j + 1 < times.len() && times[j + 1] <= t {
                 j += 1;
             }
-            let later_is_nearer = j + 1 < times.len()
-                && (times[j + 1].as_nanos() - t.as_nanos()) < (t.as_nanos() - times[j].as_nanos());
+            let later_is_nearer = j + 1 < times.len() && times[j + 1] - t < t - times[j];
             values[if later_is_nearer { j + 1 } else { j }]
         })
         .collect()
@@ -578,8 +577,8 @@ mod tests {
             .map(|t| {
                 let mut best = 0;
                 for (k, s) in times.iter().enumerate() {
-                    let d = (s.as_nanos() - t.as_nanos()).abs();
-                    if d < (times[best].as_nanos() - t.as_nanos()).abs() {
+                    let d = (*s - *t).as_nanos().abs();
+                    if d < (times[best] - *t).as_nanos().abs() {
                         best = k;
                     }
                 }

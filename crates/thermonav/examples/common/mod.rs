@@ -3,12 +3,12 @@
 #![allow(dead_code)]
 
 use thermonav::imu::{Channel, Sensor};
+pub use thermonav::sensor::SensorProfile;
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::chamber::{
     ChamberError, ChamberRecord, ChamberRun, ChamberWander, calgary, simulate_chamber_run,
 };
 use thermonav::sim::clock::SampleClock;
-pub use thermonav::sim::profile::SensorProfile;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 use thermonav::units::{

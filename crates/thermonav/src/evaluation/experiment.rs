@@ -14,7 +14,7 @@ use super::tournament::{ModelResult, Scenario, run_tournament, summarize_replica
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
 use crate::nav::sensor_model::ScaleFactorPrior;
-use crate::sim::rng::named_rng;
+use crate::rng::named_rng;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank};
 
 /// The most replicates a tournament runs (each is a run of every candidate through every

@@ -22,7 +22,7 @@ use crate::geo::position::Geodetic;
 /// (the interval before it) for the coning and sculling terms. For the first sample, pass the
 /// current increment as `previous` as well (the correction terms then vanish).
 pub fn mechanize(state: &NavState, previous: &Increment, current: &Increment) -> NavState {
-    let dt = current.dt_s;
+    let dt = current.dt_s();
     let velocity = update_velocity(state, previous, current);
     let position = update_position(&state.position, &state.velocity, &velocity, dt);
     let mean_velocity = (state.velocity + velocity).scale(0.5);
@@ -75,7 +75,7 @@ pub fn gravity_coriolis_increment(
 }
 
 fn update_velocity(state: &NavState, previous: &Increment, current: &Increment) -> Vector<Ned> {
-    let dt = current.dt_s;
+    let dt = current.dt_s();
     let (dth, dv) = (current.delta_angle.raw(), current.delta_velocity.raw());
     let (dth0, dv0) = (previous.delta_angle.raw(), previous.delta_velocity.raw());
     let compensated = dv + 0.5 * dth.cross(&dv) + (dth0.cross(&dv) + dv0.cross(&dth)) / 12.0;

@@ -2,7 +2,7 @@
 
 use crate::frames::{Body, Ned, Rotation, Vector};
 use crate::geo::position::Geodetic;
-use crate::time::Timestamp;
+use crate::time::{Duration, Timestamp};
 
 /// Position, velocity and attitude at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,8 +22,8 @@ pub struct NavState {
 pub struct Increment {
     /// End of the interval.
     pub time: Timestamp,
-    /// Interval length, s (positive).
-    pub dt_s: f64,
+    /// Interval length, exact (positive).
+    pub dt: Duration,
     /// Angle increment Δθ, rad, body axes.
     pub delta_angle: Vector<Body>,
     /// Velocity increment Δv (integrated specific force), m/s, body axes.
@@ -34,15 +34,26 @@ impl Increment {
     /// Increments from rates held constant over the interval: Δθ = ω dt, Δv = f dt.
     pub fn from_rates(
         time: Timestamp,
-        dt_s: f64,
+        dt: Duration,
         rate: [f64; 3],
         specific_force: [f64; 3],
     ) -> Self {
+        let dt_s = dt.as_seconds();
         Self {
             time,
-            dt_s,
+            dt,
             delta_angle: Vector::from_array(rate).scale(dt_s),
             delta_velocity: Vector::from_array(specific_force).scale(dt_s),
         }
+    }
+
+    /// Interval length in seconds, for formulas.
+    pub fn dt_s(&self) -> f64 {
+        self.dt.as_seconds()
+    }
+
+    /// Start of the interval (`time − dt`).
+    pub fn start(&self) -> Timestamp {
+        self.time - self.dt
     }
 }

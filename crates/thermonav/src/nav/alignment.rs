@@ -14,6 +14,7 @@ use crate::geo::position::Geodetic;
 use crate::gnss::GnssFix;
 use crate::ins::error_model::{STATES, SystemMatrix, block};
 use crate::ins::state::{Increment, NavState};
+use crate::time::Duration;
 use serde::Serialize;
 
 /// Slowest course over ground trusted for the initial heading, m/s (at 1 m/s and 1 Hz a 1 cm
@@ -114,14 +115,14 @@ pub fn align_from_gnss(
         .iter()
         .filter(|i| i.time > first.time && i.time.since(first.time).as_seconds() <= levelling_s)
         .collect();
-    let total_dt: f64 = span.iter().map(|i| i.dt_s).sum();
-    if span.is_empty() || total_dt <= 0.0 {
+    let total_dt: Duration = span.iter().map(|i| i.dt).sum();
+    if span.is_empty() || !total_dt.is_positive() {
         return Err(AlignmentError::NoImu(levelling_s));
     }
     let mean_force = span
         .iter()
         .fold(Vector::<Body>::zeros(), |acc, i| acc + i.delta_velocity)
-        .scale(1.0 / total_dt);
+        .scale(1.0 / total_dt.as_seconds());
     let (roll, pitch) = level(mean_force.to_array());
     let p0 = geodetic(first);
     let course = course_of(pair);

@@ -171,7 +171,7 @@ pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
     let kind = series.kind.unwrap_or(SampleKind::Rates);
     (1..series.len())
         .map(|k| {
-            let dt = series.time[k].since(series.time[k - 1]).as_seconds();
+            let dt = series.time[k] - series.time[k - 1];
             let value = |c: usize| series.channels[c][k];
             let gyro = [value(0), value(1), value(2)];
             let accel = [value(3), value(4), value(5)];
@@ -179,7 +179,7 @@ pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
                 SampleKind::Rates => Increment::from_rates(series.time[k], dt, gyro, accel),
                 SampleKind::Increments => Increment {
                     time: series.time[k],
-                    dt_s: dt,
+                    dt,
                     delta_angle: Vector::from_array(gyro),
                     delta_velocity: Vector::from_array(accel),
                 },
@@ -189,19 +189,21 @@ pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
 }
 
 /// The increment split at `at` (strictly inside its interval) into the parts before and
-/// after, shared in proportion to time.
+/// after, shared in proportion to time. The interval is split exactly (the two durations add
+/// up to the whole to the nanosecond); the shares of the increments are computed from those
+/// exact durations.
 fn split(inc: &Increment, at: Timestamp) -> (Increment, Increment) {
-    let after_s = inc.time.since(at).as_seconds();
-    let share = 1.0 - after_s / inc.dt_s;
-    let part = |fraction: f64, time: Timestamp, dt_s: f64| Increment {
+    let after = inc.time - at;
+    let share = 1.0 - after.as_seconds() / inc.dt_s();
+    let part = |fraction: f64, time: Timestamp, dt: Duration| Increment {
         time,
-        dt_s,
+        dt,
         delta_angle: inc.delta_angle.scale(fraction),
         delta_velocity: inc.delta_velocity.scale(fraction),
     };
     (
-        part(share, at, inc.dt_s - after_s),
-        part(1.0 - share, inc.time, after_s),
+        part(share, at, inc.dt - after),
+        part(1.0 - share, inc.time, after),
     )
 }
 
@@ -234,7 +236,7 @@ impl Window {
             start,
             raw: Increment {
                 time: start.nav.time,
-                dt_s: 0.0,
+                dt: Duration::ZERO,
                 delta_angle: Vector::zeros(),
                 delta_velocity: Vector::zeros(),
             },
@@ -243,7 +245,7 @@ impl Window {
 
     fn add(&mut self, raw: &Increment) {
         self.raw.time = raw.time;
-        self.raw.dt_s += raw.dt_s;
+        self.raw.dt += raw.dt;
         self.raw.delta_angle = self.raw.delta_angle + raw.delta_angle;
         self.raw.delta_velocity = self.raw.delta_velocity + raw.delta_velocity;
     }
@@ -262,6 +264,7 @@ struct Run<'a> {
     solution: Solution,
     next_output: Timestamp,
     output_step: Duration,
+    covariance_step: Duration,
 }
 
 /// Runs the filter from `initial` (with covariance `p0`) over the increments after its time,
@@ -296,9 +299,7 @@ pub fn run(
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
     for (n, inc) in increments[first..].iter().enumerate() {
         let mut raw = *inc;
-        let interval_start =
-            Timestamp::from_nanos(raw.time.as_nanos() - (raw.dt_s * 1e9).round() as i64);
-        if interval_start < start {
+        if raw.start() < start {
             raw = split(&raw, start).1;
         }
         while let Some(fix) = fixes.next_if(|f| f.time <= raw.time) {
@@ -308,11 +309,11 @@ pub fn run(
                 raw = after;
             } else if fix.time == raw.time {
                 run.step(&raw)?;
-                raw.dt_s = 0.0;
+                raw.dt = Duration::ZERO;
             }
             run.update(fix)?;
         }
-        if raw.dt_s > 1e-9 {
+        if raw.dt.is_positive() {
             run.step(&raw)?;
         }
         if n % 4096 == 0 {
@@ -346,11 +347,18 @@ impl<'a> Run<'a> {
                 .gate_probability
                 .and_then(|p| ChiSquareGate::new(dof, p))
         };
-        let output_step =
-            Duration::from_seconds(settings.output_interval_s).map_err(|_| NavError::Setting {
+        let exact = |what, value| {
+            Duration::from_seconds(value).map_err(|_| NavError::Setting { what, value })
+        };
+        let covariance_step = exact("covariance_interval_s", settings.covariance_interval_s)?;
+        let output_step = exact("output_interval_s", settings.output_interval_s)?;
+        if !output_step.is_positive() {
+            // Below half a nanosecond: the output schedule would never advance.
+            return Err(NavError::Setting {
                 what: "output_interval_s",
                 value: settings.output_interval_s,
-            })?;
+            });
+        }
         let mut run = Self {
             estimate: initial,
             core,
@@ -368,6 +376,7 @@ impl<'a> Run<'a> {
             },
             next_output: initial.nav.time,
             output_step,
+            covariance_step,
         };
         run.record();
         Ok(run)
@@ -384,17 +393,17 @@ impl<'a> Run<'a> {
     /// One IMU interval: mechanize the nominal, accumulate the window, propagate when due.
     fn step(&mut self, raw: &Increment) -> Result<(), NavError> {
         let corrected = self.estimate.sensors.correct(raw);
-        let previous = if self.previous.dt_s > 0.0 {
+        let previous = if self.previous.dt.is_positive() {
             self.previous
         } else {
             corrected
         };
         self.estimate.nav = mechanize(&self.estimate.nav, &previous, &corrected);
         self.previous = corrected;
-        self.last_raw_rate = raw.delta_angle.raw() / raw.dt_s;
+        self.last_raw_rate = raw.delta_angle.raw() / raw.dt_s();
         self.window.add(raw);
         self.check_nominal()?;
-        if self.window.raw.dt_s >= self.settings.covariance_interval_s - 1e-9 {
+        if self.window.raw.dt >= self.covariance_step {
             self.propagate()?;
         }
         if self.estimate.nav.time >= self.next_output {
@@ -444,17 +453,20 @@ impl<'a> Run<'a> {
             in_outage: self.settings.outages.contains(time),
         });
         while self.next_output <= time {
-            self.next_output =
-                Timestamp::from_nanos(self.next_output.as_nanos() + self.output_step.as_nanos());
+            match self.next_output.checked_add(self.output_step) {
+                Some(next) => self.next_output = next,
+                // At the end of the time range: record every later epoch.
+                None => break,
+            }
         }
     }
 
     /// Propagates the covariance over the accumulated window.
     fn propagate(&mut self) -> Result<(), NavError> {
-        let dt = self.window.raw.dt_s;
-        if dt <= 0.0 {
+        if !self.window.raw.dt.is_positive() {
             return Ok(());
         }
+        let dt = self.window.raw.dt_s();
         let start = self.window.start;
         let corrected = start.sensors.correct(&self.window.raw);
         let f = system_matrix(
@@ -637,5 +649,38 @@ impl<'a> Run<'a> {
             self.estimate = self.estimate.corrected_by(&x);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_split_shares_the_interval_exactly_and_the_increments_in_proportion() {
+        // 5 ms ending at t = 1 s + 5 ms, split 1 ms + 1 ns after its start: the durations are
+        // 1 000 001 ns and 3 999 999 ns, adding up to the whole to the nanosecond.
+        let end = Timestamp::from_nanos(1_005_000_000);
+        let inc = Increment::from_rates(
+            end,
+            Duration::from_nanos(5_000_000),
+            [0.2, -0.4, 1.0],
+            [1.0, 2.0, -9.8],
+        );
+        let at = Timestamp::from_nanos(1_001_000_001);
+        let (before, after) = split(&inc, at);
+        assert_eq!((before.time, after.time), (at, end));
+        assert_eq!(before.dt, Duration::from_nanos(1_000_001));
+        assert_eq!(after.dt, Duration::from_nanos(3_999_999));
+        assert_eq!(before.dt + after.dt, inc.dt);
+        assert_eq!(before.start(), inc.start());
+        let share = 1_000_001.0 / 5_000_000.0;
+        for k in 0..3 {
+            let whole = inc.delta_angle.to_array()[k];
+            assert!((before.delta_angle.to_array()[k] - share * whole).abs() < 1e-15);
+            assert!((after.delta_angle.to_array()[k] - (1.0 - share) * whole).abs() < 1e-15);
+            let whole = inc.delta_velocity.to_array()[k];
+            assert!((before.delta_velocity.to_array()[k] - share * whole).abs() < 1e-15);
+        }
     }
 }

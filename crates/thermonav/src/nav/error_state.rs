@@ -32,12 +32,13 @@ pub struct SensorCorrection {
 impl SensorCorrection {
     /// The raw increment with these errors removed.
     pub fn correct(&self, raw: &Increment) -> Increment {
+        let dt_s = raw.dt_s();
         let fix = |delta: [f64; 3], bias: [f64; 3], scale: [f64; 3]| {
-            std::array::from_fn(|k| (delta[k] - bias[k] * raw.dt_s) / (1.0 + scale[k]))
+            std::array::from_fn(|k| (delta[k] - bias[k] * dt_s) / (1.0 + scale[k]))
         };
         Increment {
             time: raw.time,
-            dt_s: raw.dt_s,
+            dt: raw.dt,
             delta_angle: Vector::from_array(fix(
                 raw.delta_angle.to_array(),
                 self.gyro_bias_rad_s,
@@ -160,7 +161,7 @@ pub(crate) fn sample_estimate() -> Estimate {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::time::Timestamp;
+    use crate::time::{Duration, Timestamp};
 
     fn estimate() -> Estimate {
         sample_estimate()
@@ -205,7 +206,7 @@ mod tests {
         let (w, f, dt) = ([0.3, -0.2, 0.1], [0.5, 0.1, -9.8], 0.005);
         let raw = Increment::from_rates(
             Timestamp::from_nanos(5_000_000),
-            dt,
+            Duration::from_nanos(5_000_000),
             std::array::from_fn(|k| (1.0 + c.gyro_scale[k]) * w[k] + c.gyro_bias_rad_s[k]),
             std::array::from_fn(|k| (1.0 + c.accel_scale[k]) * f[k] + c.accel_bias_m_s2[k]),
         );

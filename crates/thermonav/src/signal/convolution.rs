@@ -95,7 +95,7 @@ pub fn convolve(x: &[f64], h: &[f64], history: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::rng::named_rng;
+    use crate::rng::named_rng;
     use rand::RngExt;
 
     fn random(n: usize, name: &str) -> Vec<f64> {

@@ -285,10 +285,10 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::named_rng;
     use crate::signal::decimate::decimate;
     use crate::signal::kaiser::{KaiserSpec, design_kaiser_lowpass};
     use crate::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
-    use crate::sim::rng::named_rng;
     use rand::RngExt;
 
     // Oracle: the in-memory path (odd extension, FFT convolution, delay removal, decimation),

@@ -15,10 +15,10 @@
 
 use super::clock::{ClockError, SampleClock};
 use super::errors::{ChannelErrors, gauss_markov_step, standard_normal};
-use super::profile::{ChannelProfile, ProfileError, SensorProfile};
-use super::rng::{SimRng, named_rng};
 use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
+use crate::rng::{SimRng, named_rng};
+use crate::sensor::{ChannelProfile, ProfileError, SensorProfile};
 use crate::time::Timestamp;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -320,7 +320,7 @@ fn channel_values(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::profile::{GaussMarkovPoint, adis16364_like};
+    use crate::sensor::{GaussMarkovPoint, adis16364_like};
 
     /// A profile whose channels carry only what a test switches on.
     fn bare_profile(white: f64, tc_s: f64, sigma: f64) -> SensorProfile {

@@ -130,8 +130,8 @@ impl SampleClock {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::named_rng;
     use crate::signal::timestamps::check_timestamps;
-    use crate::sim::rng::named_rng;
 
     #[test]
     fn a_clean_clock_lies_on_the_exact_grid() {

@@ -7,7 +7,7 @@
 //! (variance K² dt_k per step) and n_k white noise of density N averaged over dt_k (variance
 //! N²/dt_k). The Gauss-Markov processes start from their stationary distributions.
 
-use super::profile::{BiasAt, ChannelProfile};
+use crate::sensor::{BiasAt, ChannelProfile};
 use crate::stoch::gauss_markov::GaussMarkov;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};

@@ -33,7 +33,8 @@ pub fn ideal_increments(trajectory: &Trajectory) -> Vec<Increment> {
 /// The increment that takes `before` to `after`, given the increment before it (`None` for the
 /// first: the mechanization is then called with the current increment as the previous one).
 fn invert_step(before: &NavState, after: &NavState, previous: Option<&Increment>) -> Increment {
-    let dt = after.time.since(before.time).as_seconds();
+    let span = after.time - before.time;
+    let dt = span.as_seconds();
     let zeta_attitude = attitude_frame_rotation(before, after, dt);
     let relative = before.attitude.inverse().unit_quaternion()
         * nalgebra::UnitQuaternion::from_scaled_axis(zeta_attitude)
@@ -61,7 +62,7 @@ fn invert_step(before: &NavState, after: &NavState, previous: Option<&Increment>
     };
     Increment {
         time: after.time,
-        dt_s: dt,
+        dt: span,
         delta_angle: Vector::from_raw(delta_angle),
         delta_velocity: Vector::from_raw(delta_velocity),
     }

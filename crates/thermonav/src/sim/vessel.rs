@@ -9,13 +9,13 @@ use super::motion::{
     Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory,
     WaveMotion, generate_trajectory_at,
 };
-use super::profile::{ProfileError, SensorProfile};
-use super::rng::{SimRng, named_rng};
 use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::ins::state::NavState;
-use crate::time::{NANOS_PER_SECOND, Timestamp};
+use crate::rng::{SimRng, named_rng};
+use crate::sensor::{ProfileError, SensorProfile};
+use crate::time::{Duration, NANOS_PER_SECOND, Timestamp};
 use serde::Serialize;
 
 /// GNSS receiver and antenna set-up.
@@ -266,8 +266,8 @@ fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory
                     inc.delta_velocity
                 };
                 errors.measure(
-                    delta.to_array()[axis] / inc.dt_s,
-                    inc.dt_s,
+                    delta.to_array()[axis] / inc.dt_s(),
+                    inc.dt_s(),
                     run.temperature_c,
                     &mut rng,
                 )
@@ -299,13 +299,14 @@ fn gnss_fixes(reference: &Trajectory, g: &GnssSettings, rng: &mut SimRng) -> Vec
         return Vec::new();
     };
     let step_ns = (NANOS_PER_SECOND as f64 / g.rate_hz).round() as i64;
+    let step = Duration::from_nanos(step_ns);
     let mut fixes = Vec::new();
     let mut t = Timestamp::from_nanos((first.time.as_nanos() / step_ns + 1) * step_ns);
     while t <= last.time {
         if let Some(state) = state_at(reference, t) {
             fixes.push(gnss_fix(&state, g, rng));
         }
-        t = Timestamp::from_nanos(t.as_nanos() + step_ns);
+        t += step;
     }
     fixes
 }

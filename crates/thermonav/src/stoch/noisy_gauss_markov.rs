@@ -461,7 +461,7 @@ fn bisect(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::rng::named_rng;
+    use crate::rng::named_rng;
     use nalgebra::{DMatrix, DVector};
     use rand::RngExt;
     use rand_distr::{Distribution, StandardNormal};
@@ -469,7 +469,7 @@ mod tests {
     /// Irregular times (dt uniform in [0.05, 0.15] s) and GM + white values.
     fn simulate(n: usize, tc_s: f64, sigma: f64, density: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
         let mut rng = named_rng(seed, "noisy-gm-test");
-        let normal = |rng: &mut crate::sim::rng::SimRng| -> f64 { StandardNormal.sample(rng) };
+        let normal = |rng: &mut crate::rng::SimRng| -> f64 { StandardNormal.sample(rng) };
         let (mut t, mut b) = (0.0, sigma * normal(&mut rng));
         let (mut times, mut values) = (Vec::with_capacity(n), Vec::with_capacity(n));
         for k in 0..n {

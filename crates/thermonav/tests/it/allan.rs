@@ -3,7 +3,7 @@
 
 use crate::{shared_column as read_column, shared_data};
 use rand_distr::{Distribution, StandardNormal};
-use thermonav::sim::rng::named_rng;
+use thermonav::rng::named_rng;
 use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::{
     avar_gauss_markov, avar_random_walk, avar_white, fit_noise_terms,
@@ -252,9 +252,9 @@ fn simulated_white_gauss_markov_and_walk_follow_the_theoretical_curve() {
     // A chamber record from the simulator with white noise, a Gauss-Markov bias and a bias
     // random walk (every other error off), against the closed-form sum of the three Allan
     // variances. The estimate's relative error at τ is about 1/√(2 edf); 4 of those or 3 %.
+    use thermonav::sensor::{ChannelProfile, GaussMarkovPoint, adis16364_like};
     use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
     use thermonav::sim::clock::SampleClock;
-    use thermonav::sim::profile::{ChannelProfile, GaussMarkovPoint, adis16364_like};
     let (white, sigma, tc, walk) = (2e-3, 5e-4, 20.0, 2e-6);
     let bias = GaussMarkovPoint {
         temperature_c: 20.0,

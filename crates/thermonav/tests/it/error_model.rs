@@ -82,7 +82,7 @@ fn perturbed(truth: &NavState, dx: &State) -> NavState {
 
 /// An increment as a sensor with biases and scale errors (state components 9..21) reports it.
 fn corrupted(inc: &Increment, dx: &State) -> Increment {
-    let dt = inc.dt_s;
+    let dt = inc.dt_s();
     let gyro = inc.delta_angle.raw();
     let accel = inc.delta_velocity.raw();
     let angle = Vector3::from_fn(|i, _| gyro[i] * (1.0 + dx[15 + i]) + dx[9 + i] * dt);
@@ -108,11 +108,11 @@ fn system_matrix_propagates_errors_like_the_mechanization() {
     // Φ = Π (I + F_k dt) along the truth, with the true rates of each interval.
     let mut transition = nalgebra::SMatrix::<f64, STATES, STATES>::identity();
     for (inc, state) in increments.iter().zip(&trajectory.states).take(steps) {
-        let rate = Vector::<Body>::from_raw(inc.delta_angle.raw() / inc.dt_s);
-        let force = Vector::<Body>::from_raw(inc.delta_velocity.raw() / inc.dt_s);
+        let rate = Vector::<Body>::from_raw(inc.delta_angle.raw() / inc.dt_s());
+        let force = Vector::<Body>::from_raw(inc.delta_velocity.raw() / inc.dt_s());
         let f = system_matrix(state, &rate, &force, &tc);
         transition =
-            (nalgebra::SMatrix::<f64, STATES, STATES>::identity() + f * inc.dt_s) * transition;
+            (nalgebra::SMatrix::<f64, STATES, STATES>::identity() + f * inc.dt_s()) * transition;
     }
     // Perturbation sizes: small enough for first order, large enough above rounding.
     let sizes = [

@@ -5,7 +5,7 @@
 use crate::oracle_json;
 use rand::RngExt;
 use rand_distr::{Distribution, StandardNormal};
-use thermonav::sim::rng::named_rng;
+use thermonav::rng::named_rng;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
 use thermonav::stoch::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 

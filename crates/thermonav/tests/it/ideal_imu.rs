@@ -119,8 +119,8 @@ fn steady_run_matches_the_continuous_closed_form() {
     let force_n = (omega_ie.scale(2.0) + omega_en).cross(&state.velocity) - g;
     let force_b = state.attitude.inverse() * force_n;
     let rate_b = state.attitude.inverse() * (omega_ie + omega_en);
-    let measured_force = inc.delta_velocity.scale(1.0 / inc.dt_s);
-    let measured_rate = inc.delta_angle.scale(1.0 / inc.dt_s);
+    let measured_force = inc.delta_velocity.scale(1.0 / inc.dt_s());
+    let measured_rate = inc.delta_angle.scale(1.0 / inc.dt_s());
     assert!(
         (measured_force - force_b).norm() < 1e-7,
         "{:?} vs {:?}",

@@ -5,7 +5,7 @@ use thermonav::geo::gravity::gravity_ned;
 use thermonav::geo::position::Geodetic;
 use thermonav::ins::mechanization::mechanize;
 use thermonav::ins::state::{Increment, NavState};
-use thermonav::time::Timestamp;
+use thermonav::time::{Duration, Timestamp};
 
 /// A perfect stationary IMU at a tilted, turned attitude: gyros read the Earth rate and the
 /// accelerometers the negative of normal gravity, both resolved in the body frame.
@@ -17,7 +17,7 @@ fn a_stationary_imu_with_perfect_data_stays_put_for_an_hour() {
     let rate = (to_body * position.earth_rate_ned()).to_array();
     let gravity = Vector::<Ned>::from_array(gravity_ned(position.latitude_rad, position.height_m));
     let force = (to_body * -gravity).to_array();
-    let dt = 0.005;
+    let dt = Duration::from_nanos(5_000_000);
     let mut state = NavState {
         time: Timestamp::from_nanos(0),
         position,

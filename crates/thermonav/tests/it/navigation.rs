@@ -11,8 +11,8 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav::nav::solution::Solution;
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::sim::vessel::{
     GnssSettings, VesselRecord, VesselRun, harbour_survey, simulate_vessel,
 };
@@ -373,7 +373,7 @@ fn velocity_updates_are_consistent() {
     let g = GnssSettings::default();
     let lever =
         thermonav::frames::Vector::<thermonav::frames::Body>::from_array(g.lever_arm_body_m);
-    let mut rng = thermonav::sim::rng::named_rng(31, "test/gnss-velocity");
+    let mut rng = thermonav::rng::named_rng(31, "test/gnss-velocity");
     let states = record.reference.states.clone();
     for fix in &mut record.gnss {
         let k = states

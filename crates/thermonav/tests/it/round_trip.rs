@@ -3,9 +3,9 @@
 //! likelihood's 95 % interval, at the expected rate.
 
 use thermonav::imu::Channel;
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::stoch::bank::GaussMarkovEstimate;
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 

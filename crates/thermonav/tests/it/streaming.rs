@@ -3,9 +3,9 @@
 
 use crate::allan::{adis_16405_allantools, adis_16405_columns, assert_matches_allantools};
 use thermonav::imu::{Channel, ImuSeries};
+use thermonav::sensor::adis16364_like;
 use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::adis16364_like;
 use thermonav::stoch::allan::{
     CiSettings, StreamingAllan, StreamingAllanSettings, TauGrid, confidence_intervals,
     overlapping_adev,

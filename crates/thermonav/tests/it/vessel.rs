@@ -5,8 +5,8 @@ use thermonav::frames::{Body, Vector};
 use thermonav::geo::position::Geodetic;
 use thermonav::ins::mechanization::mechanize;
 use thermonav::ins::state::Increment;
+use thermonav::sensor::{ChannelProfile, GaussMarkovPoint, adis16364_like};
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::profile::{ChannelProfile, GaussMarkovPoint, adis16364_like};
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel, wrap_pi};
 
 fn run(seconds: f64) -> VesselRun {
@@ -19,7 +19,7 @@ fn run(seconds: f64) -> VesselRun {
     }
 }
 
-fn error_free_profile() -> thermonav::sim::profile::SensorProfile {
+fn error_free_profile() -> thermonav::sensor::SensorProfile {
     let negligible = GaussMarkovPoint {
         temperature_c: 0.0,
         correlation_time_s: 100.0,
@@ -38,9 +38,7 @@ fn an_error_free_imu_reproduces_the_reference() {
     let mut state = record.reference.states[0];
     let mut previous: Option<Increment> = None;
     for k in 0..imu.len() {
-        let dt = imu.time[k]
-            .since(record.reference.states[k].time)
-            .as_seconds();
+        let dt = imu.time[k] - record.reference.states[k].time;
         let gyro = [0, 1, 2].map(|i| imu.channels[i][k]);
         let accel = [3, 4, 5].map(|i| imu.channels[i][k]);
         let current = Increment::from_rates(imu.time[k], dt, gyro, accel);

@@ -150,7 +150,7 @@ pub(super) fn burg(x: &[f64], mean: f64, r: &[f64], order: usize) -> Result<ArMo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::rng::named_rng;
+    use crate::rng::named_rng;
     use rand_distr::{Distribution, StandardNormal};
 
     // The one-pass form against the lattice recursion (same estimator, two algorithms) on an

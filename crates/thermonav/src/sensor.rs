@@ -1,4 +1,15 @@
-//! Sensor error profiles whose Gauss-Markov bias depends on temperature.
+//! Sensor profiles: the description of an IMU's errors, whose Gauss-Markov bias depends on
+//! temperature.
+//!
+//! A profile is what a data sheet (or a simulation's truth) says about a sensor, and it has
+//! three users: the simulator draws errors from it (`sim::errors`, `sim::chamber`,
+//! `sim::vessel`), the navigation filter takes its noise model from it
+//! ([`SensorProfile::stochastic_model`], for `integrate --profile` and the data-sheet
+//! baseline), and `thermonav-io` reads and writes it as TOML. So it lives here, at the top
+//! level, rather than in `sim` (no core module may depend on `sim`) or in `imu` (which holds
+//! samples and series, and is used by `nav`: the profile builds a `nav` model, so putting it
+//! under `imu` would make the data module depend on the filter). Drawing the random errors a
+//! profile describes stays in `sim::errors`.
 //!
 //! A profile gives, per channel, the white-noise density, a table of Gauss-Markov bias
 //! parameters (Tc, σ) at several temperatures, an optional bias random walk, the turn-on bias

@@ -1,10 +1,16 @@
 //! Named, seeded random generators.
+//!
+//! A top-level module rather than part of `sim`: the simulator draws from these streams, but
+//! so do the Monte Carlo evaluation, the command line and the tests of the core estimators,
+//! and no core module may depend on `sim`. Every random draw in the project comes from a
+//! generator made here and passed in by the caller (DESIGN.md, "Why named random
+//! generators?").
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha12Rng;
 
-/// The generator used by every simulation: ChaCha with 12 rounds (portable, reproducible across
-/// platforms and releases of `rand_chacha`).
+/// The generator used by every simulation and random experiment: ChaCha with 12 rounds
+/// (portable, reproducible across platforms and releases of `rand_chacha`).
 pub type SimRng = ChaCha12Rng;
 
 /// The seed every command uses unless told otherwise (the paper's year).
