@@ -24,6 +24,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    end_quietly_when_stdout_closes();
     let cli = match args::Cli::try_parse() {
         Ok(cli) => cli,
         Err(error) => return print_clap_error(&error),
@@ -47,4 +48,24 @@ fn print_clap_error(error: &clap::Error) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// A reader that stops early (`thermonav inspect FILE | head -1`) closes stdout; the next
+/// `println!` then fails with a broken pipe, which `std` turns into a panic. That is no error
+/// of the command: like ripgrep, it ends quietly with success. Every output file is complete
+/// by then (results are printed after they are written, and files are renamed into place).
+fn end_quietly_when_stdout_closes() {
+    let report_panic = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or_default();
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        report_panic(info);
+    }));
 }

@@ -9,6 +9,7 @@ mod modelling;
 mod navigation;
 mod plots;
 mod real_data;
+mod reliability;
 mod streaming;
 
 use std::fmt::Write as _;

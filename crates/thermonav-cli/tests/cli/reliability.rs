@@ -1,0 +1,181 @@
+//! Rows of the reliability issue: an output never overwrites an input, a request never asks
+//! for more than the data can use, a closed stdout ends a command quietly, and values outside
+//! physics are refused.
+
+use super::{arg, files_in, imu_csv, outcome, thermonav, write_file};
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// Runs `words` with `@NAME` replaced by `dir/NAME`.
+fn run_in(dir: &Path, words: &str) -> (i32, String, String) {
+    let args: Vec<String> = words
+        .split_whitespace()
+        .map(|w| match w.strip_prefix('@') {
+            Some(name) => arg(&dir.join(name)).to_string(),
+            None => w.to_string(),
+        })
+        .collect();
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    outcome(&thermonav(&refs))
+}
+
+/// A static record at 100 Hz with the given temperature column.
+fn static_record(rows: usize, temp_c: f64) -> String {
+    let plain = imu_csv(rows, 100.0, |c, t| match c {
+        5 => -9.80665 + 1e-3 * (t * 3.0).sin(),
+        _ => 1e-3 * (t * (c as f64 + 5.0)).sin(),
+    });
+    let mut lines = plain.lines();
+    let mut text = format!("{},temp_c\n", lines.next().unwrap_or_default());
+    for line in lines {
+        text.push_str(&format!("{line},{temp_c}\n"));
+    }
+    text
+}
+
+// Each command names one of its inputs as an output (directly, or as the sidecar it writes
+// beside the output); it must refuse with exit 2 before reading or writing anything, leaving
+// the folder exactly as it was.
+#[test]
+fn an_output_that_is_an_input_is_refused_before_anything_is_read() {
+    let cases = [
+        "filter @a.csv --cutoff-hz 5 --out @a.csv",
+        "filter @a.csv --cutoff-hz 5 --out @./a.csv",
+        "integrate --imu @a.csv --gnss @g.csv --bank @b.json --out @a.csv",
+        "integrate --imu @a.csv --gnss @sol.states.csv --bank @b.json --out @sol.csv",
+        "integrate --imu @a.csv --gnss @g.csv --bank @sol.innovations.csv --out @sol.csv",
+        "characterize @a.csv --temperature-c 20 --out @a.csv",
+        "convert @g.pos --out @g.pos",
+        "evaluate --imu @errors/a.csv --gnss @g.csv --reference @r.csv --bank @b.json --out @.",
+        "evaluate --imu @a.csv --gnss @g.csv --reference @evaluation.json --bank @b.json --out @.",
+    ];
+    for case in cases {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("errors")).unwrap();
+        let names = [
+            "a.csv",
+            "g.csv",
+            "b.json",
+            "r.csv",
+            "g.pos",
+            "sol.states.csv",
+            "sol.innovations.csv",
+            "evaluation.json",
+            "errors/a.csv",
+        ];
+        for name in names {
+            write_file(dir.path(), name, "an input\n");
+        }
+        let before = files_in(dir.path());
+        let (code, _, stderr) = run_in(dir.path(), case);
+        assert_eq!(code, 2, "{case}: {stderr}");
+        assert!(stderr.contains("would overwrite the input"), "{case}: {stderr}");
+        assert_eq!(files_in(dir.path()), before, "{case}");
+        for name in names {
+            let text = std::fs::read_to_string(dir.path().join(name)).unwrap();
+            assert_eq!(text, "an input\n", "{case}: {name} changed");
+        }
+    }
+}
+
+// A hard link is the same file under another name.
+#[test]
+fn a_hard_link_to_an_input_is_refused_as_an_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_file(dir.path(), "a.csv", &static_record(200, 20.0));
+    std::fs::hard_link(&input, dir.path().join("same.csv")).unwrap();
+    let (code, _, stderr) = run_in(dir.path(), "filter @a.csv --cutoff-hz 5 --out @same.csv");
+    assert_eq!(code, 2, "{stderr}");
+    assert_eq!(
+        std::fs::read_to_string(&input).unwrap(),
+        static_record(200, 20.0)
+    );
+}
+
+// Settings resolve before any file is read: a bad outage specification is named even though
+// none of the files exists.
+#[test]
+fn a_bad_outage_specification_is_refused_before_the_files_are_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, _, stderr) = run_in(
+        dir.path(),
+        "integrate --outages bogus --imu /nonexistent --gnss /nonexistent --bank /nonexistent --out @s.csv",
+    );
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("outage specification \"bogus\""), "{stderr}");
+    assert!(!stderr.contains("nonexistent"), "{stderr}");
+    assert!(files_in(dir.path()).is_empty());
+}
+
+// Requests bounded by the data or a documented limit, refused before anything is allocated:
+// 1e12 periodic outages (16 TB as a list) over 20 s of data, a million Monte Carlo
+// replicates (each is every model through every filter), the same chamber set point twice.
+#[test]
+fn requests_beyond_the_data_or_the_documented_limits_are_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    write_file(dir.path(), "imu.csv", &static_record(2000, 20.0));
+    let gnss: String = (0..=20)
+        .map(|k| format!("{k}.0,48.1,11.5,500\n"))
+        .collect();
+    write_file(dir.path(), "gnss.csv", &format!("t_s,lat_deg,lon_deg,h_m\n{gnss}"));
+    let (code, _, stderr) = run_in(dir.path(), "simulate profile --out @p.toml");
+    assert_eq!(code, 0, "{stderr}");
+    let cases = [
+        (
+            "integrate --imu @imu.csv --gnss @gnss.csv --profile @p.toml --outages every:10,5,20,1000000000000 --out @s.csv",
+            "not inside the data",
+        ),
+        (
+            "integrate --imu @imu.csv --gnss @gnss.csv --profile @p.toml --outages every:1,5,0,1000000000000 --out @s.csv",
+            "overlap",
+        ),
+        (
+            "evaluate --imu @imu.csv --gnss @gnss.csv --reference @r.csv --bank @b.json --monte-carlo 1000000 --out @e",
+            "at most 1000 replicates",
+        ),
+        (
+            "simulate chamber --temperatures-c=20,20 --duration-s 10 --out @c",
+            "twice",
+        ),
+    ];
+    for (case, needle) in cases {
+        let (code, _, stderr) = run_in(dir.path(), case);
+        assert_eq!(code, 2, "{case}: {stderr}");
+        assert!(stderr.contains(needle), "{case}: {stderr}");
+    }
+    assert_eq!(files_in(dir.path()), ["gnss.csv", "imu.csv", "p.toml"]);
+}
+
+// A record whose temp_c is not a temperature a sensor is characterised at is refused, named.
+#[test]
+fn a_record_at_an_impossible_temperature_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, temp_c) in [("cold.csv", -300.0), ("hot.csv", 1e6)] {
+        write_file(dir.path(), name, &static_record(3000, temp_c));
+        let (code, _, stderr) = run_in(dir.path(), &format!("characterize @{name} --out @b.json"));
+        assert_eq!(code, 1, "{stderr}");
+        assert!(stderr.contains(name) && stderr.contains("temp_c"), "{stderr}");
+    }
+    assert!(!dir.path().join("b.json").exists());
+}
+
+// `thermonav allan FILE --json | true`: stdout is closed before the command writes; it must
+// end quietly, not panic with "failed printing to stdout".
+#[test]
+fn a_closed_stdout_ends_the_command_quietly() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "a.csv", &static_record(4000, 20.0));
+    for command in [["allan", "--json"], ["inspect", "--json"], ["inspect", "--quiet"]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_thermonav"))
+            .args([command[0], arg(&file), command[1]])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let output = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!stderr.contains("panicked"), "{command:?}: {stderr}");
+        assert_eq!(output.status.code(), Some(0), "{command:?}: {stderr}");
+    }
+}
