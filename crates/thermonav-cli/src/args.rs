@@ -122,6 +122,11 @@ pub struct EvaluateArgs {
     /// Dual-antenna baseline direction in body axes (primary to secondary).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().baseline_body)]
     pub baseline: Vec<f64>,
+    /// The data-sheet candidate from this sensor profile (TOML, as `simulate profile`
+    /// writes): its model at its reference temperature. Default: the ADIS16364 data sheet
+    /// (ARW, in-run bias stability / 0.62, a 1 h correlation time).
+    #[arg(long)]
+    pub datasheet: Option<PathBuf>,
     /// Output folder (evaluation.json and errors/*.csv).
     #[arg(long)]
     pub out: PathBuf,

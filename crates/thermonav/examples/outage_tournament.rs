@@ -49,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         SURVEY_C,
         GaussMarkovSource::IrregularMl,
         &scale,
-        Some(&DatasheetValues::adis16364()),
+        Some(&DatasheetValues::adis16364().model(&scale)),
     );
     for e in &excluded {
         println!("left out: {}: {}", e.label, e.reason);

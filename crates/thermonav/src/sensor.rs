@@ -32,6 +32,61 @@ use crate::units::{
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
+/// Data-sheet noise figures in the units data sheets use.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DatasheetValues {
+    /// Gyro angle random walk, deg/√h.
+    pub gyro_arw_deg_sqrt_h: f64,
+    /// Gyro in-run bias stability (Allan minimum), deg/s.
+    pub gyro_bias_stability_deg_s: f64,
+    /// Accelerometer velocity random walk, m/s/√h.
+    pub accel_vrw_m_s_sqrt_h: f64,
+    /// Accelerometer in-run bias stability (Allan minimum), mg.
+    pub accel_bias_stability_mg: f64,
+    /// Correlation time assumed for the biases, s.
+    pub correlation_time_s: f64,
+}
+
+impl DatasheetValues {
+    /// Analog Devices ADIS16364 data sheet (Rev. B): 2.0 °/√h, 0.007 °/s, 0.12 m/s/√h,
+    /// 0.1 mg; the data sheet gives no correlation time, so 1 h.
+    pub fn adis16364() -> Self {
+        Self {
+            gyro_arw_deg_sqrt_h: 2.0,
+            gyro_bias_stability_deg_s: 0.007,
+            accel_vrw_m_s_sqrt_h: 0.12,
+            accel_bias_stability_mg: 0.1,
+            correlation_time_s: 3600.0,
+        }
+    }
+
+    /// The filter model these figures imply.
+    pub fn model(&self, scale: &ScaleFactorPrior) -> ImuStochasticModel {
+        let axis = |white: f64, stability: f64, scale_factor| AxisModel {
+            white_noise_density: white,
+            bias: GaussMarkovParameters {
+                correlation_time_s: self.correlation_time_s,
+                sigma: stability / GAUSS_MARKOV_ADEV_PEAK_RATIO,
+            },
+            scale_factor,
+        };
+        let gyro = axis(
+            arw_deg_per_sqrt_h_to_rad_per_sqrt_s(self.gyro_arw_deg_sqrt_h),
+            deg_to_rad(self.gyro_bias_stability_deg_s),
+            scale.gyro,
+        );
+        let accel = axis(
+            vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(self.accel_vrw_m_s_sqrt_h),
+            mg_to_m_per_s2(self.accel_bias_stability_mg),
+            scale.accel,
+        );
+        ImuStochasticModel {
+            gyro: [gyro; 3],
+            accel: [accel; 3],
+        }
+    }
+}
+
 /// Gauss-Markov bias parameters measured at one temperature.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct GaussMarkovPoint {
@@ -424,12 +479,18 @@ pub fn adis16364_like() -> SensorProfile {
 }
 
 fn default_channel(channel: Channel) -> ChannelProfile {
+    let sheet = DatasheetValues::adis16364();
     let axis = channel.index() % 3;
     let tempco_sign = [1.0, -0.6, 0.8][axis];
     match channel.sensor() {
         Sensor::Gyro => ChannelProfile {
-            white_noise_density: arw_deg_per_sqrt_h_to_rad_per_sqrt_s(2.0),
-            bias_gauss_markov: table(&GYRO_TC_S, &GYRO_SIGMA_SCALE, deg_to_rad(0.007), axis),
+            white_noise_density: arw_deg_per_sqrt_h_to_rad_per_sqrt_s(sheet.gyro_arw_deg_sqrt_h),
+            bias_gauss_markov: table(
+                &GYRO_TC_S,
+                &GYRO_SIGMA_SCALE,
+                deg_to_rad(sheet.gyro_bias_stability_deg_s),
+                axis,
+            ),
             bias_random_walk_density: 0.0,
             turn_on_bias_sigma: deg_to_rad(1.0),
             bias_temperature_coefficient_per_c: tempco_sign * deg_to_rad(0.01),
@@ -438,8 +499,15 @@ fn default_channel(channel: Channel) -> ChannelProfile {
             quantization_step: deg_to_rad(0.05),
         },
         Sensor::Accelerometer => ChannelProfile {
-            white_noise_density: vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(0.12),
-            bias_gauss_markov: table(&ACCEL_TC_S, &ACCEL_SIGMA_SCALE, mg_to_m_per_s2(0.1), axis),
+            white_noise_density: vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(
+                sheet.accel_vrw_m_s_sqrt_h,
+            ),
+            bias_gauss_markov: table(
+                &ACCEL_TC_S,
+                &ACCEL_SIGMA_SCALE,
+                mg_to_m_per_s2(sheet.accel_bias_stability_mg),
+                axis,
+            ),
             bias_random_walk_density: 0.0,
             turn_on_bias_sigma: mg_to_m_per_s2(8.0 / 3.0),
             bias_temperature_coefficient_per_c: tempco_sign * mg_to_m_per_s2(0.05),

@@ -248,7 +248,7 @@ fn tournament(
         operating_temperature_c: operating_c,
         source: GaussMarkovSource::IrregularMl,
         filters: vec![FilterKind::Ukf, FilterKind::Ekf],
-        datasheet: Some(DatasheetValues::adis16364()),
+        datasheet: Some(DatasheetValues::adis16364().model(&ScaleFactorPrior::default())),
         scale: ScaleFactorPrior::default(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;

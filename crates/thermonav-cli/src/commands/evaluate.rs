@@ -8,10 +8,12 @@ use crate::inputs::read_bank;
 use crate::report::print_json;
 use crate::tournament_files::{print_tournament_table, run_and_write, scenario_from_files};
 use anyhow::anyhow;
+use std::path::Path;
 use thermonav::evaluation::candidates::DatasheetValues;
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
 use thermonav::nav::engine::EngineSettings;
-use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
+use thermonav_io::profile::read_profile;
 
 /// Runs `evaluate`.
 pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
@@ -28,7 +30,7 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         operating_temperature_c: operating_c,
         source: s.source,
         filters: s.filters.clone(),
-        datasheet: Some(DatasheetValues::adis16364()),
+        datasheet: Some(datasheet_model(s.datasheet.as_deref())?),
         scale: ScaleFactorPrior::default(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
@@ -42,4 +44,18 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     }
     print_tournament_table(&file);
     Ok(())
+}
+
+/// The data-sheet candidate: a profile's model at its reference temperature, or the ADIS16364
+/// data sheet.
+fn datasheet_model(profile: Option<&Path>) -> Result<ImuStochasticModel, Failure> {
+    let scale = ScaleFactorPrior::default();
+    let Some(path) = profile else {
+        return Ok(DatasheetValues::adis16364().model(&scale));
+    };
+    let profile = read_profile(path).data()?;
+    profile
+        .stochastic_model(profile.reference_temperature_c, &scale)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()
 }

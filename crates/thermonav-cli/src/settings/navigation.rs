@@ -235,6 +235,8 @@ pub struct EvaluateSettings {
     pub seed: u64,
     /// Antennas.
     pub geometry: AntennaGeometry,
+    /// The profile of the data-sheet candidate (none: the ADIS16364 data sheet).
+    pub datasheet: Option<PathBuf>,
     /// Output folder.
     pub out: PathBuf,
 }
@@ -258,9 +260,15 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         extra_replicates: replicates(args.monte_carlo)? - 1,
         seed: args.seed,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
+        datasheet: args.datasheet.clone(),
         out: args.out.clone(),
     };
-    tournament_io(&settings.files, &settings.bank, &settings.out).check()?;
+    let io = tournament_io(&settings.files, &settings.bank, &settings.out);
+    match &settings.datasheet {
+        Some(profile) => io.input("--datasheet", profile),
+        None => io,
+    }
+    .check()?;
     Ok(settings)
 }
 

@@ -366,3 +366,40 @@ fn evaluate_refuses_bad_input() {
         "no model for channel az",
     );
 }
+
+// `--datasheet PROFILE` replaces only the data-sheet candidate (by the profile's model at its
+// reference temperature): every other model's figures are the same as without it, bit for
+// bit, and the data-sheet figures change (the built-in profile's Tc of minutes against the
+// data sheet's assumed hour).
+#[test]
+fn evaluate_takes_the_datasheet_candidate_from_a_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let profile = dir.path().join("sheet.toml");
+    let (status, _, stderr) = outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)]));
+    assert_eq!(status, 0, "{stderr}");
+    let outages = ["--outages", "60+30,150+30"];
+    let plain = json_of(&evaluate_args(&vessel, &bank, &dir.path().join("a"), &outages));
+    let with = [outages[0], outages[1], "--datasheet", arg(&profile)];
+    let sheet = json_of(&evaluate_args(&vessel, &bank, &dir.path().join("b"), &with));
+    let figures = |json: &serde_json::Value, label: &str| {
+        let models = json["models"].as_array().unwrap();
+        let m = models.iter().find(|m| m["label"] == label).unwrap();
+        m["rms_horizontal_m"].as_f64().unwrap()
+    };
+    let labels: Vec<&str> = plain["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|m| m["label"].as_str())
+        .filter(|l| *l != "data sheet")
+        .collect();
+    assert!(labels.len() >= 2, "{labels:?}");
+    for label in labels {
+        assert_eq!(figures(&plain, label), figures(&sheet, label), "{label}");
+    }
+    assert_ne!(
+        figures(&plain, "data sheet"),
+        figures(&sheet, "data sheet")
+    );
+}

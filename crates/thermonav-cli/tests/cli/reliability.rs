@@ -69,7 +69,10 @@ fn an_output_that_is_an_input_is_refused_before_anything_is_read() {
         let before = files_in(dir.path());
         let (code, _, stderr) = run_in(dir.path(), case);
         assert_eq!(code, 2, "{case}: {stderr}");
-        assert!(stderr.contains("would overwrite the input"), "{case}: {stderr}");
+        assert!(
+            stderr.contains("would overwrite the input"),
+            "{case}: {stderr}"
+        );
         assert_eq!(files_in(dir.path()), before, "{case}");
         for name in names {
             let text = std::fs::read_to_string(dir.path().join(name)).unwrap();
@@ -102,7 +105,10 @@ fn a_bad_outage_specification_is_refused_before_the_files_are_read() {
         "integrate --outages bogus --imu /nonexistent --gnss /nonexistent --bank /nonexistent --out @s.csv",
     );
     assert_eq!(code, 2, "{stderr}");
-    assert!(stderr.contains("outage specification \"bogus\""), "{stderr}");
+    assert!(
+        stderr.contains("outage specification \"bogus\""),
+        "{stderr}"
+    );
     assert!(!stderr.contains("nonexistent"), "{stderr}");
     assert!(files_in(dir.path()).is_empty());
 }
@@ -114,10 +120,12 @@ fn a_bad_outage_specification_is_refused_before_the_files_are_read() {
 fn requests_beyond_the_data_or_the_documented_limits_are_refused_at_once() {
     let dir = tempfile::tempdir().unwrap();
     write_file(dir.path(), "imu.csv", &static_record(2000, 20.0));
-    let gnss: String = (0..=20)
-        .map(|k| format!("{k}.0,48.1,11.5,500\n"))
-        .collect();
-    write_file(dir.path(), "gnss.csv", &format!("t_s,lat_deg,lon_deg,h_m\n{gnss}"));
+    let gnss: String = (0..=20).map(|k| format!("{k}.0,48.1,11.5,500\n")).collect();
+    write_file(
+        dir.path(),
+        "gnss.csv",
+        &format!("t_s,lat_deg,lon_deg,h_m\n{gnss}"),
+    );
     let (code, _, stderr) = run_in(dir.path(), "simulate profile --out @p.toml");
     assert_eq!(code, 0, "{stderr}");
     let cases = [
@@ -154,7 +162,10 @@ fn a_record_at_an_impossible_temperature_is_refused() {
         write_file(dir.path(), name, &static_record(3000, temp_c));
         let (code, _, stderr) = run_in(dir.path(), &format!("characterize @{name} --out @b.json"));
         assert_eq!(code, 1, "{stderr}");
-        assert!(stderr.contains(name) && stderr.contains("temp_c"), "{stderr}");
+        assert!(
+            stderr.contains(name) && stderr.contains("temp_c"),
+            "{stderr}"
+        );
     }
     assert!(!dir.path().join("b.json").exists());
 }
@@ -165,7 +176,11 @@ fn a_record_at_an_impossible_temperature_is_refused() {
 fn a_closed_stdout_ends_the_command_quietly() {
     let dir = tempfile::tempdir().unwrap();
     let file = write_file(dir.path(), "a.csv", &static_record(4000, 20.0));
-    for command in [["allan", "--json"], ["inspect", "--json"], ["inspect", "--quiet"]] {
+    for command in [
+        ["allan", "--json"],
+        ["inspect", "--json"],
+        ["inspect", "--quiet"],
+    ] {
         let mut child = Command::new(env!("CARGO_BIN_EXE_thermonav"))
             .args([command[0], arg(&file), command[1]])
             .stdout(Stdio::piped())

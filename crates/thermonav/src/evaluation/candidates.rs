@@ -10,15 +10,12 @@
 //!   ≈ 0.62 σ) and a stated correlation time (1 h unless given), as a user without a chamber
 //!   campaign would configure a filter.
 
+pub use crate::sensor::DatasheetValues;
+
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
 };
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
-use crate::stoch::noise_terms::GAUSS_MARKOV_ADEV_PEAK_RATIO;
-use crate::units::{
-    arw_deg_per_sqrt_h_to_rad_per_sqrt_s, deg_to_rad, mg_to_m_per_s2,
-    vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s,
-};
 use serde::Serialize;
 
 /// What a candidate is.
@@ -79,74 +76,20 @@ pub struct Excluded {
     pub reason: String,
 }
 
-/// Data-sheet noise figures in the units data sheets use.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct DatasheetValues {
-    /// Gyro angle random walk, deg/√h.
-    pub gyro_arw_deg_sqrt_h: f64,
-    /// Gyro in-run bias stability (Allan minimum), deg/s.
-    pub gyro_bias_stability_deg_s: f64,
-    /// Accelerometer velocity random walk, m/s/√h.
-    pub accel_vrw_m_s_sqrt_h: f64,
-    /// Accelerometer in-run bias stability (Allan minimum), mg.
-    pub accel_bias_stability_mg: f64,
-    /// Correlation time assumed for the biases, s.
-    pub correlation_time_s: f64,
-}
-
-impl DatasheetValues {
-    /// Analog Devices ADIS16364 data sheet (Rev. B): 2.0 °/√h, 0.007 °/s, 0.12 m/s/√h,
-    /// 0.1 mg; the data sheet gives no correlation time, so 1 h.
-    pub fn adis16364() -> Self {
-        Self {
-            gyro_arw_deg_sqrt_h: 2.0,
-            gyro_bias_stability_deg_s: 0.007,
-            accel_vrw_m_s_sqrt_h: 0.12,
-            accel_bias_stability_mg: 0.1,
-            correlation_time_s: 3600.0,
-        }
-    }
-
-    /// The filter model these figures imply.
-    pub fn model(&self, scale: &ScaleFactorPrior) -> ImuStochasticModel {
-        let axis = |white: f64, stability: f64, scale_factor| AxisModel {
-            white_noise_density: white,
-            bias: GaussMarkovParameters {
-                correlation_time_s: self.correlation_time_s,
-                sigma: stability / GAUSS_MARKOV_ADEV_PEAK_RATIO,
-            },
-            scale_factor,
-        };
-        let gyro = axis(
-            arw_deg_per_sqrt_h_to_rad_per_sqrt_s(self.gyro_arw_deg_sqrt_h),
-            deg_to_rad(self.gyro_bias_stability_deg_s),
-            scale.gyro,
-        );
-        let accel = axis(
-            vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(self.accel_vrw_m_s_sqrt_h),
-            mg_to_m_per_s2(self.accel_bias_stability_mg),
-            scale.accel,
-        );
-        ImuStochasticModel {
-            gyro: [gyro; 3],
-            accel: [accel; 3],
-        }
-    }
-}
-
 /// Label of a bank entry's candidate.
 pub fn entry_label(temperature_c: f64) -> String {
     format!("bank {temperature_c:.1} °C")
 }
 
 /// The candidates of a bank at an operating temperature with one Gauss-Markov family, plus
-/// the data-sheet model when given; entries without a usable model are listed as excluded.
+/// the data-sheet model when given (from [`DatasheetValues::model`], or a profile's model at
+/// its reference temperature); entries without a usable model are listed as excluded.
 pub fn tournament_candidates(
     bank: &ModelBank,
     operating_temperature_c: f64,
     source: GaussMarkovSource,
     scale: &ScaleFactorPrior,
-    datasheet: Option<&DatasheetValues>,
+    datasheet: Option<&ImuStochasticModel>,
 ) -> (Vec<Candidate>, Vec<Excluded>) {
     let mut candidates = Vec::new();
     let mut excluded = Vec::new();
@@ -202,11 +145,11 @@ pub fn tournament_candidates(
             reason: "no bank entry has a usable model".into(),
         }),
     }
-    if let Some(values) = datasheet {
+    if let Some(model) = datasheet {
         candidates.push(Candidate {
             label: "data sheet".into(),
             kind: CandidateKind::Datasheet,
-            model: values.model(scale),
+            model: *model,
         });
     }
     (candidates, excluded)

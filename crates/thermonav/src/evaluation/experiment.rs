@@ -6,14 +6,12 @@
 //! only its figures, and replicates are made one at a time, so memory stays that of the main
 //! run whatever the number of replicates.
 
-use super::candidates::{
-    Candidate, CandidateKind, DatasheetValues, Excluded, tournament_candidates,
-};
+use super::candidates::{Candidate, CandidateKind, Excluded, tournament_candidates};
 use super::report::{TournamentReport, report_of};
 use super::tournament::{ModelResult, Scenario, run_tournament, summarize_replicates};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
-use crate::nav::sensor_model::ScaleFactorPrior;
+use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank};
 
@@ -32,8 +30,9 @@ pub struct TournamentPlan<'a> {
     pub source: GaussMarkovSource,
     /// The filters, reported in this order.
     pub filters: Vec<FilterKind>,
-    /// Data-sheet figures for the data-sheet candidate, when there is one.
-    pub datasheet: Option<DatasheetValues>,
+    /// The data-sheet candidate's model, when there is one (see
+    /// [`super::candidates::DatasheetValues::model`]).
+    pub datasheet: Option<ImuStochasticModel>,
     /// Scale-factor prior of every candidate.
     pub scale: ScaleFactorPrior,
 }
