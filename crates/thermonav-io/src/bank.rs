@@ -28,7 +28,7 @@ pub fn parse_bank(bytes: &[u8], input: &str) -> Result<ModelBank, ReadError> {
 pub fn read_bank_file(path: impl AsRef<Path>) -> Result<ModelBank, ReadError> {
     let path = path.as_ref();
     let input = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = crate::read_document(path).map_err(|e| {
         let kind = match e.kind() {
             std::io::ErrorKind::NotFound => ReadErrorKind::Open(e),
             _ => ReadErrorKind::Read(e),

@@ -321,14 +321,21 @@ const PARALLEL_MIN_BYTES: u64 = 8 << 20;
 
 /// The header line and the byte after the first newline at or after the middle of the file.
 fn split_point(path: &Path, bytes: u64) -> Option<(Vec<u8>, u64, u64)> {
-    use std::io::{Seek, SeekFrom};
+    use std::io::{Read, Seek, SeekFrom};
     let mut reader = BufReader::new(File::open(path).ok()?);
     let mut header = Vec::new();
-    reader.read_until(b'\n', &mut header).ok()?;
+    // Bounded like every line: a file without newlines must not be read whole here.
+    (&mut reader)
+        .take(crate::lines::MAX_LINE_BYTES)
+        .read_until(b'\n', &mut header)
+        .ok()?;
     let mut file = reader.into_inner();
     file.seek(SeekFrom::Start(bytes / 2)).ok()?;
     let mut rest = Vec::new();
-    let skipped = BufReader::new(file).read_until(b'\n', &mut rest).ok()? as u64;
+    let skipped = BufReader::new(file)
+        .take(crate::lines::MAX_LINE_BYTES)
+        .read_until(b'\n', &mut rest)
+        .ok()? as u64;
     let boundary = bytes / 2 + skipped;
     let usable = rest.last() == Some(&b'\n') && boundary > header.len() as u64 && boundary < bytes;
     usable.then_some((header, boundary, bytes))

@@ -120,6 +120,47 @@ fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
     }
 }
 
+/// The largest document read whole (a bank, a sensor profile, a motion file, a lot manifest):
+/// 64 MiB, a thousand times the largest bank a campaign writes. A larger input, or an endless
+/// one such as `/dev/zero`, is refused after reading that much instead of exhausting memory.
+pub const DOCUMENT_LIMIT_BYTES: u64 = 64 << 20;
+
+/// The bytes of the document at `path`, at most [`DOCUMENT_LIMIT_BYTES`] of them.
+///
+/// # Errors
+/// The error of opening or reading the file, or one of kind `InvalidData` saying that it is
+/// larger than the limit.
+pub fn read_document(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    File::open(path)?
+        .take(DOCUMENT_LIMIT_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > DOCUMENT_LIMIT_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "larger than {} MiB, more than any document of this kind can be (expected a bank, profile, motion or manifest file)",
+                DOCUMENT_LIMIT_BYTES >> 20
+            ),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// [`read_document`] as UTF-8 text.
+///
+/// # Errors
+/// As [`read_document`], and `InvalidData` for bytes that are not UTF-8.
+pub fn read_document_text(path: &Path) -> std::io::Result<String> {
+    String::from_utf8(read_document(path)?).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text ({e})"),
+        )
+    })
+}
+
 /// The bytes of the file at `path`, with the path as the input's name; a missing or
 /// forbidden file is [`ReadErrorKind::Open`], a failure part-way [`ReadErrorKind::Read`].
 fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {

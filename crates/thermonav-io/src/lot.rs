@@ -123,7 +123,7 @@ struct UnitFile {
 /// conditioning value that is not a positive number.
 pub fn read_manifest(path: &Path) -> Result<LotManifest, ManifestError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| ManifestError::Read {
+    let text = crate::read_document_text(path).map_err(|source| ManifestError::Read {
         path: name.clone(),
         source,
     })?;

@@ -183,7 +183,7 @@ pub fn parse_motion(text: &str, path: &str) -> Result<MotionDefinition, MotionFi
 /// As [`parse_motion`], plus an unreadable file.
 pub fn read_motion(path: &Path) -> Result<MotionDefinition, MotionFileError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| MotionFileError::Read {
+    let text = crate::read_document_text(path).map_err(|source| MotionFileError::Read {
         path: name.clone(),
         source,
     })?;

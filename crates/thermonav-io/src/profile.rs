@@ -328,7 +328,7 @@ pub fn parse_profile_bytes(bytes: &[u8], path: &str) -> Result<SensorProfile, Pr
 /// As [`parse_profile_bytes`], plus an unreadable file.
 pub fn read_profile(path: &Path) -> Result<SensorProfile, ProfileFileError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ProfileFileError::Read {
+    let bytes = crate::read_document(path).map_err(|source| ProfileFileError::Read {
         path: name.clone(),
         source,
     })?;

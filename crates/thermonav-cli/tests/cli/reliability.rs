@@ -194,3 +194,38 @@ fn a_closed_stdout_ends_the_command_quietly() {
         assert_eq!(output.status.code(), Some(0), "{command:?}: {stderr}");
     }
 }
+
+// Memory bounded by the data: an endless input (`/dev/zero`) or a large sparse file without a
+// single newline is refused after a bounded read (documents: 64 MiB; lines: 1 MiB), never read
+// whole.
+#[test]
+fn endless_and_newline_free_inputs_are_refused_after_a_bounded_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let sparse = dir.path().join("sparse.csv");
+    std::fs::File::create(&sparse)
+        .unwrap()
+        .set_len(100 << 20)
+        .unwrap();
+    let cases = [
+        ("bank show /dev/zero", "larger than 64 MiB"),
+        ("simulate profile --out @p.toml", ""),
+        ("bank show @sparse.csv", "larger than 64 MiB"),
+        ("allan @sparse.csv", "sparse.csv"),
+        (
+            "filter @sparse.csv --cutoff-hz 1 --out @f.csv",
+            "sparse.csv",
+        ),
+    ];
+    for (case, needle) in cases {
+        let (code, _, stderr) = run_in(dir.path(), case);
+        if needle.is_empty() {
+            assert_eq!(code, 0, "{case}: {stderr}");
+            continue;
+        }
+        assert_eq!(code, 1, "{case}: {stderr}");
+        assert!(stderr.contains(needle), "{case}: {stderr}");
+    }
+    let (code, _, stderr) = run_in(dir.path(), "simulate vessel --profile /dev/zero --out @v");
+    assert_eq!(code, 1, "{stderr}");
+    assert!(!dir.path().join("v").exists());
+}
