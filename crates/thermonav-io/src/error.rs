@@ -150,6 +150,16 @@ pub enum ReadErrorKind {
         /// The field's text.
         found: String,
     },
+    /// A finite value too large for any reading, rejected under [`crate::Strictness::Strict`].
+    #[error(
+        "column {column}: value \"{found}\" is too large (expected a magnitude of at most 1e15; strict reading)"
+    )]
+    TooLarge {
+        /// Header name of the column.
+        column: String,
+        /// The field's text.
+        found: String,
+    },
     /// A value outside its physical range, rejected under [`crate::Strictness::Strict`].
     #[error("column {column}: value {found} is out of range (expected {expected}; strict reading)")]
     OutOfRange {

@@ -152,16 +152,19 @@ fn fix_from_row(time: thermonav::time::Timestamp, v: &[f64], groups: Groups) -> 
     }
 }
 
-/// Strict checks: latitude within ±90°, standard deviations not negative.
+/// Strict checks: latitude within ±90°, height within the navigable range, standard
+/// deviations positive.
 pub(crate) fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
     crate::check_latitude(fix.latitude_rad)?;
-    let sds = fix.position_sd_ned_m.unwrap_or_default();
+    check_height(fix.height_m)?;
     let sd_names = ["sd_n_m", "sd_e_m", "sd_u_m"];
-    if let Some((&found, column)) = sds.iter().zip(sd_names).find(|(sd, _)| **sd < 0.0) {
-        return Err(negative_sd(column, found));
+    if let Some(sds) = fix.position_sd_ned_m {
+        if let Some((&found, column)) = sds.iter().zip(sd_names).find(|(sd, _)| **sd <= 0.0) {
+            return Err(negative_sd(column, found));
+        }
     }
     match fix.heading {
-        Some(h) if h.sd_rad < 0.0 => Err(negative_sd(
+        Some(h) if h.sd_rad <= 0.0 => Err(negative_sd(
             "sd_heading_deg",
             degrees_reading_back_exactly(h.sd_rad),
         )),
@@ -169,11 +172,24 @@ pub(crate) fn check_ranges(fix: &GnssFix) -> Result<(), ReadErrorKind> {
     }
 }
 
+/// Heights a GNSS/INS navigates at: the deepest ocean to 100 km (the edge of space); a normal
+/// gravity and the Earth's radii hold there, and a typo such as 1e300 never reaches the filter.
+fn check_height(height_m: f64) -> Result<(), ReadErrorKind> {
+    match (-12_000.0..=100_000.0).contains(&height_m) {
+        true => Ok(()),
+        false => Err(ReadErrorKind::OutOfRange {
+            column: "h_m",
+            found: height_m,
+            expected: "-12000 to 100000 m",
+        }),
+    }
+}
+
 fn negative_sd(column: &'static str, found: f64) -> ReadErrorKind {
     ReadErrorKind::OutOfRange {
         column,
         found,
-        expected: "a standard deviation >= 0",
+        expected: "a standard deviation > 0 (a fix of zero spread would be trusted without limit)",
     }
 }
 

@@ -108,14 +108,32 @@ fn strict_rejects_impossible_latitudes_and_negative_deviations_lenient_keeps_the
     assert_eq!(
         gnss(negative_sd, Strictness::Strict).unwrap_err(),
         "gnss.csv:2: column sd_e_m: value -2 is out of range \
-         (expected a standard deviation >= 0; strict reading)"
+         (expected a standard deviation > 0 (a fix of zero spread would be trusted without limit); strict reading)"
     );
     let negative_heading_sd =
         "t_s,lat_deg,lon_deg,h_m,heading_deg,sd_heading_deg\n0,0,0,0,1,-0.25\n";
     assert_eq!(
         gnss(negative_heading_sd, Strictness::Strict).unwrap_err(),
         "gnss.csv:2: column sd_heading_deg: value -0.25 is out of range \
-         (expected a standard deviation >= 0; strict reading)"
+         (expected a standard deviation > 0 (a fix of zero spread would be trusted without limit); strict reading)"
+    );
+    let zero_sd = "t_s,lat_deg,lon_deg,h_m,sd_n_m,sd_e_m,sd_u_m\n0,0,0,0,1,0,3\n";
+    assert!(
+        gnss(zero_sd, Strictness::Strict)
+            .unwrap_err()
+            .contains("column sd_e_m: value 0 is out of range")
+    );
+    let huge_height = "t_s,lat_deg,lon_deg,h_m\n0,10,0,1e300\n";
+    assert!(
+        gnss(huge_height, Strictness::Strict)
+            .unwrap_err()
+            .starts_with("gnss.csv:2: column h_m: value \"1e300\" is too large")
+    );
+    let high = "t_s,lat_deg,lon_deg,h_m\n0,10,0,200000\n";
+    assert!(
+        gnss(high, Strictness::Strict)
+            .unwrap_err()
+            .contains("column h_m: value 200000 is out of range (expected -12000 to 100000 m")
     );
     let kept = gnss(bad_latitude, Strictness::Lenient).unwrap();
     assert!(kept[1].latitude_rad > PI / 2.0);
