@@ -159,10 +159,10 @@ fn model_temperature(args: &IntegrateArgs) -> Result<ModelTemperature, Failure> 
 fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
     Ok(EngineSettings {
         filter: args.filter.into(),
-        covariance_interval_s: 1.0 / positive("--covariance-rate-hz", args.covariance_rate_hz)?,
+        covariance_interval_s: 1.0 / rate("--covariance-rate-hz", args.covariance_rate_hz)?,
         gate_probability: gate_of(args.gate_probability)?,
         velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
-        output_interval_s: 1.0 / positive("--output-rate-hz", args.output_rate_hz)?,
+        output_interval_s: 1.0 / rate("--output-rate-hz", args.output_rate_hz)?,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         aiding: Aiding {
             position: true,
@@ -171,6 +171,21 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         },
         ..EngineSettings::default()
     })
+}
+
+/// The fastest covariance and output rates, Hz: above the fastest MEMS logs (1-4 kHz), a
+/// step or an epoch more often than the IMU samples is empty work; `--output-rate-hz 1e9` kept
+/// a run busy for minutes stepping through empty output times.
+pub const MAX_RATE_HZ: f64 = 5000.0;
+
+/// A positive rate of at most [`MAX_RATE_HZ`].
+fn rate(name: &str, rate_hz: f64) -> Result<f64, Failure> {
+    match positive(name, rate_hz)? {
+        r if r <= MAX_RATE_HZ => Ok(r),
+        r => Err(Failure::Usage(anyhow!(
+            "{name} {r} is above {MAX_RATE_HZ} Hz: a filter step or output epoch more often than any IMU samples does nothing"
+        ))),
+    }
 }
 
 /// `--velocity-sd-m-s`: one value for every axis, or north,east,down.

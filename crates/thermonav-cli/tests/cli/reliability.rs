@@ -145,6 +145,10 @@ fn requests_beyond_the_data_or_the_documented_limits_are_refused_at_once() {
             "simulate chamber --temperatures-c=20,20 --duration-s 10 --out @c",
             "twice",
         ),
+        (
+            "integrate --imu @imu.csv --gnss @gnss.csv --profile @p.toml --output-rate-hz 1e9 --out @s.csv",
+            "above 5000 Hz",
+        ),
     ];
     for (case, needle) in cases {
         let (code, _, stderr) = run_in(dir.path(), case);
