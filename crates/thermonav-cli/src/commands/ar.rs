@@ -56,6 +56,11 @@ fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
             max_order,
         });
     }
+    fixed_order(text)
+}
+
+/// A fixed `--order`: a positive integer.
+fn fixed_order(text: &str) -> Result<Order, Failure> {
     match text.parse::<usize>() {
         Ok(p) if p >= 1 => Ok(Order::Fixed(p)),
         _ => Err(Failure::Usage(anyhow!(
@@ -175,6 +180,14 @@ fn gauss_markov_json(ar1: &ArModel, dt_s: f64) -> GaussMarkovJson {
 
 /// The text report: a heading line and one row per channel.
 fn print_table(doc: &ArJson) {
+    print_header(doc);
+    for (name, c) in &doc.channels {
+        print_channel_row(name, c);
+    }
+}
+
+/// The heading line (file, method, interval) and the column names.
+fn print_header(doc: &ArJson) {
     println!(
         "{}: AR by {}, dt {:.6} s (median interval)",
         doc.file, doc.method, doc.sample_interval_s
@@ -183,14 +196,16 @@ fn print_table(doc: &ArJson) {
         "{:<4} {:>5} {:>34} {:>14} {:>14} {:>26}",
         "ch", "order", "coefficients c_1..c_p", "noise var", "GM Tc s", "95 % interval s"
     );
-    for (name, c) in &doc.channels {
-        let coefficients = coefficients_text(&c.coefficients);
-        let (tc, ci) = correlation_time_cells(&c.gauss_markov);
-        println!(
-            "{name:<4} {:>5} {coefficients:>34} {:>14.6e} {tc:>14} {ci:>26}",
-            c.order, c.noise_variance
-        );
-    }
+}
+
+/// One channel's row: order, coefficients, noise variance, correlation time and its interval.
+fn print_channel_row(name: &str, c: &ChannelJson) {
+    let coefficients = coefficients_text(&c.coefficients);
+    let (tc, ci) = correlation_time_cells(&c.gauss_markov);
+    println!(
+        "{name:<4} {:>5} {coefficients:>34} {:>14.6e} {tc:>14} {ci:>26}",
+        c.order, c.noise_variance
+    );
 }
 
 /// The coefficients to five decimals, space-separated.

@@ -357,15 +357,18 @@ fn print_channels(channels: &[ChannelRow]) {
         "{:<8} {:<7} {:>16} {:>16}",
         "channel", "unit", "mean", "std"
     );
-    for c in channels {
-        println!(
-            "{:<8} {:<7} {:>16} {:>16}",
-            c.channel,
-            c.unit,
-            scientific(c.mean),
-            scientific(c.std)
-        );
-    }
+    channels.iter().for_each(print_channel_row);
+}
+
+/// One channel's row: name, unit, mean and standard deviation.
+fn print_channel_row(c: &ChannelRow) {
+    println!(
+        "{:<8} {:<7} {:>16} {:>16}",
+        c.channel,
+        c.unit,
+        scientific(c.mean),
+        scientific(c.std)
+    );
 }
 
 /// A statistic in scientific notation to nine decimals, or `n/a`.
