@@ -70,13 +70,18 @@ fn convert_rtklib_pos(
 ) -> Result<(usize, &'static str), Failure> {
     let settings = PosSettings {
         strictness,
-        qualities: match args.quality.is_empty() {
-            true => QualitySet::ALL,
-            false => QualitySet::of(&args.quality),
-        },
+        qualities: quality_set(&args.quality),
     };
     let solutions = read_rtklib_pos_file(&args.input, settings).data()?;
     write_fixes(&args.out, solutions.iter().map(|s| s.fix).collect())
+}
+
+/// The `--quality` solutions to keep: all when none are given.
+fn quality_set(quality: &[u8]) -> QualitySet {
+    match quality.is_empty() {
+        true => QualitySet::ALL,
+        false => QualitySet::of(quality),
+    }
 }
 
 /// An NMEA log to GNSS fixes.
@@ -153,12 +158,17 @@ fn raw_imu_settings(args: &ConvertArgs, strictness: Strictness) -> Result<RawImu
         .usage()?;
     Ok(RawImuSettings {
         strictness,
-        frame: match args.imu_frame {
-            ImuFrameArg::Sensor => ImuFrame::Sensor,
-            ImuFrameArg::DriveFrd => ImuFrame::DriveMountingFrd,
-        },
+        frame: imu_frame(args.imu_frame),
         time_offset,
     })
+}
+
+/// `--imu-frame` as the raw IMU reader's frame.
+fn imu_frame(frame: ImuFrameArg) -> ImuFrame {
+    match frame {
+        ImuFrameArg::Sensor => ImuFrame::Sensor,
+        ImuFrameArg::DriveFrd => ImuFrame::DriveMountingFrd,
+    }
 }
 
 /// `--leap-seconds` as a duration: GPST minus UTC, at most an hour either way.

@@ -1,6 +1,6 @@
 //! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
 
-use crate::args::{FilterArgs, ModeArg};
+use crate::args::{FilterArgs, KaiserArgs, ModeArg};
 use crate::failure::{Classify, Failure};
 use crate::fir_design::{FirDesign, describe, design};
 use crate::report::{print_json, print_rows};
@@ -105,17 +105,23 @@ fn resolve_decimation(args: &FilterArgs, filter: &FirFilter) -> Result<usize, Fa
         return Ok(1);
     };
     let factor = decimation_factor(filter.sample_rate_hz(), target_hz).usage()?;
+    check_below_new_nyquist(&args.kaiser, target_hz)?;
+    Ok(factor)
+}
+
+/// The error for a pass band reaching past the Nyquist frequency of the decimated rate.
+fn check_below_new_nyquist(kaiser: &KaiserArgs, target_hz: f64) -> Result<(), Failure> {
     let new_nyquist_hz = target_hz / 2.0;
-    if args.kaiser.cutoff_hz + args.kaiser.transition_hz > new_nyquist_hz {
+    if kaiser.cutoff_hz + kaiser.transition_hz > new_nyquist_hz {
         return Err(Failure::Usage(anyhow!(
             "--cutoff-hz {} + --transition-hz {} must not exceed the Nyquist frequency {} Hz of --decimate-to-hz {}",
-            args.kaiser.cutoff_hz,
-            args.kaiser.transition_hz,
+            kaiser.cutoff_hz,
+            kaiser.transition_hz,
             new_nyquist_hz,
             target_hz
         )));
     }
-    Ok(factor)
+    Ok(())
 }
 
 /// Filters every channel and keeps every `factor`-th sample; the temperature column is carried

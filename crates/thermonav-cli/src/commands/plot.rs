@@ -44,11 +44,7 @@ enum ImageFormat {
 
 /// The image format told by the extension of `--out`.
 fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
+    match lowercase_extension(path).as_deref() {
         Some("svg") => Ok(ImageFormat::Svg),
         Some("png") => Ok(ImageFormat::Png),
         _ => Err(Failure::Usage(anyhow!(
@@ -56,6 +52,13 @@ fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
             path.display()
         ))),
     }
+}
+
+/// The extension of `path` in lower case, if it has one.
+fn lowercase_extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
 }
 
 /// Runs `plot`.
@@ -409,13 +412,23 @@ fn evaluation(args: &PlotArgs) -> Result<(serde_json::Value, Vec<String>), Failu
         .map_err(|e| anyhow!("{}:{}: not JSON: {e}", args.input.display(), e.line()))
         .data()?;
     let filters = filters_of(&json);
+    check_evaluation(&json, &filters, &args.input)?;
+    Ok((json, filters))
+}
+
+/// The error for a document without models or filters.
+fn check_evaluation(
+    json: &serde_json::Value,
+    filters: &[String],
+    path: &Path,
+) -> Result<(), Failure> {
     if json.get("models").is_none() || filters.is_empty() {
         return Err(Failure::Data(anyhow!(
             "{}: not an evaluation report (expected \"models\" and \"filters\" keys)",
-            args.input.display()
+            path.display()
         )));
     }
-    Ok((json, filters))
+    Ok(())
 }
 
 /// The filters an evaluation report names, in its order.
