@@ -37,10 +37,30 @@ pub fn characterize_streaming(
     name: &str,
 ) -> Result<TemperatureEntry, Failure> {
     let reader = ImuReader::open(path, Strictness::Strict).data()?;
-    let kind = reader.kind();
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
-    let fed: Result<(), Failure> = std::thread::scope(|scope| {
+    feed(path, reader, &mut stream, &mut gravity)?;
+    check_has_rows(&stream, path)?;
+    gravity
+        .verdict(&path.display().to_string(), Strictness::Strict)
+        .data()?;
+    let temperature_c = temperature_of(given, stream.mean_temperature_c(), path)?;
+    let (entry, _) = stream
+        .finish(temperature_c, name)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()?;
+    Ok(entry)
+}
+
+/// Pushes every piece the reader thread parses into the characterisation and the gravity check.
+fn feed(
+    path: &Path,
+    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    stream: &mut StreamingCharacterizer,
+    gravity: &mut GravityCheck,
+) -> Result<(), Failure> {
+    let kind = reader.kind();
+    std::thread::scope(|scope| {
         let (send, receive) = sync_channel::<Result<ImuSeries, ReadError>>(2);
         scope.spawn(move || read_pieces(reader, kind, |piece| send.send(piece).is_ok()));
         for piece in receive {
@@ -52,8 +72,11 @@ pub fn characterize_streaming(
                 .data()?;
         }
         Ok(())
-    });
-    fed?;
+    })
+}
+
+/// The error for a file with a header and no data rows.
+fn check_has_rows(stream: &StreamingCharacterizer, path: &Path) -> Result<(), Failure> {
     if stream.samples() == 0 {
         return Err(anyhow!(
             "{}: the file has a header but no data rows",
@@ -61,24 +84,19 @@ pub fn characterize_streaming(
         ))
         .data();
     }
-    gravity
-        .verdict(&path.display().to_string(), Strictness::Strict)
-        .data()?;
-    let temperature_c = match (given, stream.mean_temperature_c()) {
-        (Some(t), _) => t,
-        (None, Some(mean)) => crate::bank_building::recorded_temperature(path, mean)?,
-        (None, None) => {
-            return Err(Failure::Usage(anyhow!(
-                "{}: no temp_c column; give the temperature with --temperature-c",
-                path.display()
-            )));
-        }
-    };
-    let (entry, _) = stream
-        .finish(temperature_c, name)
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()?;
-    Ok(entry)
+    Ok(())
+}
+
+/// The record's temperature: `--temperature-c`, else the mean of its `temp_c` column.
+fn temperature_of(given: Option<f64>, mean: Option<f64>, path: &Path) -> Result<f64, Failure> {
+    match (given, mean) {
+        (Some(t), _) => Ok(t),
+        (None, Some(mean)) => crate::bank_building::recorded_temperature(path, mean),
+        (None, None) => Err(Failure::Usage(anyhow!(
+            "{}: no temp_c column; give the temperature with --temperature-c",
+            path.display()
+        ))),
+    }
 }
 
 /// Parses the file into pieces of [`PIECE_ROWS`] samples and hands each to `deliver`

@@ -12,6 +12,7 @@ pub fn number(v: &Value, key: &str) -> Option<f64> {
     v.get(key).and_then(Value::as_f64)
 }
 
+/// The string at `key` of a JSON object, empty if none.
 pub fn text(v: &Value, key: &str) -> String {
     v.get(key)
         .and_then(Value::as_str)
@@ -27,7 +28,26 @@ pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
         .data()?;
     // Bytes that are not UTF-8 become U+FFFD and fail the check of their line.
     let csv = String::from_utf8_lossy(&bytes);
-    let rows: Vec<Vec<&str>> = checked_innovation_rows(path, &csv)?
+    let rows = accepted_rows(path, &csv)?;
+    let t0 = rows
+        .first()
+        .and_then(|r| r[0].parse::<f64>().ok())
+        .unwrap_or(0.0);
+    Ok([
+        ("position", 0, "north position"),
+        ("position", 1, "east position"),
+        ("position", 2, "down position"),
+        ("heading", 0, "heading"),
+    ]
+    .into_iter()
+    .map(|(kind, k, name)| component(&rows, t0, kind, k, name))
+    .filter(|c| !c.time_s.is_empty())
+    .collect())
+}
+
+/// The checked rows of accepted updates; an error when there is none.
+fn accepted_rows<'a>(path: &Path, csv: &'a str) -> Result<Vec<Vec<&'a str>>, Failure> {
+    let rows: Vec<Vec<&str>> = checked_innovation_rows(path, csv)?
         .into_iter()
         .filter(|f| f.len() == 12 && f[10] == "1")
         .collect();
@@ -38,35 +58,25 @@ pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
         ))
         .data();
     }
-    let t0 = rows
-        .first()
-        .and_then(|r| r[0].parse::<f64>().ok())
-        .unwrap_or(0.0);
-    let component = |kind: &str, k: usize, name: &str| {
-        let of_kind: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == kind).collect();
-        let column = |c: usize| -> Vec<f64> {
-            of_kind
-                .iter()
-                .map(|r| r[c].parse().unwrap_or(f64::NAN))
-                .collect()
-        };
-        Innovations {
-            name: name.into(),
-            unit: of_kind.first().map_or("", |r| r[2]).into(),
-            time_s: column(0).iter().map(|t| t - t0).collect(),
-            innovation: column(3 + k),
-            sigma: column(6 + k),
-        }
+    Ok(rows)
+}
+
+/// Component `k` of the innovations of `kind`, times from `t0`.
+fn component(rows: &[Vec<&str>], t0: f64, kind: &str, k: usize, name: &str) -> Innovations {
+    let of_kind: Vec<&Vec<&str>> = rows.iter().filter(|r| r[1] == kind).collect();
+    let column = |c: usize| -> Vec<f64> {
+        of_kind
+            .iter()
+            .map(|r| r[c].parse().unwrap_or(f64::NAN))
+            .collect()
     };
-    Ok([
-        component("position", 0, "north position"),
-        component("position", 1, "east position"),
-        component("position", 2, "down position"),
-        component("heading", 0, "heading"),
-    ]
-    .into_iter()
-    .filter(|c| !c.time_s.is_empty())
-    .collect())
+    Innovations {
+        name: name.into(),
+        unit: of_kind.first().map_or("", |r| r[2]).into(),
+        time_s: column(0).iter().map(|t| t - t0).collect(),
+        innovation: column(3 + k),
+        sigma: column(6 + k),
+    }
 }
 
 /// Header of the innovations CSV that `integrate` writes.
@@ -121,23 +131,31 @@ pub fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>,
         let csv = std::fs::read_to_string(path)
             .map_err(|e| anyhow!("{path}: cannot read: {e}"))
             .data()?;
-        let rows: Vec<Vec<f64>> = csv
-            .lines()
-            .skip(1)
-            .filter(|l| l.starts_with("1,"))
-            .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
-            .filter(|v: &Vec<f64>| v.len() == 7)
-            .collect();
-        let column = |k: usize| rows.iter().map(|r| r[k]).collect();
-        out.push(ModelErrors {
-            model: text(m, "label"),
-            time_s: column(2),
-            north_m: column(3),
-            east_m: column(4),
-            heading_deg: column(6),
-        });
+        out.push(model_errors(text(m, "label"), &first_outage_rows(&csv)));
     }
     Ok(out)
+}
+
+/// The rows of an errors CSV in the first outage, as numbers (complete rows only).
+fn first_outage_rows(csv: &str) -> Vec<Vec<f64>> {
+    csv.lines()
+        .skip(1)
+        .filter(|l| l.starts_with("1,"))
+        .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
+        .filter(|v: &Vec<f64>| v.len() == 7)
+        .collect()
+}
+
+/// One model's time, north, east and heading errors from its error rows.
+fn model_errors(model: String, rows: &[Vec<f64>]) -> ModelErrors {
+    let column = |k: usize| rows.iter().map(|r| r[k]).collect();
+    ModelErrors {
+        model,
+        time_s: column(2),
+        north_m: column(3),
+        east_m: column(4),
+        heading_deg: column(6),
+    }
 }
 
 /// Per filter, the bank entries' values at their temperatures, and the interpolated model at
@@ -146,11 +164,7 @@ pub fn rms_series(models: &[Value], filters: &[String], key: &str) -> Vec<RmsSer
     let mut series = Vec::new();
     for filter in filters {
         for (kind, name) in [("entry", "bank models"), ("interpolated", "interpolated")] {
-            let points: Vec<(f64, f64)> = models
-                .iter()
-                .filter(|m| text(m, "filter") == *filter && text(m, "kind") == kind)
-                .filter_map(|m| Some((number(m, "temperature_c")?, number(m, key)?)))
-                .collect();
+            let points = rms_points(models, filter, kind, key);
             if !points.is_empty() {
                 series.push(RmsSeries {
                     model: format!("{} ({})", name, filter.to_uppercase()),
@@ -161,4 +175,13 @@ pub fn rms_series(models: &[Value], filters: &[String], key: &str) -> Vec<RmsSer
         }
     }
     series
+}
+
+/// (temperature, value at `key`) of the models of one filter and kind.
+fn rms_points(models: &[Value], filter: &str, kind: &str, key: &str) -> Vec<(f64, f64)> {
+    models
+        .iter()
+        .filter(|m| text(m, "filter") == filter && text(m, "kind") == kind)
+        .filter_map(|m| Some((number(m, "temperature_c")?, number(m, key)?)))
+        .collect()
 }

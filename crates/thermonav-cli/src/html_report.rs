@@ -11,7 +11,8 @@ use anyhow::anyhow;
 use serde_json::Value;
 use std::path::Path;
 use thermonav::geo::position::Geodetic;
-use thermonav::stoch::bank::{GaussMarkovSource, ModelBank};
+use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, TemperatureEntry};
+use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{allan_curves_of_entry, allan_deviation_figure};
@@ -36,14 +37,19 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
         sections,
     };
     let out = dir.join("report.html");
-    let html = render_page(&page);
-    write_atomically(&out, |file| {
-        Ok(std::io::Write::write_all(file, html.as_bytes())?)
-    })
-    .data()?;
+    write_html(&out, &render_page(&page))?;
     Ok(out)
 }
 
+/// Writes the page to `out` atomically.
+fn write_html(out: &Path, html: &str) -> Result<(), Failure> {
+    write_atomically(out, |file| {
+        Ok(std::io::Write::write_all(file, html.as_bytes())?)
+    })
+    .data()
+}
+
+/// The JSON document at `path`, or `None` when there is no such file.
 fn read_json_if_present(path: &Path) -> Result<Option<Value>, Failure> {
     if !path.exists() {
         return Ok(None);
@@ -57,6 +63,7 @@ fn read_json_if_present(path: &Path) -> Result<Option<Value>, Failure> {
         .data()
 }
 
+/// An inline SVG figure with its caption.
 fn figure(svg: String, caption: &str) -> Block {
     Block::Figure(InlineFigure {
         svg,
@@ -64,10 +71,12 @@ fn figure(svg: String, caption: &str) -> Block {
     })
 }
 
+/// A paragraph of text.
 fn paragraph(text: impl Into<String>) -> Block {
     Block::Paragraph(text.into())
 }
 
+/// The inputs and options of the run and the command that reproduces it.
 fn run_section(dir: &Path, demo: Option<&Value>) -> Section {
     let mut rows = vec![
         vec!["thermonav version".into(), env!("CARGO_PKG_VERSION").into()],
@@ -75,31 +84,8 @@ fn run_section(dir: &Path, demo: Option<&Value>) -> Section {
     ];
     let mut reproduce = format!("thermonav report {}", dir.display());
     if let Some(d) = demo {
-        let field = |key: &str| d.get(key).map(|v| v.to_string()).unwrap_or_default();
-        for (label, key) in [
-            ("seed", "seed"),
-            ("quick", "quick"),
-            ("chamber record per temperature (s)", "chamber_duration_s"),
-            ("chamber sample rate (Hz)", "chamber_rate_hz"),
-            (
-                "exact-ML intervals covering the true Tc",
-                "ml_intervals_covering_truth",
-            ),
-            ("exact-ML intervals judged", "ml_intervals"),
-            ("run time (s)", "elapsed_s"),
-        ] {
-            rows.push(vec![label.into(), field(key)]);
-        }
-        let quick = if d.get("quick") == Some(&Value::Bool(true)) {
-            " --quick"
-        } else {
-            ""
-        };
-        reproduce = format!(
-            "thermonav demo --out {}{quick} --seed {}",
-            dir.display(),
-            field("seed")
-        );
+        rows.extend(demo_rows(d));
+        reproduce = demo_command(dir, d);
     }
     Section {
         heading: "What was run".into(),
@@ -116,107 +102,98 @@ fn run_section(dir: &Path, demo: Option<&Value>) -> Section {
     }
 }
 
+/// A field of demo.json as JSON text, empty when absent.
+fn demo_field(demo: &Value, key: &str) -> String {
+    demo.get(key).map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// The rows of the inputs table taken from demo.json.
+fn demo_rows(demo: &Value) -> Vec<Vec<String>> {
+    [
+        ("seed", "seed"),
+        ("quick", "quick"),
+        ("chamber record per temperature (s)", "chamber_duration_s"),
+        ("chamber sample rate (Hz)", "chamber_rate_hz"),
+        (
+            "exact-ML intervals covering the true Tc",
+            "ml_intervals_covering_truth",
+        ),
+        ("exact-ML intervals judged", "ml_intervals"),
+        ("run time (s)", "elapsed_s"),
+    ]
+    .iter()
+    .map(|(label, key)| vec![label.to_string(), demo_field(demo, key)])
+    .collect()
+}
+
+/// The `thermonav demo` command line that reproduces the run.
+fn demo_command(dir: &Path, demo: &Value) -> String {
+    let quick = if demo.get("quick") == Some(&Value::Bool(true)) {
+        " --quick"
+    } else {
+        ""
+    };
+    format!(
+        "thermonav demo --out {}{quick} --seed {}",
+        dir.display(),
+        demo_field(demo, "seed")
+    )
+}
+
+/// The Allan deviation figure of each temperature, then the correlation times against temperature.
 fn models_section(bank: &ModelBank) -> Section {
     let mut blocks = vec![paragraph(
         "Overlapping Allan deviation of each static record with its confidence band and the IEEE 952 noise terms, then the bias correlation time of each channel against temperature for the three Gauss-Markov estimators, with 95 % intervals.",
     )];
-    for entry in &bank.entries {
-        let title = format!("Allan deviation at {:.1} °C", entry.temperature_c);
-        blocks.push(figure(
-            allan_deviation_figure(
-                &title,
-                &allan_curves_of_entry(entry),
-                DisplayUnits::Navigation,
-            ),
-            &title,
-        ));
-    }
-    let families = [
-        GaussMarkovSource::IrregularMl,
-        GaussMarkovSource::ArBased,
-        GaussMarkovSource::AcfFit,
-    ];
-    blocks.push(figure(
-        correlation_time_figure(
-            "Bias correlation time against temperature",
-            &correlation_time_series(bank, &families),
-        ),
-        "Correlation time against temperature (the paper's Figures 8-9)",
-    ));
+    blocks.extend(bank.entries.iter().map(allan_figure));
+    blocks.push(correlation_figure(bank));
     Section {
         heading: "Noise models per temperature".into(),
         blocks,
     }
 }
 
+/// The Allan deviation figure of one bank entry.
+fn allan_figure(entry: &TemperatureEntry) -> Block {
+    let title = format!("Allan deviation at {:.1} °C", entry.temperature_c);
+    figure(
+        allan_deviation_figure(
+            &title,
+            &allan_curves_of_entry(entry),
+            DisplayUnits::Navigation,
+        ),
+        &title,
+    )
+}
+
+/// The bias correlation time against temperature for the three Gauss-Markov estimators.
+fn correlation_figure(bank: &ModelBank) -> Block {
+    let families = [
+        GaussMarkovSource::IrregularMl,
+        GaussMarkovSource::ArBased,
+        GaussMarkovSource::AcfFit,
+    ];
+    figure(
+        correlation_time_figure(
+            "Bias correlation time against temperature",
+            &correlation_time_series(bank, &families),
+        ),
+        "Correlation time against temperature (the paper's Figures 8-9)",
+    )
+}
+
+/// The survey, the errors in the first outage, the RMS against temperature, the innovations,
+/// the ranking and its significance.
 fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
-    let empty = Vec::new();
-    let models = e.get("models").and_then(Value::as_array).unwrap_or(&empty);
-    let outages: Vec<(f64, f64)> = e
-        .get("outages")
-        .and_then(Value::as_array)
-        .unwrap_or(&empty)
-        .iter()
-        .filter_map(|o| Some((number(o, "start_s")?, number(o, "end_s")?)))
-        .collect();
-    let filters: Vec<String> = e
-        .get("filters")
-        .and_then(Value::as_array)
-        .unwrap_or(&empty)
-        .iter()
-        .filter_map(|f| f.as_str().map(str::to_string))
-        .collect();
+    let models = array(e, "models");
+    let filters = filters_of(e);
     let mut blocks = Vec::new();
-    let reference = dir.join("vessel/reference.csv");
-    if reference.exists() {
-        blocks.push(figure(
-            trajectory_figure(
-                "Survey with its GNSS outages",
-                &trajectory_of(&reference)?,
-                &outages,
-            ),
-            "The survey, outages drawn thick (the paper's Figure 6)",
-        ));
-    }
+    blocks.extend(survey_figure(dir, &outages_of(e))?);
     if let Some(filter) = filters.first() {
-        let errors = outage_errors(models, filter)?;
-        if !errors.is_empty() {
-            blocks.push(figure(
-                outage_errors_figure(
-                    &format!("INS-only errors in the first outage ({})", filter.to_uppercase()),
-                    &errors,
-                    None,
-                ),
-                "North, east and heading errors in the first outage, one line per model (Figures 10-12)",
-            ));
-        }
+        blocks.extend(first_outage_figure(models, filter)?);
     }
-    for (key, quantity, unit) in [
-        ("rms_north_m", "north RMS error", "m"),
-        ("rms_east_m", "east RMS error", "m"),
-        ("rms_heading_deg", "heading RMS error", "deg"),
-    ] {
-        let series = rms_series(models, &filters, key);
-        blocks.push(figure(
-            rms_versus_temperature_figure(
-                &format!("{quantity} per model"),
-                quantity,
-                unit,
-                &series,
-            ),
-            &format!("{quantity} against the model's temperature (Figures 13-15)"),
-        ));
-    }
-    let innovations = dir.join("solution/solution.innovations.csv");
-    if innovations.exists() {
-        blocks.push(figure(
-            innovations_figure(
-                "Innovations of the UKF with the interpolated model (solution/)",
-                &innovations_of(&innovations)?,
-            ),
-            "GNSS innovations with their ±3σ bounds (none inside the outages)",
-        ));
-    }
+    blocks.extend(rms_figures(models, &filters));
+    blocks.extend(innovations_block(dir)?);
     blocks.push(Block::Table(ranking_table(models)));
     blocks.push(Block::Table(significance_table(e)));
     Ok(Section {
@@ -228,16 +205,108 @@ fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
     })
 }
 
+/// The array under `key`, empty when absent or not an array.
+fn array<'a>(v: &'a Value, key: &str) -> &'a [Value] {
+    v.get(key)
+        .and_then(Value::as_array)
+        .map_or(&[], Vec::as_slice)
+}
+
+/// The outages of evaluation.json as (start, end) in seconds.
+fn outages_of(e: &Value) -> Vec<(f64, f64)> {
+    array(e, "outages")
+        .iter()
+        .filter_map(|o| Some((number(o, "start_s")?, number(o, "end_s")?)))
+        .collect()
+}
+
+/// The filters of evaluation.json, in their order.
+fn filters_of(e: &Value) -> Vec<String> {
+    array(e, "filters")
+        .iter()
+        .filter_map(|f| f.as_str().map(str::to_string))
+        .collect()
+}
+
+/// The survey with its outages, when the reference trajectory is there.
+fn survey_figure(dir: &Path, outages: &[(f64, f64)]) -> Result<Option<Block>, Failure> {
+    let reference = dir.join("vessel/reference.csv");
+    if !reference.exists() {
+        return Ok(None);
+    }
+    Ok(Some(figure(
+        trajectory_figure(
+            "Survey with its GNSS outages",
+            &trajectory_of(&reference)?,
+            outages,
+        ),
+        "The survey, outages drawn thick (the paper's Figure 6)",
+    )))
+}
+
+/// The INS-only errors of every model in the first outage with `filter`, when there are any.
+fn first_outage_figure(models: &[Value], filter: &str) -> Result<Option<Block>, Failure> {
+    let errors = outage_errors(models, filter)?;
+    if errors.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(figure(
+        outage_errors_figure(
+            &format!(
+                "INS-only errors in the first outage ({})",
+                filter.to_uppercase()
+            ),
+            &errors,
+            None,
+        ),
+        "North, east and heading errors in the first outage, one line per model (Figures 10-12)",
+    )))
+}
+
+/// The north, east and heading RMS per model against temperature (Figures 13-15).
+fn rms_figures(models: &[Value], filters: &[String]) -> Vec<Block> {
+    [
+        ("rms_north_m", "north RMS error", "m"),
+        ("rms_east_m", "east RMS error", "m"),
+        ("rms_heading_deg", "heading RMS error", "deg"),
+    ]
+    .iter()
+    .map(|(key, quantity, unit)| {
+        figure(
+            rms_versus_temperature_figure(
+                &format!("{quantity} per model"),
+                quantity,
+                unit,
+                &rms_series(models, filters, key),
+            ),
+            &format!("{quantity} against the model's temperature (Figures 13-15)"),
+        )
+    })
+    .collect()
+}
+
+/// The innovations of the solution's filter, when solution/ holds them.
+fn innovations_block(dir: &Path) -> Result<Option<Block>, Failure> {
+    let innovations = dir.join("solution/solution.innovations.csv");
+    if !innovations.exists() {
+        return Ok(None);
+    }
+    Ok(Some(figure(
+        innovations_figure(
+            "Innovations of the UKF with the interpolated model (solution/)",
+            &innovations_of(&innovations)?,
+        ),
+        "GNSS innovations with their ±3σ bounds (none inside the outages)",
+    )))
+}
+
+/// The reference trajectory in north/east metres from its first point, thinned to about 4000
+/// points.
 fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
     let points = read_trajectory_file(path, Strictness::Strict).data()?;
-    let position = |p: &thermonav::trajectory::TrajectoryPoint| Geodetic {
-        latitude_rad: p.latitude_rad,
-        longitude_rad: p.longitude_rad,
-        height_m: p.height_m,
-    };
     let origin = points
         .first()
-        .map(position)
+        .map(geodetic)
         .ok_or_else(|| Failure::Data(anyhow!("{}: no point", path.display())))?;
     let step = (points.len() / 4000).max(1);
     let local: Vec<(f64, [f64; 3])> = points
@@ -246,7 +315,7 @@ fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
         .map(|p| {
             (
                 p.time.as_seconds(),
-                position(p).ned_from(&origin).to_array(),
+                geodetic(p).ned_from(&origin).to_array(),
             )
         })
         .collect();
@@ -257,6 +326,17 @@ fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
     })
 }
 
+/// The position of a trajectory point.
+fn geodetic(p: &TrajectoryPoint) -> Geodetic {
+    Geodetic {
+        latitude_rad: p.latitude_rad,
+        longitude_rad: p.longitude_rad,
+        height_m: p.height_m,
+    }
+}
+
+/// One metric of a model: its mean with the 95 % interval when replicated, else the value, else
+/// `failed`.
 fn cell(v: &Value, key: &str) -> String {
     match (v.pointer(&format!("/ci95/{key}")), number(v, key)) {
         (Some(ci), _) => format!(
@@ -270,7 +350,19 @@ fn cell(v: &Value, key: &str) -> String {
     }
 }
 
+/// The INS-only errors of every model, one row per model.
 fn ranking_table(models: &[Value]) -> Table {
+    Table {
+        caption: "INS-only errors per model: mean over replicates [95 % interval of the mean] (mean of per-outage RMS; max drift = RMS of per-outage maxima)".into(),
+        header: ["model", "filter", "north m", "east m", "horizontal m", "heading deg", "max drift m"]
+            .map(String::from)
+            .to_vec(),
+        rows: models.iter().map(ranking_row).collect(),
+    }
+}
+
+/// One model's row of the ranking table: label, filter and its five metrics.
+fn ranking_row(m: &Value) -> Vec<String> {
     let keys = [
         "rms_north_m",
         "rms_east_m",
@@ -278,38 +370,19 @@ fn ranking_table(models: &[Value]) -> Table {
         "rms_heading_deg",
         "max_drift_horizontal_m",
     ];
-    Table {
-        caption: "INS-only errors per model: mean over replicates [95 % interval of the mean] (mean of per-outage RMS; max drift = RMS of per-outage maxima)".into(),
-        header: ["model", "filter", "north m", "east m", "horizontal m", "heading deg", "max drift m"]
-            .map(String::from)
-            .to_vec(),
-        rows: models
-            .iter()
-            .map(|m| {
-                let mut row = vec![text(m, "label"), text(m, "filter")];
-                row.extend(keys.iter().map(|k| cell(m, k)));
-                row
-            })
-            .collect(),
-    }
+    let mut row = vec![text(m, "label"), text(m, "filter")];
+    row.extend(keys.iter().map(|k| cell(m, k)));
+    row
 }
 
+/// The paired t-tests of winner against runner-up, one row per filter and metric.
 fn significance_table(e: &Value) -> Table {
-    let empty = Vec::new();
     let tests = e
         .pointer("/significance/tests")
         .and_then(Value::as_array)
-        .unwrap_or(&empty);
+        .map_or(&[][..], Vec::as_slice);
     Table {
-        caption: format!(
-            "Is the ranking real? Paired t-tests of winner against runner-up over {} replicates ({})",
-            e.pointer("/significance/replicates")
-                .map(Value::to_string)
-                .unwrap_or_default(),
-            e.pointer("/significance/replicates_differ_by")
-                .and_then(Value::as_str)
-                .unwrap_or_default()
-        ),
+        caption: significance_caption(e),
         header: [
             "filter",
             "metric",
@@ -320,23 +393,36 @@ fn significance_table(e: &Value) -> Table {
         ]
         .map(String::from)
         .to_vec(),
-        rows: tests
-            .iter()
-            .map(|t| {
-                let p = t.pointer("/test/p_value").and_then(Value::as_f64);
-                vec![
-                    text(t, "filter"),
-                    text(t, "metric"),
-                    text(t, "winner"),
-                    text(t, "runner_up"),
-                    p.map_or("n/a".into(), |p| format!("{p:.3}")),
-                    if t.get("significant") == Some(&Value::Bool(true)) {
-                        "significant".into()
-                    } else {
-                        "not significant".into()
-                    },
-                ]
-            })
-            .collect(),
+        rows: tests.iter().map(significance_row).collect(),
     }
+}
+
+/// The caption of the significance table: how many replicates and how they differ.
+fn significance_caption(e: &Value) -> String {
+    format!(
+        "Is the ranking real? Paired t-tests of winner against runner-up over {} replicates ({})",
+        e.pointer("/significance/replicates")
+            .map(Value::to_string)
+            .unwrap_or_default(),
+        e.pointer("/significance/replicates_differ_by")
+            .and_then(Value::as_str)
+            .unwrap_or_default()
+    )
+}
+
+/// One test's row: filter, metric, the two models, the p-value and the verdict.
+fn significance_row(t: &Value) -> Vec<String> {
+    let p = t.pointer("/test/p_value").and_then(Value::as_f64);
+    vec![
+        text(t, "filter"),
+        text(t, "metric"),
+        text(t, "winner"),
+        text(t, "runner_up"),
+        p.map_or("n/a".into(), |p| format!("{p:.3}")),
+        if t.get("significant") == Some(&Value::Bool(true)) {
+            "significant".into()
+        } else {
+            "not significant".into()
+        },
+    ]
 }

@@ -8,7 +8,7 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use thermonav::imu::{Channel, SampleKind};
-use thermonav::stoch::allan::{TauGrid, confidence_intervals, overlapping_adev};
+use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
 use thermonav::stoch::noise_terms::fit_noise_terms;
 
 /// The JSON document of `allan --json`.
@@ -21,6 +21,7 @@ struct AllanJson {
 }
 
 #[derive(Debug, Serialize)]
+/// One channel of `allan --json`.
 struct ChannelJson {
     unit: &'static str,
     tau_s: Vec<f64>,
@@ -34,12 +35,7 @@ struct ChannelJson {
 
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
-    if !(args.confidence > 0.0 && args.confidence < 1.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--confidence {} must lie strictly between 0 and 1",
-            args.confidence
-        )));
-    }
+    check_confidence(args.confidence)?;
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
     let grid: TauGrid = args.taus.into();
     let mut channels = BTreeMap::new();
@@ -48,20 +44,9 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
         let curve = overlapping_adev(y, rate_hz, &grid)
             .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))
             .data()?;
-        let ci = confidence_intervals(y, &curve, args.confidence);
-        let terms = terms_json(&fit_noise_terms(&curve), channel.sensor());
         channels.insert(
             channel.name(),
-            ChannelJson {
-                unit: channel.si_unit(SampleKind::Rates),
-                tau_s: curve.tau_s,
-                adev: curve.adev,
-                n_terms: curve.n_terms,
-                ci_low: ci.low,
-                ci_high: ci.high,
-                noise_type_alpha: ci.alpha,
-                terms,
-            },
+            channel_json(y, curve, channel, args.confidence),
         );
     }
     let doc = AllanJson {
@@ -77,6 +62,33 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// `--confidence` must lie strictly between 0 and 1.
+fn check_confidence(confidence: f64) -> Result<(), Failure> {
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return Err(Failure::Usage(anyhow!(
+            "--confidence {confidence} must lie strictly between 0 and 1"
+        )));
+    }
+    Ok(())
+}
+
+/// One channel's curve with its confidence limits, noise types and fitted noise terms.
+fn channel_json(y: &[f64], curve: AllanCurve, channel: Channel, confidence: f64) -> ChannelJson {
+    let ci = confidence_intervals(y, &curve, confidence);
+    let terms = terms_json(&fit_noise_terms(&curve), channel.sensor());
+    ChannelJson {
+        unit: channel.si_unit(SampleKind::Rates),
+        tau_s: curve.tau_s,
+        adev: curve.adev,
+        n_terms: curve.n_terms,
+        ci_low: ci.low,
+        ci_high: ci.high,
+        noise_type_alpha: ci.alpha,
+        terms,
+    }
+}
+
+/// The text report: a heading line, then each channel's terms and table.
 fn print_text(doc: &AllanJson) {
     println!(
         "{}: {:.3} Hz, overlapping Allan deviation ({:.1} % limits)",
@@ -85,21 +97,21 @@ fn print_text(doc: &AllanJson) {
         doc.confidence * 100.0
     );
     for (name, c) in &doc.channels {
-        println!("\n{name} [{}]  {}", c.unit, terms_line(&c.terms));
+        print_channel(name, c);
+    }
+}
+
+/// One channel: its unit and noise terms, then τ, deviation, limits, terms and noise type.
+fn print_channel(name: &str, c: &ChannelJson) {
+    println!("\n{name} [{}]  {}", c.unit, terms_line(&c.terms));
+    println!(
+        "{:>12} {:>14} {:>14} {:>14} {:>10} {:>6}",
+        "tau_s", "adev", "low", "high", "n_terms", "alpha"
+    );
+    for i in 0..c.tau_s.len() {
         println!(
-            "{:>12} {:>14} {:>14} {:>14} {:>10} {:>6}",
-            "tau_s", "adev", "low", "high", "n_terms", "alpha"
+            "{:>12.4} {:>14.6e} {:>14.6e} {:>14.6e} {:>10} {:>6}",
+            c.tau_s[i], c.adev[i], c.ci_low[i], c.ci_high[i], c.n_terms[i], c.noise_type_alpha[i]
         );
-        for i in 0..c.tau_s.len() {
-            println!(
-                "{:>12.4} {:>14.6e} {:>14.6e} {:>14.6e} {:>10} {:>6}",
-                c.tau_s[i],
-                c.adev[i],
-                c.ci_low[i],
-                c.ci_high[i],
-                c.n_terms[i],
-                c.noise_type_alpha[i]
-            );
-        }
     }
 }

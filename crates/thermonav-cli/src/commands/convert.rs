@@ -29,54 +29,108 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
     if format != ForeignFormatArg::Px4Ulog {
         ulog::reject_gnss_out(args)?;
     }
-    let strictness = match args.lenient {
-        true => Strictness::Lenient,
-        false => Strictness::Strict,
-    };
-    let (count, what) = match format {
-        ForeignFormatArg::RtklibPos => {
-            let settings = PosSettings {
-                strictness,
-                qualities: match args.quality.is_empty() {
-                    true => QualitySet::ALL,
-                    false => QualitySet::of(&args.quality),
-                },
-            };
-            let solutions = read_rtklib_pos_file(&args.input, settings).data()?;
-            write_fixes(&args.out, solutions.iter().map(|s| s.fix).collect())?
-        }
-        ForeignFormatArg::Nmea => {
-            let fixes = read_nmea_file(&args.input, nmea_settings(args, strictness)?).data()?;
-            write_fixes(&args.out, fixes)?
-        }
-        ForeignFormatArg::KfGinsGnss => {
-            let fixes = read_kf_gins_gnss_file(&args.input, args.gps_week, strictness).data()?;
-            write_fixes(&args.out, fixes)?
-        }
-        ForeignFormatArg::KfGinsImu => {
-            let series = read_kf_gins_imu_file(&args.input, args.gps_week, strictness).data()?;
-            write_imu_file(&args.out, &series).data()?;
-            (series.len(), "IMU samples (increments)")
-        }
-        ForeignFormatArg::RawImuTag => {
-            let settings = raw_imu_settings(args, strictness)?;
-            let series = read_raw_imu_files(&args.input, tag_path(args), settings).data()?;
-            write_imu_file(&args.out, &series).data()?;
-            (series.len(), "IMU samples (rates)")
-        }
-        ForeignFormatArg::Px4Ulog => ulog::convert(args)?,
-        ForeignFormatArg::KfGinsNav => {
-            let points = read_kf_gins_nav_file(&args.input, strictness).data()?;
-            write_trajectory_file(&args.out, &points).data()?;
-            (points.len(), "trajectory points")
-        }
-    };
+    let (count, what) = convert(format, args, strictness_of(args))?;
     println!(
         "{}: {count} {what} written to {}",
         args.input.display(),
         args.out.display()
     );
     Ok(())
+}
+
+/// `--lenient` as the readers' strictness.
+fn strictness_of(args: &ConvertArgs) -> Strictness {
+    match args.lenient {
+        true => Strictness::Lenient,
+        false => Strictness::Strict,
+    }
+}
+
+/// Reads the input in `format`, writes the canonical file and says how many of what it wrote.
+fn convert(
+    format: ForeignFormatArg,
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    match format {
+        ForeignFormatArg::RtklibPos => convert_rtklib_pos(args, strictness),
+        ForeignFormatArg::Nmea => convert_nmea(args, strictness),
+        ForeignFormatArg::KfGinsGnss => convert_kf_gins_gnss(args, strictness),
+        ForeignFormatArg::KfGinsImu => convert_kf_gins_imu(args, strictness),
+        ForeignFormatArg::RawImuTag => convert_raw_imu(args, strictness),
+        ForeignFormatArg::Px4Ulog => ulog::convert(args),
+        ForeignFormatArg::KfGinsNav => convert_kf_gins_nav(args, strictness),
+    }
+}
+
+/// An RTKLIB `.pos` file to GNSS fixes, keeping the `--quality` solutions (all when none given).
+fn convert_rtklib_pos(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let settings = PosSettings {
+        strictness,
+        qualities: quality_set(&args.quality),
+    };
+    let solutions = read_rtklib_pos_file(&args.input, settings).data()?;
+    write_fixes(&args.out, solutions.iter().map(|s| s.fix).collect())
+}
+
+/// The `--quality` solutions to keep: all when none are given.
+fn quality_set(quality: &[u8]) -> QualitySet {
+    match quality.is_empty() {
+        true => QualitySet::ALL,
+        false => QualitySet::of(quality),
+    }
+}
+
+/// An NMEA log to GNSS fixes.
+fn convert_nmea(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let fixes = read_nmea_file(&args.input, nmea_settings(args, strictness)?).data()?;
+    write_fixes(&args.out, fixes)
+}
+
+/// A KF-GINS GNSS file to GNSS fixes.
+fn convert_kf_gins_gnss(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let fixes = read_kf_gins_gnss_file(&args.input, args.gps_week, strictness).data()?;
+    write_fixes(&args.out, fixes)
+}
+
+/// A KF-GINS IMU file to an IMU CSV of increments.
+fn convert_kf_gins_imu(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let series = read_kf_gins_imu_file(&args.input, args.gps_week, strictness).data()?;
+    write_imu_file(&args.out, &series).data()?;
+    Ok((series.len(), "IMU samples (increments)"))
+}
+
+/// A raw IMU log and its time-tag file to an IMU CSV of rates.
+fn convert_raw_imu(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let settings = raw_imu_settings(args, strictness)?;
+    let series = read_raw_imu_files(&args.input, tag_path(args), settings).data()?;
+    write_imu_file(&args.out, &series).data()?;
+    Ok((series.len(), "IMU samples (rates)"))
+}
+
+/// A KF-GINS navigation result to a trajectory CSV.
+fn convert_kf_gins_nav(
+    args: &ConvertArgs,
+    strictness: Strictness,
+) -> Result<(usize, &'static str), Failure> {
+    let points = read_kf_gins_nav_file(&args.input, strictness).data()?;
+    write_trajectory_file(&args.out, &points).data()?;
+    Ok((points.len(), "trajectory points"))
 }
 
 /// Writes fixes as one GNSS CSV, dropping (with a note) the groups only some fixes carry.
@@ -97,18 +151,24 @@ fn tag_path(args: &ConvertArgs) -> PathBuf {
     })
 }
 
+/// The raw IMU reader's settings: `--imu-frame` and `--time-offset-s`.
 fn raw_imu_settings(args: &ConvertArgs, strictness: Strictness) -> Result<RawImuSettings, Failure> {
     let time_offset = Duration::from_seconds(args.time_offset_s)
         .map_err(|e| anyhow!("--time-offset-s: {e}"))
         .usage()?;
     Ok(RawImuSettings {
         strictness,
-        frame: match args.imu_frame {
-            ImuFrameArg::Sensor => ImuFrame::Sensor,
-            ImuFrameArg::DriveFrd => ImuFrame::DriveMountingFrd,
-        },
+        frame: imu_frame(args.imu_frame),
         time_offset,
     })
+}
+
+/// `--imu-frame` as the raw IMU reader's frame.
+fn imu_frame(frame: ImuFrameArg) -> ImuFrame {
+    match frame {
+        ImuFrameArg::Sensor => ImuFrame::Sensor,
+        ImuFrameArg::DriveFrd => ImuFrame::DriveMountingFrd,
+    }
 }
 
 /// `--leap-seconds` as a duration: GPST minus UTC, at most an hour either way.
@@ -123,6 +183,7 @@ fn gpst_minus_utc(args: &ConvertArgs) -> Result<Duration, Failure> {
     Ok(Duration::from_nanos(args.leap_seconds * 1_000_000_000))
 }
 
+/// The NMEA reader's settings: `--leap-seconds`, `--date`, `--heading-sd-deg`, `--level-velocity`.
 fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSettings, Failure> {
     let heading_sd_rad = match args.heading_sd_deg {
         Some(sd) if !(sd.is_finite() && sd > 0.0) => {
@@ -163,53 +224,83 @@ const SNIFF_BYTES: u64 = 64 * 1024;
 
 /// The format of `input` told from its first lines, when only one format fits.
 fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> {
+    let head = read_head(input)?;
+    format_of_content(&head, tag)
+        .map_err(|why| {
+            anyhow!(
+                "{}: cannot tell the format from the content ({why}); give --format",
+                input.display()
+            )
+        })
+        .usage()
+}
+
+/// The first [`SNIFF_BYTES`] of `input`.
+fn read_head(input: &Path) -> Result<Vec<u8>, Failure> {
     let mut head = Vec::new();
     std::fs::File::open(input)
         .and_then(|file| file.take(SNIFF_BYTES).read_to_end(&mut head))
         .map_err(|e| anyhow!("{}: cannot open: {e}", input.display()))
         .data()?;
-    let text = String::from_utf8_lossy(&head);
-    let lines: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.trim().is_empty())
-        .take(3)
-        .collect();
-    let unknown = |why: &str| {
-        Err(anyhow!(
-            "{}: cannot tell the format from the content ({why}); give --format",
-            input.display()
-        ))
-        .usage()
-    };
+    Ok(head)
+}
+
+/// The format the first bytes fit, or why none or several fit.
+fn format_of_content(head: &[u8], tag: &Path) -> Result<ForeignFormatArg, &'static str> {
     if head.starts_with(&thermonav_io::ulog::MAGIC) {
         return Ok(ForeignFormatArg::Px4Ulog);
     }
     if head.starts_with(b"TIMETAG") {
-        return unknown("an RTKLIB time-tag file: convert the IMU CSV it belongs to");
+        return Err("an RTKLIB time-tag file: convert the IMU CSV it belongs to");
     }
+    let text = String::from_utf8_lossy(head);
+    let lines = first_lines(&text);
     let Some(first) = lines.first() else {
-        return unknown("the file is empty");
+        return Err("the file is empty");
     };
-    let first_token = first.split_whitespace().next().unwrap_or("");
-    if first.starts_with('%') || is_slashed_date(first_token) {
-        return Ok(ForeignFormatArg::RtklibPos);
-    }
-    if first.starts_with('$') {
-        return Ok(ForeignFormatArg::Nmea);
+    if let Some(format) = format_of_first_line(first) {
+        return Ok(format);
     }
     // The first line of a raw IMU log is partial: look at the second.
     let probe = lines.get(1).unwrap_or(first);
     if probe.split(',').count() == 7 {
-        return match tag.is_file() {
-            true => Ok(ForeignFormatArg::RawImuTag),
-            false => unknown("7 comma-separated fields like a raw IMU log, but no time-tag file"),
-        };
+        return raw_imu_if_tagged(tag);
     }
+    format_of_columns(first)
+}
+
+/// The first three lines that are not blank.
+fn first_lines(text: &str) -> Vec<&str> {
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .take(3)
+        .collect()
+}
+
+/// RTKLIB `.pos` (a `%` header or a slashed date) or NMEA (`$`), told by the first line alone.
+fn format_of_first_line(first: &str) -> Option<ForeignFormatArg> {
+    let first_token = first.split_whitespace().next().unwrap_or("");
+    if first.starts_with('%') || is_slashed_date(first_token) {
+        return Some(ForeignFormatArg::RtklibPos);
+    }
+    first.starts_with('$').then_some(ForeignFormatArg::Nmea)
+}
+
+/// A raw IMU log when its time-tag file is there.
+fn raw_imu_if_tagged(tag: &Path) -> Result<ForeignFormatArg, &'static str> {
+    match tag.is_file() {
+        true => Ok(ForeignFormatArg::RawImuTag),
+        false => Err("7 comma-separated fields like a raw IMU log, but no time-tag file"),
+    }
+}
+
+/// A KF-GINS file told by its number of blank-separated columns.
+fn format_of_columns(first: &str) -> Result<ForeignFormatArg, &'static str> {
     match first.split_whitespace().count() {
         11 => Ok(ForeignFormatArg::KfGinsNav),
         13 => Ok(ForeignFormatArg::KfGinsGnss),
-        7 => unknown("7 blank-separated columns fit both kf-gins-imu and kf-gins-gnss"),
-        _ => unknown("no known layout"),
+        7 => Err("7 blank-separated columns fit both kf-gins-imu and kf-gins-gnss"),
+        _ => Err("no known layout"),
     }
 }
 

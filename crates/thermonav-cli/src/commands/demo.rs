@@ -36,9 +36,11 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
-use thermonav::sim::chamber::{CampaignSettings, RunTruth};
+use thermonav::sim::chamber::{CampaignSettings, ChannelTruth, RunTruth};
 use thermonav::sim::vessel::{GnssSettings, SurveySettings, VesselRun, simulate_vessel};
-use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank, Selection};
+use thermonav::stoch::bank::{
+    ChannelModel, GaussMarkovEstimate, GaussMarkovSource, ModelBank, Selection,
+};
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::write_json_atomically;
@@ -111,16 +113,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     let started = Instant::now();
     let p = plan(args.quick);
     let (truth, bank) = chamber_and_bank(args, &p)?;
-    let vessel = VesselSettings {
-        out: args.out.join("vessel"),
-        survey: SurveySettings {
-            duration_s: p.vessel_s,
-            ..SurveySettings::default()
-        },
-        motion: None,
-        profile: None,
-        seed: args.seed,
-    };
+    let vessel = vessel_settings(args, &p);
     say(
         args,
         &format!(
@@ -147,6 +140,20 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     }
     print_summary(&summary);
     Ok(())
+}
+
+/// Step 3's settings: the survey of the plan's length under DIR/vessel.
+fn vessel_settings(args: &DemoArgs, p: &Plan) -> VesselSettings {
+    VesselSettings {
+        out: args.out.join("vessel"),
+        survey: SurveySettings {
+            duration_s: p.vessel_s,
+            ..SurveySettings::default()
+        },
+        motion: None,
+        profile: None,
+        seed: args.seed,
+    }
 }
 
 /// Steps 1 and 2: the simulated chamber campaign and its bank.
@@ -181,6 +188,8 @@ fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBa
     Ok((truth.temperatures, bank))
 }
 
+/// The document of demo.json: the plan, the recovery of the true correlation times, the
+/// tournament and the solution.
 fn summarize(
     args: &DemoArgs,
     p: &Plan,
@@ -232,25 +241,13 @@ fn tournament(
         geometry: survey_geometry(),
         ..EngineSettings::default()
     };
-    let scenario_files = ScenarioFiles {
-        imu: files.imu.clone(),
-        gnss: files.gnss.clone(),
-        reference: files.reference.clone(),
-    };
     let (main, operating_c) = scenario_from_files(
-        &scenario_files,
+        &scenario_files(files),
         engine,
         &p.outages,
         Some(vessel.survey.temperature_c),
     )?;
-    let plan = TournamentPlan {
-        bank,
-        operating_temperature_c: operating_c,
-        source: GaussMarkovSource::IrregularMl,
-        filters: vec![FilterKind::Ukf, FilterKind::Ekf],
-        datasheet: Some(DatasheetValues::adis16364().model(&ScaleFactorPrior::default())),
-        scale: ScaleFactorPrior::default(),
-    };
+    let plan = tournament_plan(bank, operating_c);
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
     let (profile, run) = vessel_run(vessel)?;
     let make = |k: usize| resimulated(&profile, &run, &main, k, &files.reference);
@@ -260,6 +257,27 @@ fn tournament(
         make: &make,
     };
     run_and_write(&tournament, &main, &replicates, &out.join("evaluation"))
+}
+
+/// The survey's IMU, GNSS and reference files as a scenario's inputs.
+fn scenario_files(files: &VesselFiles) -> ScenarioFiles {
+    ScenarioFiles {
+        imu: files.imu.clone(),
+        gnss: files.gnss.clone(),
+        reference: files.reference.clone(),
+    }
+}
+
+/// Every bank model by exact ML through the UKF and the EKF, with the ADIS16364 datasheet model.
+fn tournament_plan(bank: &ModelBank, operating_temperature_c: f64) -> TournamentPlan<'_> {
+    TournamentPlan {
+        bank,
+        operating_temperature_c,
+        source: GaussMarkovSource::IrregularMl,
+        filters: vec![FilterKind::Ukf, FilterKind::Ekf],
+        datasheet: Some(DatasheetValues::adis16364().model(&ScaleFactorPrior::default())),
+        scale: ScaleFactorPrior::default(),
+    }
 }
 
 /// The survey simulated again with the seed moved by `k`, as a scenario like `main`.
@@ -300,7 +318,17 @@ fn interpolated_solution(
     out: &Path,
 ) -> Result<IntegrateSummary, Failure> {
     create_folder(&out.join("solution"))?;
-    let settings = IntegrateSettings {
+    integrate(&solution_settings(vessel, files, p, out))
+}
+
+/// The settings of the interpolated-model solution.
+fn solution_settings(
+    vessel: &VesselSettings,
+    files: &VesselFiles,
+    p: &Plan,
+    out: &Path,
+) -> IntegrateSettings {
+    IntegrateSettings {
         imu: files.imu.clone(),
         gnss: files.gnss.clone(),
         noise: NoiseSource::Bank(out.join("bank.json")),
@@ -318,16 +346,17 @@ fn interpolated_solution(
         initial_from: Some(files.reference.clone()),
         process_noise_scale: 1.0,
         outputs: SolutionFiles::beside(&out.join("solution/solution.csv")),
-    };
-    integrate(&settings)
+    }
 }
 
+/// A progress line on stderr, unless `--json` or quiet.
 fn say(args: &DemoArgs, line: &str) {
     if !args.json && !crate::progress::is_quiet() {
         eprintln!("{line}");
     }
 }
 
+/// The true and the three estimated correlation times of every channel at every temperature.
 fn recovery_table(bank: &ModelBank, truth: &[RunTruth]) -> Vec<Recovery> {
     let mut rows = Vec::new();
     for (entry, run) in bank.entries.iter().zip(truth) {
@@ -336,59 +365,51 @@ fn recovery_table(bank: &ModelBank, truth: &[RunTruth]) -> Vec<Recovery> {
             else {
                 continue;
             };
-            let true_tc = t.gauss_markov.correlation_time_s;
-            let g = &model.gauss_markov;
-            let inside = match &g.irregular_ml {
-                GaussMarkovEstimate::Model {
-                    ci95_correlation_time_s: [lo, hi],
-                    ..
-                } => Some(lo.is_none_or(|l| l <= true_tc) && hi.is_none_or(|h| true_tc <= h)),
-                GaussMarkovEstimate::NoEquivalent { .. } => None,
-            };
-            rows.push(Recovery {
-                temperature_c: entry.temperature_c,
-                channel: channel.name(),
-                true_correlation_time_s: true_tc,
-                irregular_ml: g.irregular_ml.clone(),
-                ar_based: g.ar_based.clone(),
-                acf_fit: g.acf_fit.clone(),
-                truth_inside_ml_interval: inside,
-            });
+            rows.push(recovery_row(entry.temperature_c, channel, model, t));
         }
     }
     rows
 }
 
+/// One channel at one temperature: the truth, the three estimates, and whether the exact-ML
+/// interval covers the truth.
+fn recovery_row(
+    temperature_c: f64,
+    channel: Channel,
+    model: &ChannelModel,
+    t: &ChannelTruth,
+) -> Recovery {
+    let true_tc = t.gauss_markov.correlation_time_s;
+    let g = &model.gauss_markov;
+    Recovery {
+        temperature_c,
+        channel: channel.name(),
+        true_correlation_time_s: true_tc,
+        irregular_ml: g.irregular_ml.clone(),
+        ar_based: g.ar_based.clone(),
+        acf_fit: g.acf_fit.clone(),
+        truth_inside_ml_interval: covers(&g.irregular_ml, true_tc),
+    }
+}
+
+/// Whether the 95 % interval of an estimate covers `true_tc`; `None` without a model.
+fn covers(estimate: &GaussMarkovEstimate, true_tc: f64) -> Option<bool> {
+    match estimate {
+        GaussMarkovEstimate::Model {
+            ci95_correlation_time_s: [lo, hi],
+            ..
+        } => Some(lo.is_none_or(|l| l <= true_tc) && hi.is_none_or(|h| true_tc <= h)),
+        GaussMarkovEstimate::NoEquivalent { .. } => None,
+    }
+}
+
+/// The text summary: the recovery table, what it shows, then the tournament.
 fn print_summary(s: &DemoSummary) {
     println!(
         "\nBias correlation times recovered from the simulated chamber campaign ({} s per temperature at {} Hz)",
         s.chamber_duration_s, s.chamber_rate_hz
     );
-    println!(
-        "{:>7} {:<3} {:>10} {:>28} {:>24} {:>18}",
-        "temp_C",
-        "ch",
-        "true Tc s",
-        "exact ML Tc s [95 %]",
-        "AR-based (paper) Tc s",
-        "ACF fit Tc s"
-    );
-    for r in &s.recovery {
-        let mark = match r.truth_inside_ml_interval {
-            Some(true) => " ",
-            Some(false) => "!",
-            None => "-",
-        };
-        println!(
-            "{:>7.0} {:<3} {:>10.1} {:>27}{mark} {:>24} {:>18}",
-            r.temperature_c,
-            r.channel,
-            r.true_correlation_time_s,
-            show_estimate(&r.irregular_ml),
-            show_estimate(&r.ar_based),
-            show_estimate(&r.acf_fit)
-        );
-    }
+    print_recovery_table(&s.recovery);
     println!(
         "\nexact ML intervals covering the truth: {} of {} (95 % intervals: expect about 95 %); '!' marks a miss, '-' no model.",
         s.ml_intervals_covering_truth, s.ml_intervals
@@ -401,4 +422,38 @@ fn print_summary(s: &DemoSummary) {
         s.out, s.elapsed_s
     );
     print_tournament_table(&s.tournament);
+}
+
+/// The recovery table: one row per temperature and channel.
+fn print_recovery_table(recovery: &[Recovery]) {
+    println!(
+        "{:>7} {:<3} {:>10} {:>28} {:>24} {:>18}",
+        "temp_C",
+        "ch",
+        "true Tc s",
+        "exact ML Tc s [95 %]",
+        "AR-based (paper) Tc s",
+        "ACF fit Tc s"
+    );
+    for r in recovery {
+        println!(
+            "{:>7.0} {:<3} {:>10.1} {:>27}{} {:>24} {:>18}",
+            r.temperature_c,
+            r.channel,
+            r.true_correlation_time_s,
+            show_estimate(&r.irregular_ml),
+            coverage_mark(r.truth_inside_ml_interval),
+            show_estimate(&r.ar_based),
+            show_estimate(&r.acf_fit)
+        );
+    }
+}
+
+/// Blank when the exact-ML interval covers the truth, `!` for a miss, `-` without a model.
+fn coverage_mark(inside: Option<bool>) -> &'static str {
+    match inside {
+        Some(true) => " ",
+        Some(false) => "!",
+        None => "-",
+    }
 }

@@ -1,6 +1,6 @@
 //! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
 
-use crate::args::{FilterArgs, ModeArg};
+use crate::args::{FilterArgs, KaiserArgs, ModeArg};
 use crate::failure::{Classify, Failure};
 use crate::fir_design::{FirDesign, describe, design};
 use crate::report::{print_json, print_rows};
@@ -9,8 +9,8 @@ use serde::Serialize;
 use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::signal::decimate::{decimate, decimation_factor};
-use thermonav::signal::kaiser::FirFilter;
-use thermonav::signal::timestamps::check_timestamps;
+use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
+use thermonav::signal::timestamps::{TimingReport, check_timestamps};
 use thermonav::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
 use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
 
@@ -36,20 +36,11 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
     crate::settings::analysis::check_filter(args)?;
     let series = read_imu_file(&args.input, Strictness::Strict).data()?;
     let timing = check_timestamps(&series.time);
-    let nominal_rate_hz = timing
-        .intervals
-        .map(|s| s.nominal_rate_hz())
-        .ok_or_else(|| {
-            Failure::Data(anyhow!("{}: fewer than two samples", args.input.display()))
-        })?;
+    let nominal_rate_hz = nominal_rate_of(&timing, &args.input)?;
     let design_rate_hz = args.fs_hz.unwrap_or(nominal_rate_hz);
     let (spec, designed) = design(design_rate_hz, &args.kaiser)?;
     let mode = args.mode.into();
-    // One-pass zero phase needs a whole-sample delay: an even design gets one more tap.
-    let filter = match mode {
-        ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(&spec),
-        ZeroPhaseMode::ForwardBackward => designed,
-    };
+    let filter = filter_for_mode(designed, &spec, mode);
     let factor = resolve_decimation(args, &filter)?;
     let filtered = filter_series(&series, &filter, mode, factor).data()?;
     let record = FilterRecord {
@@ -67,16 +58,39 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
         temperature_column: "not filtered; decimated with the samples",
     };
     write_outputs(&args.out, &filtered, &record)?;
-    if timing.gap_count > 0 {
-        eprintln!(
-            "warning: {} has {} gaps longer than 1.5 sampling intervals; the filter treats the samples as evenly spaced",
-            args.input.display(),
-            timing.gap_count
-        );
-    }
+    warn_about_gaps(&args.input, timing.gap_count);
     report(args.json, &record)
 }
 
+/// The input's nominal sample rate; an error when it has fewer than two samples.
+fn nominal_rate_of(timing: &TimingReport, input: &Path) -> Result<f64, Failure> {
+    timing
+        .intervals
+        .map(|s| s.nominal_rate_hz())
+        .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", input.display())))
+}
+
+/// The filter as run: one-pass zero phase needs a whole-sample delay, so an even design gets
+/// one more tap.
+fn filter_for_mode(designed: FirFilter, spec: &KaiserSpec, mode: ZeroPhaseMode) -> FirFilter {
+    match mode {
+        ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(spec),
+        ZeroPhaseMode::ForwardBackward => designed,
+    }
+}
+
+/// The warning that the filter treats a record with gaps as evenly spaced.
+fn warn_about_gaps(input: &Path, gap_count: usize) {
+    if gap_count > 0 {
+        eprintln!(
+            "warning: {} has {} gaps longer than 1.5 sampling intervals; the filter treats the samples as evenly spaced",
+            input.display(),
+            gap_count
+        );
+    }
+}
+
+/// The name of `--mode` as the record gives it.
 fn mode_name(mode: ModeArg) -> &'static str {
     match mode {
         ModeArg::ZeroPhase => "zero-phase",
@@ -91,17 +105,23 @@ fn resolve_decimation(args: &FilterArgs, filter: &FirFilter) -> Result<usize, Fa
         return Ok(1);
     };
     let factor = decimation_factor(filter.sample_rate_hz(), target_hz).usage()?;
+    check_below_new_nyquist(&args.kaiser, target_hz)?;
+    Ok(factor)
+}
+
+/// The error for a pass band reaching past the Nyquist frequency of the decimated rate.
+fn check_below_new_nyquist(kaiser: &KaiserArgs, target_hz: f64) -> Result<(), Failure> {
     let new_nyquist_hz = target_hz / 2.0;
-    if args.kaiser.cutoff_hz + args.kaiser.transition_hz > new_nyquist_hz {
+    if kaiser.cutoff_hz + kaiser.transition_hz > new_nyquist_hz {
         return Err(Failure::Usage(anyhow!(
             "--cutoff-hz {} + --transition-hz {} must not exceed the Nyquist frequency {} Hz of --decimate-to-hz {}",
-            args.kaiser.cutoff_hz,
-            args.kaiser.transition_hz,
+            kaiser.cutoff_hz,
+            kaiser.transition_hz,
             new_nyquist_hz,
             target_hz
         )));
     }
-    Ok(factor)
+    Ok(())
 }
 
 /// Filters every channel and keeps every `factor`-th sample; the temperature column is carried
@@ -124,16 +144,24 @@ pub fn filter_series(
     Ok(out)
 }
 
+/// Writes the filtered series and its JSON record.
 fn write_outputs(out: &Path, series: &ImuSeries, record: &FilterRecord) -> Result<(), Failure> {
     write_imu_file(out, series).data()?;
     write_json_atomically(crate::settings::analysis::json_sidecar(out), record).data()
 }
 
+/// Prints the record, as JSON with `--json`.
 fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
     if json {
         return print_json(record);
     }
-    print_rows(&[
+    print_rows(&summary_rows(record));
+    Ok(())
+}
+
+/// The text summary: input, filter, decimation, output and where the record is.
+fn summary_rows(record: &FilterRecord) -> [(&'static str, String); 5] {
+    [
         (
             "input",
             format!(
@@ -165,6 +193,5 @@ fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
                 .display()
                 .to_string(),
         ),
-    ]);
-    Ok(())
+    ]
 }

@@ -292,29 +292,16 @@ fn optional(value: Option<f64>, unit: &str, scale: f64) -> String {
     value.map_or_else(|| "n/a".to_string(), |v| format!("{:.6} {unit}", v * scale))
 }
 
+/// The text report: the summary rows, then one row per channel.
 fn print_text(i: &Inspection) {
-    let first_gap = i
-        .gaps
-        .first()
-        .map(|g| {
-            format!(
-                " (first at t = {:.3} s, line {}, {:.3} ms)",
-                g.start_s,
-                g.start_line,
-                g.length_s * 1e3
-            )
-        })
-        .unwrap_or_default();
-    let temperature = i.temperature.as_ref().map_or_else(
-        || "no temp_c column".to_string(),
-        |t| {
-            format!(
-                "{:.2} .. {:.2} °C (mean {:.2} °C)",
-                t.min_c, t.max_c, t.mean_c
-            )
-        },
-    );
-    print_rows(&[
+    print_rows(&summary_rows(i));
+    println!();
+    print_channels(&i.channels);
+}
+
+/// The rows of the summary: size, timing, faults and temperature.
+fn summary_rows(i: &Inspection) -> [(&'static str, String); 13] {
+    [
         ("file", i.file.clone()),
         ("rows", i.rows.to_string()),
         ("duration", format!("{:.3} s", i.duration_s)),
@@ -325,7 +312,7 @@ fn print_text(i: &Inspection) {
         ("dt max", optional(i.dt_max_s, "ms", 1e3)),
         (
             "gaps (dt > 1.5 median)",
-            format!("{}{first_gap}", i.gap_count),
+            format!("{}{}", i.gap_count, first_gap_text(&i.gaps)),
         ),
         ("duplicate timestamps", i.duplicate_count.to_string()),
         (
@@ -333,23 +320,60 @@ fn print_text(i: &Inspection) {
             i.non_monotonic_count.to_string(),
         ),
         ("NaN/inf values", i.non_finite_count.to_string()),
-        ("temperature", temperature),
-    ]);
-    println!();
+        ("temperature", temperature_text(i.temperature.as_ref())),
+    ]
+}
+
+/// Where the first gap is and how long it lasts, empty when there is none.
+fn first_gap_text(gaps: &[GapRow]) -> String {
+    gaps.first()
+        .map(|g| {
+            format!(
+                " (first at t = {:.3} s, line {}, {:.3} ms)",
+                g.start_s,
+                g.start_line,
+                g.length_s * 1e3
+            )
+        })
+        .unwrap_or_default()
+}
+
+/// The temperature range and mean, or that the file has no temperature column.
+fn temperature_text(t: Option<&TemperatureRange>) -> String {
+    t.map_or_else(
+        || "no temp_c column".to_string(),
+        |t| {
+            format!(
+                "{:.2} .. {:.2} °C (mean {:.2} °C)",
+                t.min_c, t.max_c, t.mean_c
+            )
+        },
+    )
+}
+
+/// The channel table: name, unit, mean and standard deviation.
+fn print_channels(channels: &[ChannelRow]) {
     println!(
         "{:<8} {:<7} {:>16} {:>16}",
         "channel", "unit", "mean", "std"
     );
-    for c in &i.channels {
-        let show = |v: Option<f64>| v.map_or_else(|| "n/a".to_string(), |v| format!("{v:.9e}"));
-        println!(
-            "{:<8} {:<7} {:>16} {:>16}",
-            c.channel,
-            c.unit,
-            show(c.mean),
-            show(c.std)
-        );
-    }
+    channels.iter().for_each(print_channel_row);
+}
+
+/// One channel's row: name, unit, mean and standard deviation.
+fn print_channel_row(c: &ChannelRow) {
+    println!(
+        "{:<8} {:<7} {:>16} {:>16}",
+        c.channel,
+        c.unit,
+        scientific(c.mean),
+        scientific(c.std)
+    );
+}
+
+/// A statistic in scientific notation to nine decimals, or `n/a`.
+fn scientific(v: Option<f64>) -> String {
+    v.map_or_else(|| "n/a".to_string(), |v| format!("{v:.9e}"))
 }
 
 #[cfg(test)]

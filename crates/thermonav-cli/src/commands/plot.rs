@@ -11,9 +11,11 @@ use std::io::Write as _;
 use std::path::Path;
 use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
+use thermonav::nav::outage::Outages;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
+use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{
@@ -40,12 +42,9 @@ enum ImageFormat {
     Png,
 }
 
+/// The image format told by the extension of `--out`.
 fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
+    match lowercase_extension(path).as_deref() {
         Some("svg") => Ok(ImageFormat::Svg),
         Some("png") => Ok(ImageFormat::Png),
         _ => Err(Failure::Usage(anyhow!(
@@ -55,37 +54,65 @@ fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
     }
 }
 
+/// The extension of `path` in lower case, if it has one.
+fn lowercase_extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
 /// Runs `plot`.
 pub fn run(args: &PlotArgs) -> Result<(), Failure> {
     let format = image_format(&args.out)?;
-    let units = match args.units {
-        UnitsArg::Si => DisplayUnits::Si,
-        UnitsArg::Navigation => DisplayUnits::Navigation,
-    };
-    let svg = match args.kind {
-        PlotKind::Allan => allan_svg(args, units)?,
-        PlotKind::CorrelationTime => correlation_svg(args)?,
-        PlotKind::Autocorrelation => autocorrelation_svg(args, units)?,
-        PlotKind::Trajectory => trajectory_svg(args)?,
-        PlotKind::OutageErrors => outage_errors_svg(args)?,
-        PlotKind::RmsTemperature => rms_temperature_svg(args)?,
-        PlotKind::Innovations => innovations_figure(
-            &title_or(args, format!("Innovations, {}", file_name(&args.input))),
-            &innovations_of(&args.input)?,
-        ),
-    };
-    let bytes = match format {
-        ImageFormat::Svg => svg.into_bytes(),
-        ImageFormat::Png => svg_to_png(&svg).data()?,
-    };
+    let svg = figure_svg(args, display_units(args.units))?;
+    let bytes = image_bytes(svg, format)?;
     write_atomically(&args.out, |file| Ok(file.write_all(&bytes)?)).data()?;
     Ok(())
 }
 
+/// `--units` as the figures' display units.
+fn display_units(units: UnitsArg) -> DisplayUnits {
+    match units {
+        UnitsArg::Si => DisplayUnits::Si,
+        UnitsArg::Navigation => DisplayUnits::Navigation,
+    }
+}
+
+/// The SVG of the figure `args.kind`.
+fn figure_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
+    match args.kind {
+        PlotKind::Allan => allan_svg(args, units),
+        PlotKind::CorrelationTime => correlation_svg(args),
+        PlotKind::Autocorrelation => autocorrelation_svg(args, units),
+        PlotKind::Trajectory => trajectory_svg(args),
+        PlotKind::OutageErrors => outage_errors_svg(args),
+        PlotKind::RmsTemperature => rms_temperature_svg(args),
+        PlotKind::Innovations => innovations_svg(args),
+    }
+}
+
+/// The bytes of the image file: the SVG itself, or rendered to PNG.
+fn image_bytes(svg: String, format: ImageFormat) -> Result<Vec<u8>, Failure> {
+    match format {
+        ImageFormat::Svg => Ok(svg.into_bytes()),
+        ImageFormat::Png => svg_to_png(&svg).data(),
+    }
+}
+
+/// The innovations of a filter with their ±3σ bounds.
+fn innovations_svg(args: &PlotArgs) -> Result<String, Failure> {
+    Ok(innovations_figure(
+        &title_or(args, format!("Innovations, {}", file_name(&args.input))),
+        &innovations_of(&args.input)?,
+    ))
+}
+
+/// `--title`, or the figure's default title.
 fn title_or(args: &PlotArgs, default: String) -> String {
     args.title.clone().unwrap_or(default)
 }
 
+/// The file name of `path` (the whole path when it has none).
 fn file_name(path: &Path) -> String {
     path.file_name().map_or_else(
         || path.display().to_string(),
@@ -128,6 +155,7 @@ struct AllanJson {
     channels: BTreeMap<Channel, AllanChannelJson>,
 }
 
+/// The JSON document at `path`.
 fn read_json(path: &Path) -> Result<serde_json::Value, Failure> {
     let bytes = std::fs::read(path)
         .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
@@ -137,38 +165,52 @@ fn read_json(path: &Path) -> Result<serde_json::Value, Failure> {
         .data()
 }
 
+/// The Allan deviation of a bank entry or of `allan --json` output.
 fn allan_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
     let json = read_json(&args.input)?;
-    let name = file_name(&args.input);
     if json.get("entries").is_some() {
-        let bank = read_bank(&args.input)?;
-        let entry = &bank.entries[entry_index(&bank, args.temperature_c, &args.input)?];
-        let title = format!("Allan deviation, {name} at {} °C", entry.temperature_c);
-        return Ok(allan_deviation_figure(
-            &title_or(args, title),
-            &allan_curves_of_entry(entry),
-            units,
-        ));
+        return bank_allan_svg(args, units);
     }
-    let doc: AllanJson = serde_json::from_value(json)
-        .map_err(|e| {
-            anyhow!(
-                "{}: neither a model bank nor `allan --json` output: {e}",
-                args.input.display()
-            )
-        })
-        .data()?;
+    let doc = allan_json_of(json, &args.input)?;
     let curves: Vec<AllanCurve> = doc
         .channels
         .into_iter()
         .map(|(channel, c)| allan_curve(channel, c, doc.confidence))
         .collect();
-    let title = format!("Allan deviation, {name}");
+    let title = format!("Allan deviation, {}", file_name(&args.input));
     Ok(allan_deviation_figure(
         &title_or(args, title),
         &curves,
         units,
     ))
+}
+
+/// The Allan deviation of the bank entry chosen by `--temperature-c`.
+fn bank_allan_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
+    let bank = read_bank(&args.input)?;
+    let entry = &bank.entries[entry_index(&bank, args.temperature_c, &args.input)?];
+    let title = format!(
+        "Allan deviation, {} at {} °C",
+        file_name(&args.input),
+        entry.temperature_c
+    );
+    Ok(allan_deviation_figure(
+        &title_or(args, title),
+        &allan_curves_of_entry(entry),
+        units,
+    ))
+}
+
+/// A JSON document read as `allan --json` output.
+fn allan_json_of(json: serde_json::Value, path: &Path) -> Result<AllanJson, Failure> {
+    serde_json::from_value(json)
+        .map_err(|e| {
+            anyhow!(
+                "{}: neither a model bank nor `allan --json` output: {e}",
+                path.display()
+            )
+        })
+        .data()
 }
 
 /// The bank entry for `--temperature-c`; without it the bank must have one entry only.
@@ -188,9 +230,24 @@ fn entry_index(
     }
 }
 
+/// One channel of `allan --json` as a curve with its confidence band and noise terms.
 fn allan_curve(channel: Channel, c: AllanChannelJson, confidence: f64) -> AllanCurve {
-    let t = c.terms;
-    let terms = [
+    AllanCurve {
+        channel,
+        tau_s: c.tau_s,
+        adev: c.adev,
+        confidence: Some(ConfidenceBand {
+            level: confidence,
+            low: c.ci_low,
+            high: c.ci_high,
+        }),
+        terms: term_readings(c.terms),
+    }
+}
+
+/// The noise terms `allan --json` gives, each with its τ range.
+fn term_readings(t: TermsJson) -> Vec<NoiseTermReading> {
+    [
         (NoiseTerm::Quantization, t.quantization),
         (NoiseTerm::RandomWalk, t.random_walk),
         (NoiseTerm::BiasInstability, t.bias_instability),
@@ -205,20 +262,10 @@ fn allan_curve(channel: Channel, c: AllanChannelJson, confidence: f64) -> AllanC
             tau_range_s: Some((j.tau_min_s, j.tau_max_s)),
         })
     })
-    .collect();
-    AllanCurve {
-        channel,
-        tau_s: c.tau_s,
-        adev: c.adev,
-        confidence: Some(ConfidenceBand {
-            level: confidence,
-            low: c.ci_low,
-            high: c.ci_high,
-        }),
-        terms,
-    }
+    .collect()
 }
 
+/// The correlation time against temperature of the chosen `--families`.
 fn correlation_svg(args: &PlotArgs) -> Result<String, Failure> {
     let bank = read_bank(&args.input)?;
     let families: Vec<_> = args.families.iter().map(|&f| f.into()).collect();
@@ -236,22 +283,10 @@ fn correlation_svg(args: &PlotArgs) -> Result<String, Failure> {
     Ok(correlation_time_figure(&title_or(args, title), &series))
 }
 
+/// The autocovariance of one channel with its first-order Gauss-Markov fit.
 fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    let channel = Channel::ALL
-        .into_iter()
-        .find(|c| c.name() == args.channel)
-        .ok_or_else(|| {
-            Failure::Usage(anyhow!(
-                "--channel {}: not one of gx gy gz ax ay az",
-                args.channel
-            ))
-        })?;
-    if !(args.max_lag_s.is_finite() && args.max_lag_s > 0.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--max-lag-s {} must be positive",
-            args.max_lag_s
-        )));
-    }
+    let channel = channel_of(&args.channel)?;
+    check_max_lag(args.max_lag_s)?;
     let (series, rate_hz) = read_rates(&args.input, "the autocovariance")?;
     let y = series.channel(channel);
     let max_lag = ((args.max_lag_s * rate_hz).round() as usize)
@@ -260,25 +295,7 @@ fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, F
     let gamma = autocovariance(y, max_lag, Demean::Subtract)
         .map_err(|e| anyhow!("{}: channel {}: {e}", args.input.display(), channel.name()))
         .data()?;
-    let dt_s = 1.0 / rate_hz;
-    let fit = match fit_autocovariance(&gamma, dt_s, LagWindow::FirstZeroCrossing) {
-        GaussMarkovOutcome::Model { model, .. } => Some(GaussMarkovFit {
-            sigma: model.sigma,
-            correlation_time_s: model.correlation_time_s,
-        }),
-        GaussMarkovOutcome::NoEquivalent { .. } => None,
-    };
-    // Every stride-th lag: a figure needs no more than MAX_DRAWN_LAGS points.
-    let stride = gamma.len().div_ceil(MAX_DRAWN_LAGS).max(1);
-    let data = Autocovariance {
-        channel,
-        lag_s: (0..gamma.len())
-            .step_by(stride)
-            .map(|k| k as f64 * dt_s)
-            .collect(),
-        value: gamma.iter().step_by(stride).copied().collect(),
-        fit,
-    };
+    let data = drawn_autocovariance(channel, &gamma, 1.0 / rate_hz);
     let title = format!(
         "Autocovariance, {} {}",
         file_name(&args.input),
@@ -287,6 +304,52 @@ fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, F
     Ok(autocorrelation_figure(&title_or(args, title), &data, units))
 }
 
+/// The channel named by `--channel`.
+fn channel_of(name: &str) -> Result<Channel, Failure> {
+    Channel::ALL
+        .into_iter()
+        .find(|c| c.name() == name)
+        .ok_or_else(|| Failure::Usage(anyhow!("--channel {name}: not one of gx gy gz ax ay az")))
+}
+
+/// `--max-lag-s` must be a positive number.
+fn check_max_lag(max_lag_s: f64) -> Result<(), Failure> {
+    if !(max_lag_s.is_finite() && max_lag_s > 0.0) {
+        return Err(Failure::Usage(anyhow!(
+            "--max-lag-s {max_lag_s} must be positive"
+        )));
+    }
+    Ok(())
+}
+
+/// The Gauss-Markov fit to the autocovariance up to its first zero crossing, when there is one.
+fn gauss_markov_fit(gamma: &[f64], dt_s: f64) -> Option<GaussMarkovFit> {
+    match fit_autocovariance(gamma, dt_s, LagWindow::FirstZeroCrossing) {
+        GaussMarkovOutcome::Model { model, .. } => Some(GaussMarkovFit {
+            sigma: model.sigma,
+            correlation_time_s: model.correlation_time_s,
+        }),
+        GaussMarkovOutcome::NoEquivalent { .. } => None,
+    }
+}
+
+/// The autocovariance as drawn: every stride-th lag, at most [`MAX_DRAWN_LAGS`] points, and the
+/// fit to all lags.
+fn drawn_autocovariance(channel: Channel, gamma: &[f64], dt_s: f64) -> Autocovariance {
+    let fit = gauss_markov_fit(gamma, dt_s);
+    let stride = gamma.len().div_ceil(MAX_DRAWN_LAGS).max(1);
+    Autocovariance {
+        channel,
+        lag_s: (0..gamma.len())
+            .step_by(stride)
+            .map(|k| k as f64 * dt_s)
+            .collect(),
+        value: gamma.iter().step_by(stride).copied().collect(),
+        fit,
+    }
+}
+
+/// The trajectory in north/east metres from its first point, with the `--outages` windows.
 fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
     let points = read_trajectory_file(&args.input, Strictness::Strict).data()?;
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
@@ -300,31 +363,44 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
         .resolve((first.time, last.time))
         .map_err(|e| anyhow!("--outages: {e}"))
         .usage()?;
-    let position = |i: usize| Geodetic {
-        latitude_rad: points[i].latitude_rad,
-        longitude_rad: points[i].longitude_rad,
-        height_m: points[i].height_m,
-    };
-    let origin = position(0);
-    let local: Vec<[f64; 3]> = (0..points.len())
-        .map(|i| position(i).ned_from(&origin).to_array())
-        .collect();
-    let trajectory = Trajectory {
-        time_s: points.iter().map(|p| p.time.as_seconds()).collect(),
-        north_m: local.iter().map(|ned| ned[0]).collect(),
-        east_m: local.iter().map(|ned| ned[1]).collect(),
-    };
-    let windows: Vec<(f64, f64)> = outages
-        .windows()
-        .iter()
-        .map(|w| (w.start.as_seconds(), w.end.as_seconds()))
-        .collect();
     let title = format!("Trajectory, {}", file_name(&args.input));
     Ok(trajectory_figure(
         &title_or(args, title),
-        &trajectory,
-        &windows,
+        &local_trajectory(&points),
+        &outage_windows(&outages),
     ))
+}
+
+/// The position of a trajectory point.
+fn geodetic(p: &TrajectoryPoint) -> Geodetic {
+    Geodetic {
+        latitude_rad: p.latitude_rad,
+        longitude_rad: p.longitude_rad,
+        height_m: p.height_m,
+    }
+}
+
+/// North and east of every point from the first one, m.
+fn local_trajectory(points: &[TrajectoryPoint]) -> Trajectory {
+    let origin = geodetic(&points[0]);
+    let local: Vec<[f64; 3]> = points
+        .iter()
+        .map(|p| geodetic(p).ned_from(&origin).to_array())
+        .collect();
+    Trajectory {
+        time_s: points.iter().map(|p| p.time.as_seconds()).collect(),
+        north_m: local.iter().map(|ned| ned[0]).collect(),
+        east_m: local.iter().map(|ned| ned[1]).collect(),
+    }
+}
+
+/// The outage windows as (start, end) in seconds.
+fn outage_windows(outages: &Outages) -> Vec<(f64, f64)> {
+    outages
+        .windows()
+        .iter()
+        .map(|w| (w.start.as_seconds(), w.end.as_seconds()))
+        .collect()
 }
 
 /// The evaluation report and its filters (first = the report's primary one).
@@ -335,35 +411,48 @@ fn evaluation(args: &PlotArgs) -> Result<(serde_json::Value, Vec<String>), Failu
     let json: serde_json::Value = serde_json::from_str(&text)
         .map_err(|e| anyhow!("{}:{}: not JSON: {e}", args.input.display(), e.line()))
         .data()?;
-    let filters: Vec<String> = json
-        .get("filters")
+    let filters = filters_of(&json);
+    check_evaluation(&json, &filters, &args.input)?;
+    Ok((json, filters))
+}
+
+/// The error for a document without models or filters.
+fn check_evaluation(
+    json: &serde_json::Value,
+    filters: &[String],
+    path: &Path,
+) -> Result<(), Failure> {
+    if json.get("models").is_none() || filters.is_empty() {
+        return Err(Failure::Data(anyhow!(
+            "{}: not an evaluation report (expected \"models\" and \"filters\" keys)",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
+/// The filters an evaluation report names, in its order.
+fn filters_of(json: &serde_json::Value) -> Vec<String> {
+    json.get("filters")
         .and_then(serde_json::Value::as_array)
         .map(|f| {
             f.iter()
                 .filter_map(|x| x.as_str().map(str::to_string))
                 .collect()
         })
-        .unwrap_or_default();
-    if json.get("models").is_none() || filters.is_empty() {
-        return Err(Failure::Data(anyhow!(
-            "{}: not an evaluation report (expected \"models\" and \"filters\" keys)",
-            args.input.display()
-        )));
-    }
-    Ok((json, filters))
+        .unwrap_or_default()
 }
 
+/// The models of an evaluation report.
+fn models_of(json: &serde_json::Value) -> Vec<serde_json::Value> {
+    json["models"].as_array().cloned().unwrap_or_default()
+}
+
+/// The INS-only errors of every model in the first outage with the chosen filter.
 fn outage_errors_svg(args: &PlotArgs) -> Result<String, Failure> {
     let (json, filters) = evaluation(args)?;
-    let filter = args.filter.clone().unwrap_or_else(|| filters[0].clone());
-    if !filters.contains(&filter) {
-        return Err(Failure::Usage(anyhow!(
-            "--filter {filter}: the report has {}",
-            filters.join(", ")
-        )));
-    }
-    let models = json["models"].as_array().cloned().unwrap_or_default();
-    let errors = outage_errors(&models, &filter)?;
+    let filter = chosen_filter(args.filter.as_ref(), &filters)?;
+    let errors = outage_errors(&models_of(&json), &filter)?;
     let title = format!(
         "INS-only errors in the first outage ({})",
         filter.to_uppercase()
@@ -371,15 +460,23 @@ fn outage_errors_svg(args: &PlotArgs) -> Result<String, Failure> {
     Ok(outage_errors_figure(&title_or(args, title), &errors, None))
 }
 
+/// `--filter`, which must be one of the report's, or the report's primary filter.
+fn chosen_filter(chosen: Option<&String>, filters: &[String]) -> Result<String, Failure> {
+    let filter = chosen.cloned().unwrap_or_else(|| filters[0].clone());
+    if !filters.contains(&filter) {
+        return Err(Failure::Usage(anyhow!(
+            "--filter {filter}: the report has {}",
+            filters.join(", ")
+        )));
+    }
+    Ok(filter)
+}
+
+/// The RMS error of the chosen `--metric` per model against the model's temperature.
 fn rms_temperature_svg(args: &PlotArgs) -> Result<String, Failure> {
     let (json, filters) = evaluation(args)?;
-    let models = json["models"].as_array().cloned().unwrap_or_default();
-    let (key, quantity, unit) = match args.metric {
-        MetricArg::North => ("rms_north_m", "north RMS error", "m"),
-        MetricArg::East => ("rms_east_m", "east RMS error", "m"),
-        MetricArg::Heading => ("rms_heading_deg", "heading RMS error", "deg"),
-    };
-    let series = rms_series(&models, &filters, key);
+    let (key, quantity, unit) = metric_columns(args.metric);
+    let series = rms_series(&models_of(&json), &filters, key);
     let title = format!("{quantity} per model");
     Ok(rms_versus_temperature_figure(
         &title_or(args, title),
@@ -387,4 +484,13 @@ fn rms_temperature_svg(args: &PlotArgs) -> Result<String, Failure> {
         unit,
         &series,
     ))
+}
+
+/// The report key, the quantity's name and its unit of a `--metric`.
+fn metric_columns(metric: MetricArg) -> (&'static str, &'static str, &'static str) {
+    match metric {
+        MetricArg::North => ("rms_north_m", "north RMS error", "m"),
+        MetricArg::East => ("rms_east_m", "east RMS error", "m"),
+        MetricArg::Heading => ("rms_heading_deg", "heading RMS error", "deg"),
+    }
 }

@@ -1,12 +1,14 @@
 //! `thermonav simulate`: chamber records, a vessel survey, or the built-in profile as TOML.
 
 use crate::args::{ChamberArgs, ProfileArgs, SimulateArgs, SimulateWhat, VesselArgs};
-use crate::campaign::{ChamberTruth, run_chamber, simulate_vessel_files};
+use crate::campaign::{ChamberTruth, VesselSummary, run_chamber, simulate_vessel_files};
 use crate::failure::{Classify, Failure};
 use crate::report::{print_json, print_rows};
 use crate::settings::simulation::{chamber, vessel};
 use anyhow::anyhow;
+use std::path::Path;
 use thermonav::sensor::adis16364_like;
+use thermonav::sim::chamber::RunTruth;
 use thermonav_io::profile::profile_to_toml;
 use thermonav_io::write_atomically;
 
@@ -19,6 +21,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
     }
 }
 
+/// Prints what the chamber campaign wrote and the true models, as JSON with `--json`.
 fn report_chamber(args: &ChamberArgs, truth: &ChamberTruth) -> Result<(), Failure> {
     if args.json {
         return print_json(truth);
@@ -35,30 +38,41 @@ fn report_chamber(args: &ChamberArgs, truth: &ChamberTruth) -> Result<(), Failur
     Ok(())
 }
 
+/// The true correlation time and sigma of every channel at every temperature.
 fn print_truth_table(truth: &ChamberTruth) {
     println!(
         "{:>7} {:<4} {:>12} {:>14}",
         "temp_C", "ch", "true Tc s", "true sigma"
     );
-    for run in &truth.temperatures {
-        for (c, t) in &run.channels {
-            println!(
-                "{:>7.1} {:<4} {:>12.1} {:>14.4e}",
-                run.temperature_c,
-                c.name(),
-                t.gauss_markov.correlation_time_s,
-                t.gauss_markov.sigma
-            );
-        }
+    truth.temperatures.iter().for_each(print_truth_rows);
+}
+
+/// The rows of one temperature: one per channel.
+fn print_truth_rows(run: &RunTruth) {
+    for (c, t) in &run.channels {
+        println!(
+            "{:>7.1} {:<4} {:>12.1} {:>14.4e}",
+            run.temperature_c,
+            c.name(),
+            t.gauss_markov.correlation_time_s,
+            t.gauss_markov.sigma
+        );
     }
 }
 
+/// Simulates the vessel survey and says what it wrote, as JSON with `--json`.
 fn run_vessel(args: &VesselArgs) -> Result<(), Failure> {
     let summary = simulate_vessel_files(&vessel(args)?)?;
     if args.json {
         return print_json(&summary);
     }
-    print_rows(&[
+    print_rows(&vessel_rows(&summary));
+    Ok(())
+}
+
+/// The survey's files, sensor temperature and heading accuracy.
+fn vessel_rows(summary: &VesselSummary) -> [(&'static str, String); 5] {
+    [
         (
             "reference trajectory",
             summary.files.reference.display().to_string(),
@@ -73,22 +87,27 @@ fn run_vessel(args: &VesselArgs) -> Result<(), Failure> {
             "heading sd (2.37 m baseline)",
             format!("{:.3} deg", summary.heading_sd_deg),
         ),
-    ]);
-    Ok(())
+    ]
 }
 
+/// Writes the built-in sensor profile as TOML.
 fn run_profile(args: &ProfileArgs) -> Result<(), Failure> {
     let text = profile_to_toml(&adis16364_like())
         .map_err(|e| anyhow!("cannot write the profile: {e}"))
         .data()?;
+    write_profile(&args.out, &text)?;
+    println!("profile written to {}", args.out.display());
+    Ok(())
+}
+
+/// Writes the profile's TOML under a comment line saying what it is.
+fn write_profile(out: &Path, text: &str) -> Result<(), Failure> {
     let header = "# thermonav sensor profile: the built-in ADIS16364-like default. Units are in the key names.\n";
-    write_atomically(&args.out, |f| {
+    write_atomically(out, |f| {
         use std::io::Write;
         f.write_all(header.as_bytes())?;
         f.write_all(text.as_bytes())?;
         Ok(())
     })
-    .data()?;
-    println!("profile written to {}", args.out.display());
-    Ok(())
+    .data()
 }

@@ -41,6 +41,7 @@ struct LogSummary {
 }
 
 impl LogSummary {
+    /// The figures of one parsed log.
     fn of(log: &Ulog) -> Self {
         Self {
             ulog_version: log.version,
@@ -69,12 +70,7 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
     let record = UlogRecord {
         input,
         time_scale: scale,
-        time_scale_note: match scale {
-            TimeScale::Gpst { .. } => "t_s is GPST seconds since 1970 (no leap seconds)",
-            TimeScale::Boot => {
-                "t_s is seconds since the autopilot booted: the log has no GNSS UTC time"
-            }
-        },
+        time_scale_note: time_scale_note(scale),
         imu: &imu,
         imu_samples: imu.series.len(),
         gnss: gnss.as_ref(),
@@ -82,21 +78,45 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
         log: LogSummary::of(&log),
     };
     report_notes(&record);
+    write_all_or_none(args, &imu, gnss.as_ref(), &record)?;
+    Ok((imu.series.len(), imu_samples_kind(imu.topic)))
+}
+
+/// What the `t_s` column means on this time scale.
+fn time_scale_note(scale: TimeScale) -> &'static str {
+    match scale {
+        TimeScale::Gpst { .. } => "t_s is GPST seconds since 1970 (no leap seconds)",
+        TimeScale::Boot => {
+            "t_s is seconds since the autopilot booted: the log has no GNSS UTC time"
+        }
+    }
+}
+
+/// Increments from `vehicle_imu`, rates from the raw sensor topics.
+fn imu_samples_kind(topic: &str) -> &'static str {
+    match topic {
+        "vehicle_imu" => "IMU samples (increments)",
+        _ => "IMU samples (rates)",
+    }
+}
+
+/// Writes the outputs; if a later one fails, removes the earlier ones of this run.
+fn write_all_or_none(
+    args: &ConvertArgs,
+    imu: &ImuExtract,
+    gnss: Option<&GnssExtract>,
+    record: &UlogRecord,
+) -> Result<(), Failure> {
     // Three files, each written atomically; if a later one fails, the earlier ones of this run
     // are removed, so a failed run leaves no half of a conversion behind.
     let mut written: Vec<PathBuf> = Vec::new();
-    let outcome = write_outputs(args, &imu, gnss.as_ref(), &record, &mut written);
+    let outcome = write_outputs(args, imu, gnss, record, &mut written);
     if outcome.is_err() {
         written.iter().for_each(|path| {
             let _ = std::fs::remove_file(path);
         });
     }
-    outcome?;
-    let what = match imu.topic {
-        "vehicle_imu" => "IMU samples (increments)",
-        _ => "IMU samples (rates)",
-    };
-    Ok((imu.series.len(), what))
+    outcome
 }
 
 /// Notes on stderr about the time scale, temperature and skipped messages.
