@@ -319,9 +319,11 @@ pub fn fit_bias_curve(
         })
     };
     let data = DataShape::of(points.len(), temperatures());
+    let identifiable = data.distinct_temperatures - 1;
     let (fits, selection) = fit_orders(
         settings.order,
         data,
+        identifiable,
         |k| k + 1,
         |order| {
             least_squares(&design(order), &y).map(|ls| {
@@ -428,13 +430,14 @@ fn reference_temperature(
     }
 }
 
-/// The fits of the candidate orders (index = order, up to the first order whose design is
-/// rank deficient or leaves no residual) and the chosen (selection, order). `parameters(k)` is
-/// the number of fitted parameters of order k; `fit(k)` returns its fit with its PRESS
-/// (`None` when undefined).
+/// The fits of the candidate orders 0..=min(3, `identifiable`) (index = order, up to the first
+/// order whose design is rank deficient or leaves no residual) and the chosen (selection,
+/// order). `parameters(k)` is the number of fitted parameters of order k; `fit(k)` returns its
+/// fit with its PRESS (`None` when undefined).
 fn fit_orders(
     choice: OrderChoice,
     data: DataShape,
+    identifiable: usize,
     parameters: impl Fn(usize) -> usize,
     fit: impl Fn(usize) -> Option<(LeastSquares, Option<f64>)>,
 ) -> Result<(Vec<LeastSquares>, (OrderSelection, usize)), ThermalError> {
@@ -443,7 +446,7 @@ fn fit_orders(
     {
         return Err(ThermalError::OrderTooHigh { order });
     }
-    let highest = MAX_ORDER.min(data.distinct_temperatures.saturating_sub(1));
+    let highest = MAX_ORDER.min(identifiable);
     let mut fits = Vec::new();
     let mut press = vec![None; MAX_ORDER + 1];
     for order in (0..=highest).take_while(|&k| data.observations > parameters(k)) {

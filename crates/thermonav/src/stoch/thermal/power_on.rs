@@ -95,13 +95,14 @@ pub fn fit_bias_curve_with_power_ons(
         })
     };
     let in_press = |i: usize| groups[&records[i].power_on].records >= 2;
-    let mut data = DataShape::of(records.len(), temperatures());
-    // Orders above Σ_j (d_j − 1) cannot be identified from within-power-on changes.
+    let data = DataShape::of(records.len(), temperatures());
+    // The shape is learnt from changes within power-ons: Σ_j (d_j − 1) of them at most.
     let within: usize = groups.values().map(|g| g.distinct_temperatures - 1).sum();
-    data.distinct_temperatures = data.distinct_temperatures.min(within + 1);
+    let identifiable = within.min(data.distinct_temperatures - 1);
     let (fits, (selection, order)) = fit_orders(
         settings.order,
         data,
+        identifiable,
         |k| power_ons + k,
         |k| {
             least_squares(&design(k), &y).map(|ls| {
@@ -110,7 +111,6 @@ pub fn fit_bias_curve_with_power_ons(
             })
         },
     )?;
-    data.distinct_temperatures = distinct(temperatures());
     let fit = &fits[order];
     let dof = records.len() - power_ons - order;
     let variance = fit.rss() / dof as f64;
