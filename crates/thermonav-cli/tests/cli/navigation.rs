@@ -379,7 +379,12 @@ fn evaluate_takes_the_datasheet_candidate_from_a_profile() {
     let (status, _, stderr) = outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)]));
     assert_eq!(status, 0, "{stderr}");
     let outages = ["--outages", "60+30,150+30"];
-    let plain = json_of(&evaluate_args(&vessel, &bank, &dir.path().join("a"), &outages));
+    let plain = json_of(&evaluate_args(
+        &vessel,
+        &bank,
+        &dir.path().join("a"),
+        &outages,
+    ));
     let with = [outages[0], outages[1], "--datasheet", arg(&profile)];
     let sheet = json_of(&evaluate_args(&vessel, &bank, &dir.path().join("b"), &with));
     let figures = |json: &serde_json::Value, label: &str| {
@@ -398,8 +403,5 @@ fn evaluate_takes_the_datasheet_candidate_from_a_profile() {
     for label in labels {
         assert_eq!(figures(&plain, label), figures(&sheet, label), "{label}");
     }
-    assert_ne!(
-        figures(&plain, "data sheet"),
-        figures(&sheet, "data sheet")
-    );
+    assert_ne!(figures(&plain, "data sheet"), figures(&sheet, "data sheet"));
 }
