@@ -1,5 +1,6 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
-//! models, Gauss-Markov models and Allan variance.
+//! models, Gauss-Markov models and Allan variance; and the deterministic thermal curves
+//! (`thermal`).
 pub mod acf;
 pub mod allan;
 pub mod ar;
@@ -10,3 +11,4 @@ pub mod lot;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
 pub mod streaming;
+pub mod thermal;

@@ -13,6 +13,7 @@ mod navigation;
 mod round_trip;
 mod signal;
 mod streaming;
+mod thermal;
 mod ukf;
 mod vessel;
 
