@@ -150,11 +150,12 @@ fn trajectory_columns(points: Vec<thermonav::trajectory::TrajectoryPoint>) -> Co
 
 /// Reads any canonical file leniently, choosing the format by its header.
 fn read_columns(path: &Path) -> Result<Columns, Failure> {
-    use std::io::BufRead;
+    use std::io::{BufRead, Read};
     let mut header = String::new();
     if let Ok(file) = std::fs::File::open(path) {
-        // A failure here is reported by the reader below, with the file name.
-        let _ = std::io::BufReader::new(file).read_line(&mut header);
+        // A failure here is reported by the reader below, with the file name; the sniff reads
+        // at most a line's worth (1 MiB), so an endless input cannot fill memory here.
+        let _ = std::io::BufReader::new(file.take(1 << 20)).read_line(&mut header);
     }
     if header.contains("lat_deg") && header.contains("roll_deg") {
         Ok(trajectory_columns(

@@ -212,6 +212,7 @@ fn endless_and_newline_free_inputs_are_refused_after_a_bounded_read() {
         .unwrap();
     let cases = [
         ("bank show /dev/zero", "larger than 64 MiB"),
+        ("inspect /dev/zero", "line longer than"),
         ("simulate profile --out @p.toml", ""),
         ("bank show @sparse.csv", "larger than 64 MiB"),
         ("allan @sparse.csv", "sparse.csv"),
