@@ -358,17 +358,6 @@ impl From<&Outage> for OutageJson {
     }
 }
 
-/// The files written.
-#[derive(Debug, Serialize)]
-pub struct Files {
-    /// The solution trajectory.
-    pub solution: PathBuf,
-    /// The state file.
-    pub states: PathBuf,
-    /// The innovations file.
-    pub innovations: PathBuf,
-}
-
 /// What `integrate` reports.
 #[derive(Debug, Serialize)]
 pub struct Summary {
@@ -400,7 +389,7 @@ pub struct Summary {
     #[serde(rename = "final")]
     pub last: Option<FinalJson>,
     /// The files written.
-    pub files: Files,
+    pub files: SolutionFiles,
 }
 
 /// What one filter run gave, for its summary.
@@ -442,11 +431,7 @@ fn summarize(settings: &IntegrateSettings, run: &Run) -> Summary {
         real_time_factor: real_time_factor(duration_s, run.processing_s),
         innovations: innovation_rows(run.solution),
         last: run.solution.epochs.last().map(final_json),
-        files: Files {
-            solution: settings.outputs.solution.clone(),
-            states: settings.outputs.states.clone(),
-            innovations: settings.outputs.innovations.clone(),
-        },
+        files: settings.outputs.clone(),
     }
 }
 

@@ -10,7 +10,7 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
-use thermonav::evaluation::metrics::{EpochError, check_reference_covers};
+use thermonav::evaluation::metrics::{EpochError, Metric, check_reference_covers};
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
 use thermonav::evaluation::tournament::{ModelResult, Scenario};
 use thermonav::gnss::GnssFix;
@@ -207,14 +207,6 @@ pub fn print_tournament_table(file: &EvaluationFile) {
     println!("\nwritten: {}", file.report_file.display());
 }
 
-const TABLE_KEYS: [&str; 5] = [
-    "rms_north_m",
-    "rms_east_m",
-    "rms_horizontal_m",
-    "rms_heading_deg",
-    "max_drift_horizontal_m",
-];
-
 fn print_filter_table(r: &TournamentReport, filter: &str) {
     println!(
         "\n{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
@@ -227,13 +219,13 @@ fn print_filter_table(r: &TournamentReport, filter: &str) {
     );
     let best = &r.best_by_filter[filter];
     for m in r.models.iter().filter(|m| m.filter.name() == filter) {
-        let cells = TABLE_KEYS.map(|key| {
-            let mark = if best.get(key) == Some(&m.label) {
+        let cells = Metric::ALL.map(|metric| {
+            let mark = if best.get(metric.key()) == Some(&m.label) {
                 "*"
             } else {
                 " "
             };
-            table_cell(m, key, mark)
+            table_cell(m, metric, mark)
         });
         println!(
             "{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
@@ -243,15 +235,8 @@ fn print_filter_table(r: &TournamentReport, filter: &str) {
 }
 
 /// The mean ± half-width over replicates, or the single run's value, or "diverged".
-fn table_cell(m: &ModelReport, key: &str, mark: &str) -> String {
-    let single = match key {
-        "rms_north_m" => m.rms_north_m,
-        "rms_east_m" => m.rms_east_m,
-        "rms_horizontal_m" => m.rms_horizontal_m,
-        "rms_heading_deg" => m.rms_heading_deg,
-        _ => m.max_drift_horizontal_m,
-    };
-    match (m.ci95.get(key), single) {
+fn table_cell(m: &ModelReport, metric: Metric, mark: &str) -> String {
+    match (m.ci95.get(metric.key()), m.value(metric)) {
         (Some(c), _) => format!("{:.2} ±{:.2}{mark}", c.mean, (c.high - c.low) / 2.0),
         (None, Some(x)) => format!("{x:.2}{mark}"),
         (None, None) => "diverged ".into(),

@@ -36,8 +36,8 @@ pub enum NoiseSource {
     Profile(PathBuf),
 }
 
-/// The three files of one `integrate` run.
-#[derive(Debug, Clone, PartialEq)]
+/// The three files of one `integrate` run (also reported as `files` in its summary).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SolutionFiles {
     /// The solution trajectory CSV.
     pub solution: PathBuf,

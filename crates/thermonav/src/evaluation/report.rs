@@ -62,6 +62,19 @@ pub struct ModelReport {
     pub errors_csv: Option<PathBuf>,
 }
 
+impl ModelReport {
+    /// The main run's value of `metric`, when the run succeeded.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        match metric {
+            Metric::RmsNorth => self.rms_north_m,
+            Metric::RmsEast => self.rms_east_m,
+            Metric::RmsHorizontal => self.rms_horizontal_m,
+            Metric::RmsHeading => self.rms_heading_deg,
+            Metric::MaxDriftHorizontal => self.max_drift_horizontal_m,
+        }
+    }
+}
+
 /// The significance section.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SignificanceReport {
@@ -112,7 +125,7 @@ pub(super) fn report_of(
         .zip(summaries)
         .map(|(r, s)| model_report(r, &s.ci95))
         .collect();
-    let ranking = ranking_values(results, &models, replicates.extra() > 0);
+    let ranking = ranking_values(&models, replicates.extra() > 0);
     let filters = tournament.filters().to_vec();
     TournamentReport {
         operating_temperature_c: tournament.operating_temperature_c(),
@@ -147,25 +160,17 @@ fn outage_spans(main: &Scenario) -> Vec<OutageSpan> {
 
 /// The values each model is ranked by: the Monte Carlo means when there are replicates,
 /// the main run's values otherwise.
-fn ranking_values(
-    results: &[ModelResult],
-    models: &[ModelReport],
-    replicated: bool,
-) -> Vec<Ranked> {
-    if replicated {
-        models
-            .iter()
-            .map(|m| {
-                let mean = |metric: Metric| m.ci95.get(metric.key()).map(|c| c.mean);
-                (m.label.clone(), m.filter, Metric::ALL.map(mean))
-            })
-            .collect()
-    } else {
-        results
-            .iter()
-            .map(|r| (r.label.clone(), r.filter, Metric::ALL.map(|m| r.value(m))))
-            .collect()
-    }
+fn ranking_values(models: &[ModelReport], replicated: bool) -> Vec<Ranked> {
+    models
+        .iter()
+        .map(|m| {
+            let pick = |metric: Metric| match replicated {
+                true => m.ci95.get(metric.key()).map(|c| c.mean),
+                false => m.value(metric),
+            };
+            (m.label.clone(), m.filter, Metric::ALL.map(pick))
+        })
+        .collect()
 }
 
 /// The label with the lowest value of each metric among `filter`'s models.
