@@ -13,11 +13,16 @@
 //! holds the end value outside the covered range (reported as [`Placement::Clamped`]).
 
 use crate::imu::Channel;
+use crate::stoch::thermal::ThermalCalibration;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
-/// Version of the bank's JSON layout written by this build.
-pub const BANK_VERSION: u32 = 1;
+/// Version of the bank's JSON layout written by this build. Version 2 added the optional
+/// `thermal` calibration; version 1 banks (without it) are read as they are.
+pub const BANK_VERSION: u32 = 2;
+
+/// Oldest layout version this build reads.
+pub const OLDEST_READABLE_BANK_VERSION: u32 = 1;
 
 /// A whole bank: entries sorted by temperature, no two at the same temperature.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -26,6 +31,9 @@ pub struct ModelBank {
     pub version: u32,
     /// Entries, strictly increasing in temperature.
     pub entries: Vec<TemperatureEntry>,
+    /// The unit's thermal bias calibration, when the campaign was calibrated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<ThermalCalibration>,
 }
 
 /// The models of one temperature point.
@@ -210,7 +218,7 @@ pub enum BankError {
     Empty,
     /// Written by a newer thermonav.
     #[error(
-        "model bank version {found} is not supported (this build reads version {BANK_VERSION})"
+        "model bank version {found} is not supported (this build reads versions {OLDEST_READABLE_BANK_VERSION} to {BANK_VERSION})"
     )]
     Version {
         /// Version in the file.
@@ -265,6 +273,7 @@ impl ModelBank {
         let bank = Self {
             version: BANK_VERSION,
             entries,
+            thermal: None,
         };
         bank.validate()?;
         Ok(bank)
@@ -276,7 +285,7 @@ impl ModelBank {
     /// # Errors
     /// The first [`BankError`] found.
     pub fn validate(&self) -> Result<(), BankError> {
-        if self.version != BANK_VERSION {
+        if !(OLDEST_READABLE_BANK_VERSION..=BANK_VERSION).contains(&self.version) {
             return Err(BankError::Version {
                 found: self.version,
             });
@@ -596,7 +605,7 @@ mod tests {
     fn json_round_trip_keeps_everything_and_names_the_status() {
         let b = bank();
         let text = serde_json::to_string(&b).unwrap();
-        assert!(text.contains("\"version\":1") && text.contains("\"status\":\"no_equivalent\""));
+        assert!(text.contains("\"version\":2") && text.contains("\"status\":\"no_equivalent\""));
         assert!(text.contains("\"gx\""));
         let back: ModelBank = serde_json::from_str(&text).unwrap();
         assert_eq!(back, b);

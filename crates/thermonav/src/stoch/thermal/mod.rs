@@ -62,6 +62,7 @@
 //! estimation noise; [`PowerOnFit::between_power_on_sd`] removes it by the method of moments:
 //! σ̂_b² = max(0, (Σ_j (α̂_j − ᾱ)² − Σ_j Var(α̂_j − ᾱ)) / (J − 1)).
 
+mod calibration;
 mod power_on;
 mod solve;
 
@@ -71,6 +72,10 @@ use serde::{Deserialize, Serialize};
 use solve::{LeastSquares, Scaling, distinct, least_squares, range, to_reference_basis};
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
+pub use calibration::{
+    ChannelCalibration, CompensationError, CompensationSummary, ScaleFactorCalibration,
+    ThermalCalibration, calibrate,
+};
 pub use power_on::{PowerOnFit, PowerOnOffset, PowerOnRecord, fit_bias_curve_with_power_ons};
 
 /// Highest polynomial order fitted (the cubic of PX4 and ArduPilot thermal calibration).

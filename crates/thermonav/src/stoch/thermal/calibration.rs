@@ -1,0 +1,240 @@
+//! A unit's thermal calibration: the repeatable bias curve of every channel (with the
+//! power-on offsets kept apart where the data identify them), and its use, the compensation of
+//! a record's samples at their own temperatures.
+//!
+//! # The band of a curve with power-on offsets
+//! With J ≥ 2 power-ons the curve's constant is the mean of the J fitted offsets, so as an
+//! estimate of the unit's repeatable bias (the long-run mean over power-ons) it carries the
+//! further variance σ̂_b² / J (σ̂_b the spread between power-ons, [`PowerOnFit`]). That
+//! variance is added to the constant's, and because it is estimated from only J − 1 degrees of
+//! freedom, the band's multiple is the larger of the Scheffé factor and the two-sided 95 %
+//! Student quantile t_{J−1}: with few power-ons the offsets' mean, not the shape, limits how
+//! well the absolute curve is known.
+//!
+//! # Scale factor
+//! A static, level unit reads Earth rate on its gyros (≤ 15 °/h) and ±g on one accelerometer
+//! only, so a scale-factor change with temperature is either invisible (gyros, horizontal
+//! accelerometers) or indistinguishable from a bias change (the vertical accelerometer reads
+//! b(T) + g · s(T)). The calibration says so ([`ScaleFactorCalibration::NotIdentifiable`]);
+//! the vertical accelerometer's curve holds both.
+
+use super::{
+    FitSettings, PowerOnFit, PowerOnOffset, PowerOnRecord, TemperaturePoint, ThermalCurve,
+    ThermalError, fit_bias_curve, fit_bias_curve_with_power_ons,
+};
+use crate::imu::{Channel, ImuSeries, SampleKind};
+use serde::{Deserialize, Serialize};
+use statrs::distribution::{ContinuousCDF, StudentsT};
+use std::collections::BTreeMap;
+
+/// Whether the calibration holds scale factor against temperature.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "status", rename_all = "snake_case")]
+pub enum ScaleFactorCalibration {
+    /// The data cannot separate it (module docs, "Scale factor").
+    NotIdentifiable {
+        /// Why, in words.
+        reason: String,
+    },
+}
+
+impl ScaleFactorCalibration {
+    /// The verdict for static records of a level unit.
+    pub fn static_level_unit() -> Self {
+        Self::NotIdentifiable {
+            reason: "static level records: the gyros read only Earth rate and the horizontal \
+                     accelerometers nothing, so their scale factor is invisible; az reads \
+                     b(T) + g s(T), so its curve holds both"
+                .into(),
+        }
+    }
+}
+
+/// The calibration of one channel.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChannelCalibration {
+    /// The repeatable bias curve (channel unit: rad/s or m/s²).
+    pub bias: ThermalCurve,
+    /// Each power-on's offset from the curve, when two or more power-ons were separated;
+    /// empty when the curve was fitted to all observations as one.
+    pub power_on_offsets: Vec<PowerOnOffset>,
+    /// σ̂_b, the spread between power-ons, channel unit, when separated.
+    pub between_power_on_sd: Option<f64>,
+}
+
+/// The thermal calibration of a unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ThermalCalibration {
+    /// Per channel.
+    pub channels: BTreeMap<Channel, ChannelCalibration>,
+    /// Power-ons in the data.
+    pub power_ons: usize,
+    /// Scale factor against temperature.
+    pub scale_factor: ScaleFactorCalibration,
+}
+
+/// What a compensation did.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CompensationSummary {
+    /// Samples compensated.
+    pub samples: usize,
+    /// Samples whose temperature lay outside a curve's fitted range (the curve's end value is
+    /// used there, as PX4 clamps to TMIN/TMAX).
+    pub clamped_samples: usize,
+    /// Coldest and warmest sample temperature, °C.
+    pub temperature_range_c: [f64; 2],
+}
+
+/// Why a record cannot be compensated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CompensationError {
+    /// The record has no temperature column.
+    #[error("the IMU record has no temp_c column, so its bias cannot be compensated")]
+    NoTemperature,
+    /// A sample's temperature is not finite.
+    #[error("sample {index} has a non-finite temperature")]
+    NonFiniteTemperature {
+        /// Position of the sample.
+        index: usize,
+    },
+}
+
+/// Fits the calibration of every channel from per-channel observations labelled by power-on.
+/// With two or more power-ons, one of them at two or more temperatures, the offsets are
+/// separated ([`fit_bias_curve_with_power_ons`]); otherwise one curve is fitted to all the
+/// observations ([`fit_bias_curve`]), whose residual then holds any power-on scatter.
+///
+/// # Errors
+/// The first channel's [`ThermalError`].
+pub fn calibrate(
+    observations: &BTreeMap<Channel, Vec<PowerOnRecord>>,
+    settings: FitSettings,
+) -> Result<ThermalCalibration, ThermalError> {
+    let mut channels = BTreeMap::new();
+    let mut power_ons = 0;
+    for (&channel, records) in observations {
+        let labels: std::collections::BTreeSet<u32> = records.iter().map(|r| r.power_on).collect();
+        power_ons = power_ons.max(labels.len());
+        channels.insert(channel, calibrate_channel(channel, records, settings)?);
+    }
+    Ok(ThermalCalibration {
+        channels,
+        power_ons,
+        scale_factor: ScaleFactorCalibration::static_level_unit(),
+    })
+}
+
+fn calibrate_channel(
+    channel: Channel,
+    records: &[PowerOnRecord],
+    settings: FitSettings,
+) -> Result<ChannelCalibration, ThermalError> {
+    match fit_bias_curve_with_power_ons(channel, records, settings) {
+        Ok(fit) => Ok(with_offsets(fit)),
+        Err(ThermalError::TooFewPowerOns { .. } | ThermalError::OffsetsUnidentifiable { .. }) => {
+            let points: Vec<TemperaturePoint> = records
+                .iter()
+                .map(|r| TemperaturePoint {
+                    temperature_c: r.temperature_c,
+                    value: r.value,
+                })
+                .collect();
+            Ok(ChannelCalibration {
+                bias: fit_bias_curve(channel, &points, settings)?,
+                power_on_offsets: Vec::new(),
+                between_power_on_sd: None,
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The power-on fit's curve as an estimate of the repeatable curve (module docs, "The band").
+fn with_offsets(fit: PowerOnFit) -> ChannelCalibration {
+    let power_ons = fit.offsets.len() as f64;
+    let mut bias = fit.curve;
+    let sd = fit.between_power_on_sd;
+    bias.coefficient_covariance[0][0] += sd * sd / power_ons;
+    let t = StudentsT::new(0.0, 1.0, power_ons - 1.0)
+        .expect("two or more power-ons")
+        .inverse_cdf(0.5 + super::BAND_CONFIDENCE / 2.0);
+    bias.scheffe_factor = bias.scheffe_factor.max(t);
+    ChannelCalibration {
+        bias,
+        power_on_offsets: fit.offsets,
+        between_power_on_sd: Some(sd),
+    }
+}
+
+impl ThermalCalibration {
+    /// The repeatable bias of `channel` at `temperature_c`, clamped to the curve's fitted
+    /// range; `None` for a channel not calibrated.
+    pub fn bias_at(&self, channel: Channel, temperature_c: f64) -> Option<f64> {
+        let curve = &self.channels.get(&channel)?.bias;
+        let [low, high] = curve.temperature_range_c;
+        Some(curve.value_at(temperature_c.clamp(low, high)))
+    }
+
+    /// True when `temperature_c` lies outside some channel's fitted range.
+    pub fn outside_range(&self, temperature_c: f64) -> bool {
+        self.channels.values().any(|c| {
+            let [low, high] = c.bias.temperature_range_c;
+            temperature_c < low || temperature_c > high
+        })
+    }
+
+    /// Subtracts the repeatable bias at each sample's own temperature from every calibrated
+    /// channel (for increments, the bias times the sample's interval, the first sample taking
+    /// the second's interval).
+    ///
+    /// # Errors
+    /// A record without temperatures or with a non-finite one; the series is then unchanged.
+    pub fn compensate(
+        &self,
+        series: &mut ImuSeries,
+    ) -> Result<CompensationSummary, CompensationError> {
+        let temperatures = series
+            .temperature_c
+            .as_ref()
+            .ok_or(CompensationError::NoTemperature)?;
+        if let Some(index) = temperatures.iter().position(|t| !t.is_finite()) {
+            return Err(CompensationError::NonFiniteTemperature { index });
+        }
+        let intervals = sample_intervals_s(series);
+        let clamped = temperatures
+            .iter()
+            .filter(|&&t| self.outside_range(t))
+            .count();
+        for &channel in self.channels.keys() {
+            let column = &mut series.channels[channel.index()];
+            for (k, value) in column.iter_mut().enumerate() {
+                let bias = self.bias_at(channel, temperatures[k]).unwrap_or(0.0);
+                *value -= bias * intervals.as_ref().map_or(1.0, |dt| dt[k]);
+            }
+        }
+        let range = temperatures
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &t| {
+                [lo.min(t), hi.max(t)]
+            });
+        Ok(CompensationSummary {
+            samples: temperatures.len(),
+            clamped_samples: clamped,
+            temperature_range_c: range,
+        })
+    }
+}
+
+/// Each sample's interval, s, for a series of increments; `None` for rates.
+fn sample_intervals_s(series: &ImuSeries) -> Option<Vec<f64>> {
+    if series.kind != Some(SampleKind::Increments) {
+        return None;
+    }
+    let mut dt: Vec<f64> = series
+        .time
+        .windows(2)
+        .map(|w| w[1].since(w[0]).as_seconds())
+        .collect();
+    dt.insert(0, dt.first().copied().unwrap_or(0.0));
+    Some(dt)
+}
