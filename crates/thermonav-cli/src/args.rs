@@ -7,7 +7,8 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::sim::chamber::CampaignSettings;
-use thermonav::sim::vessel::SurveySettings;
+use thermonav::sim::unit::DEFAULT_SERIAL;
+use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
 use thermonav::stoch::allan::DEFAULT_CONFIDENCE;
 use thermonav::stoch::characterize::CharacterizeSettings;
 
@@ -471,6 +472,19 @@ pub struct ChamberArgs {
     /// Probability that a sample is dropped.
     #[arg(long, default_value_t = campaign().drop_probability)]
     pub drop_probability: f64,
+    /// Power-ons of the unit, each visiting every set point (the first power-on's records
+    /// make the bank; repeats go to power_on_N/ and let `characterize --power-on` separate
+    /// the power-on offsets from the thermal curve).
+    #[arg(long, default_value_t = campaign().power_ons)]
+    pub power_ons: u32,
+    /// A temperature sweep of the same unit, START:END:RATE in °C, °C and °C/min (e.g.
+    /// -40:80:1), written to imu_ramp.csv in a power-on of its own.
+    #[arg(long, allow_hyphen_values = true)]
+    pub ramp: Option<String>,
+    /// Serial number of the simulated unit: the same serial is the same unit (the same
+    /// repeatable bias curve) in every campaign and survey.
+    #[arg(long, default_value_t = DEFAULT_SERIAL)]
+    pub unit_serial: u64,
     /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
     #[arg(long)]
     pub profile: Option<PathBuf>,
@@ -494,6 +508,17 @@ pub struct VesselArgs {
     /// Survey length, s (ignored with --motion, whose segments set the length).
     #[arg(long, default_value_t = SurveySettings::default().duration_s)]
     pub duration_s: f64,
+    /// A cold start: the sensor starts at this temperature, °C, and warms (or cools) to
+    /// --temperature-c with --warm-up-time-constant-s.
+    #[arg(long, allow_negative_numbers = true)]
+    pub warm_up_from_c: Option<f64>,
+    /// Time constant of the warm-up, s.
+    #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S)]
+    pub warm_up_time_constant_s: f64,
+    /// Serial number of the simulated unit (the same serial as a chamber campaign's is the
+    /// same unit, so its calibration applies).
+    #[arg(long, default_value_t = DEFAULT_SERIAL)]
+    pub unit_serial: u64,
     /// A motion-definition file (TOML: start, segments, optional waves) instead of the
     /// built-in harbour survey: cars and other platforms (see examples/motion/car.toml).
     #[arg(long)]

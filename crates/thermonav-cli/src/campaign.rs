@@ -5,10 +5,15 @@ use crate::failure::{Classify, Failure};
 use crate::settings::simulation::{ChamberSettings, VesselSettings};
 use anyhow::anyhow;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use thermonav::imu::Channel;
 use thermonav::sensor::{SensorProfile, adis16364_like};
-use thermonav::sim::chamber::{ChamberRun, RunTruth, calgary, simulate_chamber_run};
+use thermonav::sim::chamber::{
+    ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
+};
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::unit::RepeatableCurve;
 use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
@@ -33,10 +38,33 @@ pub struct ChamberTruth {
     duration_s: f64,
     jitter_us: f64,
     drop_probability: f64,
-    /// One entry per temperature, keys as in the model bank.
+    /// The unit: its serial and the repeatable bias curve of every channel.
+    pub unit: UnitTruth,
+    /// One entry per temperature of the first power-on (the bank's records), keys as in the
+    /// model bank.
     pub temperatures: Vec<RunTruth>,
-    /// The CSV written for each temperature.
+    /// The CSV written for each temperature of the first power-on.
     pub files: Vec<PathBuf>,
+    /// The records of the further power-ons and of the ramp, each with its file.
+    pub further_records: Vec<RecordTruth>,
+}
+
+/// The unit of a campaign.
+#[derive(Debug, Serialize)]
+pub struct UnitTruth {
+    /// Serial number.
+    pub serial: u64,
+    /// b(T) = Σ coefficients[k] (T − T_ref)^k per channel, without power-on offsets.
+    pub repeatable_bias: BTreeMap<Channel, RepeatableCurve>,
+}
+
+/// One record beyond the first power-on's.
+#[derive(Debug, Serialize)]
+pub struct RecordTruth {
+    /// The record's truth.
+    pub truth: RunTruth,
+    /// Its CSV.
+    pub file: PathBuf,
 }
 
 /// File name of the record at `temperature_c`.
@@ -44,27 +72,53 @@ pub fn chamber_file_name(temperature_c: f64) -> String {
     format!("imu_{temperature_c}C.csv")
 }
 
+/// Where a record of `temperature` in `power_on` is written, relative to the campaign folder.
+fn record_path(temperature: &ChamberTemperature, power_on: u32) -> PathBuf {
+    let name = match temperature {
+        ChamberTemperature::SetPoint { temperature_c } => chamber_file_name(*temperature_c),
+        ChamberTemperature::Ramp(_) => "imu_ramp.csv".into(),
+    };
+    match (temperature, power_on) {
+        (ChamberTemperature::SetPoint { .. }, 1) | (ChamberTemperature::Ramp(_), _) => name.into(),
+        _ => Path::new(&format!("power_on_{power_on}")).join(name),
+    }
+}
+
+/// Every record of a campaign: (chamber temperature, power-on), the first power-on first.
+fn campaign_records(settings: &ChamberSettings) -> Vec<(ChamberTemperature, u32)> {
+    let c = &settings.campaign;
+    let mut records: Vec<(ChamberTemperature, u32)> = (1..=c.power_ons.max(1))
+        .flat_map(|p| {
+            c.temperatures_c
+                .iter()
+                .map(move |&temperature_c| (ChamberTemperature::SetPoint { temperature_c }, p))
+        })
+        .collect();
+    if let Some(ramp) = c.ramp {
+        records.push((ChamberTemperature::Ramp(ramp), c.power_ons.max(1) + 1));
+    }
+    records
+}
+
 /// Simulates and writes the campaign; returns the truth (also written to truth.json).
 pub fn run_chamber(settings: &ChamberSettings) -> Result<ChamberTruth, Failure> {
     use rayon::prelude::*;
     let profile = load_profile(settings.profile.as_deref())?;
     create_folder(&settings.out)?;
-    let set_points = &settings.campaign.temperatures_c;
-    let progress = crate::progress::bar(set_points.len(), "simulating chamber records");
-    let results: Vec<Result<(RunTruth, PathBuf), Failure>> = set_points
+    let plan = campaign_records(settings);
+    let progress = crate::progress::bar(plan.len(), "simulating chamber records");
+    let results: Vec<Result<RecordTruth, Failure>> = plan
         .par_iter()
-        .map(|&t| {
-            let record = chamber_record(settings, &profile, t);
+        .map(|(temperature, power_on)| {
+            let record = chamber_record(settings, &profile, *temperature, *power_on);
             progress.inc(1);
             record
         })
         .collect();
     progress.finish_and_clear();
-    let (temperatures, files) = results
-        .into_iter()
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .unzip();
+    let mut records = results.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let further_records = records.split_off(settings.campaign.temperatures_c.len());
+    let (temperatures, files) = records.into_iter().map(|r| (r.truth, r.file)).unzip();
     let c = &settings.campaign;
     let truth = ChamberTruth {
         profile: profile.name.clone(),
@@ -73,31 +127,45 @@ pub fn run_chamber(settings: &ChamberSettings) -> Result<ChamberTruth, Failure> 
         duration_s: c.duration_s,
         jitter_us: c.jitter_s * 1e6,
         drop_probability: c.drop_probability,
+        unit: UnitTruth {
+            serial: settings.unit.serial,
+            repeatable_bias: settings.unit.repeatable_curves(&profile),
+        },
         temperatures,
         files,
+        further_records,
     };
     write_json_atomically(settings.out.join("truth.json"), &truth).data()?;
     Ok(truth)
 }
 
-/// Simulates and writes the record at one set point.
+/// Simulates and writes one record of the campaign.
 fn chamber_record(
     settings: &ChamberSettings,
     profile: &SensorProfile,
-    set_point_c: f64,
-) -> Result<(RunTruth, PathBuf), Failure> {
+    temperature: ChamberTemperature,
+    power_on: u32,
+) -> Result<RecordTruth, Failure> {
     let run = ChamberRun {
-        set_point_c,
+        temperature,
         duration_s: settings.campaign.duration_s,
+        unit: settings.unit,
+        power_on,
         clock: settings.clock,
         site: calgary(),
         wander: settings.campaign.wander,
         seed: settings.seed,
     };
     let record = simulate_chamber_run(profile, &run).usage()?;
-    let path = settings.out.join(chamber_file_name(set_point_c));
+    let path = settings.out.join(record_path(&temperature, power_on));
+    if let Some(folder) = path.parent() {
+        create_folder(folder)?;
+    }
     write_imu_file(&path, &record.series).data()?;
-    Ok((record.truth, path))
+    Ok(RecordTruth {
+        truth: record.truth,
+        file: path,
+    })
 }
 
 /// Creates `dir` and its parents.
@@ -144,7 +212,8 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
     };
     let run = VesselRun {
         motion,
-        temperature_c: survey.temperature_c,
+        temperature: settings.temperature.clone(),
+        unit: settings.unit,
         clock: SampleClock::new(survey.imu_rate_hz, survey.imu_jitter_s, 0.0).usage()?,
         gnss: GnssSettings::default(),
         seed: settings.seed,

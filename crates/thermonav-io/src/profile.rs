@@ -7,8 +7,10 @@
 //! [channels.gx]
 //! white_noise_deg_per_sqrt_h = 2.0
 //! bias_random_walk_deg_per_h_per_sqrt_h = 0.0
-//! turn_on_bias_sd_deg_s = 1.0
+//! turn_on_bias_sd_deg_s = 1.0        # the unit's fixed bias, unit to unit
+//! power_on_offset_sd_deg_s = 0.1     # optional: added at each power-on
 //! bias_tempco_deg_s_per_c = 0.01
+//! bias_tempco2_deg_s_per_c2 = -5e-5  # optional: curvature of bias(T)
 //! scale_factor_tempco_ppm_per_c = 40.0
 //! quantization_deg_s = 0.05
 //! bias_gauss_markov = [
@@ -21,7 +23,9 @@
 //! white_noise_m_s_per_sqrt_h = 0.12
 //! bias_random_walk_m_s2_per_sqrt_h = 0.0
 //! turn_on_bias_sd_mg = 2.67
+//! power_on_offset_sd_mg = 0.27
 //! bias_tempco_mg_per_c = 0.05
+//! bias_tempco2_mg_per_c2 = -2.5e-4
 //! scale_factor_tempco_ppm_per_c = 25.0
 //! quantization_mg = 1.0
 //! bias_gauss_markov = [{ temperature_c = 20.0, correlation_time_s = 400.0, sigma_mg = 0.145 }]
@@ -95,7 +99,11 @@ struct GyroChannel {
     #[serde(default)]
     turn_on_bias_sd_deg_s: f64,
     #[serde(default)]
+    power_on_offset_sd_deg_s: f64,
+    #[serde(default)]
     bias_tempco_deg_s_per_c: f64,
+    #[serde(default)]
+    bias_tempco2_deg_s_per_c2: f64,
     #[serde(default)]
     scale_factor_tempco_ppm_per_c: f64,
     #[serde(default)]
@@ -122,7 +130,11 @@ struct AccelChannel {
     #[serde(default)]
     turn_on_bias_sd_mg: f64,
     #[serde(default)]
+    power_on_offset_sd_mg: f64,
+    #[serde(default)]
     bias_tempco_mg_per_c: f64,
+    #[serde(default)]
+    bias_tempco2_mg_per_c2: f64,
     #[serde(default)]
     scale_factor_tempco_ppm_per_c: f64,
     #[serde(default)]
@@ -161,7 +173,9 @@ impl GyroChannel {
                 self.bias_random_walk_deg_per_h_per_sqrt_h,
             ) / SQRT_H_IN_S,
             turn_on_bias_sigma: deg_to_rad(self.turn_on_bias_sd_deg_s),
+            power_on_offset_sigma: deg_to_rad(self.power_on_offset_sd_deg_s),
             bias_temperature_coefficient_per_c: deg_to_rad(self.bias_tempco_deg_s_per_c),
+            bias_temperature_quadratic_per_c2: deg_to_rad(self.bias_tempco2_deg_s_per_c2),
             scale_factor_temperature_coefficient_ppm_per_c: self.scale_factor_tempco_ppm_per_c,
             scale_factor_gauss_markov: self.scale_factor_gauss_markov,
             quantization_step: deg_to_rad(self.quantization_deg_s),
@@ -175,7 +189,9 @@ impl GyroChannel {
                 p.bias_random_walk_density,
             ) * SQRT_H_IN_S,
             turn_on_bias_sd_deg_s: rad_to_deg(p.turn_on_bias_sigma),
+            power_on_offset_sd_deg_s: rad_to_deg(p.power_on_offset_sigma),
             bias_tempco_deg_s_per_c: rad_to_deg(p.bias_temperature_coefficient_per_c),
+            bias_tempco2_deg_s_per_c2: rad_to_deg(p.bias_temperature_quadratic_per_c2),
             scale_factor_tempco_ppm_per_c: p.scale_factor_temperature_coefficient_ppm_per_c,
             quantization_deg_s: rad_to_deg(p.quantization_step),
             bias_gauss_markov: p
@@ -209,7 +225,9 @@ impl AccelChannel {
                 .collect(),
             bias_random_walk_density: self.bias_random_walk_m_s2_per_sqrt_h / SQRT_H_IN_S,
             turn_on_bias_sigma: mg_to_m_per_s2(self.turn_on_bias_sd_mg),
+            power_on_offset_sigma: mg_to_m_per_s2(self.power_on_offset_sd_mg),
             bias_temperature_coefficient_per_c: mg_to_m_per_s2(self.bias_tempco_mg_per_c),
+            bias_temperature_quadratic_per_c2: mg_to_m_per_s2(self.bias_tempco2_mg_per_c2),
             scale_factor_temperature_coefficient_ppm_per_c: self.scale_factor_tempco_ppm_per_c,
             scale_factor_gauss_markov: self.scale_factor_gauss_markov,
             quantization_step: mg_to_m_per_s2(self.quantization_mg),
@@ -223,7 +241,9 @@ impl AccelChannel {
             ),
             bias_random_walk_m_s2_per_sqrt_h: p.bias_random_walk_density * SQRT_H_IN_S,
             turn_on_bias_sd_mg: m_per_s2_to_mg(p.turn_on_bias_sigma),
+            power_on_offset_sd_mg: m_per_s2_to_mg(p.power_on_offset_sigma),
             bias_tempco_mg_per_c: m_per_s2_to_mg(p.bias_temperature_coefficient_per_c),
+            bias_tempco2_mg_per_c2: m_per_s2_to_mg(p.bias_temperature_quadratic_per_c2),
             scale_factor_tempco_ppm_per_c: p.scale_factor_temperature_coefficient_ppm_per_c,
             quantization_mg: m_per_s2_to_mg(p.quantization_step),
             bias_gauss_markov: p

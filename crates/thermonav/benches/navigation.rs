@@ -21,7 +21,10 @@ fn one_hour(c: &mut Criterion) {
         &profile,
         &VesselRun {
             motion: harbour_survey(3600.0),
-            temperature_c: 17.0,
+            temperature: thermonav::sim::vessel::SurveyTemperature::Constant {
+                temperature_c: 17.0,
+            },
+            unit: thermonav::sim::unit::SimulatedUnit::default(),
             clock: SampleClock::new(200.0, 0.0, 0.0).expect("clock"),
             gnss,
             seed: 1,

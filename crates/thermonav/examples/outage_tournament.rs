@@ -151,7 +151,10 @@ fn survey(
     let gnss = GnssSettings::default();
     let run = VesselRun {
         motion: harbour_survey(SURVEY_S),
-        temperature_c: SURVEY_C,
+        temperature: thermonav::sim::vessel::SurveyTemperature::Constant {
+            temperature_c: SURVEY_C,
+        },
+        unit: thermonav::sim::unit::SimulatedUnit::default(),
         clock: SampleClock::new(IMU_HZ, 0.0, 0.0)?,
         gnss,
         seed,

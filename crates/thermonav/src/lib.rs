@@ -57,7 +57,9 @@
 //! let mut entries = Vec::new();
 //! for set_point_c in [0.0, 40.0] {
 //!     let chamber = ChamberRun {
-//!         set_point_c,
+//!         temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint { temperature_c: set_point_c },
+//!         unit: thermonav::sim::unit::SimulatedUnit::default(),
+//!         power_on: 1,
 //!         duration_s: 1800.0,
 //!         clock: SampleClock::new(10.0, 50e-6, 0.0)?, // 10 Hz, 50 µs timing jitter
 //!         site: calgary(),
@@ -94,7 +96,8 @@
 //! let gnss = GnssSettings::default();
 //! let survey = VesselRun {
 //!     motion: harbour_survey(300.0),
-//!     temperature_c: 17.0,
+//!     temperature: thermonav::sim::vessel::SurveyTemperature::Constant { temperature_c: 17.0 },
+//!     unit: thermonav::sim::unit::SimulatedUnit::default(),
 //!     clock: SampleClock::new(20.0, 0.0, 0.0)?,
 //!     gnss,
 //!     seed,

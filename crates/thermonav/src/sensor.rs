@@ -116,10 +116,18 @@ pub struct ChannelProfile {
     pub bias_gauss_markov: Vec<GaussMarkovPoint>,
     /// Bias random-walk density K (rad/s/√s or m/s²/√s); 0 for none.
     pub bias_random_walk_density: f64,
-    /// Standard deviation of the turn-on bias, drawn once per run (rad/s or m/s²).
+    /// Standard deviation of the unit's fixed bias, drawn once per unit (unit to unit; the
+    /// data sheet's initial bias), rad/s or m/s².
     pub turn_on_bias_sigma: f64,
+    /// Standard deviation of the offset each power-on adds to the unit's fixed bias (the
+    /// turn-on to turn-on repeatability), rad/s or m/s²; 0 for none.
+    #[serde(default)]
+    pub power_on_offset_sigma: f64,
     /// Deterministic bias change per °C away from the reference temperature.
     pub bias_temperature_coefficient_per_c: f64,
+    /// Quadratic term of the deterministic bias, per °C² away from the reference temperature.
+    #[serde(default)]
+    pub bias_temperature_quadratic_per_c2: f64,
     /// Deterministic scale-factor change per °C away from the reference temperature, ppm/°C.
     pub scale_factor_temperature_coefficient_ppm_per_c: f64,
     /// Gauss-Markov scale-factor error, when modelled.
@@ -284,7 +292,9 @@ impl ChannelProfile {
             bias_gauss_markov: vec![bias],
             bias_random_walk_density,
             turn_on_bias_sigma: 0.0,
+            power_on_offset_sigma: 0.0,
             bias_temperature_coefficient_per_c: 0.0,
+            bias_temperature_quadratic_per_c2: 0.0,
             scale_factor_temperature_coefficient_ppm_per_c: 0.0,
             scale_factor_gauss_markov: None,
             quantization_step: 0.0,
@@ -311,6 +321,18 @@ impl ChannelProfile {
             false,
         )?;
         check(channel, "quantization_step", self.quantization_step, false)?;
+        check(
+            channel,
+            "power_on_offset_sigma",
+            self.power_on_offset_sigma,
+            false,
+        )?;
+        check(
+            channel,
+            "|bias_temperature_quadratic_per_c2|",
+            self.bias_temperature_quadratic_per_c2.abs(),
+            false,
+        )?;
         check(
             channel,
             "|bias_temperature_coefficient_per_c|",
@@ -372,6 +394,13 @@ impl ChannelProfile {
             }),
             None => Ok(()),
         }
+    }
+
+    /// The deterministic (repeatable) bias change at `delta_c` = T − T_ref:
+    /// c₁ ΔT + c₂ ΔT², channel unit.
+    pub fn temperature_bias(&self, delta_c: f64) -> f64 {
+        (self.bias_temperature_coefficient_per_c + self.bias_temperature_quadratic_per_c2 * delta_c)
+            * delta_c
     }
 
     /// The Gauss-Markov bias at `temperature_c` (monotone cubic in ln Tc and ln σ).
@@ -461,6 +490,17 @@ const AXIS_SIGMA_SCALE: [f64; 3] = [1.0, 1.1, 0.9];
 
 pub use crate::stoch::noise_terms::GAUSS_MARKOV_ADEV_PEAK_RATIO;
 
+/// Turn-on to turn-on bias repeatability of the built-in gyros, deg/s: a tenth of the
+/// data sheet's ±3 deg/s (3σ) initial bias, which is mostly unit to unit.
+const POWER_ON_OFFSET_DEG_S: f64 = 0.1;
+/// Turn-on to turn-on repeatability of the built-in accelerometers, mg (a tenth of ±8 mg, 3σ).
+const POWER_ON_OFFSET_MG: f64 = 0.27;
+/// Curvature of the built-in gyro bias curve, deg/s/°C²: over ±50 °C it bends the linear
+/// 0.01 deg/s/°C by a quarter, as MEMS bias curves bend.
+const BIAS_CURVATURE_DEG_S_PER_C2: f64 = 5e-5;
+/// Curvature of the built-in accelerometer bias curve, mg/°C².
+const BIAS_CURVATURE_MG_PER_C2: f64 = 2.5e-4;
+
 /// The built-in ADIS16364-like profile, from the datasheet figures quoted by the paper
 /// (method.md): gyro ARW 2 deg/√h, in-run bias stability 0.007 deg/s, initial bias ±3 deg/s
 /// (3σ), bias tempco ±0.01 deg/s/°C, LSB 0.05 deg/s; accelerometer VRW 0.12 m/s/√h, in-run
@@ -493,7 +533,10 @@ fn default_channel(channel: Channel) -> ChannelProfile {
             ),
             bias_random_walk_density: 0.0,
             turn_on_bias_sigma: deg_to_rad(1.0),
+            power_on_offset_sigma: deg_to_rad(POWER_ON_OFFSET_DEG_S),
             bias_temperature_coefficient_per_c: tempco_sign * deg_to_rad(0.01),
+            bias_temperature_quadratic_per_c2: -tempco_sign
+                * deg_to_rad(BIAS_CURVATURE_DEG_S_PER_C2),
             scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 40.0,
             scale_factor_gauss_markov: None,
             quantization_step: deg_to_rad(0.05),
@@ -510,7 +553,10 @@ fn default_channel(channel: Channel) -> ChannelProfile {
             ),
             bias_random_walk_density: 0.0,
             turn_on_bias_sigma: mg_to_m_per_s2(8.0 / 3.0),
+            power_on_offset_sigma: mg_to_m_per_s2(POWER_ON_OFFSET_MG),
             bias_temperature_coefficient_per_c: tempco_sign * mg_to_m_per_s2(0.05),
+            bias_temperature_quadratic_per_c2: -tempco_sign
+                * mg_to_m_per_s2(BIAS_CURVATURE_MG_PER_C2),
             scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 25.0,
             scale_factor_gauss_markov: None,
             quantization_step: mg_to_m_per_s2(1.0),

@@ -37,7 +37,10 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
 use thermonav::sim::chamber::{CampaignSettings, ChannelTruth, RunTruth};
-use thermonav::sim::vessel::{GnssSettings, SurveySettings, VesselRun, simulate_vessel};
+use thermonav::sim::unit::SimulatedUnit;
+use thermonav::sim::vessel::{
+    GnssSettings, SurveySettings, SurveyTemperature, VesselRun, simulate_vessel,
+};
 use thermonav::stoch::bank::{
     ChannelModel, GaussMarkovEstimate, GaussMarkovSource, ModelBank, Selection,
 };
@@ -150,6 +153,10 @@ fn vessel_settings(args: &DemoArgs, p: &Plan) -> VesselSettings {
             duration_s: p.vessel_s,
             ..SurveySettings::default()
         },
+        temperature: SurveyTemperature::Constant {
+            temperature_c: SurveySettings::default().temperature_c,
+        },
+        unit: SimulatedUnit::default(),
         motion: None,
         profile: None,
         seed: args.seed,

@@ -5,9 +5,10 @@ use crate::args::{ChamberArgs, VesselArgs};
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::PathBuf;
-use thermonav::sim::chamber::CampaignSettings;
+use thermonav::sim::chamber::{CampaignSettings, Ramp};
 use thermonav::sim::clock::SampleClock;
-use thermonav::sim::vessel::SurveySettings;
+use thermonav::sim::unit::SimulatedUnit;
+use thermonav::sim::vessel::{SurveySettings, SurveyTemperature};
 
 /// A chamber campaign to simulate and where to write it.
 #[derive(Debug, Clone)]
@@ -22,6 +23,8 @@ pub struct ChamberSettings {
     pub profile: Option<PathBuf>,
     /// Seed of every draw.
     pub seed: u64,
+    /// The unit in the chamber.
+    pub unit: SimulatedUnit,
 }
 
 /// Resolves `simulate chamber`.
@@ -32,12 +35,68 @@ pub fn chamber(args: &ChamberArgs) -> Result<ChamberSettings, Failure> {
         rate_hz: args.rate_hz,
         jitter_s: args.jitter_us * 1e-6,
         drop_probability: args.drop_probability,
+        power_ons: power_ons(args.power_ons)?,
+        ramp: args.ramp.as_deref().map(ramp).transpose()?,
         ..CampaignSettings::default()
     };
     profile_io(args.profile.as_ref())
         .output_folder("chamber folder", &args.out)
         .check()?;
-    chamber_settings(args.out.clone(), campaign, args.profile.clone(), args.seed)
+    let mut settings =
+        chamber_settings(args.out.clone(), campaign, args.profile.clone(), args.seed)?;
+    settings.unit = SimulatedUnit {
+        serial: args.unit_serial,
+    };
+    Ok(settings)
+}
+
+/// Most power-ons a campaign repeats (each one repeats every set point).
+pub const MAX_POWER_ONS: u32 = 100;
+
+fn power_ons(n: u32) -> Result<u32, Failure> {
+    if (1..=MAX_POWER_ONS).contains(&n) {
+        return Ok(n);
+    }
+    Err(Failure::Usage(anyhow!(
+        "--power-ons {n}: give 1 to {MAX_POWER_ONS}"
+    )))
+}
+
+/// `START:END:RATE` in °C, °C and °C/min, within the characterisation range.
+fn ramp(text: &str) -> Result<Ramp, Failure> {
+    let bad = |why: &str| {
+        Failure::Usage(anyhow!(
+            "--ramp {text:?}: {why} (expected START:END:RATE in °C, °C and °C/min, e.g. -40:80:1)"
+        ))
+    };
+    let parts: Vec<&str> = text.split(':').collect();
+    let [start, end, rate] = parts[..] else {
+        return Err(bad("three fields are needed"));
+    };
+    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    let (Some(start_c), Some(end_c), Some(rate)) = (number(start), number(end), number(rate))
+    else {
+        return Err(bad("each field must be a finite number"));
+    };
+    ramp_within_range(start_c, end_c, rate).map_err(|why| bad(&why))
+}
+
+fn ramp_within_range(start_c: f64, end_c: f64, rate_c_per_min: f64) -> Result<Ramp, String> {
+    let (low, high) = super::characterization::TEMPERATURE_RANGE_C;
+    if [start_c, end_c].iter().any(|t| !(low..=high).contains(t)) {
+        return Err(format!("the ends must lie within {low}..{high} °C"));
+    }
+    if start_c == end_c {
+        return Err("the start and end must differ".into());
+    }
+    if !(rate_c_per_min > 0.0 && rate_c_per_min <= 100.0) {
+        return Err("the rate must be above 0 and at most 100 °C/min".into());
+    }
+    Ok(Ramp {
+        start_c,
+        end_c,
+        rate_c_per_min,
+    })
 }
 
 /// Checked chamber settings.
@@ -59,6 +118,7 @@ pub fn chamber_settings(
         clock,
         profile,
         seed,
+        unit: SimulatedUnit::default(),
     })
 }
 
@@ -94,6 +154,10 @@ pub struct VesselSettings {
     pub out: PathBuf,
     /// Temperature, length and IMU clock.
     pub survey: SurveySettings,
+    /// The sensor's temperature through the survey.
+    pub temperature: SurveyTemperature,
+    /// The unit on board.
+    pub unit: SimulatedUnit,
     /// A motion-definition file instead of the harbour survey.
     pub motion: Option<PathBuf>,
     /// Sensor profile (TOML); none: the built-in one.
@@ -123,9 +187,42 @@ pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
     .check()?;
     Ok(VesselSettings {
         out: args.out.clone(),
+        temperature: survey_temperature(
+            &survey,
+            args.warm_up_from_c,
+            args.warm_up_time_constant_s,
+        )?,
+        unit: SimulatedUnit {
+            serial: args.unit_serial,
+        },
         survey,
         motion: args.motion.clone(),
         profile: args.profile.clone(),
         seed: args.seed,
+    })
+}
+
+/// The survey's temperature: held at `--temperature-c`, or warming up to it from
+/// `--warm-up-from-c` with the time constant given.
+pub fn survey_temperature(
+    survey: &SurveySettings,
+    warm_up_from_c: Option<f64>,
+    time_constant_s: f64,
+) -> Result<SurveyTemperature, Failure> {
+    let Some(start_c) = warm_up_from_c else {
+        return Ok(SurveyTemperature::Constant {
+            temperature_c: survey.temperature_c,
+        });
+    };
+    let start_c = super::finite("--warm-up-from-c", start_c)?;
+    if !(time_constant_s.is_finite() && time_constant_s > 0.0) {
+        return Err(Failure::Usage(anyhow!(
+            "--warm-up-time-constant-s {time_constant_s} must be positive"
+        )));
+    }
+    Ok(SurveyTemperature::WarmUp {
+        start_c,
+        settled_c: survey.temperature_c,
+        time_constant_s,
     })
 }

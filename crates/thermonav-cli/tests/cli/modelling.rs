@@ -123,7 +123,7 @@ fn characterize_then_select_by_linear_interpolation() {
         tc(0),
         tc(1)
     );
-    assert_eq!(full["version"], 1);
+    assert_eq!(full["version"], 2);
 }
 
 #[test]

@@ -42,7 +42,11 @@ pub fn campaign(profile: &SensorProfile) -> Result<Vec<ChamberRecord>, ChamberEr
         .iter()
         .map(|&set_point_c| {
             let run = ChamberRun {
-                set_point_c,
+                temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint {
+                    temperature_c: set_point_c,
+                },
+                unit: thermonav::sim::unit::SimulatedUnit::default(),
+                power_on: 1,
                 duration_s: RECORD_S,
                 clock,
                 site: calgary(),

@@ -4,17 +4,20 @@
 //! signal (Earth rate for gyros, specific force −g along z for accelerometers, see
 //! CONVENTIONS.md) through its error model at the chamber's temperature:
 //!
-//! y_k = (1 + s_k) u + b_on + c (T_k − T_ref) + b_GM,k + b_RW,k + n_k, then quantised,
+//! y_k = (1 + s_k) u + b_unit + b_p + c₁ ΔT_k + c₂ ΔT_k² + b_GM,k + b_RW,k + n_k, then quantised,
 //!
 //! with u the true signal, s_k the scale-factor error (deterministic temperature term plus an
-//! optional Gauss-Markov term, in ppm), b_on the turn-on bias, c the bias temperature
-//! coefficient, T_k the chamber temperature (set point plus a slow Gauss-Markov wander), b_GM
+//! optional Gauss-Markov term, in ppm), b_unit the unit's fixed bias and b_p the power-on's
+//! offset (`sim::unit`: the same unit in every run, a new offset at each power-on), c₁, c₂ the
+//! bias temperature coefficients, ΔT_k = T_k − T_ref with T_k the chamber temperature (a set
+//! point, or a linear ramp, plus a slow Gauss-Markov wander), b_GM
 //! the temperature-dependent Gauss-Markov bias, b_RW a bias random walk and n_k white noise of
 //! density N averaged over the actual interval (variance N²/dt_k). Every process steps with
 //! the actual dt_k of its sample.
 
 use super::clock::{ClockError, SampleClock};
 use super::errors::{ChannelErrors, gauss_markov_step, standard_normal};
+use super::unit::SimulatedUnit;
 use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::rng::{SimRng, named_rng};
@@ -58,6 +61,12 @@ pub struct CampaignSettings {
     pub drop_probability: f64,
     /// Slow wander of the chamber temperature.
     pub wander: ChamberWander,
+    /// Power-ons of the unit: each visits every set point, powered throughout (the first
+    /// one's records make the model bank; the others repeat them, so that the power-on
+    /// offsets can be told apart from the thermal curve).
+    pub power_ons: u32,
+    /// A temperature sweep of the same unit after the set points, in a power-on of its own.
+    pub ramp: Option<Ramp>,
 }
 
 impl Default for CampaignSettings {
@@ -72,17 +81,90 @@ impl Default for CampaignSettings {
                 sigma_c: 0.05,
                 correlation_time_s: 600.0,
             },
+            power_ons: 1,
+            ramp: None,
         }
     }
 }
 
-/// What to simulate at one temperature.
+/// A linear temperature sweep of the chamber (the PX4 way of thermal calibration: one log
+/// while the unit warms or cools through its range).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ramp {
+    /// Start temperature, °C.
+    pub start_c: f64,
+    /// End temperature, °C.
+    pub end_c: f64,
+    /// Rate, °C/min (positive; the sign follows from start and end).
+    pub rate_c_per_min: f64,
+}
+
+impl Ramp {
+    /// Length of the sweep, s.
+    pub fn duration_s(&self) -> f64 {
+        (self.end_c - self.start_c).abs() / self.rate_c_per_min * 60.0
+    }
+
+    /// The ramp's temperature `t_s` after its start, °C (the end value held after the end).
+    pub fn temperature_at(&self, t_s: f64) -> f64 {
+        let step = self.rate_c_per_min / 60.0 * t_s.max(0.0);
+        let span = self.end_c - self.start_c;
+        self.start_c + span.signum() * step.min(span.abs())
+    }
+}
+
+/// The chamber's temperature during a run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ChamberTemperature {
+    /// Held at a set point, °C.
+    SetPoint {
+        /// The set point, °C.
+        temperature_c: f64,
+    },
+    /// Swept linearly.
+    Ramp(Ramp),
+}
+
+impl ChamberTemperature {
+    /// The temperature the run is named after and its truth is given at: the set point, or
+    /// the middle of the ramp, °C.
+    pub fn nominal_c(&self) -> f64 {
+        match self {
+            Self::SetPoint { temperature_c } => *temperature_c,
+            Self::Ramp(r) => 0.5 * (r.start_c + r.end_c),
+        }
+    }
+
+    /// The temperature `t_s` after the start, before the wander, °C.
+    fn at(&self, t_s: f64) -> f64 {
+        match self {
+            Self::SetPoint { temperature_c } => *temperature_c,
+            Self::Ramp(r) => r.temperature_at(t_s),
+        }
+    }
+
+    /// The name of the run's generators.
+    fn stream_name(&self) -> String {
+        match self {
+            Self::SetPoint { temperature_c } => temperature_c.to_string(),
+            Self::Ramp(_) => "ramp".into(),
+        }
+    }
+}
+
+/// What to simulate in one chamber run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ChamberRun {
-    /// Chamber set point, °C.
-    pub set_point_c: f64,
-    /// Record length, s.
+    /// The chamber's temperature.
+    pub temperature: ChamberTemperature,
+    /// Record length, s (a ramp's own length when it sweeps).
     pub duration_s: f64,
+    /// The unit in the chamber.
+    pub unit: SimulatedUnit,
+    /// Which power-on of the unit this run belongs to (runs of one power-on share its
+    /// offset).
+    pub power_on: u32,
     /// Sampling clock.
     pub clock: SampleClock,
     /// Site of the chamber.
@@ -104,10 +186,14 @@ pub struct ChannelTruth {
     pub white_noise_density: f64,
     /// Bias random-walk density K.
     pub rate_random_walk: f64,
-    /// Turn-on bias drawn for this run.
-    pub turn_on_bias: f64,
-    /// Deterministic bias at the set point, c (T − T_ref).
+    /// The unit's fixed bias (the same in every run of the unit).
+    pub unit_bias: f64,
+    /// This power-on's offset.
+    pub power_on_offset: f64,
+    /// Deterministic bias at the nominal temperature, c₁ ΔT + c₂ ΔT².
     pub temperature_bias: f64,
+    /// The repeatable bias at the nominal temperature: `unit_bias + temperature_bias`.
+    pub repeatable_bias: f64,
     /// The true static signal u.
     pub true_signal: f64,
     /// Quantisation step.
@@ -126,8 +212,12 @@ pub struct TrueGaussMarkov {
 /// The truth of one run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunTruth {
-    /// Set point, °C.
+    /// Nominal temperature (set point, or middle of the ramp), °C.
     pub temperature_c: f64,
+    /// The chamber's temperature.
+    pub chamber: ChamberTemperature,
+    /// The power-on the run belongs to.
+    pub power_on: u32,
     /// Per channel.
     pub channels: BTreeMap<Channel, ChannelTruth>,
 }
@@ -152,7 +242,7 @@ pub enum ChamberError {
     Profile(#[from] ProfileError),
     /// Invalid temperature or wander.
     #[error(
-        "chamber set point {set_point_c} °C and wander σ {sigma_c} °C / Tc {correlation_time_s} s must be finite (σ ≥ 0, Tc > 0)"
+        "chamber temperature {set_point_c} °C and wander σ {sigma_c} °C / Tc {correlation_time_s} s must be finite (σ ≥ 0, Tc > 0; a ramp needs distinct finite ends and a positive rate)"
     )]
     Chamber {
         /// Set point.
@@ -189,30 +279,42 @@ pub fn simulate_chamber_run(
 ) -> Result<ChamberRecord, ChamberError> {
     profile.validate()?;
     validate_run(run)?;
-    let stream = |what: &str| named_rng(run.seed, &format!("chamber/{}/{what}", run.set_point_c));
-    let time = run.clock.timestamps(run.duration_s, &mut stream("clock"))?;
+    let name = run.temperature.stream_name();
+    let power_on = run.power_on;
+    let stream = |what: &str| named_rng(run.seed, &format!("chamber/{name}/p{power_on}/{what}"));
+    let time = run
+        .clock
+        .timestamps(run_duration_s(run), &mut stream("clock"))?;
     let dt_s = intervals_s(&time);
     let temperature_c = chamber_temperature(run, &dt_s, &mut stream("temperature"));
+    let nominal_c = run.temperature.nominal_c();
     let signal = static_signal(run.site);
     let mut series = ImuSeries::new(SampleKind::Rates);
     let mut channels = BTreeMap::new();
     for channel in Channel::ALL {
         let p = &profile.channels[&channel];
         let mut rng = stream(channel.name());
+        let constant = ConstantBias {
+            unit: run.unit.fixed_bias(profile, channel),
+            power_on: run.unit.power_on_offset(
+                profile,
+                channel,
+                run.seed,
+                &format!("chamber/{power_on}"),
+            ),
+        };
         let mut errors = ChannelErrors::new(
             p,
             profile.reference_temperature_c,
-            run.set_point_c,
+            temperature_c[0],
+            constant.unit + constant.power_on,
             &mut rng,
         );
-        let truth = channel_truth(
-            p,
-            &errors,
-            profile.reference_temperature_c,
-            run.set_point_c,
-            signal[channel.index()],
-            channel,
-        );
+        let at = TruthTemperature {
+            nominal_c,
+            reference_c: profile.reference_temperature_c,
+        };
+        let truth = channel_truth(p, constant, at, signal[channel.index()], channel);
         series.channels[channel.index()] = channel_values(
             &mut errors,
             truth.true_signal,
@@ -227,15 +329,36 @@ pub fn simulate_chamber_run(
     Ok(ChamberRecord {
         series,
         truth: RunTruth {
-            temperature_c: run.set_point_c,
+            temperature_c: nominal_c,
+            chamber: run.temperature,
+            power_on,
             channels,
         },
     })
 }
 
+/// The record's length: the ramp's for a sweep, else the run's.
+fn run_duration_s(run: &ChamberRun) -> f64 {
+    match run.temperature {
+        ChamberTemperature::Ramp(r) => r.duration_s(),
+        ChamberTemperature::SetPoint { .. } => run.duration_s,
+    }
+}
+
 fn validate_run(run: &ChamberRun) -> Result<(), ChamberError> {
     let w = run.wander;
-    let ok = run.set_point_c.is_finite()
+    let ramp_ok = match run.temperature {
+        ChamberTemperature::Ramp(r) => {
+            r.start_c.is_finite()
+                && r.end_c.is_finite()
+                && r.start_c != r.end_c
+                && r.rate_c_per_min.is_finite()
+                && r.rate_c_per_min > 0.0
+        }
+        ChamberTemperature::SetPoint { .. } => true,
+    };
+    let ok = ramp_ok
+        && run.temperature.nominal_c().is_finite()
         && w.sigma_c.is_finite()
         && w.sigma_c >= 0.0
         && w.correlation_time_s.is_finite()
@@ -244,7 +367,7 @@ fn validate_run(run: &ChamberRun) -> Result<(), ChamberError> {
         Ok(())
     } else {
         Err(ChamberError::Chamber {
-            set_point_c: run.set_point_c,
+            set_point_c: run.temperature.nominal_c(),
             sigma_c: w.sigma_c,
             correlation_time_s: w.correlation_time_s,
         })
@@ -263,30 +386,46 @@ fn intervals_s(time: &[Timestamp]) -> Vec<f64> {
     dt
 }
 
-/// Set point plus a stationary Gauss-Markov wander.
+/// Set point or ramp plus a stationary Gauss-Markov wander.
 fn chamber_temperature(run: &ChamberRun, dt_s: &[f64], rng: &mut SimRng) -> Vec<f64> {
     let w = run.wander;
     let mut x = w.sigma_c * standard_normal(rng);
+    let mut elapsed_s = 0.0;
     dt_s.iter()
         .enumerate()
         .map(|(k, &dt)| {
             if k > 0 {
                 x = gauss_markov_step(x, dt, w.correlation_time_s, w.sigma_c, standard_normal(rng));
+                elapsed_s += dt;
             }
-            run.set_point_c + x
+            run.temperature.at(elapsed_s) + x
         })
         .collect()
 }
 
+/// The constant bias of a run: the unit's and the power-on's.
+#[derive(Debug, Clone, Copy)]
+struct ConstantBias {
+    unit: f64,
+    power_on: f64,
+}
+
+/// Where a run's truth is stated: its nominal temperature and the profile's reference, °C.
+#[derive(Debug, Clone, Copy)]
+struct TruthTemperature {
+    nominal_c: f64,
+    reference_c: f64,
+}
+
 fn channel_truth(
     p: &ChannelProfile,
-    errors: &ChannelErrors<'_>,
-    reference_c: f64,
-    set_point_c: f64,
+    constant: ConstantBias,
+    at: TruthTemperature,
     true_signal: f64,
     channel: Channel,
 ) -> ChannelTruth {
-    let bias = errors.bias_parameters();
+    let bias = p.bias_at(at.nominal_c);
+    let temperature_bias = p.temperature_bias(at.nominal_c - at.reference_c);
     ChannelTruth {
         unit: channel.si_unit(SampleKind::Rates),
         gauss_markov: TrueGaussMarkov {
@@ -295,8 +434,10 @@ fn channel_truth(
         },
         white_noise_density: p.white_noise_density,
         rate_random_walk: p.bias_random_walk_density,
-        turn_on_bias: errors.turn_on_bias(),
-        temperature_bias: p.bias_temperature_coefficient_per_c * (set_point_c - reference_c),
+        unit_bias: constant.unit,
+        power_on_offset: constant.power_on,
+        temperature_bias,
+        repeatable_bias: constant.unit + temperature_bias,
         true_signal,
         quantization_step: p.quantization_step,
     }
@@ -334,8 +475,12 @@ mod tests {
 
     fn run(rate_hz: f64, duration_s: f64, seed: u64) -> ChamberRun {
         ChamberRun {
-            set_point_c: 20.0,
+            temperature: ChamberTemperature::SetPoint {
+                temperature_c: 20.0,
+            },
             duration_s,
+            unit: SimulatedUnit::default(),
+            power_on: 1,
             clock: SampleClock::new(rate_hz, 0.0, 0.0).unwrap(),
             site: calgary(),
             wander: ChamberWander {

@@ -1,8 +1,11 @@
 //! The error process of one inertial channel, stepped sample by sample with the actual dt.
 //!
-//! y_k = (1 + s_k·1e-6) u_k + b_on + c (T_k − T_ref) + b_GM,k + b_RW,k + n_k, then quantised,
-//! where s_k is the scale-factor error in ppm (temperature term plus an optional Gauss-Markov
-//! term), b_on the turn-on bias, c the bias temperature coefficient, b_GM the Gauss-Markov bias
+//! y_k = (1 + s_k·1e-6) u_k + b_c + c₁ ΔT_k + c₂ ΔT_k² + b_GM,k + b_RW,k + n_k, then quantised,
+//! where ΔT_k = T_k − T_ref, s_k is the scale-factor error in ppm (temperature term plus an
+//! optional Gauss-Markov term), b_c the constant bias of this power-on (the unit's fixed bias
+//! plus the power-on's offset, `sim::unit`), c₁ and c₂ the bias temperature coefficients, b_GM
+//! the Gauss-Markov bias, whose Tc and σ follow the temperature (re-read from the profile when
+//! T has moved by more than [`BIAS_PARAMETER_STEP_C`] since they were last read),
 //! (exact step φ_k = exp(−dt_k/Tc), driving variance σ²(1 − φ_k²)), b_RW a random walk
 //! (variance K² dt_k per step) and n_k white noise of density N averaged over dt_k (variance
 //! N²/dt_k). The Gauss-Markov processes start from their stationary distributions.
@@ -41,13 +44,17 @@ pub fn quantize(value: f64, step: f64) -> f64 {
     }
 }
 
+/// Temperature change after which the Gauss-Markov parameters are read again, °C.
+pub const BIAS_PARAMETER_STEP_C: f64 = 0.1;
+
 /// The running error state of one channel.
 #[derive(Debug, Clone)]
 pub struct ChannelErrors<'a> {
     profile: &'a ChannelProfile,
     bias: BiasAt,
+    bias_read_at_c: f64,
     reference_temperature_c: f64,
-    turn_on_bias: f64,
+    constant_bias: f64,
     bias_gm: f64,
     bias_rw: f64,
     scale_gm_ppm: f64,
@@ -55,16 +62,21 @@ pub struct ChannelErrors<'a> {
 }
 
 impl<'a> ChannelErrors<'a> {
-    /// A channel at operating temperature `temperature_c` (which sets Tc and σ of the bias),
-    /// with its turn-on bias and the initial Gauss-Markov states drawn from `rng`.
+    /// A channel starting at temperature `temperature_c` (which sets Tc and σ of the bias),
+    /// with the constant bias of this power-on and the initial Gauss-Markov states drawn from
+    /// `rng`.
     pub fn new(
         profile: &'a ChannelProfile,
         reference_temperature_c: f64,
         temperature_c: f64,
+        constant_bias: f64,
         rng: &mut impl Rng,
     ) -> Self {
         let bias = profile.bias_at(temperature_c);
-        let turn_on_bias = profile.turn_on_bias_sigma * standard_normal(rng);
+        // The draw that was the turn-on bias before the unit's identity moved to `sim::unit`:
+        // kept and discarded, so that every later draw of the stream is the one earlier
+        // versions made and their results stay comparable.
+        let _ = standard_normal(rng);
         let bias_gm = bias.sigma * standard_normal(rng);
         let scale_gm_ppm = profile
             .scale_factor_gauss_markov
@@ -72,8 +84,9 @@ impl<'a> ChannelErrors<'a> {
         Self {
             profile,
             bias,
+            bias_read_at_c: temperature_c,
             reference_temperature_c,
-            turn_on_bias,
+            constant_bias,
             bias_gm,
             bias_rw: 0.0,
             scale_gm_ppm,
@@ -86,15 +99,19 @@ impl<'a> ChannelErrors<'a> {
         self.bias
     }
 
-    /// The turn-on bias drawn for this run.
-    pub fn turn_on_bias(&self) -> f64 {
-        self.turn_on_bias
+    /// The constant bias of this power-on.
+    pub fn constant_bias(&self) -> f64 {
+        self.constant_bias
     }
 
     /// The measurement of true value `u` over an interval of `dt_s` at temperature
     /// `temperature_c`; the processes step first (except for the very first sample).
     pub fn measure(&mut self, u: f64, dt_s: f64, temperature_c: f64, rng: &mut impl Rng) -> f64 {
         let p = self.profile;
+        if (temperature_c - self.bias_read_at_c).abs() > BIAS_PARAMETER_STEP_C {
+            self.bias = p.bias_at(temperature_c);
+            self.bias_read_at_c = temperature_c;
+        }
         if self.started {
             self.step(dt_s, rng);
         }
@@ -102,10 +119,7 @@ impl<'a> ChannelErrors<'a> {
         let delta_t = temperature_c - self.reference_temperature_c;
         let scale_ppm =
             p.scale_factor_temperature_coefficient_ppm_per_c * delta_t + self.scale_gm_ppm;
-        let bias = self.turn_on_bias
-            + p.bias_temperature_coefficient_per_c * delta_t
-            + self.bias_gm
-            + self.bias_rw;
+        let bias = self.constant_bias + p.temperature_bias(delta_t) + self.bias_gm + self.bias_rw;
         let white = p.white_noise_density / dt_s.sqrt() * standard_normal(rng);
         quantize(
             (1.0 + scale_ppm * 1e-6) * u + bias + white,

@@ -16,4 +16,5 @@ pub mod clock;
 pub mod errors;
 pub mod ideal_imu;
 pub mod motion;
+pub mod unit;
 pub mod vessel;

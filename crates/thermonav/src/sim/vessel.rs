@@ -9,6 +9,7 @@ use super::motion::{
     Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory,
     WaveMotion, generate_trajectory_at,
 };
+use super::unit::SimulatedUnit;
 use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
 use crate::imu::{Channel, ImuSeries, SampleKind};
@@ -80,6 +81,11 @@ pub enum VesselError {
     /// The clock or duration is invalid.
     #[error(transparent)]
     Clock(#[from] super::clock::ClockError),
+    /// The survey temperature is unusable.
+    #[error(
+        "survey temperature: values must be finite, a warm-up time constant positive, a table non-empty with increasing times"
+    )]
+    Temperature,
     /// A GNSS setting is invalid.
     #[error("GNSS setting {what} = {value} must be finite and positive")]
     Gnss {
@@ -175,13 +181,102 @@ impl Default for SurveySettings {
     }
 }
 
-/// A vessel run: motion, operating temperature, IMU clock, GNSS set-up, seed.
+/// Time constant of a cold start's warm-up, s: a MEMS unit in its housing warms by self-heating
+/// and from the vehicle over a quarter of an hour or so.
+pub const DEFAULT_WARM_UP_TIME_CONSTANT_S: f64 = 900.0;
+
+/// The sensor's temperature during a survey.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SurveyTemperature {
+    /// Held, °C.
+    Constant {
+        /// The temperature, °C.
+        temperature_c: f64,
+    },
+    /// A cold start warming up: T(t) = T_settled + (T_start − T_settled) exp(−t/τ).
+    WarmUp {
+        /// Temperature at switch-on, °C.
+        start_c: f64,
+        /// Temperature it settles at, °C.
+        settled_c: f64,
+        /// Time constant τ, s.
+        time_constant_s: f64,
+    },
+    /// A table of (time since the start, temperature), interpolated linearly, the end values
+    /// held outside it.
+    Table {
+        /// Times since the start, s, strictly increasing.
+        t_s: Vec<f64>,
+        /// Temperatures, °C.
+        temperature_c: Vec<f64>,
+    },
+}
+
+impl SurveyTemperature {
+    /// The temperature `t_s` after the start, °C.
+    pub fn at(&self, t_s: f64) -> f64 {
+        match self {
+            Self::Constant { temperature_c } => *temperature_c,
+            Self::WarmUp {
+                start_c,
+                settled_c,
+                time_constant_s,
+            } => settled_c + (start_c - settled_c) * (-t_s.max(0.0) / time_constant_s).exp(),
+            Self::Table {
+                t_s: ts,
+                temperature_c,
+            } => table_value(ts, temperature_c, t_s),
+        }
+    }
+
+    /// True when every value is usable: finite, τ > 0, a non-empty table of equal columns
+    /// with increasing times.
+    pub fn is_valid(&self) -> bool {
+        match self {
+            Self::Constant { temperature_c } => temperature_c.is_finite(),
+            Self::WarmUp {
+                start_c,
+                settled_c,
+                time_constant_s,
+            } => {
+                start_c.is_finite()
+                    && settled_c.is_finite()
+                    && time_constant_s.is_finite()
+                    && *time_constant_s > 0.0
+            }
+            Self::Table { t_s, temperature_c } => {
+                !t_s.is_empty()
+                    && t_s.len() == temperature_c.len()
+                    && t_s.iter().chain(temperature_c).all(|v| v.is_finite())
+                    && t_s.windows(2).all(|w| w[0] < w[1])
+            }
+        }
+    }
+}
+
+/// Linear interpolation in a table with increasing `xs`, end values held.
+fn table_value(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let k = xs.partition_point(|&v| v <= x);
+    match k {
+        0 => ys[0],
+        k if k == xs.len() => ys[k - 1],
+        k => {
+            let w = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+            ys[k - 1] + w * (ys[k] - ys[k - 1])
+        }
+    }
+}
+
+/// A vessel run: motion, sensor temperature, unit, IMU clock, GNSS set-up, seed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VesselRun {
     /// The motion.
     pub motion: MotionDefinition,
-    /// Sensor temperature during the run, °C.
-    pub temperature_c: f64,
+    /// Sensor temperature during the run.
+    pub temperature: SurveyTemperature,
+    /// The unit on board (the same serial as a chamber campaign's is the same unit).
+    pub unit: SimulatedUnit,
     /// IMU sampling clock.
     pub clock: SampleClock,
     /// GNSS set-up.
@@ -200,6 +295,9 @@ pub fn simulate_vessel(
 ) -> Result<VesselRecord, VesselError> {
     profile.validate()?;
     validate_gnss(&run.gnss)?;
+    if !run.temperature.is_valid() {
+        return Err(VesselError::Temperature);
+    }
     let times = run.clock.timestamps(
         run.motion.duration_s(),
         &mut named_rng(run.seed, "vessel/clock"),
@@ -241,25 +339,48 @@ fn validate_gnss(g: &GnssSettings) -> Result<(), VesselError> {
     Ok(())
 }
 
-/// IMU rates through each channel's error model at the run's temperature.
+/// The sensor temperature at each of `times`, °C.
+pub fn sample_temperatures_c(run: &VesselRun, times: &[Timestamp]) -> Vec<f64> {
+    let Some(&start) = times.first() else {
+        return Vec::new();
+    };
+    times
+        .iter()
+        .map(|t| run.temperature.at(t.since(start).as_seconds()))
+        .collect()
+}
+
+/// The name of the survey's power-on (for [`SimulatedUnit::power_on_offset`]).
+pub const SURVEY_POWER_ON: &str = "vessel";
+
+/// IMU rates through each channel's error model at each sample's temperature.
 fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory) -> ImuSeries {
     let increments = ideal_increments(reference);
     let mut series = ImuSeries::new(SampleKind::Rates);
     series.time = increments.iter().map(|i| i.time).collect();
-    series.temperature_c = Some(vec![run.temperature_c; increments.len()]);
+    let temperatures = sample_temperatures_c(run, &series.time);
     for channel in Channel::ALL {
         let mut rng: SimRng = named_rng(run.seed, &format!("vessel/{}", channel.name()));
         let p = &profile.channels[&channel];
+        let constant = run.unit.fixed_bias(profile, channel)
+            + run
+                .unit
+                .power_on_offset(profile, channel, run.seed, SURVEY_POWER_ON);
         let mut errors = ChannelErrors::new(
             p,
             profile.reference_temperature_c,
-            run.temperature_c,
+            temperatures
+                .first()
+                .copied()
+                .unwrap_or(profile.reference_temperature_c),
+            constant,
             &mut rng,
         );
         let axis = channel.index() % 3;
         series.channels[channel.index()] = increments
             .iter()
-            .map(|inc| {
+            .zip(&temperatures)
+            .map(|(inc, &temperature_c)| {
                 let delta = if channel.index() < 3 {
                     inc.delta_angle
                 } else {
@@ -268,12 +389,13 @@ fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory
                 errors.measure(
                     delta.to_array()[axis] / inc.dt_s(),
                     inc.dt_s(),
-                    run.temperature_c,
+                    temperature_c,
                     &mut rng,
                 )
             })
             .collect();
     }
+    series.temperature_c = Some(temperatures);
     series
 }
 

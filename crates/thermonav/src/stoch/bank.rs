@@ -609,8 +609,13 @@ mod tests {
         assert!(text.contains("\"gx\""));
         let back: ModelBank = serde_json::from_str(&text).unwrap();
         assert_eq!(back, b);
-        let newer = text.replace("\"version\":1", "\"version\":9");
+        let newer = text.replace("\"version\":2", "\"version\":9");
         let newer: ModelBank = serde_json::from_str(&newer).unwrap();
         assert_eq!(newer.validate(), Err(BankError::Version { found: 9 }));
+        // A version-1 bank (no thermal calibration) is still read.
+        let older: ModelBank =
+            serde_json::from_str(&text.replace("\"version\":2", "\"version\":1")).unwrap();
+        assert_eq!(older.validate(), Ok(()));
+        assert_eq!(older.thermal, None);
     }
 }

@@ -264,7 +264,11 @@ fn simulated_white_gauss_markov_and_walk_follow_the_theoretical_curve() {
     let profile =
         adis16364_like().with_every_channel(&ChannelProfile::stochastic_only(white, bias, walk));
     let run = ChamberRun {
-        set_point_c: 20.0,
+        temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint {
+            temperature_c: 20.0,
+        },
+        unit: thermonav::sim::unit::SimulatedUnit::default(),
+        power_on: 1,
         duration_s: 30_000.0,
         clock: SampleClock::new(50.0, 0.0, 0.0).unwrap(),
         site: calgary(),

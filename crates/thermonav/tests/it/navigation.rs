@@ -22,7 +22,12 @@ const TEMPERATURE_C: f64 = 17.0;
 fn vessel(seed: u64, duration_s: f64) -> VesselRecord {
     let run = VesselRun {
         motion: harbour_survey(duration_s),
-        temperature_c: TEMPERATURE_C,
+        temperature: thermonav::sim::vessel::SurveyTemperature::Constant {
+            temperature_c: TEMPERATURE_C,
+        },
+        // A new unit per seed: the Monte Carlo set then draws the fixed bias from the
+        // distribution the filter's initial covariance describes.
+        unit: thermonav::sim::unit::SimulatedUnit { serial: seed },
         clock: SampleClock::new(200.0, 0.0, 0.0).unwrap(),
         gnss: GnssSettings::default(),
         seed,

@@ -21,7 +21,11 @@ fn characterising_a_simulated_campaign_recovers_the_true_correlation_times() {
     let mut total = 0;
     for set_point_c in [-40.0, -20.0, 0.0] {
         let run = ChamberRun {
-            set_point_c,
+            temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint {
+                temperature_c: set_point_c,
+            },
+            unit: thermonav::sim::unit::SimulatedUnit::default(),
+            power_on: 1,
             duration_s: 7200.0,
             clock: SampleClock::new(50.0, 100e-6, 0.002).unwrap(),
             site: calgary(),

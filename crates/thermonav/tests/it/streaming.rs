@@ -79,7 +79,11 @@ fn streaming_allan_with_default_bounds_is_exact_below_and_close_above() {
 
 fn chamber_record(seconds: f64) -> ImuSeries {
     let run = ChamberRun {
-        set_point_c: 10.0,
+        temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint {
+            temperature_c: 10.0,
+        },
+        unit: thermonav::sim::unit::SimulatedUnit::default(),
+        power_on: 1,
         duration_s: seconds,
         clock: SampleClock::new(50.0, 0.0, 0.0).unwrap(),
         site: calgary(),

@@ -12,7 +12,10 @@ use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_v
 fn run(seconds: f64) -> VesselRun {
     VesselRun {
         motion: harbour_survey(seconds),
-        temperature_c: 17.0,
+        temperature: thermonav::sim::vessel::SurveyTemperature::Constant {
+            temperature_c: 17.0,
+        },
+        unit: thermonav::sim::unit::SimulatedUnit::default(),
         clock: SampleClock::new(200.0, 50e-6, 0.0).unwrap(),
         gnss: GnssSettings::default(),
         seed: 3,
