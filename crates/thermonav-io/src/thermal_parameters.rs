@@ -103,6 +103,14 @@ impl ImuSensor {
         }
     }
 
+    /// Its name in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            ImuSensor::Gyro => "gyro",
+            ImuSensor::Accelerometer => "accelerometer",
+        }
+    }
+
     /// Unit of the bias.
     pub fn unit(self) -> &'static str {
         match self {
