@@ -326,9 +326,9 @@ fn sensor_export(
     })
 }
 
-/// `value` as a 32-bit float parameter.
+/// `value` as a 32-bit float parameter (a zero, of either sign, written as 0).
 fn real(name: String, value: f64) -> Result<Parameter, ExportError> {
-    let stored = value as f32;
+    let stored = if value == 0.0 { 0.0 } else { value as f32 };
     if !stored.is_finite() {
         return Err(ExportError::NotRepresentable { name, value });
     }
