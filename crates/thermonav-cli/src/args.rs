@@ -357,6 +357,36 @@ pub struct BankArgs {
 pub enum BankAction {
     /// Show the bank, or the model selected for an operating temperature.
     Show(BankShowArgs),
+    /// Write the bank's thermal calibration as autopilot parameters (PX4 or ArduPilot).
+    Export(BankExportArgs),
+}
+
+/// Autopilot parameter files.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ExportFormatArg {
+    /// PX4 TC_* thermal compensation, a QGroundControl .params file.
+    Px4Tc,
+    /// ArduPilot INS_TCAL1_* temperature calibration, a Mission Planner/MAVProxy .param file.
+    ArdupilotTcal,
+}
+
+/// Arguments of `bank export`.
+#[derive(Debug, Args)]
+pub struct BankExportArgs {
+    /// The bank (JSON) with a thermal calibration.
+    pub bank: PathBuf,
+    /// Which autopilot's parameters.
+    #[arg(long, value_enum)]
+    pub format: ExportFormatArg,
+    /// Output parameter file.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// PX4 device id of the IMU (TC_G0_ID, TC_A0_ID); 0 leaves it for the user to set.
+    #[arg(long, default_value_t = 0)]
+    pub device_id: u32,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Arguments of `lot`.

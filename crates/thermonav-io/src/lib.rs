@@ -38,6 +38,10 @@
 //! [`bank`]: the model bank JSON written by `thermonav characterize`, validated on reading.
 //! [`profile`]: sensor profiles ([`thermonav::sensor`]) as TOML with the unit in every key.
 //!
+//! ## Autopilot thermal parameters
+//! [`thermal_parameters`]: a bank's thermal calibration as PX4 `TC_*` (QGroundControl
+//! `.params`) or ArduPilot `INS_TCAL1_*` (`.param`) parameters.
+//!
 //! ## Production lots
 //! [`lot`]: lot manifests (TOML): the units of a production lot and their chamber records.
 //!
@@ -73,6 +77,7 @@ mod rows;
 pub mod rtklib_pos;
 pub mod solution;
 mod text;
+pub mod thermal_parameters;
 pub mod trajectory;
 pub mod ulog;
 

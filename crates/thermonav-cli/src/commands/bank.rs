@@ -1,21 +1,83 @@
-//! `thermonav bank show`: the bank, or the model selected for an operating temperature.
+//! `thermonav bank show`: the bank, or the model selected for an operating temperature;
+//! `thermonav bank export`: its thermal calibration as autopilot parameters.
 
-use crate::args::{BankAction, BankArgs, BankShowArgs};
+use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportFormatArg};
 use crate::bank_tables::print_bank_table;
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
-use crate::report::print_json;
+use crate::report::{print_json, print_rows};
+use crate::settings::paths::Io;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
+use std::path::Path;
 use thermonav::imu::Channel;
-use thermonav::stoch::bank::{GaussMarkovSource, SelectedModel, Selection};
+use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
+use thermonav_io::thermal_parameters::{
+    ExportSummary, ParameterFile, SensorExport, ardupilot_parameters, px4_parameters,
+    write_parameter_file,
+};
 
 /// Runs `bank`.
 pub fn run(args: &BankArgs) -> Result<(), Failure> {
     match &args.action {
         BankAction::Show(show) => run_show(show),
+        BankAction::Export(export) => run_export(export),
     }
+}
+
+fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
+    export_io(args).check()?;
+    let file = parameter_file(&read_bank(&args.bank)?, args)?;
+    write_parameter_file(&args.out, &file).data()?;
+    if args.json {
+        return print_json(&file.summary());
+    }
+    print_export_rows(&file.summary(), args);
+    Ok(())
+}
+
+fn export_io(args: &BankExportArgs) -> Io {
+    Io::new()
+        .input("BANK", &args.bank)
+        .output("parameter file", &args.out)
+}
+
+/// The bank's thermal calibration in the chosen target's parameters.
+fn parameter_file(bank: &ModelBank, args: &BankExportArgs) -> Result<ParameterFile, Failure> {
+    let calibration = bank
+        .thermal
+        .as_ref()
+        .ok_or_else(|| no_thermal_calibration(&args.bank))?;
+    let file = match args.format {
+        ExportFormatArg::Px4Tc => px4_parameters(calibration, args.device_id),
+        ExportFormatArg::ArdupilotTcal => ardupilot_parameters(calibration),
+    };
+    file.map_err(|e| anyhow!("{}: {e}", args.bank.display()))
+        .data()
+}
+
+fn no_thermal_calibration(path: &Path) -> Failure {
+    Failure::Data(anyhow!(
+        "{}: the bank has no thermal calibration (no 'thermal' field): calibrate the unit first (thermonav::stoch::thermal::calibrate) and store it in the bank, then export",
+        path.display()
+    ))
+}
+
+fn print_export_rows(summary: &ExportSummary, args: &BankExportArgs) {
+    let mut rows = vec![
+        ("written", args.out.display().to_string()),
+        ("parameters", summary.parameters.to_string()),
+    ];
+    rows.extend(summary.sensors.iter().map(sensor_row));
+    print_rows(&rows);
+}
+
+fn sensor_row(export: &SensorExport) -> (&'static str, String) {
+    let [low, high] = export.temperature_range_c;
+    let reference = export.reference_temperature_c;
+    let range = format!("TMIN..TMAX {low}..{high} °C, reference {reference} °C");
+    (export.sensor.name(), range)
 }
 
 #[derive(Debug, Serialize)]

@@ -509,6 +509,7 @@ fn every_bank_and_profile_reader_refuses_spoiled_files() {
     let fixtures = fixtures();
     let bank_commands: &[&str] = &[
         "bank show @ --json",
+        "bank export @ --format px4-tc --out @out.params",
         "integrate --imu %imu.csv --gnss %gnss.csv --bank @ --model-temperature-c 20 --out @out.csv",
         "evaluate --imu %imu.csv --gnss %gnss.csv --reference %reference.csv --bank @ --out @out",
         "plot correlation-time @ --out @out.svg",
@@ -531,6 +532,45 @@ fn every_bank_and_profile_reader_refuses_spoiled_files() {
             refuses(fixtures.path(), command, "profile.toml", spoiled);
         }
     }
+}
+
+#[test]
+fn bank_export_refuses_a_bank_without_thermal_a_bad_format_and_its_input_as_output() {
+    let fixtures = fixtures();
+    let bank = fixtures.path().join("bank.json");
+    let before = std::fs::read(&bank).unwrap();
+    let out = fixtures.path().join("tc.params");
+    let export = |format: &str, out: &Path| {
+        outcome(&thermonav(&[
+            "bank",
+            "export",
+            arg(&bank),
+            "--format",
+            format,
+            "--out",
+            arg(out),
+        ]))
+    };
+    let (status, stdout, stderr) = export("ardupilot-tcal", &out);
+    assert_eq!(status, 1, "{stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    assert!(
+        stderr.contains(arg(&bank)) && stderr.contains("no thermal calibration"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("calibrate the unit first"), "{stderr}");
+    assert!(!out.exists());
+    let (status, _, stderr) = export("px4", &out);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("px4-tc") && stderr.contains("ardupilot-tcal"),
+        "{stderr}"
+    );
+    let (status, _, stderr) = export("px4-tc", &bank);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("would overwrite the input"), "{stderr}");
+    assert_eq!(std::fs::read(&bank).unwrap(), before);
+    assert!(!out.exists());
 }
 
 #[test]

@@ -12,6 +12,7 @@ mod raw_imu;
 mod round_trip;
 mod rtklib_pos;
 mod support;
+mod thermal_parameters;
 mod trajectory;
 mod ulog;
 mod ulog_built;
