@@ -97,8 +97,22 @@ pub struct EvaluateArgs {
     #[arg(long)]
     pub reference: PathBuf,
     /// The temperature model bank (JSON).
+    #[arg(long, required_unless_present = "profile", conflicts_with = "profile")]
+    pub bank: Option<PathBuf>,
+    /// Instead of a bank: a sensor profile (TOML) for a sensor without a chamber campaign; the
+    /// candidates are then the profile at its table temperatures and at the operating
+    /// temperature, and the profile scheduled by temperature.
     #[arg(long)]
-    pub bank: PathBuf,
+    pub profile: Option<PathBuf>,
+    /// Leave out the candidates scheduled by the IMU's temp_c.
+    #[arg(long)]
+    pub no_schedule: bool,
+    /// Leave out the candidates on the thermally compensated record.
+    #[arg(long)]
+    pub no_compensation: bool,
+    /// Ignore dual-antenna headings.
+    #[arg(long)]
+    pub no_heading: bool,
     /// The sensor's operating temperature, °C (default: the mean of the IMU's temp_c column).
     #[arg(long, allow_hyphen_values = true)]
     pub operating_temperature_c: Option<f64>,
@@ -220,6 +234,14 @@ pub struct IntegrateArgs {
     /// Ignore dual-antenna headings.
     #[arg(long)]
     pub no_heading: bool,
+    /// One model for the whole run (at the mean or given temperature) instead of the model at
+    /// the IMU's temp_c at every covariance step. A given --model-temperature-c or
+    /// --operating-temperature-c also fixes the model.
+    #[arg(long)]
+    pub no_schedule: bool,
+    /// Do not subtract the bank's thermal bias calibration bias(T) from the IMU samples.
+    #[arg(long)]
+    pub no_compensation: bool,
     /// The solution trajectory CSV; the state file is written beside it as STEM.states.csv.
     #[arg(long)]
     pub out: PathBuf,

@@ -12,19 +12,27 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use thermonav::evaluation::experiment::CandidateSource;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::{Channel, ImuSeries};
 use thermonav::ins::state::Increment;
 use thermonav::nav::alignment::{HeadingSource, InitialUncertainty, align_from_gnss, uncorrected};
-use thermonav::nav::engine::{
-    EngineSettings, FilterKind, increments_from_series, run as run_filter,
-};
+use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series, run_scheduled};
 use thermonav::nav::error_state::Estimate;
 use thermonav::nav::measurement::MeasurementKind;
 use thermonav::nav::outage::{Outage, OutageSpec, Outages};
-use thermonav::nav::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior};
+use thermonav::nav::schedule::{
+    CompensationOutcome, ModelGrid, ModelSchedule, ScheduleSummary, Scheduling, TemperatureTrack,
+    compensate_record,
+};
+use thermonav::nav::sensor_model::{
+    BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError,
+};
 use thermonav::nav::solution::{InnovationStatistics, Solution, SolutionEpoch};
+use thermonav::sensor::SensorProfile;
+use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::bank::{GaussMarkovSource, Selection};
+use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
@@ -43,10 +51,11 @@ struct Inputs {
 
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
-    let series = read_imu_file(&settings.imu, Strictness::Strict).data()?;
+    let mut series = read_imu_file(&settings.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&settings.gnss, Strictness::Strict).data()?;
-    let (mut model, choice) = noise_model(settings, &series)?;
-    model.scale_white_noise(settings.process_noise_scale);
+    let noise = load_noise(&settings.noise)?;
+    let models = RunModels::of(settings, &noise, &series)?;
+    let compensation = compensate_record(&mut series, noise.thermal(), settings.compensation);
     let (increments, first, last) = increments_with_span(&series, &settings.imu)?;
     let inputs = Inputs {
         increments,
@@ -59,12 +68,12 @@ pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     };
     let (initial, initial_source) = initial_estimate(settings, &inputs, &engine)?;
     let started = Instant::now();
-    let solution = run_with_progress(&inputs, initial, &model, &engine)?;
+    let solution = run_with_progress(&inputs, initial, models.schedule(), &engine)?;
     let processing_s = started.elapsed().as_secs_f64();
     write_outputs(&settings.outputs, &solution)?;
     let run = Run {
-        choice,
-        model: &model,
+        models: &models,
+        compensation,
         engine: &engine,
         solution: &solution,
         initial: initial_source,
@@ -76,17 +85,17 @@ pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
 fn run_with_progress(
     inputs: &Inputs,
     initial: Estimate,
-    model: &ImuStochasticModel,
+    schedule: ModelSchedule,
     engine: &EngineSettings,
 ) -> Result<Solution, Failure> {
     let label = format!("integrating ({})", engine.filter.name());
     let bar = crate::progress::bar(inputs.increments.len(), &label);
-    let solution = run_filter(
+    let solution = run_scheduled(
         &inputs.increments,
         &inputs.gnss,
         initial,
         InitialUncertainty::default().covariance(),
-        model,
+        schedule,
         engine,
         &mut |n| bar.set_position(n as u64),
     )
@@ -94,6 +103,124 @@ fn run_with_progress(
     .data()?;
     bar.finish_and_clear();
     Ok(solution)
+}
+
+/// The noise model's source, read.
+pub enum LoadedNoise {
+    /// A bank.
+    Bank(ModelBank),
+    /// A sensor profile.
+    Profile(SensorProfile),
+}
+
+/// Reads the bank or the profile.
+pub fn load_noise(noise: &NoiseSource) -> Result<LoadedNoise, Failure> {
+    match noise {
+        NoiseSource::Bank(path) => Ok(LoadedNoise::Bank(read_bank(path)?)),
+        NoiseSource::Profile(path) => Ok(LoadedNoise::Profile(read_profile(path).data()?)),
+    }
+}
+
+impl LoadedNoise {
+    /// Where a tournament's candidates come from.
+    pub fn source(&self) -> CandidateSource<'_> {
+        match self {
+            LoadedNoise::Bank(bank) => CandidateSource::Bank(bank),
+            LoadedNoise::Profile(profile) => CandidateSource::Profile(profile),
+        }
+    }
+
+    /// The bank's thermal calibration, if any.
+    pub fn thermal(&self) -> Option<&ThermalCalibration> {
+        match self {
+            LoadedNoise::Bank(bank) => bank.thermal.as_ref(),
+            LoadedNoise::Profile(_) => None,
+        }
+    }
+}
+
+/// The models of a run: the fixed one (reported; used unless scheduled) and, when
+/// scheduled, the temperature track with the models by temperature.
+struct RunModels {
+    model: ImuStochasticModel,
+    choice: BankChoice,
+    scheduled: Option<(TemperatureTrack, ModelGrid)>,
+}
+
+impl RunModels {
+    fn of(
+        settings: &IntegrateSettings,
+        noise: &LoadedNoise,
+        series: &ImuSeries,
+    ) -> Result<Self, Failure> {
+        let (mut model, choice) = noise_model(settings, noise, series)?;
+        model.scale_white_noise(settings.process_noise_scale);
+        let scheduled = match schedule_track(settings, series)? {
+            Some(track) => Some(scheduled_models(settings, noise, track)?),
+            None => None,
+        };
+        Ok(Self {
+            model,
+            choice,
+            scheduled,
+        })
+    }
+
+    fn schedule(&self) -> ModelSchedule<'_> {
+        match &self.scheduled {
+            Some((track, grid)) => ModelSchedule::ByTemperature { track, grid },
+            None => ModelSchedule::Fixed(&self.model),
+        }
+    }
+
+    fn summary(&self) -> ScheduleSummary {
+        match &self.scheduled {
+            Some((track, grid)) => ScheduleSummary::scheduled(track, grid),
+            None => ScheduleSummary::Fixed {
+                temperature_c: self.choice.temperature_c,
+            },
+        }
+    }
+}
+
+/// The IMU's temperature track when the run is scheduled; `None` when fixed, or (with a
+/// note on stderr) when the file has no temp_c.
+fn schedule_track(
+    settings: &IntegrateSettings,
+    series: &ImuSeries,
+) -> Result<Option<TemperatureTrack>, Failure> {
+    if settings.scheduling == Scheduling::Fixed {
+        return Ok(None);
+    }
+    let imu = settings.imu.display();
+    let track = TemperatureTrack::of_series(series)
+        .map_err(|e| anyhow!("{imu}: {e}"))
+        .data()?;
+    if track.is_none() {
+        eprintln!("note: {imu} has no temp_c column: one model for the whole run");
+    }
+    Ok(track)
+}
+
+/// The track with the models by temperature over its range (white noise scaled).
+fn scheduled_models(
+    settings: &IntegrateSettings,
+    noise: &LoadedNoise,
+    track: TemperatureTrack,
+) -> Result<(TemperatureTrack, ModelGrid), Failure> {
+    let (scale, range_c) = (ScaleFactorPrior::default(), track.range_c());
+    let grid = match noise {
+        LoadedNoise::Bank(bank) => {
+            let selection = settings.temperature.selection();
+            ModelGrid::from_bank(bank, selection, settings.gauss_markov, &scale, range_c)
+        }
+        LoadedNoise::Profile(profile) => ModelGrid::from_profile(profile, &scale, range_c),
+    };
+    let mut grid = grid
+        .map_err(|e| anyhow!("{}: {e}", settings.noise.path().display()))
+        .data()?;
+    grid.scale_white_noise(settings.process_noise_scale);
+    Ok((track, grid))
 }
 
 /// The IMU increments of a series and the span they cover, refusing a series too short to
@@ -126,51 +253,50 @@ pub fn outages_in(
         .usage()
 }
 
-/// The filter's noise model: from the bank at the chosen temperature, or from the profile.
+/// The filter's fixed noise model: from the bank at the chosen temperature, or from the
+/// profile.
 fn noise_model(
     settings: &IntegrateSettings,
+    noise: &LoadedNoise,
     series: &ImuSeries,
 ) -> Result<(ImuStochasticModel, BankChoice), Failure> {
-    match &settings.noise {
-        NoiseSource::Profile(path) => profile_model(settings, path, series),
-        NoiseSource::Bank(path) => bank_model(settings, path, series),
-    }
+    let (model, choice) = match noise {
+        LoadedNoise::Profile(profile) => profile_model(settings, profile, series),
+        LoadedNoise::Bank(bank) => bank_model(settings, bank, series)?,
+    };
+    let path = settings.noise.path().display();
+    Ok((model.map_err(|e| anyhow!("{path}: {e}")).data()?, choice))
 }
+
+type ModelResult = Result<ImuStochasticModel, SensorModelError>;
 
 fn profile_model(
     settings: &IntegrateSettings,
-    path: &Path,
+    profile: &SensorProfile,
     series: &ImuSeries,
-) -> Result<(ImuStochasticModel, BankChoice), Failure> {
-    let profile = read_profile(path).data()?;
+) -> (ModelResult, BankChoice) {
     let temperature_c = match settings.temperature {
         ModelTemperature::Fixed(t) => Some(t),
         ModelTemperature::Operating { given_c, .. } => given_c,
     }
     .or_else(|| series.mean_temperature_c())
     .unwrap_or(profile.reference_temperature_c);
-    let model = profile
-        .stochastic_model(temperature_c, &ScaleFactorPrior::default())
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()?;
+    let model = profile.stochastic_model(temperature_c, &ScaleFactorPrior::default());
     let choice = BankChoice {
         temperature_c,
         selection: Selection::Nearest,
         source: settings.gauss_markov,
     };
-    Ok((model, choice))
+    (model, choice)
 }
 
 fn bank_model(
     settings: &IntegrateSettings,
-    path: &Path,
+    bank: &ModelBank,
     series: &ImuSeries,
-) -> Result<(ImuStochasticModel, BankChoice), Failure> {
-    let bank = read_bank(path)?;
+) -> Result<(ModelResult, BankChoice), Failure> {
     let choice = bank_choice(settings, series)?;
-    let model = ImuStochasticModel::from_bank(&bank, &choice, &ScaleFactorPrior::default())
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()?;
+    let model = ImuStochasticModel::from_bank(bank, &choice, &ScaleFactorPrior::default());
     Ok((model, choice))
 }
 
@@ -367,8 +493,13 @@ pub struct Summary {
     gnss: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
-    /// The model used.
+    /// The model used (when scheduled: the model at the mean or given temperature, for
+    /// reference).
     pub model: ModelJson,
+    /// One model or the model at the IMU's temperature at every covariance step.
+    pub schedule: ScheduleSummary,
+    /// Whether the bank's bias(T) was subtracted from the samples.
+    pub compensation: CompensationOutcome,
     /// Where the initial state came from.
     pub initial: InitialSource,
     covariance_rate_hz: f64,
@@ -394,8 +525,8 @@ pub struct Summary {
 
 /// What one filter run gave, for its summary.
 struct Run<'a> {
-    choice: BankChoice,
-    model: &'a ImuStochasticModel,
+    models: &'a RunModels,
+    compensation: CompensationOutcome,
     engine: &'a EngineSettings,
     solution: &'a Solution,
     initial: InitialSource,
@@ -414,7 +545,9 @@ fn summarize(settings: &IntegrateSettings, run: &Run) -> Summary {
         gnss: settings.gnss.clone(),
         bank,
         profile,
-        model: model_json(&run.choice, run.model),
+        model: model_json(&run.models.choice, &run.models.model),
+        schedule: run.models.summary(),
+        compensation: run.compensation.clone(),
         initial: run.initial,
         covariance_rate_hz: 1.0 / run.engine.covariance_interval_s,
         output_rate_hz: 1.0 / run.engine.output_interval_s,

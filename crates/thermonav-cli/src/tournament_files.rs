@@ -4,7 +4,7 @@
 //! `evaluate` and `demo`.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::{increments_with_span, operating_temperature, outages_in};
+use crate::integration::{operating_temperature, outages_in};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -12,12 +12,16 @@ use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
 use thermonav::evaluation::metrics::{EpochError, Metric, check_reference_covers};
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
-use thermonav::evaluation::tournament::{ModelResult, Scenario};
+use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
 use thermonav::gnss::GnssFix;
+use thermonav::imu::ImuSeries;
 use thermonav::ins::state::Increment;
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::schedule::Compensation;
+use thermonav::stoch::thermal::ThermalCalibration;
+use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
     Strictness, WriteError, read_gnss_file, read_imu_file, read_trajectory_file, write_atomically,
@@ -34,20 +38,26 @@ pub struct EvaluationFile {
     pub report_file: PathBuf,
 }
 
+/// How a scenario's record is compensated: the bank's calibration (if any) and the switch.
+pub type CompensationPlan<'a> = (Option<&'a ThermalCalibration>, Compensation);
+
 /// The scenario of the files (start from the reference at the first fix, default initial
-/// covariance, `engine`'s settings with the outages of `outages`) and the operating
-/// temperature (given, or the IMU's mean temp_c).
+/// covariance, `engine`'s settings with the outages of `outages`, the record compensated
+/// under `compensation` beside the raw one) and the operating temperature (given, or the
+/// IMU's mean temp_c).
 pub fn scenario_from_files(
     files: &ScenarioFiles,
     engine: EngineSettings,
     outages: &OutageSpec,
     operating_temperature_c: Option<f64>,
+    compensation: CompensationPlan,
 ) -> Result<(Scenario, f64), Failure> {
     let series = read_imu_file(&files.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
-    let (increments, first, last) = increments_with_span(&series, &files.imu)?;
+    let imu = scenario_imu(&series, compensation, &files.imu)?;
+    let (first, last) = span_of(&imu.increments, &files.imu)?;
     let engine = EngineSettings {
         outages: outages_in(outages, first, last)?,
         ..engine
@@ -55,13 +65,35 @@ pub fn scenario_from_files(
     check_reference_covers(&reference, engine.outages.windows())
         .map_err(|e| anyhow!("{}: {e}", files.reference.display()))
         .data()?;
-    let scenario = scenario_of(increments, gnss, reference, engine, &files.reference)?;
+    let scenario = scenario_of(imu, gnss, reference, engine, &files.reference)?;
     Ok((scenario, operating_c))
+}
+
+/// The IMU side of a scenario from its record.
+pub fn scenario_imu(
+    series: &ImuSeries,
+    (thermal, compensation): CompensationPlan,
+    path: &Path,
+) -> Result<ScenarioImu, Failure> {
+    ScenarioImu::of(series, thermal, compensation)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()
+}
+
+/// The first and last increment times, refusing a record too short to have one.
+fn span_of(increments: &[Increment], path: &Path) -> Result<(Timestamp, Timestamp), Failure> {
+    match (increments.first(), increments.last()) {
+        (Some(first), Some(last)) => Ok((first.time, last.time)),
+        _ => Err(Failure::Data(anyhow!(
+            "{}: at least two IMU samples are needed",
+            path.display()
+        ))),
+    }
 }
 
 /// A scenario from in-memory data, started from the reference at the first fix.
 pub fn scenario_of(
-    increments: Vec<Increment>,
+    imu: ScenarioImu,
     gnss: Vec<GnssFix>,
     reference: Vec<TrajectoryPoint>,
     settings: EngineSettings,
@@ -69,7 +101,9 @@ pub fn scenario_of(
 ) -> Result<Scenario, Failure> {
     let initial = initial_from_reference(&reference, &gnss, reference_name)?;
     Ok(Scenario {
-        increments,
+        increments: imu.increments,
+        compensated_increments: imu.compensated_increments,
+        temperature: imu.temperature,
         gnss,
         reference,
         initial: uncorrected(initial.nav_state()),

@@ -177,6 +177,8 @@ fn survey(
     };
     Ok(Scenario {
         increments,
+        compensated_increments: None,
+        temperature: None,
         gnss: record.gnss,
         reference: record
             .reference

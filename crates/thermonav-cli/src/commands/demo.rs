@@ -21,19 +21,22 @@ use crate::settings::navigation::{
 };
 use crate::settings::simulation::{VesselSettings, chamber_settings};
 use crate::tournament_files::{
-    EvaluationFile, print_tournament_table, run_and_write, scenario_from_files, scenario_of,
+    CompensationPlan, EvaluationFile, print_tournament_table, run_and_write, scenario_from_files,
+    scenario_imu, scenario_of,
 };
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
 use thermonav::evaluation::candidates::DatasheetValues;
-use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::candidates::ThermalOptions;
+use thermonav::evaluation::experiment::{CandidateSource, Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::tournament::Scenario;
 use thermonav::imu::Channel;
-use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
+use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
 use thermonav::sim::chamber::{CampaignSettings, ChannelTruth, RunTruth};
@@ -248,16 +251,19 @@ fn tournament(
         geometry: survey_geometry(),
         ..EngineSettings::default()
     };
+    let compensation = (bank.thermal.as_ref(), Compensation::default());
     let (main, operating_c) = scenario_from_files(
         &scenario_files(files),
         engine,
         &p.outages,
         Some(vessel.survey.temperature_c),
+        compensation,
     )?;
-    let plan = tournament_plan(bank, operating_c);
+    let plan = tournament_plan(bank, operating_c, &main);
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
     let (profile, run) = vessel_run(vessel)?;
-    let make = |k: usize| resimulated(&profile, &run, &main, k, &files.reference);
+    let resimulation = (&profile, &run, compensation);
+    let make = |k: usize| resimulated(resimulation, &main, k, &files.reference);
     let replicates = Replicates::Made {
         extra: p.replicates.saturating_sub(1) as usize,
         differ_by: "simulation seeds (new IMU errors and GNSS noise per replicate)",
@@ -275,10 +281,20 @@ fn scenario_files(files: &VesselFiles) -> ScenarioFiles {
     }
 }
 
-/// Every bank model by exact ML through the UKF and the EKF, with the ADIS16364 datasheet model.
-fn tournament_plan(bank: &ModelBank, operating_temperature_c: f64) -> TournamentPlan<'_> {
+/// Every bank model by exact ML through the UKF and the EKF, with the ADIS16364 datasheet
+/// model, and the thermal candidates the survey's temperatures allow.
+fn tournament_plan<'a>(
+    bank: &'a ModelBank,
+    operating_temperature_c: f64,
+    main: &Scenario,
+) -> TournamentPlan<'a> {
     TournamentPlan {
-        bank,
+        noise: CandidateSource::Bank(bank),
+        thermal: ThermalOptions {
+            imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
+            scheduling: Scheduling::default(),
+            compensation: Compensation::default(),
+        },
         operating_temperature_c,
         source: GaussMarkovSource::IrregularMl,
         filters: vec![FilterKind::Ukf, FilterKind::Ekf],
@@ -289,8 +305,7 @@ fn tournament_plan(bank: &ModelBank, operating_temperature_c: f64) -> Tournament
 
 /// The survey simulated again with the seed moved by `k`, as a scenario like `main`.
 fn resimulated(
-    profile: &SensorProfile,
-    run: &VesselRun,
+    (profile, run, compensation): (&SensorProfile, &VesselRun, CompensationPlan),
     main: &Scenario,
     k: usize,
     reference_name: &Path,
@@ -306,8 +321,9 @@ fn resimulated(
         .iter()
         .map(TrajectoryPoint::from_nav_state)
         .collect();
+    let imu = scenario_imu(&record.imu, compensation, reference_name).map_err(|e| e.to_string())?;
     scenario_of(
-        increments_from_series(&record.imu),
+        imu,
         record.gnss,
         reference,
         main.settings.clone(),
@@ -343,6 +359,8 @@ fn solution_settings(
             given_c: Some(vessel.survey.temperature_c),
             selection: Selection::Linear,
         },
+        scheduling: Scheduling::Fixed,
+        compensation: Compensation::default(),
         gauss_markov: GaussMarkovSource::IrregularMl,
         engine: EngineSettings {
             filter: FilterKind::Ukf,

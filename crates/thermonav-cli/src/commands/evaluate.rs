@@ -4,13 +4,16 @@
 
 use crate::args::EvaluateArgs;
 use crate::failure::{Classify, Failure};
-use crate::inputs::read_bank;
+use crate::integration::load_noise;
 use crate::report::print_json;
+use crate::settings::navigation::EvaluateSettings;
 use crate::tournament_files::{print_tournament_table, run_and_write, scenario_from_files};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::DatasheetValues;
+use thermonav::evaluation::candidates::ThermalOptions;
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav_io::profile::read_profile;
@@ -18,15 +21,23 @@ use thermonav_io::profile::read_profile;
 /// Runs `evaluate`.
 pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     let s = crate::settings::navigation::evaluate(args)?;
-    let bank = read_bank(&s.bank)?;
+    let noise = load_noise(&s.noise)?;
     let engine = EngineSettings {
         geometry: s.geometry,
+        aiding: s.aiding,
         ..EngineSettings::default()
     };
-    let (main, operating_c) =
-        scenario_from_files(&s.files, engine, &s.outages, s.operating_temperature_c)?;
+    let compensation = (noise.thermal(), s.compensation);
+    let (main, operating_c) = scenario_from_files(
+        &s.files,
+        engine,
+        &s.outages,
+        s.operating_temperature_c,
+        compensation,
+    )?;
     let plan = TournamentPlan {
-        bank: &bank,
+        noise: noise.source(),
+        thermal: thermal_options(&s, &main),
         operating_temperature_c: operating_c,
         source: s.source,
         filters: s.filters.clone(),
@@ -44,6 +55,15 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     }
     print_tournament_table(&file);
     Ok(())
+}
+
+/// The record's temperature range and the settings' switches.
+fn thermal_options(s: &EvaluateSettings, main: &Scenario) -> ThermalOptions {
+    ThermalOptions {
+        imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
+        scheduling: s.scheduling,
+        compensation: s.compensation,
+    }
 }
 
 /// The data-sheet candidate: a profile's model at its reference temperature, or the ADIS16364

@@ -10,6 +10,7 @@ use thermonav::evaluation::experiment::MAX_REPLICATES;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::stoch::bank::{GaussMarkovSource, Selection};
 
 /// Which temperature's model the filter uses.
@@ -27,6 +28,16 @@ pub enum ModelTemperature {
     },
 }
 
+impl ModelTemperature {
+    /// The bank selection rule (nearest for a fixed model).
+    pub fn selection(&self) -> Selection {
+        match self {
+            ModelTemperature::Fixed(_) => Selection::Nearest,
+            ModelTemperature::Operating { selection, .. } => *selection,
+        }
+    }
+}
+
 /// Where the noise model comes from.
 #[derive(Debug, Clone, PartialEq)]
 pub enum NoiseSource {
@@ -34,6 +45,13 @@ pub enum NoiseSource {
     Bank(PathBuf),
     /// A sensor profile (TOML), at the model temperature or its reference temperature.
     Profile(PathBuf),
+}
+
+impl NoiseSource {
+    /// The file.
+    pub fn path(&self) -> &Path {
+        noise_path(self)
+    }
 }
 
 /// The three files of one `integrate` run (also reported as `files` in its summary).
@@ -75,8 +93,12 @@ pub struct IntegrateSettings {
     pub gnss: PathBuf,
     /// The noise model's source.
     pub noise: NoiseSource,
-    /// Which temperature's model.
+    /// Which temperature's model (the fixed model, and the reported one when scheduled).
     pub temperature: ModelTemperature,
+    /// Whether the model follows the IMU's temp_c.
+    pub scheduling: Scheduling,
+    /// Whether the bank's bias(T) is subtracted from the samples.
+    pub compensation: Compensation,
     /// Gauss-Markov family of a bank.
     pub gauss_markov: GaussMarkovSource,
     /// The filter's settings (the outages are laid over the data once it is read).
@@ -94,7 +116,8 @@ pub struct IntegrateSettings {
 /// Resolves `integrate`.
 pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     let outputs = SolutionFiles::beside(&args.out);
-    let noise = noise_source(args)?;
+    let noise = noise_source(&args.bank, &args.profile)?;
+    let temperature = model_temperature(args)?;
     let io = Io::new()
         .input("--imu", &args.imu)
         .input("--gnss", &args.gnss)
@@ -111,7 +134,9 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         imu: args.imu.clone(),
         gnss: args.gnss.clone(),
         noise,
-        temperature: model_temperature(args)?,
+        scheduling: scheduling_of(args.no_schedule, &temperature),
+        compensation: compensation_of(args.no_compensation),
+        temperature,
         gauss_markov: args.model.into(),
         engine: engine_settings(args)?,
         outages: args.outages.clone(),
@@ -121,8 +146,8 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     })
 }
 
-fn noise_source(args: &IntegrateArgs) -> Result<NoiseSource, Failure> {
-    match (&args.bank, &args.profile) {
+fn noise_source(bank: &Option<PathBuf>, profile: &Option<PathBuf>) -> Result<NoiseSource, Failure> {
+    match (bank, profile) {
         (Some(bank), None) => Ok(NoiseSource::Bank(bank.clone())),
         (None, Some(profile)) => Ok(NoiseSource::Profile(profile.clone())),
         _ => Err(Failure::Usage(anyhow!("give --bank or --profile"))),
@@ -139,6 +164,26 @@ fn noise_option(noise: &NoiseSource) -> &'static str {
 fn noise_path(noise: &NoiseSource) -> &Path {
     match noise {
         NoiseSource::Bank(p) | NoiseSource::Profile(p) => p,
+    }
+}
+
+/// Scheduling by default; fixed when turned off or when a temperature names one model.
+fn scheduling_of(no_schedule: bool, temperature: &ModelTemperature) -> Scheduling {
+    let named = !matches!(
+        temperature,
+        ModelTemperature::Operating { given_c: None, .. }
+    );
+    match no_schedule || named {
+        true => Scheduling::Fixed,
+        false => Scheduling::default(),
+    }
+}
+
+/// Compensation by default (when the bank holds a calibration), unless turned off.
+fn compensation_of(no_compensation: bool) -> Compensation {
+    match no_compensation {
+        true => Compensation::Off,
+        false => Compensation::default(),
     }
 }
 
@@ -234,8 +279,14 @@ pub struct ScenarioFiles {
 pub struct EvaluateSettings {
     /// The data.
     pub files: ScenarioFiles,
-    /// The bank.
-    pub bank: PathBuf,
+    /// The candidates' source: a bank or a sensor profile.
+    pub noise: NoiseSource,
+    /// Whether the scheduled candidates compete.
+    pub scheduling: Scheduling,
+    /// Whether the compensated candidates compete.
+    pub compensation: Compensation,
+    /// Measurements used.
+    pub aiding: Aiding,
     /// Operating temperature, °C (default: the IMU's mean temp_c).
     pub operating_temperature_c: Option<f64>,
     /// Gauss-Markov family.
@@ -264,7 +315,16 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
             gnss: args.gnss.clone(),
             reference: args.reference.clone(),
         },
-        bank: args.bank.clone(),
+        noise: noise_source(&args.bank, &args.profile)?,
+        scheduling: match args.no_schedule {
+            true => Scheduling::Fixed,
+            false => Scheduling::default(),
+        },
+        compensation: compensation_of(args.no_compensation),
+        aiding: Aiding {
+            heading: !args.no_heading,
+            ..Aiding::default()
+        },
         operating_temperature_c: args
             .operating_temperature_c
             .map(|t| finite("--operating-temperature-c", t))
@@ -278,7 +338,7 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         datasheet: args.datasheet.clone(),
         out: args.out.clone(),
     };
-    let io = tournament_io(&settings.files, &settings.bank, &settings.out);
+    let io = tournament_io(&settings.files, &settings.noise, &settings.out);
     match &settings.datasheet {
         Some(profile) => io.input("--datasheet", profile),
         None => io,
@@ -288,12 +348,12 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
 }
 
 /// What a tournament reads and writes.
-pub fn tournament_io(files: &ScenarioFiles, bank: &Path, out: &Path) -> Io {
+pub fn tournament_io(files: &ScenarioFiles, noise: &NoiseSource, out: &Path) -> Io {
     Io::new()
         .input("--imu", &files.imu)
         .input("--gnss", &files.gnss)
         .input("--reference", &files.reference)
-        .input("--bank", bank)
+        .input(noise_option(noise), noise_path(noise))
         .output("report", &out.join("evaluation.json"))
         .output_folder("per-model error folder", &out.join("errors"))
 }

@@ -166,6 +166,38 @@ fn non_positive_ripple_is_a_usage_error() {
     }
 }
 
+// A tournament takes its candidates from a bank or from a profile, never both (exit 2, both
+// options named); neither is refused the same way.
+#[test]
+fn evaluate_with_bank_and_profile_is_a_usage_error() {
+    let files = [
+        "--imu",
+        "i.csv",
+        "--gnss",
+        "g.csv",
+        "--reference",
+        "r.csv",
+        "--out",
+        "o",
+    ];
+    let both = [
+        &["evaluate"][..],
+        &files,
+        &["--bank", "b.json", "--profile", "p.toml"],
+    ]
+    .concat();
+    let (status, _, stderr) = outcome(&thermonav(&both));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("--bank") && stderr.contains("--profile"),
+        "{stderr}"
+    );
+    let neither = [&["evaluate"][..], &files].concat();
+    let (status, _, stderr) = outcome(&thermonav(&neither));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("--bank"), "{stderr}");
+}
+
 #[test]
 fn unknown_flag_is_a_usage_error() {
     assert_eq!(outcome(&thermonav(&["inspect", "--frobnicate"])).0, 2);

@@ -405,3 +405,154 @@ fn evaluate_takes_the_datasheet_candidate_from_a_profile() {
     }
     assert_ne!(figures(&plain, "data sheet"), figures(&sheet, "data sheet"));
 }
+
+/// `integrate` on the vessel run with `noise` (`--bank FILE` or `--profile FILE`), no
+/// temperature given (so the model follows temp_c), and `extra`.
+fn scheduled_args(
+    imu: &Path,
+    vessel: &Path,
+    noise: [&str; 2],
+    out: &Path,
+    extra: &[&str],
+) -> Vec<String> {
+    let gnss = vessel.join("gnss.csv");
+    let args = [
+        "integrate",
+        "--imu",
+        arg(imu),
+        "--gnss",
+        arg(&gnss),
+        noise[0],
+        noise[1],
+    ];
+    owned(&[&args[..], &["--out", arg(out)]].concat(), extra)
+}
+
+// The vessel run is at a constant 17 °C: by default the summary reports a schedule over
+// [17, 17] °C, and its solution is the fixed model's to the bit (the one-point grid holds the
+// profile's model at 17 °C); --no-schedule reports the fixed model at 17 °C. A profile has no
+// thermal calibration, so compensation is "not_available", and "off" with --no-compensation.
+// (The test bank's 10 °C entry has no gx Gauss-Markov model, so it cannot serve 17 °C.)
+#[test]
+fn integrate_reports_its_schedule_and_compensation() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, vessel) = inputs(dir.path());
+    let imu = vessel.join("imu.csv");
+    let profile = dir.path().join("sensor.toml");
+    assert_eq!(
+        outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)])).0,
+        0
+    );
+    let noise = ["--profile", arg(&profile)];
+    let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
+    let scheduled = json_of(&scheduled_args(&imu, &vessel, noise, &a, &[]));
+    assert_eq!(scheduled["schedule"]["kind"], "scheduled");
+    assert_eq!(
+        scheduled["schedule"]["temperature_range_c"],
+        serde_json::json!([17.0, 17.0])
+    );
+    assert_eq!(scheduled["schedule"]["rule"], "profile_table");
+    assert_eq!(scheduled["compensation"]["status"], "not_available");
+    let extra = ["--no-schedule", "--no-compensation"];
+    let fixed = json_of(&scheduled_args(&imu, &vessel, noise, &b, &extra));
+    assert_eq!(fixed["schedule"]["kind"], "fixed");
+    assert_eq!(fixed["schedule"]["temperature_c"], 17.0);
+    assert_eq!(fixed["compensation"]["status"], "off");
+    assert_eq!(positions(&a), positions(&b));
+}
+
+// Without a temp_c column the run keeps one model (the profile's reference temperature),
+// says so once on stderr, and reports a fixed schedule.
+#[test]
+fn integrate_without_temperatures_notes_it_and_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let vessel = dir.path().join("vessel");
+    json_of(&[
+        "simulate",
+        "vessel",
+        "--out",
+        arg(&vessel),
+        "--duration-s",
+        "60",
+        "--json",
+    ]);
+    let profile = dir.path().join("sensor.toml");
+    assert_eq!(
+        outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)])).0,
+        0
+    );
+    let text = std::fs::read_to_string(vessel.join("imu.csv")).unwrap();
+    let cut: String = text
+        .lines()
+        .map(|l| l.rsplit_once(',').unwrap().0.to_string() + "\n")
+        .collect();
+    assert!(cut.starts_with("t_s,") && !cut.contains("temp_c"));
+    let imu = crate::write_file(dir.path(), "cold.csv", &cut);
+    let args = scheduled_args(
+        &imu,
+        &vessel,
+        ["--profile", arg(&profile)],
+        &dir.path().join("s.csv"),
+        &[],
+    );
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (status, stdout, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    assert_eq!(stderr.matches("no temp_c column").count(), 1, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(json["schedule"]["kind"], "fixed");
+}
+
+// A bank tournament on a record with temp_c tries a scheduled candidate (here excluded with
+// its reason: the test bank's 10 °C entry lacks a gx model), and not with --no-schedule; a
+// profile tournament (no bank) has the profile at fixed temperatures and scheduled.
+#[test]
+fn evaluate_adds_scheduled_candidates_and_takes_a_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let outages = ["--outages", "60+30,150+30", "--no-heading"];
+    let tags = |json: &serde_json::Value, list: &str, key: &str| -> Vec<String> {
+        let rows = json[list].as_array().unwrap();
+        rows.iter()
+            .map(|m| m[key].as_str().unwrap().to_string())
+            .collect()
+    };
+    let plain = json_of(&evaluate_args(
+        &vessel,
+        &bank,
+        &dir.path().join("a"),
+        &outages,
+    ));
+    let excluded = tags(&plain, "excluded", "label");
+    assert!(
+        excluded.contains(&"scheduled linear".to_string()),
+        "{excluded:?}"
+    );
+    let fixed_only = [&outages[..], &["--no-schedule"]].concat();
+    let fixed = json_of(&evaluate_args(
+        &vessel,
+        &bank,
+        &dir.path().join("b"),
+        &fixed_only,
+    ));
+    assert!(
+        !tags(&fixed, "excluded", "label")
+            .iter()
+            .any(|l| l.contains("scheduled"))
+    );
+    let profile = dir.path().join("sensor.toml");
+    assert_eq!(
+        outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)])).0,
+        0
+    );
+    let mut args = evaluate_args(&vessel, &bank, &dir.path().join("c"), &outages);
+    let at = args.iter().position(|a| a == "--bank").unwrap();
+    args.splice(
+        at..at + 2,
+        ["--profile".to_string(), arg(&profile).to_string()],
+    );
+    let kinds = tags(&json_of(&args), "models", "kind");
+    for kind in ["profile", "scheduled", "datasheet"] {
+        assert!(kinds.contains(&kind.to_string()), "{kind} in {kinds:?}");
+    }
+}

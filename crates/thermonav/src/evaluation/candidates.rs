@@ -8,15 +8,26 @@
 //! - **data sheet**: the manufacturer's angle/velocity random walk and in-run bias stability,
 //!   with σ = stability / 0.62 (the peak of a Gauss-Markov process's Allan deviation is
 //!   ≈ 0.62 σ) and a stated correlation time (1 h unless given), as a user without a chamber
-//!   campaign would configure a filter.
+//!   campaign would configure a filter;
+//! - **thermal** ([`thermal_candidates`]), when the IMU record has temperatures: the entry
+//!   nearest the operating temperature on the record compensated with the bank's thermal
+//!   calibration, the bank scheduled by temperature (linear interpolation at every covariance
+//!   step), and the scheduled bank on the compensated record (the compensated ones only when
+//!   the bank holds a calibration);
+//! - **profile** ([`profile_candidates`]), for a sensor without a chamber campaign: a sensor
+//!   profile's model at each of its table temperatures and at the operating temperature, and
+//!   the profile scheduled by temperature.
 
 pub use crate::sensor::DatasheetValues;
 
+use crate::nav::schedule::{Compensation, ModelGrid, Scheduling, TemperatureRule};
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
 };
+use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// What a candidate is.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -36,6 +47,36 @@ pub enum CandidateKind {
     Pooled,
     /// Data-sheet values.
     Datasheet,
+    /// A bank entry's model on the thermally compensated record.
+    CompensatedEntry {
+        /// Entry temperature, °C.
+        temperature_c: f64,
+    },
+    /// Models scheduled by the IMU's temperature.
+    Scheduled {
+        /// How the models are made from a temperature.
+        rule: TemperatureRule,
+    },
+    /// Models scheduled by the IMU's temperature, on the thermally compensated record.
+    ScheduledCompensated {
+        /// How the models are made from a temperature.
+        rule: TemperatureRule,
+    },
+    /// A sensor profile's model at one temperature.
+    Profile {
+        /// The temperature, °C.
+        temperature_c: f64,
+    },
+}
+
+/// Which IMU record a candidate runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Record {
+    /// The record as read.
+    Raw,
+    /// The record with the thermal calibration's bias(T) subtracted.
+    Compensated,
 }
 
 /// One competing model.
@@ -45,11 +86,28 @@ pub struct Candidate {
     pub label: String,
     /// What it is.
     pub kind: CandidateKind,
-    /// The model.
+    /// The model (of a scheduled candidate: the model at the operating temperature, for
+    /// reference only).
     pub model: ImuStochasticModel,
+    /// Models by temperature, for a scheduled candidate.
+    #[serde(skip)]
+    pub schedule: Option<Arc<ModelGrid>>,
+    /// The record it runs on.
+    pub record: Record,
 }
 
 impl Candidate {
+    /// A fixed model on the raw record.
+    pub fn fixed(label: impl Into<String>, kind: CandidateKind, model: ImuStochasticModel) -> Self {
+        Self {
+            label: label.into(),
+            kind,
+            model,
+            schedule: None,
+            record: Record::Raw,
+        }
+    }
+
     /// The temperature a candidate stands for, if any.
     pub fn temperature_c(&self) -> Option<f64> {
         self.kind.temperature_c()
@@ -61,9 +119,19 @@ impl CandidateKind {
     pub fn temperature_c(self) -> Option<f64> {
         match self {
             CandidateKind::Entry { temperature_c }
-            | CandidateKind::Interpolated { temperature_c } => Some(temperature_c),
-            CandidateKind::Pooled | CandidateKind::Datasheet => None,
+            | CandidateKind::Interpolated { temperature_c }
+            | CandidateKind::CompensatedEntry { temperature_c }
+            | CandidateKind::Profile { temperature_c } => Some(temperature_c),
+            CandidateKind::Pooled
+            | CandidateKind::Datasheet
+            | CandidateKind::Scheduled { .. }
+            | CandidateKind::ScheduledCompensated { .. } => None,
         }
+    }
+
+    /// True for the baselines that answer no temperature question (pooled, data sheet).
+    pub fn is_baseline(self) -> bool {
+        matches!(self, CandidateKind::Pooled | CandidateKind::Datasheet)
     }
 }
 
@@ -104,11 +172,8 @@ pub fn tournament_candidates(
         match ImuStochasticModel::from_bank(bank, &choice(t, Selection::Nearest), scale) {
             Ok(model) => {
                 entry_models.push(model);
-                candidates.push(Candidate {
-                    label,
-                    kind: CandidateKind::Entry { temperature_c: t },
-                    model,
-                });
+                let kind = CandidateKind::Entry { temperature_c: t };
+                candidates.push(Candidate::fixed(label, kind, model));
             }
             Err(e) => excluded.push(Excluded {
                 label,
@@ -122,37 +187,217 @@ pub fn tournament_candidates(
         &choice(operating_temperature_c, Selection::Linear),
         scale,
     ) {
-        Ok(model) => candidates.push(Candidate {
+        Ok(model) => candidates.push(Candidate::fixed(
             label,
-            kind: CandidateKind::Interpolated {
+            CandidateKind::Interpolated {
                 temperature_c: operating_temperature_c,
             },
             model,
-        }),
+        )),
         Err(e) => excluded.push(Excluded {
             label,
             reason: e.to_string(),
         }),
     }
     match pooled(&entry_models) {
-        Some(model) => candidates.push(Candidate {
-            label: "pooled".into(),
-            kind: CandidateKind::Pooled,
-            model,
-        }),
+        Some(model) => candidates.push(Candidate::fixed("pooled", CandidateKind::Pooled, model)),
         None => excluded.push(Excluded {
             label: "pooled".into(),
             reason: "no bank entry has a usable model".into(),
         }),
     }
     if let Some(model) = datasheet {
-        candidates.push(Candidate {
-            label: "data sheet".into(),
-            kind: CandidateKind::Datasheet,
-            model: *model,
-        });
+        candidates.push(Candidate::fixed(
+            "data sheet",
+            CandidateKind::Datasheet,
+            *model,
+        ));
     }
     (candidates, excluded)
+}
+
+/// What the thermal and profile candidates need to know of the record, and the switches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThermalOptions {
+    /// Coldest and warmest IMU temperature, °C; `None` when the record has no temp_c (no
+    /// scheduled or compensated candidate then).
+    pub imu_temperature_range_c: Option<[f64; 2]>,
+    /// Whether scheduled candidates compete.
+    pub scheduling: Scheduling,
+    /// Whether compensated candidates compete (when the bank holds a calibration).
+    pub compensation: Compensation,
+}
+
+impl ThermalOptions {
+    /// The record's range when `scheduling` lets the scheduled candidates in.
+    fn scheduled_range_c(&self) -> Option<[f64; 2]> {
+        self.imu_temperature_range_c
+            .filter(|_| self.scheduling == Scheduling::ByTemperature)
+    }
+
+    /// True when a bank with a calibration `calibrated` gives compensated candidates.
+    fn compensates(&self, calibrated: bool) -> bool {
+        calibrated
+            && self.imu_temperature_range_c.is_some()
+            && self.compensation == Compensation::WhenCalibrated
+    }
+}
+
+/// Candidates and the ones that could not be built.
+#[derive(Debug, Default)]
+struct Field {
+    candidates: Vec<Candidate>,
+    excluded: Vec<Excluded>,
+}
+
+impl Field {
+    fn push(&mut self, label: String, built: Result<Candidate, String>) {
+        match built {
+            Ok(candidate) => self.candidates.push(candidate),
+            Err(reason) => self.excluded.push(Excluded { label, reason }),
+        }
+    }
+
+    fn into_parts(self) -> (Vec<Candidate>, Vec<Excluded>) {
+        (self.candidates, self.excluded)
+    }
+}
+
+/// A scheduled candidate on `record` from a grid, labelled, with the grid's model at the
+/// operating temperature for reference.
+fn scheduled(
+    label: &str,
+    grid: &Arc<ModelGrid>,
+    record: Record,
+    operating_temperature_c: f64,
+) -> Candidate {
+    let rule = grid.rule();
+    let kind = match record {
+        Record::Raw => CandidateKind::Scheduled { rule },
+        Record::Compensated => CandidateKind::ScheduledCompensated { rule },
+    };
+    Candidate {
+        label: label.into(),
+        kind,
+        model: *grid.model_at(operating_temperature_c),
+        schedule: Some(Arc::clone(grid)),
+        record,
+    }
+}
+
+/// The bank's thermal candidates (module docs): the entry nearest the operating temperature
+/// on the compensated record, the bank scheduled with linear interpolation, and scheduled on
+/// the compensated record, as `options` and the bank allow.
+pub fn thermal_candidates(
+    bank: &ModelBank,
+    operating_temperature_c: f64,
+    source: GaussMarkovSource,
+    scale: &ScaleFactorPrior,
+    options: &ThermalOptions,
+) -> (Vec<Candidate>, Vec<Excluded>) {
+    let mut field = Field::default();
+    let compensates = options.compensates(bank.thermal.is_some());
+    if let (true, Some(t)) = (compensates, nearest_entry_c(bank, operating_temperature_c)) {
+        let label = format!("{} compensated", entry_label(t));
+        field.push(label, compensated_entry(bank, t, source, scale));
+    }
+    if let Some(range_c) = options.scheduled_range_c() {
+        let grid = ModelGrid::from_bank(bank, Selection::Linear, source, scale, range_c)
+            .map(Arc::new)
+            .map_err(|e| e.to_string());
+        let (raw, compensated) = ("scheduled linear", "scheduled linear compensated");
+        let make = |label, record| {
+            grid.as_ref()
+                .map(|g| scheduled(label, g, record, operating_temperature_c))
+                .map_err(Clone::clone)
+        };
+        field.push(raw.into(), make(raw, Record::Raw));
+        if compensates {
+            field.push(compensated.into(), make(compensated, Record::Compensated));
+        }
+    }
+    field.into_parts()
+}
+
+/// The bank temperature nearest `temperature_c`, °C.
+fn nearest_entry_c(bank: &ModelBank, temperature_c: f64) -> Option<f64> {
+    let distance = |t: &f64| (t - temperature_c).abs();
+    bank.temperatures_c()
+        .into_iter()
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+}
+
+/// The entry at `temperature_c` on the compensated record.
+fn compensated_entry(
+    bank: &ModelBank,
+    temperature_c: f64,
+    source: GaussMarkovSource,
+    scale: &ScaleFactorPrior,
+) -> Result<Candidate, String> {
+    let choice = BankChoice {
+        temperature_c,
+        selection: Selection::Nearest,
+        source,
+    };
+    let model = ImuStochasticModel::from_bank(bank, &choice, scale).map_err(|e| e.to_string())?;
+    Ok(Candidate {
+        record: Record::Compensated,
+        ..Candidate::fixed(
+            format!("{} compensated", entry_label(temperature_c)),
+            CandidateKind::CompensatedEntry { temperature_c },
+            model,
+        )
+    })
+}
+
+/// A sensor profile's candidates (module docs): its model at each table temperature and at
+/// the operating temperature, and scheduled by temperature as `options` allow; the data-sheet
+/// model when given.
+pub fn profile_candidates(
+    profile: &SensorProfile,
+    operating_temperature_c: f64,
+    scale: &ScaleFactorPrior,
+    options: &ThermalOptions,
+    datasheet: Option<&ImuStochasticModel>,
+) -> (Vec<Candidate>, Vec<Excluded>) {
+    let mut field = Field::default();
+    for t in profile_temperatures_c(profile, operating_temperature_c) {
+        let label = format!("profile {t:.1} °C");
+        let built = profile
+            .stochastic_model(t, scale)
+            .map(|m| Candidate::fixed(&label, CandidateKind::Profile { temperature_c: t }, m))
+            .map_err(|e| e.to_string());
+        field.push(label, built);
+    }
+    if let Some(range_c) = options.scheduled_range_c() {
+        let label = "profile scheduled";
+        let built = ModelGrid::from_profile(profile, scale, range_c)
+            .map(|g| scheduled(label, &Arc::new(g), Record::Raw, operating_temperature_c))
+            .map_err(|e| e.to_string());
+        field.push(label.into(), built);
+    }
+    if let Some(model) = datasheet {
+        let kind = CandidateKind::Datasheet;
+        field.push(
+            "data sheet".into(),
+            Ok(Candidate::fixed("data sheet", kind, *model)),
+        );
+    }
+    field.into_parts()
+}
+
+/// The temperatures of a profile's Gauss-Markov tables and the operating temperature, °C,
+/// increasing, each once.
+fn profile_temperatures_c(profile: &SensorProfile, operating_temperature_c: f64) -> Vec<f64> {
+    let mut temperatures: Vec<f64> = profile
+        .channels
+        .values()
+        .flat_map(|c| c.bias_gauss_markov.iter().map(|p| p.temperature_c))
+        .chain([operating_temperature_c])
+        .collect();
+    temperatures.sort_by(f64::total_cmp);
+    temperatures.dedup();
+    temperatures
 }
 
 /// The temperature-blind model: per axis, geometric mean of Tc, RMS of σ and of the white

@@ -1,4 +1,4 @@
-//! The tournament as an experiment: the candidates of a bank, one main run of every candidate
+//! The tournament as an experiment: the candidates of a bank or a sensor profile, one main run of every candidate
 //! through every filter, replicates that differ from it in a stated way, and the report
 //! ([`super::report::TournamentReport`]) with the ranking and its significance.
 //!
@@ -6,24 +6,40 @@
 //! only its figures, and replicates are made one at a time, so memory stays that of the main
 //! run whatever the number of replicates.
 
-use super::candidates::{Candidate, CandidateKind, Excluded, tournament_candidates};
+use super::candidates::{
+    Candidate, Excluded, ThermalOptions, profile_candidates, thermal_candidates,
+    tournament_candidates,
+};
 use super::report::{TournamentReport, report_of};
 use super::tournament::{ModelResult, Scenario, run_tournament, summarize_replicates};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
+use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank};
 
 /// The most replicates a tournament runs (each is a run of every candidate through every
 /// filter: 1000 replicates of the demo's 28 runs take hours already).
 pub const MAX_REPLICATES: usize = 1000;
 
+/// Where a tournament's candidates come from.
+#[derive(Debug, Clone, Copy)]
+pub enum CandidateSource<'a> {
+    /// A bank: its entries, interpolated, pooled and the thermal candidates.
+    Bank(&'a ModelBank),
+    /// A sensor profile (no chamber campaign): the profile at fixed temperatures and
+    /// scheduled.
+    Profile(&'a SensorProfile),
+}
+
 /// What a tournament compares.
 #[derive(Debug, Clone)]
 pub struct TournamentPlan<'a> {
-    /// The bank whose entries compete.
-    pub bank: &'a ModelBank,
+    /// Where the candidates come from.
+    pub noise: CandidateSource<'a>,
+    /// The record's temperatures and the scheduling and compensation switches.
+    pub thermal: ThermalOptions,
     /// The sensor's operating temperature, °C (where the interpolated candidate stands).
     pub operating_temperature_c: f64,
     /// The Gauss-Markov family of the bank used by every bank candidate.
@@ -85,8 +101,8 @@ impl Replicates<'_> {
 /// Why a tournament cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TournamentError {
-    /// No bank entry gave a usable model.
-    #[error("no model of the bank can be used:\n  {}", reasons.join("\n  "))]
+    /// No bank entry (or profile temperature) gave a usable model.
+    #[error("no model of the bank or profile can be used:\n  {}", reasons.join("\n  "))]
     NoUsableModel {
         /// Each excluded candidate with its reason.
         reasons: Vec<String>,
@@ -133,17 +149,11 @@ impl Tournament {
     /// The candidates of `plan`.
     ///
     /// # Errors
-    /// [`TournamentError::NoUsableModel`] when no bank entry (nor the interpolated model)
-    /// can be used: the pooled and data-sheet baselines alone answer no question.
+    /// [`TournamentError::NoUsableModel`] when only the pooled and data-sheet baselines can
+    /// be used: they alone answer no question.
     pub fn new(plan: &TournamentPlan) -> Result<Self, TournamentError> {
-        let (candidates, excluded) = tournament_candidates(
-            plan.bank,
-            plan.operating_temperature_c,
-            plan.source,
-            &plan.scale,
-            plan.datasheet.as_ref(),
-        );
-        if !candidates.iter().any(is_from_bank) {
+        let (candidates, excluded) = plan_candidates(plan);
+        if candidates.iter().all(|c| c.kind.is_baseline()) {
             let reasons = excluded
                 .iter()
                 .map(|e| format!("{}: {}", e.label, e.reason))
@@ -221,11 +231,23 @@ impl Tournament {
     }
 }
 
-fn is_from_bank(c: &Candidate) -> bool {
-    matches!(
-        c.kind,
-        CandidateKind::Entry { .. } | CandidateKind::Interpolated { .. }
-    )
+/// The candidates of a plan and the ones left out.
+fn plan_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
+    let (t, scale) = (plan.operating_temperature_c, &plan.scale);
+    let bank = match plan.noise {
+        CandidateSource::Profile(profile) => {
+            let datasheet = plan.datasheet.as_ref();
+            return profile_candidates(profile, t, scale, &plan.thermal, datasheet);
+        }
+        CandidateSource::Bank(bank) => bank,
+    };
+    let datasheet = plan.datasheet.as_ref();
+    let (mut candidates, mut excluded) =
+        tournament_candidates(bank, t, plan.source, scale, datasheet);
+    let (more, left_out) = thermal_candidates(bank, t, plan.source, scale, &plan.thermal);
+    candidates.extend(more);
+    excluded.extend(left_out);
+    (candidates, excluded)
 }
 
 fn drop_epoch_errors(run: &mut [ModelResult]) {

@@ -1,15 +1,21 @@
 //! Every candidate model through the same filter on the same data (in parallel), the
 //! outage metrics of each, the ranking, and its Monte Carlo significance.
 
-use super::candidates::{Candidate, CandidateKind};
+use super::candidates::{Candidate, CandidateKind, Record};
 use super::metrics::{EpochError, Metric, RunMetrics, evaluate_solution};
 use super::significance::{MeanInterval, PairedTest, mean_interval, paired_t_test};
 use crate::gnss::GnssFix;
+use crate::imu::ImuSeries;
 use crate::ins::error_model::SystemMatrix;
 use crate::ins::state::Increment;
-use crate::nav::engine::{EngineSettings, FilterKind, run};
+use crate::nav::engine::{EngineSettings, FilterKind, increments_from_series, run_scheduled};
 use crate::nav::error_state::Estimate;
+use crate::nav::schedule::{
+    Compensation, CompensationOutcome, ModelSchedule, ScheduleError, TemperatureTrack,
+    compensate_record,
+};
 use crate::nav::solution::InnovationStatistics;
+use crate::stoch::thermal::ThermalCalibration;
 use crate::trajectory::TrajectoryPoint;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -19,6 +25,11 @@ use serde::Serialize;
 pub struct Scenario {
     /// IMU increments.
     pub increments: Vec<Increment>,
+    /// The increments of the record with the thermal calibration's bias(T) subtracted, for
+    /// the compensated candidates; `None` when the record was not compensated.
+    pub compensated_increments: Option<Vec<Increment>>,
+    /// The IMU's temperature over time, for the scheduled candidates; `None` without temp_c.
+    pub temperature: Option<TemperatureTrack>,
     /// GNSS fixes.
     pub gnss: Vec<GnssFix>,
     /// Reference trajectory (covering every outage).
@@ -29,6 +40,44 @@ pub struct Scenario {
     pub initial_covariance: SystemMatrix,
     /// Filter settings, outages included (the filter kind is set per run).
     pub settings: EngineSettings,
+}
+
+/// The IMU side of a scenario, from a record.
+#[derive(Debug, Clone)]
+pub struct ScenarioImu {
+    /// Increments of the record as read.
+    pub increments: Vec<Increment>,
+    /// Increments of the compensated record, when compensated.
+    pub compensated_increments: Option<Vec<Increment>>,
+    /// The temperature over time, when the record has one.
+    pub temperature: Option<TemperatureTrack>,
+    /// What the compensation did.
+    pub compensation: CompensationOutcome,
+}
+
+impl ScenarioImu {
+    /// The increments of `series`, its temperature track, and the increments of the record
+    /// compensated with `thermal` under `compensation`.
+    ///
+    /// # Errors
+    /// [`ScheduleError::NonFiniteTemperature`] for a bad temp_c value.
+    pub fn of(
+        series: &ImuSeries,
+        thermal: Option<&ThermalCalibration>,
+        compensation: Compensation,
+    ) -> Result<Self, ScheduleError> {
+        let temperature = TemperatureTrack::of_series(series)?;
+        let mut compensated = series.clone();
+        let outcome = compensate_record(&mut compensated, thermal, compensation);
+        Ok(Self {
+            increments: increments_from_series(series),
+            compensated_increments: outcome
+                .applied()
+                .then(|| increments_from_series(&compensated)),
+            temperature,
+            compensation: outcome,
+        })
+    }
 }
 
 /// What a run of one candidate gave.
@@ -90,17 +139,17 @@ fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> Mo
         filter,
         ..scenario.settings.clone()
     };
-    let outcome = run(
-        &scenario.increments,
-        &scenario.gnss,
-        scenario.initial,
-        scenario.initial_covariance,
-        &candidate.model,
-        &settings,
-        &mut |_| {},
-    )
-    .map_err(|e| e.to_string())
-    .and_then(|solution| {
+    let outcome = candidate_inputs(scenario, candidate).and_then(|(increments, schedule)| {
+        let solution = run_scheduled(
+            increments,
+            &scenario.gnss,
+            scenario.initial,
+            scenario.initial_covariance,
+            schedule,
+            &settings,
+            &mut |_| {},
+        )
+        .map_err(|e| e.to_string())?;
         let (metrics, errors) = evaluate_solution(
             &scenario.reference,
             &solution.epochs,
@@ -119,6 +168,25 @@ fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> Mo
         filter,
         outcome,
     }
+}
+
+/// The increments a candidate runs on and its model schedule, or why the scenario lacks
+/// them.
+fn candidate_inputs<'a>(
+    scenario: &'a Scenario,
+    candidate: &'a Candidate,
+) -> Result<(&'a [Increment], ModelSchedule<'a>), String> {
+    let increments = match candidate.record {
+        Record::Raw => Some(&scenario.increments),
+        Record::Compensated => scenario.compensated_increments.as_ref(),
+    }
+    .ok_or("the scenario has no compensated IMU record")?;
+    let schedule = match (&candidate.schedule, &scenario.temperature) {
+        (None, _) => ModelSchedule::Fixed(&candidate.model),
+        (Some(grid), Some(track)) => ModelSchedule::ByTemperature { track, grid },
+        (Some(_), None) => return Err("the scenario's IMU record has no temperature".into()),
+    };
+    Ok((increments, schedule))
 }
 
 /// One model's metrics over the Monte Carlo replicates.

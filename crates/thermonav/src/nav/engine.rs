@@ -23,6 +23,7 @@ use super::measurement::{
     baseline_heading, heading_linearized, position_linearized, velocity_linearized,
 };
 use super::outage::Outages;
+use super::schedule::ModelSchedule;
 use super::sensor_model::ImuStochasticModel;
 use super::solution::{InnovationRecord, Solution, SolutionEpoch};
 use crate::filter::FilterError;
@@ -257,7 +258,7 @@ struct Run<'a> {
     window: Window,
     previous: Increment,
     last_raw_rate: Vector3<f64>,
-    model: &'a ImuStochasticModel,
+    schedule: ModelSchedule<'a>,
     settings: &'a EngineSettings,
     gates: [Option<ChiSquareGate>; 2],
     consecutive_rejections: [usize; 3],
@@ -282,6 +283,24 @@ pub fn run(
     settings: &EngineSettings,
     progress: &mut dyn FnMut(usize),
 ) -> Result<Solution, NavError> {
+    let schedule = ModelSchedule::Fixed(model);
+    run_scheduled(increments, gnss, initial, p0, schedule, settings, progress)
+}
+
+/// [`run`] with the model of every covariance step taken from `schedule` (see
+/// [`super::schedule`]): the model at the sensor temperature at the step's start.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_scheduled(
+    increments: &[Increment],
+    gnss: &[GnssFix],
+    initial: Estimate,
+    p0: SystemMatrix,
+    schedule: ModelSchedule,
+    settings: &EngineSettings,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Solution, NavError> {
     for (what, value) in [
         ("covariance_interval_s", settings.covariance_interval_s),
         ("output_interval_s", settings.output_interval_s),
@@ -295,7 +314,7 @@ pub fn run(
     if first == increments.len() {
         return Err(NavError::NoImu(start.as_seconds()));
     }
-    let mut run = Run::new(initial, p0, model, settings)?;
+    let mut run = Run::new(initial, p0, schedule, settings)?;
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
     for (n, inc) in increments[first..].iter().enumerate() {
         let mut raw = *inc;
@@ -331,7 +350,7 @@ impl<'a> Run<'a> {
     fn new(
         initial: Estimate,
         p0: SystemMatrix,
-        model: &'a ImuStochasticModel,
+        schedule: ModelSchedule<'a>,
         settings: &'a EngineSettings,
     ) -> Result<Self, NavError> {
         let core = match settings.filter {
@@ -365,7 +384,7 @@ impl<'a> Run<'a> {
             window: Window::at(initial),
             previous: Window::at(initial).raw,
             last_raw_rate: Vector3::zeros(),
-            model,
+            schedule,
             settings,
             gates: [gate(3), gate(1)],
             consecutive_rejections: [0; 3],
@@ -468,15 +487,16 @@ impl<'a> Run<'a> {
         }
         let dt = self.window.raw.dt_s();
         let start = self.window.start;
+        let model = self.schedule.model_at(start.nav.time);
         let corrected = start.sensors.correct(&self.window.raw);
         let f = system_matrix(
             &start.nav,
             &corrected.delta_angle.scale(1.0 / dt),
             &corrected.delta_velocity.scale(1.0 / dt),
-            &self.model.correlation_times(),
+            &model.correlation_times(),
         );
-        let phi = self.model.transition_matrix(&f, dt);
-        let q = self.model.process_noise(&start.nav.attitude, &phi, dt);
+        let phi = model.transition_matrix(&f, dt);
+        let q = model.process_noise(&start.nav.attitude, &phi, dt);
         match &mut self.core {
             Core::Ekf(p) => **p = propagate_covariance(p, &phi, &q),
             Core::Ukf(u) => {
@@ -485,8 +505,7 @@ impl<'a> Run<'a> {
                     nav: mechanize(&start.nav, &corrected, &corrected),
                     sensors: start.sensors,
                 };
-                let decay: [[f64; 3]; 4] = self
-                    .model
+                let decay: [[f64; 3]; 4] = model
                     .gauss_markov_states()
                     .map(|(_, group)| group.map(|gm| gm.transition(dt)));
                 let propagate_point = |dx: &ErrorVector| {

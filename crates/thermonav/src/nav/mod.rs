@@ -7,6 +7,9 @@
 //!   21-element error vector that moves between it and the truth (⊕ and ⊖).
 //! - [`measurement`]: GNSS position and velocity at a lever arm, dual-antenna heading.
 //! - [`alignment`]: coarse levelling, heading from GNSS, the initial covariance.
+//! - [`schedule`]: the model at the IMU's temperature at every covariance step (a track of
+//!   the temperature and models precomputed on a grid), and the thermal compensation of a
+//!   record.
 //! - [`outage`]: windows in which GNSS updates are withheld.
 //! - [`engine`]: the run loop: mechanization at the IMU rate, covariance propagation at a
 //!   chosen rate, updates at GNSS epochs, closed-loop feedback.
@@ -22,5 +25,6 @@ pub mod engine;
 pub mod error_state;
 pub mod measurement;
 pub mod outage;
+pub mod schedule;
 pub mod sensor_model;
 pub mod solution;

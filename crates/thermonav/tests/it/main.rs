@@ -11,6 +11,7 @@ mod ideal_imu;
 mod ins;
 mod navigation;
 mod round_trip;
+mod schedule;
 mod signal;
 mod streaming;
 mod thermal;
