@@ -1,5 +1,8 @@
 //! Raw command-line arguments (clap). They are resolved into validated settings by each command.
 
+use crate::thermal_calibration::{
+    DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG, DEFAULT_SWEEP_BLOCK_S,
+};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use thermonav::nav::engine::EngineSettings;
@@ -350,9 +353,49 @@ pub struct CharacterizeArgs {
     /// (for long logs); auto streams files of at least 1 GiB.
     #[arg(long, value_enum, default_value_t = ReadingArg::Auto)]
     pub reading: ReadingArg,
+    /// A further power-on of the same unit for the thermal calibration: its static records,
+    /// comma-separated (the positional records are one power-on; repeat the option for more).
+    /// Two or more power-ons, one at two or more temperatures, let the per-power-on offsets
+    /// be told apart from the repeatable bias curve.
+    #[arg(long, conflicts_with = "manifest")]
+    pub power_on: Vec<PowerOnFiles>,
+    /// A temperature sweep of the same unit (a static log with temp_c while it warms or
+    /// cools), fitted by block means; repeat for more.
+    #[arg(long, conflicts_with = "manifest")]
+    pub sweep: Vec<PathBuf>,
+    /// Block length of a sweep's block means, s (longer than the bias's correlation time).
+    #[arg(long, default_value_t = DEFAULT_SWEEP_BLOCK_S)]
+    pub sweep_block_s: f64,
+    /// Latitude of the chamber, deg: the gravity a level unit's az reads is taken off its
+    /// thermal curve.
+    #[arg(long, default_value_t = DEFAULT_SITE_LATITUDE_DEG, allow_negative_numbers = true)]
+    pub chamber_latitude_deg: f64,
+    /// Height of the chamber, m.
+    #[arg(long, default_value_t = DEFAULT_SITE_HEIGHT_M, allow_negative_numbers = true)]
+    pub chamber_height_m: f64,
     /// Print one JSON document (a summary) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// The static records of one power-on, comma-separated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PowerOnFiles(pub Vec<PathBuf>);
+
+impl std::str::FromStr for PowerOnFiles {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let files: Vec<PathBuf> = text
+            .split(',')
+            .filter(|s| !s.is_empty())
+            .map(PathBuf::from)
+            .collect();
+        if files.is_empty() {
+            return Err("give the power-on's records, comma-separated".into());
+        }
+        Ok(Self(files))
+    }
 }
 
 /// How `characterize` reads a record.

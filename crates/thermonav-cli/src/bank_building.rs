@@ -5,6 +5,7 @@ use crate::args::ReadingArg;
 use crate::bank_streaming::{characterize_streaming, streams};
 use crate::failure::{Classify, Failure};
 use crate::settings::characterization::BankJob;
+use crate::thermal_calibration::{ThermalInputs, calibrate_bank};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::imu::ImuSeries;
@@ -59,13 +60,22 @@ pub fn characterize_file(
 /// Builds the bank of a job and writes it atomically.
 pub fn build_job_bank(job: &BankJob) -> Result<ModelBank, Failure> {
     let files: Vec<&Path> = job.files.iter().map(|p| p.as_path()).collect();
-    build_bank_reading(
-        &files,
-        &job.temperatures_c,
-        &job.conditioning,
-        job.reading,
-        &job.out,
-    )
+    let inputs = BankInputs {
+        files: &files,
+        temperatures: &job.temperatures_c,
+        thermal: &job.thermal,
+    };
+    build_bank_reading(&inputs, &job.conditioning, job.reading, &job.out)
+}
+
+/// The records a bank is built from, and its thermal calibration's further inputs.
+pub struct BankInputs<'a> {
+    /// One static record per temperature.
+    pub files: &'a [&'a Path],
+    /// Their temperatures, °C (empty: each file's mean temp_c).
+    pub temperatures: &'a [f64],
+    /// Further power-ons and sweeps.
+    pub thermal: &'a ThermalInputs,
 }
 
 /// Builds the bank of `files` (in parallel) and writes it atomically.
@@ -75,18 +85,23 @@ pub fn build_bank(
     settings: &CharacterizeSettings,
     out: &Path,
 ) -> Result<ModelBank, Failure> {
-    build_bank_reading(files, temperatures, settings, ReadingArg::Auto, out)
+    let inputs = BankInputs {
+        files,
+        temperatures,
+        thermal: &ThermalInputs::default(),
+    };
+    build_bank_reading(&inputs, settings, ReadingArg::Auto, out)
 }
 
-/// [`build_bank`] with each file read as `reading` says.
+/// [`build_bank`] with each file read as `reading` says, and the thermal calibration.
 pub fn build_bank_reading(
-    files: &[&Path],
-    temperatures: &[f64],
+    inputs: &BankInputs<'_>,
     settings: &CharacterizeSettings,
     reading: ReadingArg,
     out: &Path,
 ) -> Result<ModelBank, Failure> {
     use rayon::prelude::*;
+    let (files, temperatures) = (inputs.files, inputs.temperatures);
     let progress = crate::progress::bar(files.len(), "characterising static records");
     let entries: Vec<Result<TemperatureEntry, Failure>> = files
         .par_iter()
@@ -99,7 +114,8 @@ pub fn build_bank_reading(
         .collect();
     progress.finish_and_clear();
     let entries = entries.into_iter().collect::<Result<Vec<_>, _>>()?;
-    let bank = ModelBank::new(entries).data()?;
+    let mut bank = ModelBank::new(entries).data()?;
+    bank.thermal = calibrate_bank(&bank, inputs.thermal)?;
     write_json_atomically(out, &bank).data()?;
     Ok(bank)
 }

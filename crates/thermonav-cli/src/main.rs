@@ -18,6 +18,7 @@ mod production_lot;
 mod progress;
 mod report;
 mod settings;
+mod thermal_calibration;
 mod tournament_files;
 
 use clap::Parser;

@@ -3,11 +3,12 @@
 //! separate jobs wrote, e.g. a Slurm array with `--unit-index $SLURM_ARRAY_TASK_ID`).
 
 use crate::args::{LotSummarizeArgs, ReadingArg};
-use crate::bank_building::build_bank_reading;
+use crate::bank_building::{BankInputs, build_bank_reading};
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::print_json;
 use crate::settings::characterization::{LotJob, UnitChoice};
+use crate::thermal_calibration::ThermalInputs;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -144,7 +145,12 @@ fn characterize_unit(
     let files: Vec<&Path> = unit.files.iter().map(PathBuf::as_path).collect();
     let temperatures = unit.temperatures_c.as_deref().unwrap_or(&[]);
     let bank = bank_path(dir, &unit.serial);
-    build_bank_reading(&files, temperatures, settings, reading, &bank).map_err(|failure| {
+    let inputs = BankInputs {
+        files: &files,
+        temperatures,
+        thermal: &ThermalInputs::default(),
+    };
+    build_bank_reading(&inputs, settings, reading, &bank).map_err(|failure| {
         let stale = remove_if_present(&bank).err().map(|e| format!("; {e}"));
         fail(format!("{failure}{}", stale.unwrap_or_default()))
     })

@@ -3,8 +3,10 @@
 use super::paths::Io;
 use crate::args::{CharacterizeArgs, ReadingArg};
 use crate::failure::Failure;
+use crate::thermal_calibration::ThermalInputs;
 use anyhow::anyhow;
 use std::path::PathBuf;
+use thermonav::sim::chamber::Site;
 use thermonav::stoch::characterize::CharacterizeSettings;
 
 /// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
@@ -35,6 +37,8 @@ pub struct BankJob {
     pub reading: ReadingArg,
     /// The bank written.
     pub out: PathBuf,
+    /// Further inputs of the thermal calibration.
+    pub thermal: ThermalInputs,
 }
 
 /// A production lot from its manifest.
@@ -90,8 +94,12 @@ fn bank_job(
     for &t in &args.temperature_c {
         check_temperature("--temperature-c", t)?;
     }
+    let thermal = thermal_inputs(args)?;
+    let further: Vec<PathBuf> = thermal.power_ons.iter().flatten().cloned().collect();
     Io::new()
         .inputs("a record", &args.files)
+        .inputs("a --power-on record", &further)
+        .inputs("a --sweep record", &thermal.sweeps)
         .output("bank", &args.out)
         .check()?;
     Ok(BankJob {
@@ -100,6 +108,31 @@ fn bank_job(
         conditioning,
         reading: args.reading,
         out: args.out.clone(),
+        thermal,
+    })
+}
+
+/// The further power-ons and sweeps of the thermal calibration.
+fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
+    Ok(ThermalInputs {
+        power_ons: args.power_on.iter().map(|p| p.0.clone()).collect(),
+        sweeps: args.sweep.clone(),
+        sweep_block_s: super::positive("--sweep-block-s", args.sweep_block_s)?,
+        site: chamber_site(args)?,
+    })
+}
+
+/// The chamber's site: a latitude within ±90° and a height within −500..10 000 m.
+fn chamber_site(args: &CharacterizeArgs) -> Result<Site, Failure> {
+    let (lat, h) = (args.chamber_latitude_deg, args.chamber_height_m);
+    if !((-90.0..=90.0).contains(&lat) && (-500.0..=10_000.0).contains(&h)) {
+        return Err(Failure::Usage(anyhow!(
+            "--chamber-latitude-deg {lat} / --chamber-height-m {h}: expected −90..90° and −500..10000 m"
+        )));
+    }
+    Ok(Site {
+        latitude_rad: lat.to_radians(),
+        height_m: h,
     })
 }
 

@@ -13,7 +13,7 @@
 //! holds the end value outside the covered range (reported as [`Placement::Clamped`]).
 
 use crate::imu::Channel;
-use crate::stoch::thermal::ThermalCalibration;
+use crate::stoch::thermal::{RecordMean, ThermalCalibration};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -47,6 +47,9 @@ pub struct TemperatureEntry {
     pub preprocessing: Preprocessing,
     /// Models per channel.
     pub channels: BTreeMap<Channel, ChannelModel>,
+    /// The record's means (the thermal calibration's observation of this record).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub record_mean: Option<RecordMean>,
 }
 
 /// Conditioning applied before AR and Gauss-Markov modelling (Allan uses the raw data).

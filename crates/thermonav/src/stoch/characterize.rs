@@ -32,6 +32,7 @@ use super::gauss_markov::{
 };
 use super::noise_terms::fit_noise_terms;
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
+use super::thermal::record_mean;
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::signal::decimate::decimation_factor;
 use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
@@ -168,7 +169,8 @@ pub fn characterize(
         .collect();
     let reports: BTreeMap<Channel, ChannelReport> =
         results.into_iter().collect::<Result<_, _>>()?;
-    let entry = conditioning.entry(temperature_c, source, settings, &reports);
+    let mut entry = conditioning.entry(temperature_c, source, settings, &reports);
+    entry.record_mean = record_mean(series, series.mean_temperature_c().unwrap_or(temperature_c));
     Ok((entry, reports))
 }
 
@@ -246,6 +248,7 @@ impl Conditioning {
                 modelling_rate_hz: self.rate_hz / self.factor as f64,
             },
             channels: reports.iter().map(|(c, r)| (*c, r.model.clone())).collect(),
+            record_mean: None,
         }
     }
 }

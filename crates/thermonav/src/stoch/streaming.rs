@@ -29,6 +29,7 @@ use super::characterize::{
     ChannelInputs, ChannelReport, CharacterizeError, CharacterizeSettings, Conditioning,
     channel_report, characterize,
 };
+use super::thermal::RecordSums;
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::signal::decimate::RATE_RATIO_TOLERANCE;
 use crate::signal::streaming_decimate::StreamingDecimator;
@@ -200,6 +201,7 @@ pub struct StreamingCharacterizer {
     stage: Stage,
     samples: usize,
     temperature: TemperatureSum,
+    sums: RecordSums,
 }
 
 impl StreamingCharacterizer {
@@ -215,6 +217,7 @@ impl StreamingCharacterizer {
                 count: 0,
                 complete: true,
             },
+            sums: RecordSums::default(),
         }
     }
 
@@ -239,6 +242,7 @@ impl StreamingCharacterizer {
             return Err(CharacterizeError::Increments);
         }
         self.add_temperatures(piece);
+        self.sums.add(piece);
         self.samples += piece.len();
         match &mut self.stage {
             Stage::Running(running) => running.push(piece),
@@ -318,6 +322,9 @@ impl StreamingCharacterizer {
         temperature_c: f64,
         source: &str,
     ) -> Result<(TemperatureEntry, BTreeMap<Channel, ChannelReport>), CharacterizeError> {
+        let mean = self
+            .sums
+            .mean(self.mean_temperature_c().unwrap_or(temperature_c));
         let running = match self.stage {
             Stage::Prefix(prefix) => {
                 return characterize(&prefix, temperature_c, source, &self.settings);
@@ -363,7 +370,8 @@ impl StreamingCharacterizer {
             .collect();
         let reports: BTreeMap<Channel, ChannelReport> =
             results.into_iter().collect::<Result<_, _>>()?;
-        let entry = conditioning.entry(temperature_c, source, settings, &reports);
+        let mut entry = conditioning.entry(temperature_c, source, settings, &reports);
+        entry.record_mean = mean;
         Ok((entry, reports))
     }
 }

@@ -71,6 +71,13 @@ pub struct ThermalCalibration {
     pub power_ons: usize,
     /// Scale factor against temperature.
     pub scale_factor: ScaleFactorCalibration,
+    /// The true static signal taken off each channel's observations before the fit (a level
+    /// unit's az reads −g), channel unit; channels not listed had none taken off.
+    #[serde(default)]
+    pub removed_signal: BTreeMap<Channel, f64>,
+    /// The observations fitted, per channel (after the removed signal), for plots and refits.
+    #[serde(default)]
+    pub observations: BTreeMap<Channel, Vec<PowerOnRecord>>,
 }
 
 /// What a compensation did.
@@ -99,6 +106,19 @@ pub enum CompensationError {
     },
 }
 
+/// Observations with a known static signal taken off each listed channel (a level unit's az
+/// reads −g on top of its bias).
+pub fn without_signal(
+    mut observations: BTreeMap<Channel, Vec<PowerOnRecord>>,
+    signal: &BTreeMap<Channel, f64>,
+) -> BTreeMap<Channel, Vec<PowerOnRecord>> {
+    for (channel, records) in &mut observations {
+        let u = signal.get(channel).copied().unwrap_or(0.0);
+        records.iter_mut().for_each(|r| r.value -= u);
+    }
+    observations
+}
+
 /// Fits the calibration of every channel from per-channel observations labelled by power-on.
 /// With two or more power-ons, one of them at two or more temperatures, the offsets are
 /// separated ([`fit_bias_curve_with_power_ons`]); otherwise one curve is fitted to all the
@@ -121,6 +141,8 @@ pub fn calibrate(
         channels,
         power_ons,
         scale_factor: ScaleFactorCalibration::static_level_unit(),
+        removed_signal: BTreeMap::new(),
+        observations: observations.clone(),
     })
 }
 

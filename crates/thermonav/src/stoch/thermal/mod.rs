@@ -63,6 +63,7 @@
 //! σ̂_b² = max(0, (Σ_j (α̂_j − ᾱ)² − Σ_j Var(α̂_j − ᾱ)) / (J − 1)).
 
 mod calibration;
+mod observations;
 mod power_on;
 mod solve;
 
@@ -74,7 +75,10 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 pub use calibration::{
     ChannelCalibration, CompensationError, CompensationSummary, ScaleFactorCalibration,
-    ThermalCalibration, calibrate,
+    ThermalCalibration, calibrate, without_signal,
+};
+pub use observations::{
+    RecordMean, RecordSums, merge_records, power_on_records, record_mean, sweep_records,
 };
 pub use power_on::{PowerOnFit, PowerOnOffset, PowerOnRecord, fit_bias_curve_with_power_ons};
 
@@ -154,9 +158,12 @@ pub enum ThermalError {
         /// Values given.
         values: usize,
     },
-    /// A block of zero samples.
-    #[error("a block mean needs at least one sample per block")]
+    /// A block of zero samples (or a block length that is not positive).
+    #[error("a block mean needs a positive block length and at least one sample per block")]
     EmptyBlock,
+    /// A sweep record without a temperature column.
+    #[error("a temperature sweep needs a temp_c column")]
+    NoTemperature,
 }
 
 /// One observation of a channel at a temperature (a record's mean, a sample, a block mean).

@@ -1,0 +1,146 @@
+//! The thermal calibration of a bank: its records' means (one power-on), further power-ons'
+//! records and temperature sweeps, fitted with `stoch::thermal::calibrate`.
+
+use crate::failure::{Classify, Failure};
+use anyhow::anyhow;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use thermonav::geo::gravity::normal_gravity_m_s2;
+use thermonav::imu::Channel;
+use thermonav::sim::chamber::Site;
+use thermonav::stoch::bank::ModelBank;
+use thermonav::stoch::thermal::{
+    FitSettings, PowerOnRecord, RecordMean, ThermalCalibration, calibrate, merge_records,
+    power_on_records, record_mean, sweep_records, without_signal,
+};
+use thermonav_io::{Strictness, read_imu_file};
+
+/// Block length of a sweep's block means, s: five minutes, longer than most of a MEMS bias's
+/// correlation times, so that neighbouring blocks are nearly independent.
+pub const DEFAULT_SWEEP_BLOCK_S: f64 = 300.0;
+
+/// The chamber site assumed unless given: 45° latitude at sea level. Gravity there is within
+/// 0.5 mg of that at 38-52° and 0 to 1 km would add 0.3 mg per 100 m: an error in the site
+/// moves only az's constant, which the filter's bias state takes up.
+pub const DEFAULT_SITE_LATITUDE_DEG: f64 = 45.0;
+
+/// Height of the default chamber site, m.
+pub const DEFAULT_SITE_HEIGHT_M: f64 = 0.0;
+
+fn default_site() -> Site {
+    Site {
+        latitude_rad: DEFAULT_SITE_LATITUDE_DEG.to_radians(),
+        height_m: DEFAULT_SITE_HEIGHT_M,
+    }
+}
+
+/// What a thermal calibration is fitted to beyond the bank's own records.
+#[derive(Debug, Clone)]
+pub struct ThermalInputs {
+    /// Further power-ons, each a list of static records.
+    pub power_ons: Vec<Vec<PathBuf>>,
+    /// Temperature sweeps, each its own power-on.
+    pub sweeps: Vec<PathBuf>,
+    /// Block length of a sweep's block means, s.
+    pub sweep_block_s: f64,
+    /// Where the chamber stands: latitude (rad) and height (m), for the gravity a level unit's
+    /// az reads.
+    pub site: Site,
+}
+
+impl Default for ThermalInputs {
+    fn default() -> Self {
+        Self {
+            power_ons: Vec::new(),
+            sweeps: Vec::new(),
+            sweep_block_s: DEFAULT_SWEEP_BLOCK_S,
+            site: default_site(),
+        }
+    }
+}
+
+impl ThermalInputs {
+    /// True when some input beyond the bank's records is given.
+    fn given(&self) -> bool {
+        !self.power_ons.is_empty() || !self.sweeps.is_empty()
+    }
+}
+
+/// The calibration of `bank` and `inputs`: `None` (said on stderr) when the bank's records
+/// alone span fewer than two temperatures or cannot be fitted.
+///
+/// # Errors
+/// A further record or sweep that cannot be read or fitted.
+pub fn calibrate_bank(
+    bank: &ModelBank,
+    inputs: &ThermalInputs,
+) -> Result<Option<ThermalCalibration>, Failure> {
+    let own: Vec<RecordMean> = bank
+        .entries
+        .iter()
+        .filter_map(|e| e.record_mean.clone())
+        .collect();
+    let mut parts = vec![power_on_records(1, &own)];
+    for (k, files) in inputs.power_ons.iter().enumerate() {
+        parts.push(power_on_records(k as u32 + 2, &means_of(files)?));
+    }
+    let first_sweep = inputs.power_ons.len() as u32 + 2;
+    for (k, file) in inputs.sweeps.iter().enumerate() {
+        parts.push(sweep_of(
+            file,
+            first_sweep + k as u32,
+            inputs.sweep_block_s,
+        )?);
+    }
+    let gravity = normal_gravity_m_s2(inputs.site.latitude_rad, inputs.site.height_m);
+    let signal = BTreeMap::from([(Channel::Az, -gravity)]);
+    let observations = without_signal(merge_records(parts), &signal);
+    Ok(fit(&observations, inputs.given())?.map(|mut c| {
+        c.removed_signal = signal;
+        c
+    }))
+}
+
+fn fit(
+    observations: &BTreeMap<Channel, Vec<PowerOnRecord>>,
+    required: bool,
+) -> Result<Option<ThermalCalibration>, Failure> {
+    match calibrate(observations, FitSettings::default()) {
+        Ok(calibration) if !calibration.channels.is_empty() => Ok(Some(calibration)),
+        Ok(_) => Ok(None),
+        Err(e) if required => Err(Failure::Data(anyhow!("thermal calibration: {e}"))),
+        Err(e) => {
+            eprintln!("note: no thermal calibration: {e}");
+            Ok(None)
+        }
+    }
+}
+
+/// The means of static records of one power-on, each at its temp_c mean.
+fn means_of(files: &[PathBuf]) -> Result<Vec<RecordMean>, Failure> {
+    files.iter().map(|f| mean_of(f)).collect()
+}
+
+fn mean_of(path: &Path) -> Result<RecordMean, Failure> {
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let temperature_c = series.mean_temperature_c().ok_or_else(|| {
+        Failure::Data(anyhow!(
+            "{}: a power-on record needs a temp_c column",
+            path.display()
+        ))
+    })?;
+    crate::bank_building::recorded_temperature(path, temperature_c)?;
+    record_mean(&series, temperature_c)
+        .ok_or_else(|| Failure::Data(anyhow!("{}: no IMU sample", path.display())))
+}
+
+fn sweep_of(
+    path: &Path,
+    power_on: u32,
+    block_s: f64,
+) -> Result<BTreeMap<Channel, Vec<PowerOnRecord>>, Failure> {
+    let series = read_imu_file(path, Strictness::Strict).data()?;
+    sweep_records(power_on, &series, block_s)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()
+}
