@@ -15,6 +15,7 @@ mod schedule;
 mod signal;
 mod streaming;
 mod thermal;
+mod thermal_recovery;
 mod ukf;
 mod vessel;
 

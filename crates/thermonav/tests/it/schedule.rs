@@ -14,8 +14,9 @@ use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav::nav::solution::Solution;
 use thermonav::sensor::adis16364_like;
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::unit::SimulatedUnit;
 use thermonav::sim::vessel::{
-    GnssSettings, VesselRecord, VesselRun, harbour_survey, simulate_vessel,
+    GnssSettings, SurveyTemperature, VesselRecord, VesselRun, harbour_survey, simulate_vessel,
 };
 use thermonav::stoch::thermal::{FitSettings, PowerOnRecord, ThermalCalibration, calibrate};
 use thermonav::time::{Duration, Timestamp};
@@ -25,7 +26,10 @@ const SURVEY_C: f64 = 17.0;
 fn vessel(duration_s: f64) -> VesselRecord {
     let run = VesselRun {
         motion: harbour_survey(duration_s),
-        temperature_c: SURVEY_C,
+        temperature: SurveyTemperature::Constant {
+            temperature_c: SURVEY_C,
+        },
+        unit: SimulatedUnit::default(),
         clock: SampleClock::new(200.0, 0.0, 0.0).unwrap(),
         gnss: GnssSettings::default(),
         seed: 11,
