@@ -8,7 +8,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use thermonav::imu::Channel;
-use thermonav::sensor::{SensorProfile, adis16364_like};
+use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
 };
@@ -20,9 +20,14 @@ use thermonav_io::motion::read_motion;
 use thermonav_io::profile::read_profile;
 use thermonav_io::{write_gnss_file, write_imu_file, write_json_atomically, write_trajectory_file};
 
-/// The profile of `--profile`, or the built-in one.
+/// The name that selects the built-in temperature-sensitive profile instead of a file.
+pub const TEMPERATURE_SENSITIVE_PROFILE: &str = "builtin:temperature-sensitive";
+
+/// The profile of `--profile` (a TOML file, or [`TEMPERATURE_SENSITIVE_PROFILE`]), or the
+/// built-in ADIS16364-like one.
 pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
     match path {
+        Some(p) if p == Path::new(TEMPERATURE_SENSITIVE_PROFILE) => Ok(temperature_sensitive()),
         Some(p) => read_profile(p).data(),
         None => Ok(adis16364_like()),
     }
@@ -146,9 +151,13 @@ fn chamber_record(
     temperature: ChamberTemperature,
     power_on: u32,
 ) -> Result<RecordTruth, Failure> {
+    let c = &settings.campaign;
     let run = ChamberRun {
         temperature,
-        duration_s: settings.campaign.duration_s,
+        duration_s: match power_on {
+            1 => c.duration_s,
+            _ => c.repeat_duration_s.unwrap_or(c.duration_s),
+        },
         unit: settings.unit,
         power_on,
         clock: settings.clock,

@@ -19,6 +19,7 @@ mod progress;
 mod report;
 mod settings;
 mod thermal_calibration;
+mod thermal_scenarios;
 mod tournament_files;
 
 use clap::Parser;

@@ -526,7 +526,7 @@ pub fn adis16364_like() -> SensorProfile {
 ///   ~130 m per axis after 100 s and hides every bias model) and accelerometer VRW
 ///   0.05 m/s/√h.
 /// - Gauss-Markov σ at −40..+60 °C by 20 °C: gyro 10, 20, 35, 50, 25, 10 deg/h and
-///   accelerometer 0.025, 0.05, 0.1, 0.125, 0.06, 0.025 mg: largest near room temperature and
+///   accelerometer 0.05, 0.1, 0.2, 0.25, 0.12, 0.05 mg: largest near room temperature and
 ///   5× smaller at the ends (a 5× range, as reported between the ends of MEMS ranges), so a
 ///   model from a far temperature under-states the drift by 5×.
 /// - Correlation times 1000, 600, 200, 100, 300, 800 s: the bias wanders fastest where it is
@@ -550,7 +550,7 @@ pub fn temperature_sensitive() -> SensorProfile {
 /// Gyro σ of [`temperature_sensitive`], deg/h.
 const SENSITIVE_GYRO_SIGMA_DEG_H: [f64; 6] = [10.0, 20.0, 35.0, 50.0, 25.0, 10.0];
 /// Accelerometer σ of [`temperature_sensitive`], mg.
-const SENSITIVE_ACCEL_SIGMA_MG: [f64; 6] = [0.025, 0.05, 0.1, 0.125, 0.06, 0.025];
+const SENSITIVE_ACCEL_SIGMA_MG: [f64; 6] = [0.05, 0.1, 0.2, 0.25, 0.12, 0.05];
 /// Correlation times of [`temperature_sensitive`], s.
 const SENSITIVE_TC_S: [f64; 6] = [1000.0, 600.0, 200.0, 100.0, 300.0, 800.0];
 
@@ -573,11 +573,15 @@ fn sensitive_channel(channel: Channel) -> ChannelProfile {
     match channel.sensor() {
         Sensor::Gyro => ChannelProfile {
             white_noise_density: arw_deg_per_sqrt_h_to_rad_per_sqrt_s(0.3),
-            bias_gauss_markov: table(SENSITIVE_GYRO_SIGMA_DEG_H, crate::units::deg_per_h_to_rad_per_s),
+            bias_gauss_markov: table(
+                SENSITIVE_GYRO_SIGMA_DEG_H,
+                crate::units::deg_per_h_to_rad_per_s,
+            ),
             turn_on_bias_sigma: deg_to_rad(0.5),
             power_on_offset_sigma: deg_to_rad(0.05),
             bias_temperature_coefficient_per_c: sign * deg_to_rad(0.005),
-            bias_temperature_quadratic_per_c2: -sign * deg_to_rad(BIAS_CURVATURE_DEG_S_PER_C2 / 2.0),
+            bias_temperature_quadratic_per_c2: -sign
+                * deg_to_rad(BIAS_CURVATURE_DEG_S_PER_C2 / 2.0),
             quantization_step: deg_to_rad(0.001),
             ..base
         },
@@ -587,7 +591,8 @@ fn sensitive_channel(channel: Channel) -> ChannelProfile {
             turn_on_bias_sigma: mg_to_m_per_s2(2.0),
             power_on_offset_sigma: mg_to_m_per_s2(0.2),
             bias_temperature_coefficient_per_c: sign * mg_to_m_per_s2(0.025),
-            bias_temperature_quadratic_per_c2: -sign * mg_to_m_per_s2(BIAS_CURVATURE_MG_PER_C2 / 2.0),
+            bias_temperature_quadratic_per_c2: -sign
+                * mg_to_m_per_s2(BIAS_CURVATURE_MG_PER_C2 / 2.0),
             quantization_step: mg_to_m_per_s2(0.01),
             ..base
         },

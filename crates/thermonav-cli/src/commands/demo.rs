@@ -20,6 +20,9 @@ use crate::settings::navigation::{
     IntegrateSettings, ModelTemperature, NoiseSource, ScenarioFiles, SolutionFiles,
 };
 use crate::settings::simulation::{VesselSettings, chamber_settings};
+use crate::thermal_scenarios::{
+    ScenarioPlan, ThermalScenarios, print_thermal_scenarios, run_thermal_scenarios,
+};
 use crate::tournament_files::{
     CompensationPlan, EvaluationFile, print_tournament_table, run_and_write, scenario_from_files,
     scenario_imu, scenario_of,
@@ -58,6 +61,30 @@ struct Plan {
     vessel_s: f64,
     outages: OutageSpec,
     replicates: u64,
+}
+
+/// The sizes of scenarios (b) and (c).
+fn scenario_plan(quick: bool, seed: u64) -> ScenarioPlan {
+    // Chamber records of at least 1 h (Tc reaches 1000 s), four power-ons (the smallest
+    // number whose band meets half-width ≤ 2 offset sds, tests/it/thermal_recovery.rs),
+    // outages of 90-100 s (the drift a wrong model leaves grows with the cube of time).
+    ScenarioPlan {
+        chamber_duration_s: if quick { 3600.0 } else { 10_800.0 },
+        chamber_rate_hz: 50.0,
+        power_ons: 4,
+        repeat_duration_s: 300.0,
+        survey_s: if quick { 900.0 } else { 1800.0 },
+        survey_rate_hz: 50.0,
+        outages: OutageSpec::Spread {
+            count: if quick { 5 } else { 8 },
+            duration_s: if quick { 90.0 } else { 100.0 },
+        },
+        replicates: if quick { 6 } else { 8 },
+        cold_start_c: -20.0,
+        settled_c: 25.0,
+        warm_up_time_constant_s: 600.0,
+        seed,
+    }
 }
 
 fn plan(quick: bool) -> Plan {
@@ -111,6 +138,7 @@ struct DemoSummary {
     ml_intervals: usize,
     tournament: EvaluationFile,
     solution: IntegrateSummary,
+    temperature_scenarios: ThermalScenarios,
     elapsed_s: f64,
 }
 
@@ -137,7 +165,21 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     );
     let tournament = tournament(&bank, &vessel, &vessel_files, &p, &args.out)?;
     let solution = interpolated_solution(&vessel, &vessel_files, &p, &args.out)?;
-    let summary = summarize(args, &p, &bank, &truth, tournament, solution, started);
+    say(
+        args,
+        "5/5 temperature in the loop: a temperature-sensitive unit, its thermal calibration, a survey at 17 °C and one warming up ...",
+    );
+    let scenarios = run_thermal_scenarios(
+        &scenario_plan(args.quick, args.seed),
+        &args.out.join("temperature"),
+    )?;
+    let summary = summarize(
+        args,
+        &p,
+        (&bank, &truth),
+        (tournament, solution, scenarios),
+        started,
+    );
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
     let report = crate::html_report::write_report(&args.out)?;
     say(args, &format!("report: {}", report.display()));
@@ -203,10 +245,12 @@ fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBa
 fn summarize(
     args: &DemoArgs,
     p: &Plan,
-    bank: &ModelBank,
-    truth: &[RunTruth],
-    tournament: EvaluationFile,
-    solution: IntegrateSummary,
+    (bank, truth): (&ModelBank, &[RunTruth]),
+    (tournament, solution, temperature_scenarios): (
+        EvaluationFile,
+        IntegrateSummary,
+        ThermalScenarios,
+    ),
     started: Instant,
 ) -> DemoSummary {
     let recovery = recovery_table(bank, truth);
@@ -226,6 +270,7 @@ fn summarize(
         ml_intervals: judged.len(),
         tournament,
         solution,
+        temperature_scenarios,
         elapsed_s: started.elapsed().as_secs_f64(),
     }
 }
@@ -447,6 +492,7 @@ fn print_summary(s: &DemoSummary) {
         s.out, s.elapsed_s
     );
     print_tournament_table(&s.tournament);
+    print_thermal_scenarios(&s.temperature_scenarios);
 }
 
 /// The recovery table: one row per temperature and channel.

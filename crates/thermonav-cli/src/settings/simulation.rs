@@ -141,7 +141,8 @@ fn set_points(temperatures_c: &[f64]) -> Result<Vec<f64>, Failure> {
 }
 
 fn profile_io(profile: Option<&PathBuf>) -> Io {
-    match profile {
+    let builtin = std::path::Path::new(crate::campaign::TEMPERATURE_SENSITIVE_PROFILE);
+    match profile.filter(|p| p.as_path() != builtin) {
         Some(p) => Io::new().input("--profile", p),
         None => Io::new(),
     }

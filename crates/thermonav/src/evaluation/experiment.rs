@@ -11,7 +11,9 @@ use super::candidates::{
     tournament_candidates,
 };
 use super::report::{TournamentReport, report_of};
-use super::tournament::{ModelResult, Scenario, run_tournament, summarize_replicates};
+use super::tournament::{
+    ModelResult, Scenario, horizontal_contrasts, run_tournament, summarize_replicates,
+};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
@@ -207,7 +209,15 @@ impl Tournament {
             all.push(run);
         }
         let (summaries, tests) = summarize_replicates(&all);
-        let report = report_of(self, main, &results, &summaries, tests, replicates);
+        let contrasts = horizontal_contrasts(&all);
+        let report = report_of(
+            self,
+            main,
+            &results,
+            &summaries,
+            (tests, contrasts),
+            replicates,
+        );
         Ok(TournamentOutcome {
             report,
             main: results,

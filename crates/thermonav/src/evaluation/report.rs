@@ -5,7 +5,7 @@ use super::candidates::{CandidateKind, Excluded};
 use super::experiment::{Replicates, Tournament};
 use super::metrics::{Metric, OutageMetrics, RunMetrics};
 use super::significance::MeanInterval;
-use super::tournament::{ModelResult, ModelSummary, Scenario, Significance};
+use super::tournament::{Contrast, ModelResult, ModelSummary, Scenario, Significance};
 use crate::nav::engine::FilterKind;
 use crate::nav::solution::InnovationStatistics;
 use crate::stoch::bank::GaussMarkovSource;
@@ -84,6 +84,8 @@ pub struct SignificanceReport {
     pub replicates_differ_by: &'static str,
     /// Winner against runner-up, per filter and metric.
     pub tests: Vec<Significance>,
+    /// Every pair of models of a filter on the horizontal error, the better one first.
+    pub horizontal_contrasts: Vec<Contrast>,
 }
 
 /// The whole report.
@@ -117,7 +119,7 @@ pub(super) fn report_of(
     main: &Scenario,
     results: &[ModelResult],
     summaries: &[ModelSummary],
-    tests: Vec<Significance>,
+    (tests, horizontal_contrasts): (Vec<Significance>, Vec<Contrast>),
     replicates: &Replicates,
 ) -> TournamentReport {
     let models: Vec<ModelReport> = results
@@ -141,6 +143,7 @@ pub(super) fn report_of(
             replicates: 1 + replicates.extra(),
             replicates_differ_by: replicates.differ_by(),
             tests,
+            horizontal_contrasts,
         },
         models,
         filters,

@@ -291,3 +291,62 @@ pub fn summarize_replicates(
     }
     (summaries, tests)
 }
+
+/// One model against another on the mean of per-outage RMS horizontal error, over the
+/// replicates (paired: the same data in each replicate).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Contrast {
+    /// The filter.
+    pub filter: FilterKind,
+    /// The model with the lower mean.
+    pub better: String,
+    /// The other.
+    pub worse: String,
+    /// Mean of worse − better over the replicates, m.
+    pub mean_difference_m: f64,
+    /// Paired t-test of worse − better (`None` with fewer than two replicates or no spread).
+    pub test: Option<PairedTest>,
+}
+
+/// Every pair of models of one filter whose runs all succeeded, on the horizontal error.
+pub fn horizontal_contrasts(replicates: &[Vec<ModelResult>]) -> Vec<Contrast> {
+    let Some(first) = replicates.first() else {
+        return Vec::new();
+    };
+    let series: Vec<Option<Vec<f64>>> = (0..first.len())
+        .map(|i| {
+            replicates
+                .iter()
+                .map(|r| r.get(i).and_then(|m| m.value(Metric::RmsHorizontal)))
+                .collect()
+        })
+        .collect();
+    let mut contrasts = Vec::new();
+    for (i, a) in first.iter().enumerate() {
+        for (j, b) in first.iter().enumerate().skip(i + 1) {
+            if a.filter != b.filter {
+                continue;
+            }
+            if let (Some(x), Some(y)) = (&series[i], &series[j]) {
+                contrasts.push(contrast(a, x, b, y));
+            }
+        }
+    }
+    contrasts
+}
+
+fn contrast(a: &ModelResult, x: &[f64], b: &ModelResult, y: &[f64]) -> Contrast {
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let ((better, bv), (worse, wv)) = if mean(x) <= mean(y) {
+        ((a, x), (b, y))
+    } else {
+        ((b, y), (a, x))
+    };
+    Contrast {
+        filter: a.filter,
+        better: better.label.clone(),
+        worse: worse.label.clone(),
+        mean_difference_m: mean(wv) - mean(bv),
+        test: paired_t_test(wv, bv),
+    }
+}

@@ -65,6 +65,9 @@ pub struct CampaignSettings {
     /// one's records make the model bank; the others repeat them, so that the power-on
     /// offsets can be told apart from the thermal curve).
     pub power_ons: u32,
+    /// Record length of the further power-ons, s (`None`: as the first's); their records
+    /// serve the thermal calibration's means only, so they may be shorter.
+    pub repeat_duration_s: Option<f64>,
     /// A temperature sweep of the same unit after the set points, in a power-on of its own.
     pub ramp: Option<Ramp>,
 }
@@ -82,6 +85,7 @@ impl Default for CampaignSettings {
                 correlation_time_s: 600.0,
             },
             power_ons: 1,
+            repeat_duration_s: None,
             ramp: None,
         }
     }

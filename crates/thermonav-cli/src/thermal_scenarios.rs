@@ -1,0 +1,467 @@
+//! The demo's scenarios in which temperature matters, on the built-in temperature-sensitive
+//! profile (`thermonav::sensor::temperature_sensitive`): one chamber campaign of one unit
+//! (power-ons repeated so that its thermal calibration separates their offsets), its bank,
+//! and two surveys of the same unit, each with its tournament and the claim it tests:
+//!
+//! - (b) a survey at 17 °C: the bank model nearest the survey's temperature has the lowest
+//!   mean horizontal error among the fixed bank temperatures and beats every model 40 °C or
+//!   more away, paired p < 0.01;
+//! - (c) a cold start warming up: scheduled plus compensated beats the best fixed model plus
+//!   compensation and every fixed model without it, paired p < 0.01.
+//!
+//! The replicates shift the outages along one simulated survey (as `evaluate --monte-carlo`
+//! does), so the p-values say how surely one model beats another on this survey wherever the
+//! outages fall. New simulations per replicate (new noise, a new power-on offset of the same
+//! unit) vary far more: on scenario (b), 6 of them gave the nearest model's 54-60 m lead over
+//! the far ones a paired p of 0.1, so a claim over surveys needs a few dozen replicates.
+
+use crate::bank_building::{BankInputs, build_bank_reading};
+use crate::campaign::{ChamberTruth, TEMPERATURE_SENSITIVE_PROFILE, load_profile, run_chamber};
+use crate::failure::{Classify, Failure};
+use crate::settings::simulation::chamber_settings;
+use crate::thermal_calibration::ThermalInputs;
+use crate::tournament_files::{EvaluationFile, run_and_write, scenario_imu, scenario_of};
+use anyhow::anyhow;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use thermonav::evaluation::candidates::{CandidateKind, ThermalOptions};
+use thermonav::evaluation::experiment::{CandidateSource, Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::report::ModelReport;
+use thermonav::evaluation::tournament::{Contrast, Scenario};
+use thermonav::nav::engine::{EngineSettings, FilterKind};
+use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::schedule::{Compensation, Scheduling};
+use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::sensor::SensorProfile;
+use thermonav::sim::chamber::{CampaignSettings, Site, calgary};
+use thermonav::sim::clock::SampleClock;
+use thermonav::sim::unit::SimulatedUnit;
+use thermonav::sim::vessel::{
+    GnssSettings, SurveyTemperature, VesselRun, harbour_survey, simulate_vessel,
+};
+use thermonav::stoch::bank::{GaussMarkovSource, ModelBank};
+use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::trajectory::TrajectoryPoint;
+
+/// The p-value a claim's comparisons must stay below.
+pub const CLAIM_P_VALUE: f64 = 0.01;
+
+/// Distance from the survey temperature beyond which a bank model is "far", °C.
+pub const FAR_C: f64 = 40.0;
+
+/// Sizes of the scenarios.
+#[derive(Debug, Clone)]
+pub struct ScenarioPlan {
+    /// Chamber record length of the first power-on, s.
+    pub chamber_duration_s: f64,
+    /// Chamber rate, Hz.
+    pub chamber_rate_hz: f64,
+    /// Power-ons of the campaign.
+    pub power_ons: u32,
+    /// Record length of the further power-ons, s.
+    pub repeat_duration_s: f64,
+    /// Survey length, s.
+    pub survey_s: f64,
+    /// Survey IMU rate, Hz.
+    pub survey_rate_hz: f64,
+    /// Outages of each survey.
+    pub outages: OutageSpec,
+    /// Simulations of each survey, the main one included.
+    pub replicates: u64,
+    /// Start temperature of the warming survey, °C.
+    pub cold_start_c: f64,
+    /// Its settled temperature, °C.
+    pub settled_c: f64,
+    /// Its warm-up time constant, s.
+    pub warm_up_time_constant_s: f64,
+    /// Seed of the campaign and the surveys.
+    pub seed: u64,
+}
+
+/// One comparison a claim rests on.
+#[derive(Debug, Clone, Serialize)]
+pub struct ClaimComparison {
+    /// The model the claim says is better.
+    pub better: String,
+    /// The model it must beat.
+    pub worse: String,
+    /// Mean of worse − better over the replicates, m (negative: the claim's model is worse).
+    pub mean_difference_m: f64,
+    /// Paired t-test p-value.
+    pub p_value: Option<f64>,
+    /// The claim's model is better with p below [`CLAIM_P_VALUE`].
+    pub holds: bool,
+}
+
+/// A scenario's claim and whether the tournament bears it out.
+#[derive(Debug, Clone, Serialize)]
+pub struct Claim {
+    /// The claim, in words.
+    pub statement: String,
+    /// Whether every part of it holds.
+    pub holds: bool,
+    /// The comparisons.
+    pub comparisons: Vec<ClaimComparison>,
+}
+
+/// One scenario's outcome.
+#[derive(Debug, Serialize)]
+pub struct ScenarioOutcome {
+    /// Its name.
+    pub name: &'static str,
+    /// How the survey's temperature behaves.
+    pub survey_temperature: SurveyTemperature,
+    /// The claim tested.
+    pub claim: Claim,
+    /// The tournament.
+    pub tournament: EvaluationFile,
+}
+
+/// Both scenarios and what they were run on.
+#[derive(Debug, Serialize)]
+pub struct ThermalScenarios {
+    /// The sensor profile.
+    pub profile: String,
+    /// The campaign's power-ons.
+    pub power_ons: u32,
+    /// The bank (with its thermal calibration).
+    pub bank: PathBuf,
+    /// (b): temperature matters at a constant 17 °C.
+    pub temperature_matters: ScenarioOutcome,
+    /// (c): a survey that warms up.
+    pub warming_survey: ScenarioOutcome,
+}
+
+/// Runs the campaign, the bank and both scenarios under `out`.
+///
+/// # Errors
+/// A simulation, characterisation or tournament that fails.
+pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalScenarios, Failure> {
+    let profile = load_profile(Some(Path::new(TEMPERATURE_SENSITIVE_PROFILE)))?;
+    let bank_path = out.join("bank.json");
+    let bank = campaign_bank(plan, out, &bank_path)?;
+    let constant = SurveyTemperature::Constant {
+        temperature_c: 17.0,
+    };
+    let warming = SurveyTemperature::WarmUp {
+        start_c: plan.cold_start_c,
+        settled_c: plan.settled_c,
+        time_constant_s: plan.warm_up_time_constant_s,
+    };
+    let survey = Survey {
+        profile: &profile,
+        bank: &bank,
+        plan,
+    };
+    let b = survey.tournament(constant.clone(), &out.join("temperature_matters"))?;
+    let c = survey.tournament(warming.clone(), &out.join("warming_survey"))?;
+    Ok(ThermalScenarios {
+        profile: profile.name.clone(),
+        power_ons: plan.power_ons,
+        bank: bank_path,
+        temperature_matters: ScenarioOutcome {
+            name: "temperature matters (b)",
+            claim: nearest_claim(
+                &b.report.models,
+                &b.report.significance.horizontal_contrasts,
+                17.0,
+            ),
+            survey_temperature: constant,
+            tournament: b,
+        },
+        warming_survey: ScenarioOutcome {
+            name: "a survey that warms up (c)",
+            claim: scheduled_claim(
+                &c.report.models,
+                &c.report.significance.horizontal_contrasts,
+            ),
+            survey_temperature: warming,
+            tournament: c,
+        },
+    })
+}
+
+/// The chamber campaign of the unit and its bank with the thermal calibration.
+fn campaign_bank(plan: &ScenarioPlan, out: &Path, bank: &Path) -> Result<ModelBank, Failure> {
+    let campaign = CampaignSettings {
+        duration_s: plan.chamber_duration_s,
+        rate_hz: plan.chamber_rate_hz,
+        power_ons: plan.power_ons,
+        repeat_duration_s: Some(plan.repeat_duration_s),
+        ..CampaignSettings::default()
+    };
+    let profile = Some(PathBuf::from(TEMPERATURE_SENSITIVE_PROFILE));
+    let chamber = chamber_settings(out.join("chamber"), campaign, profile, plan.seed)?;
+    let truth = run_chamber(&chamber)?;
+    let files: Vec<&Path> = truth.files.iter().map(PathBuf::as_path).collect();
+    let thermal = ThermalInputs {
+        power_ons: further_power_ons(&truth),
+        site: calgary_site(),
+        ..ThermalInputs::default()
+    };
+    let inputs = BankInputs {
+        files: &files,
+        temperatures: &chamber.campaign.temperatures_c,
+        thermal: &thermal,
+    };
+    build_bank_reading(
+        &inputs,
+        &CharacterizeSettings::default(),
+        crate::args::ReadingArg::Auto,
+        bank,
+    )
+}
+
+/// The chamber's site (the simulator's).
+fn calgary_site() -> Site {
+    calgary()
+}
+
+/// The records of the power-ons after the first, grouped by power-on.
+fn further_power_ons(truth: &ChamberTruth) -> Vec<Vec<PathBuf>> {
+    let mut groups: BTreeMap<u32, Vec<PathBuf>> = BTreeMap::new();
+    for record in &truth.further_records {
+        groups
+            .entry(record.truth.power_on)
+            .or_default()
+            .push(record.file.clone());
+    }
+    groups.into_values().collect()
+}
+
+/// What the surveys share.
+struct Survey<'a> {
+    profile: &'a SensorProfile,
+    bank: &'a ModelBank,
+    plan: &'a ScenarioPlan,
+}
+
+impl Survey<'_> {
+    /// The tournament of the bank's candidates on a survey at `temperature`, replicated by
+    /// new simulations.
+    fn tournament(
+        &self,
+        temperature: SurveyTemperature,
+        out: &Path,
+    ) -> Result<EvaluationFile, Failure> {
+        let operating_c = mean_temperature_c(&temperature, self.plan.survey_s);
+        let run = self.run(temperature)?;
+        let main = self.scenario(&run, 0).map_err(|e| anyhow!("{e}")).data()?;
+        let plan = TournamentPlan {
+            noise: CandidateSource::Bank(self.bank),
+            thermal: ThermalOptions {
+                imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
+                scheduling: Scheduling::default(),
+                compensation: Compensation::default(),
+            },
+            operating_temperature_c: operating_c,
+            source: GaussMarkovSource::IrregularMl,
+            filters: vec![FilterKind::Ekf],
+            datasheet: None,
+            scale: ScaleFactorPrior::default(),
+        };
+        let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
+        let replicates = Replicates::ShiftedOutages {
+            extra: self.plan.replicates.saturating_sub(1) as usize,
+            seed: self.plan.seed,
+        };
+        run_and_write(&tournament, &main, &replicates, out)
+    }
+
+    fn run(&self, temperature: SurveyTemperature) -> Result<VesselRun, Failure> {
+        Ok(VesselRun {
+            motion: harbour_survey(self.plan.survey_s),
+            temperature,
+            unit: SimulatedUnit::default(),
+            clock: SampleClock::new(self.plan.survey_rate_hz, 50e-6, 0.0).usage()?,
+            gnss: GnssSettings::default(),
+            seed: self.plan.seed,
+        })
+    }
+
+    /// Simulation `k` of the survey as a scenario (raw and compensated records).
+    fn scenario(&self, run: &VesselRun, k: usize) -> Result<Scenario, String> {
+        let run = VesselRun {
+            seed: run.seed.wrapping_add(k as u64),
+            ..run.clone()
+        };
+        let record = simulate_vessel(self.profile, &run).map_err(|e| e.to_string())?;
+        let name = Path::new("simulated survey");
+        let compensation = (self.bank.thermal.as_ref(), Compensation::default());
+        let imu = scenario_imu(&record.imu, compensation, name).map_err(|e| e.to_string())?;
+        let reference: Vec<TrajectoryPoint> = record
+            .reference
+            .states
+            .iter()
+            .map(TrajectoryPoint::from_nav_state)
+            .collect();
+        let span = match (imu.increments.first(), imu.increments.last()) {
+            (Some(a), Some(b)) => (a.time, b.time),
+            _ => return Err("the survey has no IMU interval".into()),
+        };
+        let settings = EngineSettings {
+            geometry: AntennaGeometry {
+                lever_arm_body_m: run.gnss.lever_arm_body_m,
+                baseline_body: run.gnss.baseline_body_m,
+            },
+            outages: self.plan.outages.resolve(span).map_err(|e| e.to_string())?,
+            ..EngineSettings::default()
+        };
+        scenario_of(imu, record.gnss, reference, settings, name).map_err(|e| e.to_string())
+    }
+}
+
+/// The mean of a survey's temperature over its first `duration_s`, °C (1 s steps).
+fn mean_temperature_c(temperature: &SurveyTemperature, duration_s: f64) -> f64 {
+    let steps = duration_s.max(1.0).ceil() as usize;
+    (0..steps).map(|k| temperature.at(k as f64)).sum::<f64>() / steps as f64
+}
+
+/// The comparison of `better` against `worse` in the tournament's contrasts.
+fn comparison(contrasts: &[Contrast], better: &str, worse: &str) -> ClaimComparison {
+    let found = contrasts.iter().find(|c| {
+        (c.better == better && c.worse == worse) || (c.better == worse && c.worse == better)
+    });
+    let (mean_difference_m, p_value) = match found {
+        Some(c) if c.better == better => (c.mean_difference_m, c.test.map(|t| t.p_value)),
+        Some(c) => (-c.mean_difference_m, c.test.map(|t| t.p_value)),
+        None => (f64::NAN, None),
+    };
+    ClaimComparison {
+        better: better.to_string(),
+        worse: worse.to_string(),
+        holds: mean_difference_m > 0.0 && p_value.is_some_and(|p| p < CLAIM_P_VALUE),
+        mean_difference_m: if mean_difference_m.is_finite() {
+            mean_difference_m
+        } else {
+            0.0
+        },
+        p_value,
+    }
+}
+
+/// The mean horizontal error over the replicates (the main run's without replicates), m.
+fn mean_horizontal_m(model: &ModelReport) -> Option<f64> {
+    model
+        .ci95
+        .get("rms_horizontal_m")
+        .map(|c| c.mean)
+        .or(model.rms_horizontal_m)
+}
+
+/// The fixed bank models (entries) with their temperatures.
+fn entries(models: &[ModelReport]) -> Vec<(&ModelReport, f64)> {
+    models
+        .iter()
+        .filter_map(|m| match m.candidate {
+            CandidateKind::Entry { temperature_c } => Some((m, temperature_c)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Claim (b): the entry nearest `survey_c` is the best entry and beats the far ones.
+fn nearest_claim(models: &[ModelReport], contrasts: &[Contrast], survey_c: f64) -> Claim {
+    let fixed = entries(models);
+    let distance = |t: f64| (t - survey_c).abs();
+    let Some(&(nearest, nearest_c)) = fixed
+        .iter()
+        .min_by(|a, b| distance(a.1).total_cmp(&distance(b.1)))
+    else {
+        return unavailable("the bank has no fixed model");
+    };
+    let best_entry = fixed
+        .iter()
+        .filter_map(|(m, _)| mean_horizontal_m(m).map(|v| (m, v)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(m, _)| m.label.clone());
+    let comparisons: Vec<ClaimComparison> = fixed
+        .iter()
+        .filter(|(_, t)| distance(*t) >= FAR_C)
+        .map(|(m, _)| comparison(contrasts, &nearest.label, &m.label))
+        .collect();
+    let lowest = best_entry.as_deref() == Some(nearest.label.as_str());
+    Claim {
+        statement: format!(
+            "the bank model nearest {survey_c} °C ({nearest_c} °C) has the lowest mean horizontal error among the fixed bank temperatures{} and beats every model {FAR_C} °C or more away with paired p < {CLAIM_P_VALUE}",
+            if lowest {
+                ""
+            } else {
+                " (it does not: the lowest is another)"
+            }
+        ),
+        holds: lowest && !comparisons.is_empty() && comparisons.iter().all(|c| c.holds),
+        comparisons,
+    }
+}
+
+/// Claim (c): scheduled plus compensated beats the compensated fixed model and every
+/// uncompensated fixed model.
+fn scheduled_claim(models: &[ModelReport], contrasts: &[Contrast]) -> Claim {
+    let label_of = |wanted: fn(&CandidateKind) -> bool| {
+        models
+            .iter()
+            .find(|m| wanted(&m.candidate))
+            .map(|m| m.label.clone())
+    };
+    let Some(best) = label_of(|k| matches!(k, CandidateKind::ScheduledCompensated { .. })) else {
+        return unavailable(
+            "no scheduled and compensated candidate (no thermal calibration or no temp_c)",
+        );
+    };
+    let mut rivals: Vec<String> = entries(models)
+        .iter()
+        .map(|(m, _)| m.label.clone())
+        .collect();
+    rivals.extend(label_of(|k| {
+        matches!(k, CandidateKind::CompensatedEntry { .. })
+    }));
+    let comparisons: Vec<ClaimComparison> = rivals
+        .iter()
+        .map(|rival| comparison(contrasts, &best, rival))
+        .collect();
+    Claim {
+        statement: format!(
+            "scheduled plus compensated beats the fixed model plus compensation and every fixed model without it, with paired p < {CLAIM_P_VALUE}"
+        ),
+        holds: comparisons.iter().all(|c| c.holds),
+        comparisons,
+    }
+}
+
+fn unavailable(why: &str) -> Claim {
+    Claim {
+        statement: format!("not testable: {why}"),
+        holds: false,
+        comparisons: Vec::new(),
+    }
+}
+
+/// The scenarios' text: each claim with its comparisons.
+pub fn print_thermal_scenarios(s: &ThermalScenarios) {
+    for scenario in [&s.temperature_matters, &s.warming_survey] {
+        println!(
+            "\n{} on the {} ({} power-ons in the chamber):",
+            scenario.name, s.profile, s.power_ons
+        );
+        crate::tournament_files::print_tournament_table(&scenario.tournament);
+        let verdict = if scenario.claim.holds {
+            "HOLDS"
+        } else {
+            "does NOT hold"
+        };
+        println!("claim ({verdict}): {}", scenario.claim.statement);
+        for c in &scenario.claim.comparisons {
+            let p = c.p_value.map_or("n/a".to_string(), |p| format!("{p:.2e}"));
+            println!(
+                "  {} beats {} by {:.2} m (paired p = {p}){}",
+                c.better,
+                c.worse,
+                c.mean_difference_m,
+                if c.holds { "" } else { "  <- not shown" }
+            );
+        }
+    }
+}
