@@ -32,6 +32,9 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
     if let Some(e) = &evaluation {
         sections.push(navigation_section(dir, e)?);
     }
+    if let Some(d) = &demo {
+        sections.extend(crate::html_temperature::temperature_sections(d));
+    }
     let page = Page {
         title: "thermonav report".into(),
         sections,
@@ -351,7 +354,7 @@ fn cell(v: &Value, key: &str) -> String {
 }
 
 /// The INS-only errors of every model, one row per model.
-fn ranking_table(models: &[Value]) -> Table {
+pub fn ranking_table(models: &[Value]) -> Table {
     Table {
         caption: "INS-only errors per model: mean over replicates [95 % interval of the mean] (mean of per-outage RMS; max drift = RMS of per-outage maxima)".into(),
         header: ["model", "filter", "north m", "east m", "horizontal m", "heading deg", "max drift m"]

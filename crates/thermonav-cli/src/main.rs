@@ -11,6 +11,7 @@ mod failure;
 mod figure_data;
 mod fir_design;
 mod html_report;
+mod html_temperature;
 mod inputs;
 mod integration;
 mod noise_units;
