@@ -20,12 +20,15 @@ pub fn thermal_calibration_of<'a>(
     bank: &'a ModelBank,
     path: &Path,
 ) -> Result<&'a ThermalCalibration, Failure> {
-    bank.thermal.as_ref().ok_or_else(|| {
-        Failure::Data(anyhow!(
-            "{}: the bank has no thermal calibration (no 'thermal' field): characterize records at two or more temperatures (with --power-on or --sweep to separate power-ons) to fit one",
-            path.display()
-        ))
-    })
+    bank.thermal.as_ref().ok_or_else(|| no_thermal(path))
+}
+
+/// A bank without a thermal calibration, naming the file.
+fn no_thermal(path: &Path) -> Failure {
+    Failure::Data(anyhow!(
+        "{}: the bank has no thermal calibration (no 'thermal' field): characterize records at two or more temperatures (with --power-on or --sweep to separate power-ons) to fit one",
+        path.display()
+    ))
 }
 
 /// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
