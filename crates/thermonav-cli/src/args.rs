@@ -608,7 +608,7 @@ pub struct VesselArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub warm_up_from_c: Option<f64>,
     /// Time constant of the warm-up, s.
-    #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S)]
+    #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S, allow_negative_numbers = true)]
     pub warm_up_time_constant_s: f64,
     /// Serial number of the simulated unit (the same serial as a chamber campaign's is the
     /// same unit, so its calibration applies).
