@@ -81,11 +81,26 @@ pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
         return print_json(&summarize(&bank, &job.out));
     }
     print_bank_table(&bank);
-    if bank.thermal.is_none() {
-        println!("\nno thermal calibration: {}", missing_reason(&bank));
-    }
+    print_missing_thermal(&bank);
     println!("\nbank written to {}", job.out.display());
     Ok(())
+}
+
+/// Why the bank has no thermal calibration, when it has none.
+fn print_missing_thermal(bank: &ModelBank) {
+    if bank.thermal.is_none() {
+        println!("\nno thermal calibration: {}", missing_reason(bank));
+    }
+}
+
+impl HalfWidth {
+    /// The half-width `si` of a channel of `sensor` (rad/s or m/s²).
+    fn of(sensor: Sensor, si: f64) -> Self {
+        match sensor {
+            Sensor::Gyro => HalfWidth::Gyro(si),
+            Sensor::Accelerometer => HalfWidth::Accelerometer(si),
+        }
+    }
 }
 
 /// The thermal calibration of `bank` in brief, or why there is none.
@@ -112,10 +127,7 @@ fn thermal_channel_summary(channel: Channel, s: &CalibrationSummary) -> ThermalC
         order: s.order,
         reference_temperature_c: s.reference_temperature_c,
         range_c: s.temperature_range_c,
-        max_band_half_width: match channel.sensor() {
-            Sensor::Gyro => HalfWidth::Gyro(s.max_band_half_width),
-            Sensor::Accelerometer => HalfWidth::Accelerometer(s.max_band_half_width),
-        },
+        max_band_half_width: HalfWidth::of(channel.sensor(), s.max_band_half_width),
     }
 }
 
