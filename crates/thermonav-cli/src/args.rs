@@ -608,7 +608,7 @@ pub struct VesselArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub warm_up_from_c: Option<f64>,
     /// Time constant of the warm-up, s.
-    #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S)]
+    #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S, allow_negative_numbers = true)]
     pub warm_up_time_constant_s: f64,
     /// Serial number of the simulated unit (the same serial as a chamber campaign's is the
     /// same unit, so its calibration applies).
@@ -821,6 +821,9 @@ pub enum PlotKind {
     RmsTemperature,
     /// Innovations with ±3σ bounds, from an `integrate` STEM.innovations.csv.
     Innovations,
+    /// Bias against temperature from a bank's thermal calibration: the repeatable curve with
+    /// its simultaneous 95 % band and the observations by power-on, offsets removed.
+    ThermalBias,
 }
 
 /// The error metric of `plot rms-temperature`.
@@ -849,7 +852,8 @@ pub struct PlotArgs {
     /// The figure.
     #[arg(value_enum)]
     pub kind: PlotKind,
-    /// Its input: `allan --json` output or a bank (allan), a bank (correlation-time), an IMU
+    /// Its input: `allan --json` output or a bank (allan), a bank (correlation-time,
+    /// thermal-bias), an IMU
     /// CSV of rates, filtered and decimated as for `ar` (autocorrelation), a trajectory CSV
     /// (trajectory).
     pub input: PathBuf,
@@ -865,9 +869,9 @@ pub struct PlotArgs {
     /// Gauss-Markov families drawn (correlation-time).
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = [GmSourceArg::IrregularMl, GmSourceArg::ArBased, GmSourceArg::AcfFit])]
     pub families: Vec<GmSourceArg>,
-    /// The channel (autocorrelation).
-    #[arg(long, default_value = "gx")]
-    pub channel: String,
+    /// The channel (autocorrelation: default gx; thermal-bias: default every calibrated one).
+    #[arg(long)]
+    pub channel: Option<String>,
     /// Longest lag shown, s (autocorrelation).
     #[arg(long, default_value_t = 300.0)]
     pub max_lag_s: f64,

@@ -1,6 +1,20 @@
-//! The bank as text: correlation times with their intervals, per temperature and channel.
+//! The bank as text: correlation times with their intervals, per temperature and channel,
+//! and its thermal calibration per channel in deg/h and mg.
 
+use thermonav::imu::{Channel, SampleKind, Sensor};
 use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::thermal::{CalibrationSummary, ScaleFactorCalibration, ThermalCalibration};
+use thermonav_plot::figures::DisplayUnits;
+
+/// Width of a rate column of the thermal table, characters.
+const RATE_WIDTH: usize = 17;
+
+/// The title line of the thermal table.
+const THERMAL_TITLE: &str =
+    "thermal calibration: repeatable bias b(T) = Σ b_k (T − T_ref)^k, simultaneous 95 % band";
+
+/// The columns of a thermal row before its rates.
+const CURVE_HEAD: &str = "ch   order   Tref_C         range_C";
 
 /// "123.4 s [100.2, 150.3]" or "none".
 pub fn show_estimate(e: &GaussMarkovEstimate) -> String {
@@ -22,7 +36,7 @@ pub fn show_estimate(e: &GaussMarkovEstimate) -> String {
     }
 }
 
-/// The bank as a table of correlation times.
+/// The bank as a table of correlation times, then its thermal calibration when it has one.
 pub fn print_bank_table(bank: &ModelBank) {
     println!(
         "{:>7} {:<4} {:>28} {:>28} {:>16}",
@@ -39,6 +53,93 @@ pub fn print_bank_table(bank: &ModelBank) {
                 show_estimate(&g.ar_based),
                 show_estimate(&g.acf_fit)
             );
+        }
+    }
+    bank.thermal.iter().for_each(print_thermal_table);
+}
+
+/// The thermal calibration: a table per sensor in deg/h or mg, then what it cannot tell.
+pub fn print_thermal_table(calibration: &ThermalCalibration) {
+    println!("\n{THERMAL_TITLE}");
+    for sensor in [Sensor::Gyro, Sensor::Accelerometer] {
+        print_sensor_rows(calibration, sensor);
+    }
+    println!("{}", scale_factor_note(&calibration.scale_factor));
+    print_removed_signal(calibration);
+}
+
+/// The static signal taken off each channel before the fit (az's gravity).
+fn print_removed_signal(calibration: &ThermalCalibration) {
+    for (channel, signal) in &calibration.removed_signal {
+        let unit = channel.si_unit(SampleKind::Rates);
+        println!(
+            "{}: {signal:.5} {unit} (the site's gravity) taken off before the fit",
+            channel.name()
+        );
+    }
+}
+
+/// The header and rows of one sensor's calibrated channels.
+fn print_sensor_rows(calibration: &ThermalCalibration, sensor: Sensor) {
+    println!(
+        "{}",
+        thermal_header(DisplayUnits::Navigation.rate_unit(sensor))
+    );
+    let channels = Channel::ALL.into_iter().filter(|c| c.sensor() == sensor);
+    for (channel, summary) in channels.filter_map(|c| Some((c, calibration.summary(c)?))) {
+        println!("{}", thermal_row(channel, &summary));
+    }
+}
+
+/// The header of a thermal table whose rates are in `unit`.
+fn thermal_header(unit: &str) -> String {
+    let names = ["b(Tmin)", "b(Tref)", "b(Tmax)", "max band ±", "residual sd"];
+    let cell = |name: &str| format!("{:>RATE_WIDTH$}", format!("{name} {unit}"));
+    let rates = names.map(cell).join(" ");
+    format!(
+        "{CURVE_HEAD} {rates} {:>9} {}",
+        "power_ons",
+        cell("between sd")
+    )
+}
+
+/// One channel's row of the thermal table.
+fn thermal_row(channel: Channel, s: &CalibrationSummary) -> String {
+    let rates = s.rate_values().map(|si| rate_cell(channel, si)).join(" ");
+    let between = between_cell(channel, s.between_power_on_sd);
+    format!(
+        "{} {rates} {:>9} {between}",
+        curve_cells(channel, s),
+        s.power_ons
+    )
+}
+
+/// The spread between power-ons in deg/h or mg, or n/a when not separated.
+fn between_cell(channel: Channel, sd_si: Option<f64>) -> String {
+    sd_si.map_or(format!("{:>RATE_WIDTH$}", "n/a"), |si| {
+        rate_cell(channel, si)
+    })
+}
+
+/// The channel, order, reference and range columns of a thermal row.
+fn curve_cells(channel: Channel, s: &CalibrationSummary) -> String {
+    let [low, high] = s.temperature_range_c;
+    let range = format!("{low:.1}..{high:.1}");
+    let (name, order, reference) = (channel.name(), s.order, s.reference_temperature_c);
+    format!("{name:<4} {order:>5} {reference:>8.1} {range:>15}")
+}
+
+/// A rate of `channel` (SI) in deg/h or mg.
+fn rate_cell(channel: Channel, si: f64) -> String {
+    let shown = DisplayUnits::Navigation.rate(channel.sensor(), si);
+    format!("{shown:>RATE_WIDTH$.3}")
+}
+
+/// What the calibration says of scale factor.
+fn scale_factor_note(scale_factor: &ScaleFactorCalibration) -> String {
+    match scale_factor {
+        ScaleFactorCalibration::NotIdentifiable { reason } => {
+            format!("scale factor against temperature: not identifiable from {reason}")
         }
     }
 }

@@ -12,6 +12,7 @@ use serde_json::Value;
 use std::path::Path;
 use thermonav::geo::position::Geodetic;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, TemperatureEntry};
+use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
@@ -21,6 +22,7 @@ use thermonav_plot::figures::navigation::{
     Trajectory, innovations_figure, outage_errors_figure, rms_versus_temperature_figure,
     trajectory_figure,
 };
+use thermonav_plot::figures::thermal::{thermal_bias_figure, thermal_bias_panels};
 use thermonav_plot::html::{Block, InlineFigure, Page, Section, Table, render_page};
 
 /// Builds DIR/report.html and returns its path.
@@ -143,13 +145,15 @@ fn demo_command(dir: &Path, demo: &Value) -> String {
     )
 }
 
-/// The Allan deviation figure of each temperature, then the correlation times against temperature.
+/// The Allan deviation figure of each temperature, the correlation times against temperature,
+/// and the bias against temperature when the bank has a thermal calibration.
 fn models_section(bank: &ModelBank) -> Section {
     let mut blocks = vec![paragraph(
         "Overlapping Allan deviation of each static record with its confidence band and the IEEE 952 noise terms, then the bias correlation time of each channel against temperature for the three Gauss-Markov estimators, with 95 % intervals.",
     )];
     blocks.extend(bank.entries.iter().map(allan_figure));
     blocks.push(correlation_figure(bank));
+    blocks.extend(bank.thermal.as_ref().map(thermal_figure));
     Section {
         heading: "Noise models per temperature".into(),
         blocks,
@@ -166,6 +170,16 @@ fn allan_figure(entry: &TemperatureEntry) -> Block {
             DisplayUnits::Navigation,
         ),
         &title,
+    )
+}
+
+/// Bias against temperature of the unit's thermal calibration.
+fn thermal_figure(calibration: &ThermalCalibration) -> Block {
+    let panels = thermal_bias_panels(calibration, &[]);
+    let title = "Bias against temperature (thermal calibration)";
+    figure(
+        thermal_bias_figure(title, &panels, DisplayUnits::Navigation),
+        "Repeatable bias against temperature with its simultaneous 95 % band; the observations by power-on, each power-on's offset removed",
     )
 }
 

@@ -7,11 +7,28 @@ use std::path::Path;
 use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
+use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav_io::{Strictness, read_imu_file};
 
 /// Reads and validates a bank file.
 pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
     thermonav_io::bank::read_bank_file(path).data()
+}
+
+/// The bank's thermal calibration, or a data error naming the file.
+pub fn thermal_calibration_of<'a>(
+    bank: &'a ModelBank,
+    path: &Path,
+) -> Result<&'a ThermalCalibration, Failure> {
+    bank.thermal.as_ref().ok_or_else(|| no_thermal(path))
+}
+
+/// A bank without a thermal calibration, naming the file.
+fn no_thermal(path: &Path) -> Failure {
+    Failure::Data(anyhow!(
+        "{}: the bank has no thermal calibration (no 'thermal' field): characterize records at two or more temperatures (with --power-on or --sweep to separate power-ons) to fit one",
+        path.display()
+    ))
 }
 
 /// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs

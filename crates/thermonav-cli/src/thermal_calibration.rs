@@ -75,12 +75,7 @@ pub fn calibrate_bank(
     bank: &ModelBank,
     inputs: &ThermalInputs,
 ) -> Result<Option<ThermalCalibration>, Failure> {
-    let own: Vec<RecordMean> = bank
-        .entries
-        .iter()
-        .filter_map(|e| e.record_mean.clone())
-        .collect();
-    let mut parts = vec![power_on_records(1, &own)];
+    let mut parts = vec![power_on_records(1, &own_means(bank))];
     for (k, files) in inputs.power_ons.iter().enumerate() {
         parts.push(power_on_records(k as u32 + 2, &means_of(files)?));
     }
@@ -99,6 +94,23 @@ pub fn calibrate_bank(
         c.removed_signal = signal;
         c
     }))
+}
+
+/// The means of the bank's own records (its first power-on).
+fn own_means(bank: &ModelBank) -> Vec<RecordMean> {
+    let means = bank.entries.iter().filter_map(|e| e.record_mean.clone());
+    means.collect()
+}
+
+/// Why a bank built from its records alone has no thermal calibration: what fitting their
+/// means says.
+pub fn missing_reason(bank: &ModelBank) -> String {
+    let observations = merge_records(vec![power_on_records(1, &own_means(bank))]);
+    match calibrate(&observations, FitSettings::default()) {
+        Err(e) => format!("the records' means alone: {e}"),
+        Ok(c) if c.channels.is_empty() => "the records carry no means to fit".into(),
+        Ok(_) => "the bank was written without one".into(),
+    }
 }
 
 fn fit(

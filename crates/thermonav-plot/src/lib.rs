@@ -6,8 +6,8 @@
 //! - [`chart`]: panels with axes, grid, legend and data layers, laid out into a figure.
 //! - [`scale`]: linear and log₁₀ axes, their pixel mapping and ticks.
 //! - [`figures`]: the project's figures (Allan deviation, correlation time versus
-//!   temperature, autocorrelation, navigation errors, trajectory), each a function of typed
-//!   data returning an SVG string.
+//!   temperature, autocorrelation, navigation errors, trajectory, bias against
+//!   temperature), each a function of typed data returning an SVG string.
 //! - [`html`]: a self-contained HTML page assembled from sections.
 //! - [`png`]: the same figures as PNG, rasterised in pure Rust with a bundled font.
 

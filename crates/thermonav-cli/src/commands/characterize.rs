@@ -7,15 +7,50 @@ use crate::failure::Failure;
 use crate::production_lot::characterize_lot;
 use crate::report::print_json;
 use crate::settings::characterization::{CharacterizeJob, characterize};
+use crate::thermal_calibration::missing_reason;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::Path;
+use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::thermal::{CalibrationSummary, ThermalCalibration};
 
 #[derive(Debug, Serialize)]
 struct Summary<'a> {
     bank: String,
     temperatures_c: Vec<f64>,
     entries: Vec<EntrySummary<'a>>,
+    /// The thermal calibration per channel, or `None` (null) when not fitted.
+    thermal: Option<ThermalSummary>,
+    /// Why there is no thermal calibration; absent when there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    thermal_not_fitted_reason: Option<String>,
+}
+
+/// The thermal calibration in brief.
+#[derive(Debug, Serialize)]
+struct ThermalSummary {
+    power_ons: usize,
+    channels: BTreeMap<&'static str, ThermalChannelSummary>,
+}
+
+/// One channel's curve in brief; rates in SI, the unit in the key.
+#[derive(Debug, Serialize)]
+struct ThermalChannelSummary {
+    order: usize,
+    reference_temperature_c: f64,
+    range_c: [f64; 2],
+    #[serde(flatten)]
+    max_band_half_width: HalfWidth,
+}
+
+/// The largest band half-width over the fitted range, keyed by its SI unit.
+#[derive(Debug, Serialize)]
+enum HalfWidth {
+    #[serde(rename = "max_band_half_width_rad_s")]
+    Gyro(f64),
+    #[serde(rename = "max_band_half_width_m_s2")]
+    Accelerometer(f64),
 }
 
 #[derive(Debug, Serialize)]
@@ -46,12 +81,61 @@ pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
         return print_json(&summarize(&bank, &job.out));
     }
     print_bank_table(&bank);
+    print_missing_thermal(&bank);
     println!("\nbank written to {}", job.out.display());
     Ok(())
 }
 
+/// Why the bank has no thermal calibration, when it has none.
+fn print_missing_thermal(bank: &ModelBank) {
+    if bank.thermal.is_none() {
+        println!("\nno thermal calibration: {}", missing_reason(bank));
+    }
+}
+
+impl HalfWidth {
+    /// The half-width `si` of a channel of `sensor` (rad/s or m/s²).
+    fn of(sensor: Sensor, si: f64) -> Self {
+        match sensor {
+            Sensor::Gyro => HalfWidth::Gyro(si),
+            Sensor::Accelerometer => HalfWidth::Accelerometer(si),
+        }
+    }
+}
+
+/// The thermal calibration of `bank` in brief, or why there is none.
+fn thermal_summary(bank: &ModelBank) -> (Option<ThermalSummary>, Option<String>) {
+    match &bank.thermal {
+        Some(c) => (Some(thermal_summary_of(c)), None),
+        None => (None, Some(missing_reason(bank))),
+    }
+}
+
+fn thermal_summary_of(calibration: &ThermalCalibration) -> ThermalSummary {
+    let channels = Channel::ALL.into_iter().filter_map(|channel| {
+        let summary = calibration.summary(channel)?;
+        Some((channel.name(), thermal_channel_summary(channel, &summary)))
+    });
+    ThermalSummary {
+        power_ons: calibration.power_ons,
+        channels: channels.collect(),
+    }
+}
+
+fn thermal_channel_summary(channel: Channel, s: &CalibrationSummary) -> ThermalChannelSummary {
+    ThermalChannelSummary {
+        order: s.order,
+        reference_temperature_c: s.reference_temperature_c,
+        range_c: s.temperature_range_c,
+        max_band_half_width: HalfWidth::of(channel.sensor(), s.max_band_half_width),
+    }
+}
+
 fn summarize<'a>(bank: &'a ModelBank, out: &Path) -> Summary<'a> {
+    let (thermal, thermal_not_fitted_reason) = thermal_summary(bank);
     Summary {
+        thermal,
+        thermal_not_fitted_reason,
         bank: out.display().to_string(),
         temperatures_c: bank.temperatures_c(),
         entries: bank

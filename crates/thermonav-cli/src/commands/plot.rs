@@ -3,7 +3,7 @@
 use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, outage_errors, rms_series};
-use crate::inputs::{read_bank, read_rates};
+use crate::inputs::{read_bank, read_rates, thermal_calibration_of};
 use anyhow::anyhow;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -29,6 +29,9 @@ use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_
 use thermonav_plot::figures::navigation::{
     Trajectory, innovations_figure, outage_errors_figure, rms_versus_temperature_figure,
     trajectory_figure,
+};
+use thermonav_plot::figures::thermal::{
+    ThermalBiasPanel, thermal_bias_figure, thermal_bias_panels,
 };
 use thermonav_plot::png::svg_to_png;
 
@@ -88,6 +91,7 @@ fn figure_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
         PlotKind::OutageErrors => outage_errors_svg(args),
         PlotKind::RmsTemperature => rms_temperature_svg(args),
         PlotKind::Innovations => innovations_svg(args),
+        PlotKind::ThermalBias => thermal_bias_svg(args, units),
     }
 }
 
@@ -283,9 +287,34 @@ fn correlation_svg(args: &PlotArgs) -> Result<String, Failure> {
     Ok(correlation_time_figure(&title_or(args, title), &series))
 }
 
+/// Bias against temperature of the bank's thermal calibration.
+fn thermal_bias_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
+    let panels = thermal_panels(args)?;
+    let title = format!("Bias against temperature, {}", file_name(&args.input));
+    Ok(thermal_bias_figure(&title_or(args, title), &panels, units))
+}
+
+/// The panels of `--channel`, or of every calibrated channel, of the bank's calibration.
+fn thermal_panels(args: &PlotArgs) -> Result<Vec<ThermalBiasPanel>, Failure> {
+    let bank = read_bank(&args.input)?;
+    let calibration = thermal_calibration_of(&bank, &args.input)?;
+    let channel = args.channel.as_deref().map(channel_of).transpose()?;
+    Some(thermal_bias_panels(calibration, channel.as_slice()))
+        .filter(|panels| !panels.is_empty())
+        .ok_or_else(|| not_calibrated(&args.input))
+}
+
+/// `--channel` names a channel the calibration lacks.
+fn not_calibrated(path: &Path) -> Failure {
+    Failure::Data(anyhow!(
+        "{}: the thermal calibration has no such channel",
+        path.display()
+    ))
+}
+
 /// The autocovariance of one channel with its first-order Gauss-Markov fit.
 fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    let channel = channel_of(&args.channel)?;
+    let channel = channel_of(args.channel.as_deref().unwrap_or("gx"))?;
     check_max_lag(args.max_lag_s)?;
     let (series, rate_hz) = read_rates(&args.input, "the autocovariance")?;
     let y = series.channel(channel);

@@ -12,6 +12,7 @@ mod plots;
 mod real_data;
 mod reliability;
 mod streaming;
+mod thermal;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

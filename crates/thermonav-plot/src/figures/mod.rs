@@ -7,6 +7,7 @@ pub mod allan;
 pub mod autocorrelation;
 pub mod correlation;
 pub mod navigation;
+pub mod thermal;
 
 use crate::palette::{self, Color};
 use thermonav::imu::{Channel, Sensor};

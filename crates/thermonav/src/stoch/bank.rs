@@ -500,6 +500,7 @@ mod tests {
                 modelling_rate_hz: 200.0,
             },
             channels: BTreeMap::from([(Channel::Gx, model)]),
+            record_mean: None,
         }
     }
 

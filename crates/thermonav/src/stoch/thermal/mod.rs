@@ -66,6 +66,7 @@ mod calibration;
 mod observations;
 mod power_on;
 mod solve;
+mod summary;
 
 use crate::imu::{Channel, SampleKind};
 use nalgebra::{DMatrix, DVector};
@@ -81,6 +82,7 @@ pub use observations::{
     RecordMean, RecordSums, merge_records, power_on_records, record_mean, sweep_records,
 };
 pub use power_on::{PowerOnFit, PowerOnOffset, PowerOnRecord, fit_bias_curve_with_power_ons};
+pub use summary::{BAND_SEARCH_POINTS, CalibrationSummary};
 
 /// Highest polynomial order fitted (the cubic of PX4 and ArduPilot thermal calibration).
 pub const MAX_ORDER: usize = 3;
