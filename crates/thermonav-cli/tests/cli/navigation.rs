@@ -503,9 +503,9 @@ fn integrate_without_temperatures_notes_it_and_runs() {
     assert_eq!(json["schedule"]["kind"], "fixed");
 }
 
-// A bank tournament on a record with temp_c tries a scheduled candidate (here excluded with
-// its reason: the test bank's 10 °C entry lacks a gx model), and not with --no-schedule; a
-// profile tournament (no bank) has the profile at fixed temperatures and scheduled.
+// A bank tournament on a record with temp_c tries a scheduled candidate (it competes, or is
+// excluded with its reason when an entry it needs lacks a model), and not with --no-schedule;
+// a profile tournament (no bank) has the profile at fixed temperatures and scheduled.
 #[test]
 fn evaluate_adds_scheduled_candidates_and_takes_a_profile() {
     let dir = tempfile::tempdir().unwrap();
@@ -523,10 +523,15 @@ fn evaluate_adds_scheduled_candidates_and_takes_a_profile() {
         &dir.path().join("a"),
         &outages,
     ));
-    let excluded = tags(&plain, "excluded", "label");
+    let tried = |json: &serde_json::Value| -> Vec<String> {
+        let mut labels = tags(json, "excluded", "label");
+        labels.extend(tags(json, "models", "label"));
+        labels
+    };
+    let labels = tried(&plain);
     assert!(
-        excluded.contains(&"scheduled linear".to_string()),
-        "{excluded:?}"
+        labels.contains(&"scheduled linear".to_string()),
+        "{labels:?}"
     );
     let fixed_only = [&outages[..], &["--no-schedule"]].concat();
     let fixed = json_of(&evaluate_args(
@@ -535,11 +540,7 @@ fn evaluate_adds_scheduled_candidates_and_takes_a_profile() {
         &dir.path().join("b"),
         &fixed_only,
     ));
-    assert!(
-        !tags(&fixed, "excluded", "label")
-            .iter()
-            .any(|l| l.contains("scheduled"))
-    );
+    assert!(!tried(&fixed).iter().any(|l| l.contains("scheduled")));
     let profile = dir.path().join("sensor.toml");
     assert_eq!(
         outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)])).0,
