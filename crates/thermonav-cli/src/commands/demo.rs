@@ -61,6 +61,8 @@ struct Plan {
     vessel_s: f64,
     outages: OutageSpec,
     replicates: u64,
+    /// Filters of the tournament (the quick run has the UKF only, the paper's first).
+    filters: Vec<FilterKind>,
 }
 
 /// The sizes of scenarios (b) and (c).
@@ -79,7 +81,8 @@ fn scenario_plan(quick: bool, seed: u64) -> ScenarioPlan {
             count: if quick { 5 } else { 8 },
             duration_s: if quick { 90.0 } else { 100.0 },
         },
-        replicates: if quick { 6 } else { 8 },
+        replicates: 8,
+        warming_replicates: if quick { 6 } else { 8 },
         cold_start_c: -20.0,
         settled_c: 25.0,
         warm_up_time_constant_s: 600.0,
@@ -98,6 +101,7 @@ fn plan(quick: bool) -> Plan {
                 duration_s: 60.0,
             },
             replicates: 3,
+            filters: vec![FilterKind::Ukf],
         }
     } else {
         Plan {
@@ -109,6 +113,7 @@ fn plan(quick: bool) -> Plan {
                 duration_s: 100.0,
             },
             replicates: 5,
+            filters: vec![FilterKind::Ukf, FilterKind::Ekf],
         }
     }
 }
@@ -159,8 +164,14 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     say(
         args,
         &format!(
-            "4/4 the tournament: UKF and EKF, {} outages, {} Monte Carlo replicates ...",
-            p.outages, p.replicates
+            "4/4 the tournament: {}, {} outages, {} Monte Carlo replicates ...",
+            p.filters
+                .iter()
+                .map(|f| f.name())
+                .collect::<Vec<_>>()
+                .join(" and "),
+            p.outages,
+            p.replicates
         ),
     );
     let tournament = tournament(&bank, &vessel, &vessel_files, &p, &args.out)?;
@@ -304,7 +315,7 @@ fn tournament(
         Some(vessel.survey.temperature_c),
         compensation,
     )?;
-    let plan = tournament_plan(bank, operating_c, &main);
+    let plan = tournament_plan(bank, operating_c, &main, p.filters.clone());
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
     let (profile, run) = vessel_run(vessel)?;
     let resimulation = (&profile, &run, compensation);
@@ -332,17 +343,20 @@ fn tournament_plan<'a>(
     bank: &'a ModelBank,
     operating_temperature_c: f64,
     main: &Scenario,
+    filters: Vec<FilterKind>,
 ) -> TournamentPlan<'a> {
     TournamentPlan {
         noise: CandidateSource::Bank(bank),
         thermal: ThermalOptions {
             imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
-            scheduling: Scheduling::default(),
-            compensation: Compensation::default(),
+            // (a) is the paper's set-up at one temperature: the scheduled and compensated
+            // candidates belong to (b) and (c).
+            scheduling: Scheduling::Fixed,
+            compensation: Compensation::Off,
         },
         operating_temperature_c,
         source: GaussMarkovSource::IrregularMl,
-        filters: vec![FilterKind::Ukf, FilterKind::Ekf],
+        filters,
         datasheet: Some(DatasheetValues::adis16364().model(&ScaleFactorPrior::default())),
         scale: ScaleFactorPrior::default(),
     }
@@ -492,8 +506,13 @@ fn print_summary(s: &DemoSummary) {
         s.out, s.elapsed_s
     );
     print_tournament_table(&s.tournament);
+    println!("{NULL_RESULT_NOTE}");
     print_thermal_scenarios(&s.temperature_scenarios);
 }
+
+/// Why scenario (a), the paper's set-up on the built-in ADIS16364-like profile, finds no
+/// model significantly better.
+const NULL_RESULT_NOTE: &str = "(a) The paper's set-up on the ADIS16364-like profile: its angle random walk of 2 deg/sqrt(h) alone drifts about 130 m per axis in 100 s and its bias sigma varies only 0.9-1.7x across -40..+60 °C, so no stochastic model can matter and no paired test need find the winner better than the runner-up. (b) and (c) below use a sensor where temperature does matter.";
 
 /// The recovery table: one row per temperature and channel.
 fn print_recovery_table(recovery: &[Recovery]) {
