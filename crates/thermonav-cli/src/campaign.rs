@@ -8,13 +8,16 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use thermonav::imu::Channel;
+use thermonav::imu::ImuSeries;
 use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
 };
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::unit::RepeatableCurve;
-use thermonav::sim::vessel::{GnssSettings, VesselRun, harbour_survey, simulate_vessel};
+use thermonav::sim::vessel::{
+    GnssSettings, SURVEY_POWER_ON, VesselRun, harbour_survey, simulate_vessel,
+};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
 use thermonav_io::profile::read_profile;
@@ -251,7 +254,7 @@ pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary,
     write_imu_file(&files.imu, &record.imu).data()?;
     write_gnss_file(&files.gnss, &record.gnss).data()?;
     let summary = VesselSummary {
-        profile: profile.name,
+        profile: profile.name.clone(),
         seed: settings.seed,
         temperature_c: settings.survey.temperature_c,
         duration_s,
@@ -261,5 +264,118 @@ pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary,
         files,
     };
     write_json_atomically(settings.out.join("vessel.json"), &summary).data()?;
+    let truth = survey_truth(&profile, &run, &record.imu);
+    write_json_atomically(settings.out.join("truth.json"), &truth).data()?;
     Ok(summary)
+}
+
+/// What `simulate vessel` writes to truth.json: the unit, its survey power-on and the true
+/// error model at every temperature the survey's samples visit.
+#[derive(Debug, Serialize)]
+pub struct SurveyTruth {
+    /// The sensor profile's name.
+    pub profile: String,
+    /// The unit: serial and repeatable bias curves (without the survey's power-on offset).
+    pub unit: UnitTruth,
+    /// The survey power-on's offset per channel, SI unit of the channel.
+    pub power_on_offset: BTreeMap<Channel, f64>,
+    /// The sensor's temperature through the survey.
+    pub temperature: thermonav::sim::vessel::SurveyTemperature,
+    /// The true model on a grid of [`TRUTH_GRID_STEP_C`] over the samples' temperatures.
+    pub models: Vec<ModelAtTemperature>,
+}
+
+/// Step of the truth's temperature grid, °C (the simulator re-reads Tc and σ every 0.1 °C).
+pub const TRUTH_GRID_STEP_C: f64 = thermonav::sim::errors::BIAS_PARAMETER_STEP_C;
+
+/// The true error model of every channel at one temperature.
+#[derive(Debug, Serialize)]
+pub struct ModelAtTemperature {
+    /// Temperature, °C.
+    pub temperature_c: f64,
+    /// Per channel.
+    pub channels: BTreeMap<Channel, ChannelModelTruth>,
+}
+
+/// The true error model of one channel at one temperature (SI: rad/s or m/s²).
+#[derive(Debug, Serialize)]
+pub struct ChannelModelTruth {
+    /// Gauss-Markov correlation time, s.
+    pub correlation_time_s: f64,
+    /// Gauss-Markov σ, channel unit.
+    pub sigma: f64,
+    /// White-noise density, channel unit·√s.
+    pub white_noise_density: f64,
+    /// Repeatable bias (unit's fixed bias plus the thermal curve), channel unit.
+    pub repeatable_bias: f64,
+}
+
+fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> SurveyTruth {
+    let curves = run.unit.repeatable_curves(profile);
+    let power_on_offset = Channel::ALL
+        .iter()
+        .map(|&c| {
+            let offset = run
+                .unit
+                .power_on_offset(profile, c, run.seed, SURVEY_POWER_ON);
+            (c, offset)
+        })
+        .collect();
+    let models = truth_grid(imu)
+        .into_iter()
+        .map(|t| model_at(profile, &curves, t))
+        .collect();
+    SurveyTruth {
+        profile: profile.name.clone(),
+        unit: UnitTruth {
+            serial: run.unit.serial,
+            repeatable_bias: curves,
+        },
+        power_on_offset,
+        temperature: run.temperature.clone(),
+        models,
+    }
+}
+
+/// Grid temperatures covering the samples' range, °C (at most 10 000 points).
+fn truth_grid(imu: &ImuSeries) -> Vec<f64> {
+    let temperatures = imu.temperature_c.as_deref().unwrap_or(&[]);
+    let (low, high) = temperatures
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &t| {
+            (l.min(t), h.max(t))
+        });
+    if !(low.is_finite() && high.is_finite()) {
+        return Vec::new();
+    }
+    let first = (low / TRUTH_GRID_STEP_C).floor() as i64;
+    let last = (high / TRUTH_GRID_STEP_C).ceil() as i64;
+    (first..=last.min(first + 10_000))
+        .map(|k| k as f64 * TRUTH_GRID_STEP_C)
+        .collect()
+}
+
+fn model_at(
+    profile: &SensorProfile,
+    curves: &BTreeMap<Channel, RepeatableCurve>,
+    temperature_c: f64,
+) -> ModelAtTemperature {
+    let channels = Channel::ALL
+        .iter()
+        .filter_map(|&c| {
+            let p = profile.channel(c)?;
+            let bias = p.bias_at(temperature_c);
+            let truth = ChannelModelTruth {
+                correlation_time_s: bias.correlation_time_s,
+                sigma: bias.sigma,
+                white_noise_density: p.white_noise_density,
+                repeatable_bias: curves.get(&c).map_or(0.0, |k| k.value_at(temperature_c)),
+            };
+            Some((c, truth))
+        })
+        .collect();
+    ModelAtTemperature {
+        temperature_c,
+        channels,
+    }
 }

@@ -196,3 +196,67 @@ fn modelling_commands_refuse_bad_input() {
     );
     assert!(!out.exists());
 }
+
+// A cold start: the IMU's temp_c follows T(t) = T_settled + (T_start − T_settled) exp(−t/τ)
+// from the first sample (closed form, to the 1e-9 °C the CSV prints and more), and
+// truth.json gives the true model on a 0.1 °C grid over the samples' temperatures, each
+// repeatable bias the unit's curve b + c₁ΔT + c₂ΔT² at that temperature (closed form).
+#[test]
+fn a_warming_survey_follows_its_time_constant_and_states_its_truth() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "simulate",
+        "vessel",
+        "--out",
+        arg(&out),
+        "--duration-s",
+        "120",
+        "--temperature-c",
+        "20",
+        "--warm-up-from-c",
+        "0",
+        "--warm-up-time-constant-s",
+        "60",
+    ]));
+    assert_eq!(status, 0, "{stderr}");
+    let text = std::fs::read_to_string(out.join("imu.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let t0 = rows[0][0];
+    for row in rows.iter().step_by(997) {
+        let expected = 20.0 - 20.0 * (-(row[0] - t0) / 60.0).exp();
+        assert!(
+            (row[7] - expected).abs() < 1e-6,
+            "{} s: {} vs {expected}",
+            row[0],
+            row[7]
+        );
+    }
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("truth.json")).unwrap()).unwrap();
+    let models = truth["models"].as_array().unwrap();
+    let last_c = rows.last().unwrap()[7];
+    assert_eq!(models[0]["temperature_c"].as_f64(), Some(0.0));
+    assert!(models.last().unwrap()["temperature_c"].as_f64().unwrap() >= last_c);
+    let curve = &truth["unit"]["repeatable_bias"]["gy"];
+    let c: Vec<f64> = curve["coefficients"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let reference = curve["reference_temperature_c"].as_f64().unwrap();
+    for m in models.iter().step_by(17) {
+        let d = m["temperature_c"].as_f64().unwrap() - reference;
+        let expected = c[0] + c[1] * d + c[2] * d * d;
+        let got = m["channels"]["gy"]["repeatable_bias"].as_f64().unwrap();
+        assert!(
+            (got - expected).abs() <= 1e-15 * (1.0 + expected.abs()),
+            "{got} vs {expected}"
+        );
+    }
+}
