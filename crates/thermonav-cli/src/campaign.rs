@@ -62,7 +62,7 @@ pub struct ChamberTruth {
 pub struct UnitTruth {
     /// Serial number.
     pub serial: u64,
-    /// b(T) = Σ coefficients[k] (T − T_ref)^k per channel, without power-on offsets.
+    /// b(T) = Σ coefficients\[k\] (T − T_ref)^k per channel, without power-on offsets.
     pub repeatable_bias: BTreeMap<Channel, RepeatableCurve>,
 }
 

@@ -34,7 +34,7 @@ impl Default for SimulatedUnit {
     }
 }
 
-/// The repeatable bias curve of one channel: Σ_k coefficients[k] (T − T_ref)^k.
+/// The repeatable bias curve of one channel: Σ_k coefficients\[k\] (T − T_ref)^k.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RepeatableCurve {
     /// Unit of the curve (`rad/s` or `m/s^2`).
