@@ -3,18 +3,99 @@
 
 use crate::html_report::ranking_table;
 use serde_json::Value;
-use thermonav_plot::html::{Block, Section, Table};
+use thermonav_plot::figures::navigation::{RmsSeries, rms_versus_temperature_figure};
+use thermonav_plot::html::{Block, InlineFigure, Section, Table};
 
-/// One section per scenario of demo.json's `temperature_scenarios` (none without it).
+/// One section per scenario of demo.json's `temperature_scenarios` (none without it), and
+/// the survey × model temperature matrix when there is one.
 pub fn temperature_sections(demo: &Value) -> Vec<Section> {
     let Some(s) = demo.get("temperature_scenarios") else {
         return Vec::new();
     };
-    ["temperature_matters", "warming_survey"]
+    let mut sections: Vec<Section> = ["temperature_matters", "warming_survey"]
         .iter()
         .filter_map(|key| s.get(*key))
         .map(scenario_section)
+        .collect();
+    sections.extend(s.get("matrix").filter(|m| !m.is_null()).map(matrix_section));
+    sections
+}
+
+fn numbers(v: &Value, key: &str) -> Vec<Option<f64>> {
+    v.get(key)
+        .and_then(Value::as_array)
+        .map_or(&[][..], Vec::as_slice)
+        .iter()
+        .map(Value::as_f64)
         .collect()
+}
+
+/// The matrix as a figure (one line per survey temperature) and a table.
+fn matrix_section(m: &Value) -> Section {
+    let models: Vec<f64> = numbers(m, "model_temperatures_c")
+        .into_iter()
+        .flatten()
+        .collect();
+    let surveys: Vec<f64> = numbers(m, "survey_temperatures_c")
+        .into_iter()
+        .flatten()
+        .collect();
+    let rows: Vec<Vec<Option<f64>>> = m
+        .get("mean_horizontal_m")
+        .and_then(Value::as_array)
+        .map_or(&[][..], Vec::as_slice)
+        .iter()
+        .map(|row| {
+            row.as_array()
+                .map_or(Vec::new(), |r| r.iter().map(Value::as_f64).collect())
+        })
+        .collect();
+    let series: Vec<RmsSeries> = surveys
+        .iter()
+        .zip(&rows)
+        .map(|(t, row)| survey_series(*t, &models, row))
+        .collect();
+    let mut header = vec!["survey °C".to_string()];
+    header.extend(models.iter().map(|t| format!("model {t} °C, m")));
+    let table_rows = surveys
+        .iter()
+        .zip(&rows)
+        .map(|(t, row)| {
+            let mut cells = vec![format!("{t}")];
+            cells.extend(
+                row.iter()
+                    .map(|e| e.map_or("-".into(), |e| format!("{e:.1}"))),
+            );
+            cells
+        })
+        .collect();
+    Section {
+        heading: "Survey temperature × model temperature (the paper's Figures 13-15 as a matrix)".into(),
+        blocks: vec![
+            Block::Figure(InlineFigure {
+                svg: rms_versus_temperature_figure("Mean horizontal error per survey temperature", "horizontal", "m", &series),
+                caption: "Mean of per-outage RMS horizontal error of every fixed bank model (x: the model's temperature), one line per survey temperature".into(),
+            }),
+            Block::Table(Table {
+                caption: "Mean of per-outage RMS horizontal error, m, over shifted-outage replicates".into(),
+                header,
+                rows: table_rows,
+            }),
+        ],
+    }
+}
+
+fn survey_series(survey_c: f64, models: &[f64], row: &[Option<f64>]) -> RmsSeries {
+    let (temperature_c, rms) = models
+        .iter()
+        .zip(row)
+        .filter_map(|(t, e)| e.map(|e| (*t, e)))
+        .unzip();
+    RmsSeries {
+        model: format!("survey {survey_c} °C"),
+        temperature_c,
+        rms,
+    }
 }
 
 fn scenario_section(scenario: &Value) -> Section {

@@ -72,6 +72,10 @@ pub struct ScenarioPlan {
     pub replicates: u64,
     /// Replicates of scenario (c).
     pub warming_replicates: u64,
+    /// Survey temperatures of the matrix of the paper's Figures 13-15 (empty: no matrix).
+    pub matrix_survey_temperatures_c: Vec<f64>,
+    /// Replicates of each matrix survey.
+    pub matrix_replicates: u64,
     /// Start temperature of the warming survey, °C.
     pub cold_start_c: f64,
     /// Its settled temperature, °C.
@@ -134,6 +138,28 @@ pub struct ThermalScenarios {
     pub temperature_matters: ScenarioOutcome,
     /// (c): a survey that warms up.
     pub warming_survey: ScenarioOutcome,
+    /// Survey temperature × model temperature (the paper's Figures 13-15 as a full matrix),
+    /// when the plan asks for it.
+    pub matrix: Option<TemperatureMatrix>,
+}
+
+/// Mean horizontal error of every fixed bank model on surveys at several temperatures.
+#[derive(Debug, Serialize)]
+pub struct TemperatureMatrix {
+    /// Survey temperatures, °C (rows).
+    pub survey_temperatures_c: Vec<f64>,
+    /// Bank model temperatures, °C (columns).
+    pub model_temperatures_c: Vec<f64>,
+    /// Mean over the replicates of the per-outage RMS horizontal error, m, `[row][column]`
+    /// (null where the model is missing or failed).
+    pub mean_horizontal_m: Vec<Vec<Option<f64>>>,
+    /// Per row, the model temperature with the lowest error, °C.
+    pub best_model_c: Vec<Option<f64>>,
+    /// Per row, the lowest error over the error of the model nearest the survey temperature
+    /// (1: the nearest model is the best).
+    pub nearest_over_best: Vec<Option<f64>>,
+    /// Replicates per survey (shifted outages).
+    pub replicates: u64,
 }
 
 /// Runs the campaign, the bank and both scenarios under `out`.
@@ -166,6 +192,7 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
         plan.warming_replicates,
     );
     let c = survey.tournament(warming.clone(), thermal, &out.join("warming_survey"))?;
+    let matrix = survey.matrix(&out.join("matrix"))?;
     Ok(ThermalScenarios {
         profile: profile.name.clone(),
         power_ons: plan.power_ons,
@@ -189,6 +216,7 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
             survey_temperature: warming,
             tournament: c,
         },
+        matrix,
     })
 }
 
@@ -278,6 +306,30 @@ impl Survey<'_> {
             seed: self.plan.seed,
         };
         run_and_write(&tournament, &main, &replicates, out)
+    }
+
+    /// The fixed bank models on a survey at each of the plan's matrix temperatures.
+    fn matrix(&self, out: &Path) -> Result<Option<TemperatureMatrix>, Failure> {
+        let temperatures = &self.plan.matrix_survey_temperatures_c;
+        if temperatures.is_empty() {
+            return Ok(None);
+        }
+        let fixed = (
+            Scheduling::Fixed,
+            Compensation::Off,
+            self.plan.matrix_replicates,
+        );
+        let mut rows = Vec::new();
+        for &t in temperatures {
+            let survey = SurveyTemperature::Constant { temperature_c: t };
+            let file = self.tournament(survey, fixed, &out.join(format!("survey_{t}C")))?;
+            rows.push(entry_errors(&file.report.models));
+        }
+        Ok(Some(matrix_of(
+            temperatures,
+            &rows,
+            self.plan.matrix_replicates,
+        )))
     }
 
     fn run(&self, temperature: SurveyTemperature) -> Result<VesselRun, Failure> {
@@ -370,6 +422,100 @@ fn entries(models: &[ModelReport]) -> Vec<(&ModelReport, f64)> {
             _ => None,
         })
         .collect()
+}
+
+/// (model temperature, mean horizontal error) of every fixed bank model.
+fn entry_errors(models: &[ModelReport]) -> Vec<(f64, Option<f64>)> {
+    entries(models)
+        .into_iter()
+        .map(|(m, t)| (t, mean_horizontal_m(m)))
+        .collect()
+}
+
+/// The matrix of the rows' errors, on the union of their model temperatures.
+fn matrix_of(
+    survey_temperatures_c: &[f64],
+    rows: &[Vec<(f64, Option<f64>)>],
+    replicates: u64,
+) -> TemperatureMatrix {
+    let mut model_temperatures_c: Vec<f64> = rows.iter().flatten().map(|(t, _)| *t).collect();
+    model_temperatures_c.sort_by(f64::total_cmp);
+    model_temperatures_c.dedup();
+    let mean_horizontal_m: Vec<Vec<Option<f64>>> = rows
+        .iter()
+        .map(|row| {
+            let at = |t: f64| row.iter().find(|(m, _)| *m == t).and_then(|(_, e)| *e);
+            model_temperatures_c.iter().map(|&t| at(t)).collect()
+        })
+        .collect();
+    let (best_model_c, nearest_over_best) = survey_temperatures_c
+        .iter()
+        .zip(&mean_horizontal_m)
+        .map(|(&survey_c, errors)| row_verdict(survey_c, &model_temperatures_c, errors))
+        .unzip();
+    TemperatureMatrix {
+        survey_temperatures_c: survey_temperatures_c.to_vec(),
+        model_temperatures_c,
+        mean_horizontal_m,
+        best_model_c,
+        nearest_over_best,
+        replicates,
+    }
+}
+
+/// The best model's temperature and best / nearest error ratio of one row.
+fn row_verdict(
+    survey_c: f64,
+    model_c: &[f64],
+    errors: &[Option<f64>],
+) -> (Option<f64>, Option<f64>) {
+    let known: Vec<(f64, f64)> = model_c
+        .iter()
+        .zip(errors)
+        .filter_map(|(&t, e)| e.map(|e| (t, e)))
+        .collect();
+    let best = known.iter().min_by(|a, b| a.1.total_cmp(&b.1)).copied();
+    let nearest = known
+        .iter()
+        .min_by(|a, b| (a.0 - survey_c).abs().total_cmp(&(b.0 - survey_c).abs()))
+        .copied();
+    match (best, nearest) {
+        (Some(b), Some(n)) => (Some(b.0), Some(b.1 / n.1)),
+        _ => (None, None),
+    }
+}
+
+/// The matrix as text: one row per survey temperature.
+fn print_matrix(m: &TemperatureMatrix) {
+    println!(
+        "\nSurvey temperature x model temperature (the paper's Figures 13-15 as a matrix): mean horizontal error, m, over {} shifted-outage replicates; '*' marks each row's best",
+        m.replicates
+    );
+    let header: Vec<String> = m
+        .model_temperatures_c
+        .iter()
+        .map(|t| format!("{:>9}", format!("{t} °C")))
+        .collect();
+    println!("{:>10} {}", "survey", header.join(""));
+    for (k, row) in m.mean_horizontal_m.iter().enumerate() {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&m.model_temperatures_c)
+            .map(|(e, &t)| matrix_cell(*e, m.best_model_c[k] == Some(t)))
+            .collect();
+        println!(
+            "{:>10} {}",
+            format!("{} °C", m.survey_temperatures_c[k]),
+            cells.join("")
+        );
+    }
+}
+
+fn matrix_cell(error: Option<f64>, best: bool) -> String {
+    match error {
+        Some(e) => format!("{:>8.1}{}", e, if best { "*" } else { " " }),
+        None => format!("{:>9}", "-"),
+    }
 }
 
 /// Claim (b): the entry nearest `survey_c` is the best entry and beats the far ones.
@@ -480,5 +626,8 @@ pub fn print_thermal_scenarios(s: &ThermalScenarios) {
     }
     if !s.warming_survey.claim.holds {
         println!("{SCHEDULING_ORACLE_NOTE}");
+    }
+    if let Some(m) = &s.matrix {
+        print_matrix(m);
     }
 }

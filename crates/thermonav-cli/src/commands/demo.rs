@@ -83,6 +83,13 @@ fn scenario_plan(quick: bool, seed: u64) -> ScenarioPlan {
         },
         replicates: 8,
         warming_replicates: if quick { 6 } else { 8 },
+        // The full matrix only on the full run: it is six more tournaments.
+        matrix_survey_temperatures_c: if quick {
+            Vec::new()
+        } else {
+            thermonav::sensor::DEFAULT_TEMPERATURES_C.to_vec()
+        },
+        matrix_replicates: 3,
         cold_start_c: -20.0,
         settled_c: 25.0,
         warm_up_time_constant_s: 600.0,
