@@ -363,9 +363,10 @@ fn rmc_date(field: &[u8]) -> Result<i64, ReadErrorKind> {
             .then(|| u32::from(text[0] - b'0') * 10 + u32::from(text[1] - b'0'))
     };
     match (field.len(), two(0), two(2), two(4)) {
-        (6, Some(day @ 1..=31), Some(month @ 1..=12), Some(year)) => {
-            let year = i64::from(year) + if year >= 80 { 1900 } else { 2000 };
-            Ok(gpst::days_from_civil(year, month, day))
+        (6, Some(day @ 1..=31), Some(month @ 1..=12), Some(year))
+            if day <= days_in_month(nmea_year(year), month) =>
+        {
+            Ok(gpst::days_from_civil(nmea_year(year), month, day))
         }
         _ => Err(ReadErrorKind::BadField {
             index: 10,
@@ -376,14 +377,35 @@ fn rmc_date(field: &[u8]) -> Result<i64, ReadErrorKind> {
     }
 }
 
+/// The year of an RMC `yy`: 80–99 are 19xx, 00–79 are 20xx.
+fn nmea_year(yy: u32) -> i64 {
+    i64::from(yy) + if yy >= 80 { 1900 } else { 2000 }
+}
+
+/// Days in `month` (1–12) of `year` in the Gregorian calendar.
+fn days_in_month(year: i64, month: u32) -> u32 {
+    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    match month {
+        2 if leap => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
 /// Latitude and longitude (rad) from `ddmm.mmm,N,dddmm.mmm,E` starting at field `first`.
 fn latitude_longitude(
     fields: &[&[u8]],
     first: usize,
     strictness: Strictness,
 ) -> Result<[f64; 2], ReadErrorKind> {
-    let latitude = degrees_minutes(fields, first, "latitude (ddmm.mmm)", strictness)?;
-    let longitude = degrees_minutes(fields, first + 2, "longitude (dddmm.mmm)", strictness)?;
+    let latitude = degrees_minutes(fields, first, ("latitude (ddmm.mmm)", 90.0), strictness)?;
+    let longitude = degrees_minutes(
+        fields,
+        first + 2,
+        ("longitude (dddmm.mmm)", 180.0),
+        strictness,
+    )?;
     let sign = |index: usize, positive: &[u8], negative: &[u8]| match fields.get(index) {
         Some(h) if *h == positive => Ok(1.0),
         Some(h) if *h == negative => Ok(-1.0),
@@ -402,10 +424,12 @@ fn latitude_longitude(
 
 /// `dddmm.mmm` as degrees: the digits before the last two of the integer part are degrees,
 /// the rest minutes (split as text, so `4807.038` is 48° + 7.038′ without cancellation).
+/// Minutes must be below 60 and the angle at most `max_degrees` (90 for a latitude, 180 for a
+/// longitude).
 fn degrees_minutes(
     fields: &[&[u8]],
     index: usize,
-    column: &'static str,
+    (column, max_degrees): (&'static str, f64),
     strictness: Strictness,
 ) -> Result<f64, ReadErrorKind> {
     let field = fields.get(index).copied().unwrap_or_default();
@@ -421,7 +445,20 @@ fn degrees_minutes(
     let (degrees, minutes) = field.split_at(integer_digits - 2);
     let degrees = number(&[degrees], 0, column, strictness)?;
     let minutes = number(&[minutes], 0, column, strictness)?;
-    Ok(degrees + minutes / 60.0)
+    let angle = degrees + minutes / 60.0;
+    if !(minutes < 60.0 && angle <= max_degrees) {
+        return Err(ReadErrorKind::BadField {
+            index: index + 1,
+            column,
+            expected: if max_degrees > 90.0 {
+                "at most 180° with minutes below 60"
+            } else {
+                "at most 90° with minutes below 60"
+            },
+            found: shown(field),
+        });
+    }
+    Ok(angle)
 }
 
 /// The fixes of the epochs with a GGA position, dated and put on the GPST scale.
