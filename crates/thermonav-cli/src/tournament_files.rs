@@ -159,8 +159,25 @@ pub fn run_and_write(
         report,
         report_file: out.join("evaluation.json"),
     };
+    // The folder exists already when an error CSV was written, not when every run failed.
+    crate::campaign::create_folder(out)?;
     write_json_atomically(&file.report_file, &file).data()?;
     Ok(file)
+}
+
+/// A data failure when no model's main run succeeded (the report, written and printed, says
+/// why each failed).
+pub fn check_some_model_ran(file: &EvaluationFile) -> Result<(), Failure> {
+    let models = &file.report.models;
+    if models.iter().any(|m| m.failure.is_none()) {
+        return Ok(());
+    }
+    let first = models.first().and_then(|m| m.failure.as_deref());
+    Err(Failure::Data(anyhow!(
+        "every model's filter failed on this data (first: {}); see {}",
+        first.unwrap_or("no candidate"),
+        file.report_file.display()
+    )))
 }
 
 /// A file-name-safe form of a label.

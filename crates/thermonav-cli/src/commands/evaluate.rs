@@ -7,7 +7,9 @@ use crate::failure::{Classify, Failure};
 use crate::integration::load_noise;
 use crate::report::print_json;
 use crate::settings::navigation::EvaluateSettings;
-use crate::tournament_files::{print_tournament_table, run_and_write, scenario_from_files};
+use crate::tournament_files::{
+    check_some_model_ran, print_tournament_table, run_and_write, scenario_from_files,
+};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::DatasheetValues;
@@ -51,10 +53,11 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     };
     let file = run_and_write(&tournament, &main, &replicates, &s.out)?;
     if args.json {
-        return print_json(&file);
+        print_json(&file)?;
+    } else {
+        print_tournament_table(&file);
     }
-    print_tournament_table(&file);
-    Ok(())
+    check_some_model_ran(&file)
 }
 
 /// The record's temperature range and the settings' switches.

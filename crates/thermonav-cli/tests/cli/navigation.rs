@@ -557,3 +557,34 @@ fn evaluate_adds_scheduled_candidates_and_takes_a_profile() {
         assert!(kinds.contains(&kind.to_string()), "{kind} in {kinds:?}");
     }
 }
+
+// When no model's filter survives the data (here an x accelerometer reading 600 m/s² too
+// much, which drives every solution past 3000 m/s within seconds), evaluate still writes and
+// prints its report, then exits 1 saying so, instead of 0.
+#[test]
+fn evaluate_exits_non_zero_when_every_model_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let broken = dir.path().join("broken");
+    std::fs::create_dir_all(&broken).unwrap();
+    for f in ["gnss.csv", "reference.csv"] {
+        std::fs::copy(vessel.join(f), broken.join(f)).unwrap();
+    }
+    let text = std::fs::read_to_string(vessel.join("imu.csv")).unwrap();
+    let mut lines = text.lines();
+    let mut out = format!("{}\n", lines.next().unwrap());
+    for line in lines {
+        let mut fields: Vec<String> = line.split(',').map(String::from).collect();
+        fields[4] = (fields[4].parse::<f64>().unwrap() + 600.0).to_string();
+        out.push_str(&fields.join(","));
+        out.push('\n');
+    }
+    std::fs::write(broken.join("imu.csv"), out).unwrap();
+    let extra = ["--no-heading", "--outages", "60+30,150+30"];
+    let args = evaluate_args(&broken, &bank, &dir.path().join("ev"), &extra);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (status, stdout, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 1, "{stdout}{stderr}");
+    assert!(stderr.contains("every model's filter failed"), "{stderr}");
+    assert!(dir.path().join("ev/evaluation.json").exists());
+}
