@@ -119,8 +119,12 @@ pub fn kaiser_beta(a: f64) -> f64 {
 /// Number of taps and β for ripple `a` dB and a transition `width` normalised to Nyquist = 1
 /// (SciPy `kaiserord`).
 pub fn kaiser_order(a: f64, width: f64) -> (usize, f64) {
-    let taps = (a - 7.95) / 2.285 / (std::f64::consts::PI * width) + 1.0;
-    (taps.ceil() as usize, kaiser_beta(a))
+    (kaiser_taps(a, width).ceil() as usize, kaiser_beta(a))
+}
+
+/// The number of taps of [`kaiser_order`] before rounding (infinite for a zero width).
+fn kaiser_taps(a: f64, width: f64) -> f64 {
+    (a - 7.95) / 2.285 / (std::f64::consts::PI * width) + 1.0
 }
 
 /// Modified Bessel function of the first kind, order zero, by its power series
@@ -184,14 +188,21 @@ pub fn windowed_sinc_lowpass(n: usize, cutoff_normalised: f64, window: &[f64]) -
 /// [`SignalError::Spec`] when the design needs more than [`MAX_TAPS`] taps.
 pub fn design_kaiser_lowpass(spec: &KaiserSpec) -> Result<FirFilter, SignalError> {
     let nyquist_hz = spec.sample_rate_hz / 2.0;
-    let (n, beta) = kaiser_order(spec.ripple_db, spec.transition_width_hz / nyquist_hz);
-    if n > MAX_TAPS {
+    let width = spec.transition_width_hz / nyquist_hz;
+    let needed = kaiser_taps(spec.ripple_db, width);
+    if !(needed <= MAX_TAPS as f64) {
+        let count = if needed.is_finite() {
+            format!("about {needed:.3e}")
+        } else {
+            "unboundedly many".to_string()
+        };
         return Err(SignalError::Spec {
             message: format!(
-                "the design needs {n} taps (more than {MAX_TAPS}): widen the transition band or lower the attenuation"
+                "the design needs {count} taps (more than {MAX_TAPS}): widen the transition band or lower the attenuation"
             ),
         });
     }
+    let (n, beta) = kaiser_order(spec.ripple_db, width);
     let window = kaiser_window(n, beta);
     let taps = windowed_sinc_lowpass(n, spec.cutoff_hz / nyquist_hz, &window);
     Ok(FirFilter {
@@ -256,5 +267,21 @@ impl FirFilter {
                 (re + h * c, im - h * s)
             });
         re.hypot(im)
+    }
+}
+
+#[cfg(test)]
+mod too_long_tests {
+    use super::*;
+
+    #[test]
+    fn a_design_too_long_to_count_says_how_long_without_wrapping() {
+        // A transition of 1e-200 Hz at 200 Hz needs (60 − 7.95)/2.285/(π · 1e-202) + 1 ≈
+        // 7.251e202 taps (Kaiser's formula): the message gives that figure, not a saturated
+        // integer (it used to print 18446744073709551615).
+        let spec = KaiserSpec::new(200.0, 5.0, 1e-200, 60.0).unwrap();
+        let message = design_kaiser_lowpass(&spec).unwrap_err().to_string();
+        assert!(message.contains("about 7.251e202 taps"), "{message}");
+        assert!(!message.contains("18446744073709551615"), "{message}");
     }
 }
