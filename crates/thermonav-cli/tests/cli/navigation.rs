@@ -233,7 +233,40 @@ fn integrate_refuses_bad_input_without_partial_output() {
     ]));
     assert_eq!(status, 1, "{stderr}");
     assert!(
-        stderr.contains("one.csv") && stderr.contains("at least two GNSS fixes"),
+        stderr.contains("one.csv")
+            && stderr.contains("two GNSS fixes at or after the first IMU sample")
+            && stderr.contains("the GNSS file has 1, 1 of them from then on"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    // Every fix before the IMU record (another time scale): the message counts them apart.
+    let early = dir.path().join("early.csv");
+    let mut lines = text.lines();
+    let mut shifted = format!("{}\n", lines.next().unwrap());
+    let mut count = 0;
+    for line in lines {
+        let (t, rest) = line.split_once(',').unwrap();
+        shifted.push_str(&format!("{},{rest}\n", t.parse::<f64>().unwrap() - 1e5));
+        count += 1;
+    }
+    std::fs::write(&early, shifted).unwrap();
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "integrate",
+        "--imu",
+        arg(&imu),
+        "--gnss",
+        arg(&early),
+        "--bank",
+        arg(&bank),
+        "--model-temperature-c",
+        "25",
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(status, 1, "{stderr}");
+    let needle = format!("the GNSS file has {count}, 0 of them from then on");
+    assert!(
+        stderr.contains(&needle) && stderr.contains("share one time scale"),
         "{stderr}"
     );
     assert!(!out.exists());

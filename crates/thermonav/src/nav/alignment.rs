@@ -40,9 +40,23 @@ pub enum HeadingSource {
 /// Why the alignment failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AlignmentError {
-    /// Fewer than two GNSS fixes.
-    #[error("alignment needs at least two GNSS fixes; the GNSS file has {0}")]
-    TooFewFixes(usize),
+    /// Fewer than two GNSS fixes at or after the first IMU sample.
+    #[error(
+        "alignment needs two GNSS fixes at or after the first IMU sample ({imu_start_s:.3} s); the GNSS file has {fixes}, {after_imu_start} of them from then on{}",
+        span_note(*first_fix_s, *last_fix_s)
+    )]
+    TooFewFixes {
+        /// Fixes in the file.
+        fixes: usize,
+        /// Fixes at or after the first IMU sample.
+        after_imu_start: usize,
+        /// Time of the first IMU sample, s (NaN without IMU data).
+        imu_start_s: f64,
+        /// Time of the first fix, s.
+        first_fix_s: Option<f64>,
+        /// Time of the last fix, s.
+        last_fix_s: Option<f64>,
+    },
     /// No IMU data in the levelling span.
     #[error("no IMU sample in the {0} s after the first GNSS fix to level with")]
     NoImu(f64),
@@ -54,6 +68,16 @@ pub enum AlignmentError {
         /// Largest speed between consecutive fixes.
         speed_m_s: f64,
     },
+}
+
+/// " (fixes from A to B s: check that both files share one time scale)", or nothing.
+fn span_note(first_fix_s: Option<f64>, last_fix_s: Option<f64>) -> String {
+    match (first_fix_s, last_fix_s) {
+        (Some(a), Some(b)) => {
+            format!(" (fixes from {a:.3} to {b:.3} s: check that both files share one time scale)")
+        }
+        _ => String::new(),
+    }
 }
 
 /// The aligned initial state and how its heading was found.
@@ -93,7 +117,17 @@ pub fn align_from_gnss(
         .filter(|w| imu_start.is_some_and(|t| w[0].time >= t))
         .collect();
     if usable.is_empty() {
-        return Err(AlignmentError::TooFewFixes(gnss.len()));
+        let start = imu_start.map_or(f64::NAN, |t| t.as_seconds());
+        return Err(AlignmentError::TooFewFixes {
+            fixes: gnss.len(),
+            after_imu_start: gnss
+                .iter()
+                .filter(|f| imu_start.is_some_and(|t| f.time >= t))
+                .count(),
+            imu_start_s: start,
+            first_fix_s: gnss.first().map(|f| f.time.as_seconds()),
+            last_fix_s: gnss.last().map(|f| f.time.as_seconds()),
+        });
     }
     let course_of = |w: &[GnssFix]| {
         let dt = w[1].time.since(w[0].time).as_seconds();

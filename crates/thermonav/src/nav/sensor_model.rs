@@ -40,13 +40,6 @@ impl GaussMarkovParameters {
     pub fn discrete_variance(&self, dt_s: f64) -> f64 {
         -self.sigma * self.sigma * (-2.0 * dt_s / self.correlation_time_s).exp_m1()
     }
-
-    fn is_valid(&self) -> bool {
-        self.correlation_time_s.is_finite()
-            && self.correlation_time_s > 0.0
-            && self.sigma.is_finite()
-            && self.sigma >= 0.0
-    }
 }
 
 /// The error model of one sensor axis.
@@ -112,7 +105,7 @@ pub enum SensorModelError {
         channel: &'static str,
     },
     /// A parameter is not finite and positive.
-    #[error("{what} = {value} must be finite and positive")]
+    #[error("{what} = {value} must be finite and positive (a sigma may be 0)")]
     Parameter {
         /// Which parameter.
         what: String,
@@ -185,7 +178,8 @@ impl ImuStochasticModel {
         Ok(model)
     }
 
-    /// Checks that every density, σ and Tc is finite and positive.
+    /// Checks that every density and Tc is finite and positive and every σ finite and
+    /// non-negative.
     ///
     /// # Errors
     /// [`SensorModelError::Parameter`] naming the first bad value.
@@ -199,14 +193,10 @@ impl ImuStochasticModel {
             if !(a.white_noise_density.is_finite() && a.white_noise_density > 0.0) {
                 return Err(bad("white-noise density", a.white_noise_density));
             }
-            if !a.bias.is_valid() {
-                return Err(bad("bias correlation time", a.bias.correlation_time_s));
-            }
-            if !a.scale_factor.is_valid() {
-                return Err(bad(
-                    "scale-factor correlation time",
-                    a.scale_factor.correlation_time_s,
-                ));
+            for (name, gm) in [("bias", a.bias), ("scale-factor", a.scale_factor)] {
+                if let Some((part, value)) = invalid_part(gm) {
+                    return Err(bad(&format!("{name} {part}"), value));
+                }
             }
         }
         Ok(())
@@ -298,6 +288,16 @@ impl ImuStochasticModel {
     }
 }
 
+/// The first parameter of `gm` out of range: ("correlation time", Tc) unless finite and
+/// positive, ("sigma", σ) unless finite and non-negative.
+fn invalid_part(gm: GaussMarkovParameters) -> Option<(&'static str, f64)> {
+    let tc = gm.correlation_time_s;
+    if !(tc.is_finite() && tc > 0.0) {
+        return Some(("correlation time", tc));
+    }
+    (!(gm.sigma.is_finite() && gm.sigma >= 0.0)).then_some(("sigma", gm.sigma))
+}
+
 /// The white-noise density of `channel` at the entries a placement refers to.
 fn white_density(
     bank: &ModelBank,
@@ -348,5 +348,29 @@ mod tests {
         let dt = 1e-4;
         let euler = 2.0 * gm.sigma.powi(2) * dt / gm.correlation_time_s;
         assert!((gm.discrete_variance(dt) / euler - 1.0).abs() < 1e-5);
+    }
+}
+
+#[cfg(test)]
+mod validation_tests {
+    use super::*;
+    use crate::sensor::adis16364_like;
+
+    #[test]
+    fn a_negative_sigma_is_named_as_a_sigma() {
+        // It used to be reported as a bad correlation time, with the correlation time's value.
+        let mut model = adis16364_like()
+            .stochastic_model(20.0, &ScaleFactorPrior::default())
+            .unwrap();
+        model.gyro[1].bias.sigma = -1e-4;
+        let message = model.validate().unwrap_err().to_string();
+        assert!(message.starts_with("gy bias sigma = -0.0001"), "{message}");
+        model.gyro[1].bias.sigma = 1e-4;
+        model.accel[2].scale_factor.correlation_time_s = f64::NAN;
+        let message = model.validate().unwrap_err().to_string();
+        assert!(
+            message.starts_with("az scale-factor correlation time = NaN"),
+            "{message}"
+        );
     }
 }
