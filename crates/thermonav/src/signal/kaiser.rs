@@ -190,7 +190,7 @@ pub fn design_kaiser_lowpass(spec: &KaiserSpec) -> Result<FirFilter, SignalError
     let nyquist_hz = spec.sample_rate_hz / 2.0;
     let width = spec.transition_width_hz / nyquist_hz;
     let needed = kaiser_taps(spec.ripple_db, width);
-    if !(needed <= MAX_TAPS as f64) {
+    if needed.is_nan() || needed > MAX_TAPS as f64 {
         let count = if needed.is_finite() {
             format!("about {needed:.3e}")
         } else {
