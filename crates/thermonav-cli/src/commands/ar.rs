@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
+use thermonav::stoch::ar::MAX_AR_ORDER;
 use thermonav::stoch::ar::order::{Criterion, Order, fit_ar_order};
 use thermonav::stoch::ar::{ArError, ArMethod, ArModel, fit_ar};
 use thermonav::stoch::gauss_markov::{Ar1Estimate, GaussMarkovOutcome, ar_based};
@@ -50,21 +51,24 @@ enum GaussMarkovJson {
 
 /// The `--order` option: a positive integer or `auto` (BIC up to `max_order`).
 fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
-    if text == "auto" {
-        return Ok(Order::Auto {
+    match text {
+        "auto" if (1..=MAX_AR_ORDER).contains(&max_order) => Ok(Order::Auto {
             criterion: Criterion::Bic,
             max_order,
-        });
+        }),
+        "auto" => Err(Failure::Usage(anyhow!(
+            "--max-order {max_order}: expected 1 to {MAX_AR_ORDER}"
+        ))),
+        _ => fixed_order(text),
     }
-    fixed_order(text)
 }
 
-/// A fixed `--order`: a positive integer.
+/// A fixed `--order`: an integer in 1..=[`MAX_AR_ORDER`].
 fn fixed_order(text: &str) -> Result<Order, Failure> {
     match text.parse::<usize>() {
-        Ok(p) if p >= 1 => Ok(Order::Fixed(p)),
+        Ok(p) if (1..=MAX_AR_ORDER).contains(&p) => Ok(Order::Fixed(p)),
         _ => Err(Failure::Usage(anyhow!(
-            "--order {text:?}: expected a positive integer or `auto`"
+            "--order {text:?}: expected an integer from 1 to {MAX_AR_ORDER} (the fit costs samples × order²) or `auto`"
         ))),
     }
 }

@@ -234,3 +234,19 @@ fn endless_and_newline_free_inputs_are_refused_after_a_bounded_read() {
     assert_eq!(code, 1, "{stderr}");
     assert!(!dir.path().join("v").exists());
 }
+
+// An AR order whose fit would take minutes (cost samples × order²: order 500 on 60 000
+// samples took 45 s) is refused as a usage error before the file is read.
+#[test]
+fn an_ar_order_above_the_limit_is_refused_before_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    for words in [
+        "ar @missing.csv --order 500",
+        "ar @missing.csv --order auto --max-order 101",
+    ] {
+        let (status, _, stderr) = run_in(dir.path(), words);
+        assert_eq!(status, 2, "{words}: {stderr}");
+        assert!(stderr.contains("1 to 100"), "{words}: {stderr}");
+        assert!(!stderr.contains("missing.csv"), "{words}: {stderr}");
+    }
+}
