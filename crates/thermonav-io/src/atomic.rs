@@ -76,6 +76,20 @@ impl Write for AtomicFile {
     }
 }
 
+/// Bytes of the target's name kept in its temporary's name: with the dots, six random
+/// characters and `.tmp`, the temporary's name stays within the 255 bytes most file systems
+/// allow for a name (a 250-byte target name failed on its temporary before).
+const TEMPORARY_NAME_KEPT_BYTES: usize = 200;
+
+/// `text` cut to at most `bytes` bytes at a character boundary.
+fn shortened(text: &str, bytes: usize) -> &str {
+    let mut end = text.len().min(bytes);
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    &text[..end]
+}
+
 /// A new temporary file in the directory of `target`, readable as an ordinary new file would be.
 fn temporary_beside(target: &Path) -> io::Result<NamedTempFile> {
     let directory = match target.parent() {
@@ -83,7 +97,10 @@ fn temporary_beside(target: &Path) -> io::Result<NamedTempFile> {
         _ => Path::new("."),
     };
     let name = target.file_name().unwrap_or(target.as_os_str());
-    let prefix = format!(".{}.", name.to_string_lossy());
+    let prefix = format!(
+        ".{}.",
+        shortened(&name.to_string_lossy(), TEMPORARY_NAME_KEPT_BYTES)
+    );
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(".tmp");
     #[cfg(unix)]
@@ -137,4 +154,23 @@ pub fn write_json_atomically(
         file.write_all(b"\n")?;
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_target_name_still_gets_a_temporary() {
+        // 250 bytes: the longest names most file systems allow are 255, which a temporary
+        // named ".{name}.XXXXXX.tmp" would pass.
+        let dir = tempfile::tempdir().unwrap();
+        let name = format!("{}.json", "é".repeat(100) + &"a".repeat(45));
+        assert_eq!(name.len(), 250);
+        let path = dir.path().join(&name);
+        write_atomically(&path, |file| Ok(file.write_all(b"{}\n")?)).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "{}\n");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        assert_eq!(shortened("éa", 1), "");
+    }
 }
