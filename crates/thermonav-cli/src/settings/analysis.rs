@@ -13,13 +13,35 @@ pub fn json_sidecar(out: &Path) -> PathBuf {
     PathBuf::from(name)
 }
 
-/// `filter`: the output and its sidecar spare the input.
+/// `filter`: the output and its sidecar spare the input and any file that is not a record.
 pub fn check_filter(args: &FilterArgs) -> Result<(), Failure> {
     Io::new()
         .input("the input", &args.input)
         .output("filtered output", &args.out)
         .output("filter record", &json_sidecar(&args.out))
-        .check()
+        .check()?;
+    check_sidecar_free(&args.out)
+}
+
+/// Refuses an `OUT.json` that exists and is not a record of ours (a JSON object naming its
+/// `input`, as every record does): `--out D/bank` would otherwise overwrite `D/bank.json`.
+fn check_sidecar_free(out: &Path) -> Result<(), Failure> {
+    let sidecar = json_sidecar(out);
+    if !sidecar.exists() || is_a_record(&sidecar) {
+        return Ok(());
+    }
+    Err(Failure::Usage(anyhow::anyhow!(
+        "{} exists and is not a thermonav record (a JSON object with an \"input\" key): --out {} would overwrite it with this run's record; choose another --out or move the file",
+        sidecar.display(),
+        out.display()
+    )))
+}
+
+fn is_a_record(path: &Path) -> bool {
+    thermonav_io::read_document(path)
+        .ok()
+        .and_then(|bytes| serde_json::from_slice::<serde_json::Value>(&bytes).ok())
+        .is_some_and(|v| v.get("input").is_some())
 }
 
 /// `convert`: the outputs (and a ULog's sidecar) spare the input and its tag file.

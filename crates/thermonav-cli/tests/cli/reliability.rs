@@ -250,3 +250,31 @@ fn an_ar_order_above_the_limit_is_refused_before_reading() {
         assert!(!stderr.contains("missing.csv"), "{words}: {stderr}");
     }
 }
+
+// `filter --out D/bank` writes its record to D/bank.json: an existing D/bank.json that is
+// not a record (here a bank) is refused before anything is read or written, while the
+// record of an earlier run to the same --out is replaced as before.
+#[test]
+fn a_filter_record_never_overwrites_a_file_that_is_not_one() {
+    let dir = tempfile::tempdir().unwrap();
+    write_file(dir.path(), "in.csv", &static_record(4000, 20.0));
+    let bank = write_file(
+        dir.path(),
+        "bank.json",
+        "{\"version\": 2, \"entries\": []}\n",
+    );
+    let words = "filter @in.csv --cutoff-hz 5 --transition-hz 2 --out @bank";
+    let (status, _, stderr) = run_in(dir.path(), words);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("is not a thermonav record"), "{stderr}");
+    assert_eq!(
+        std::fs::read_to_string(&bank).unwrap(),
+        "{\"version\": 2, \"entries\": []}\n"
+    );
+    assert!(!dir.path().join("bank").exists());
+    let again = "filter @in.csv --cutoff-hz 5 --transition-hz 2 --out @out.csv";
+    for _ in 0..2 {
+        let (status, _, stderr) = run_in(dir.path(), again);
+        assert_eq!(status, 0, "{stderr}");
+    }
+}
