@@ -35,7 +35,7 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
-use thermonav::sim::chamber::{CampaignSettings, Site, calgary};
+use thermonav::sim::chamber::{CampaignSettings, calgary};
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::unit::SimulatedUnit;
 use thermonav::sim::vessel::{
@@ -235,7 +235,7 @@ fn campaign_bank(plan: &ScenarioPlan, out: &Path, bank: &Path) -> Result<ModelBa
     let files: Vec<&Path> = truth.files.iter().map(PathBuf::as_path).collect();
     let thermal = ThermalInputs {
         power_ons: further_power_ons(&truth),
-        site: calgary_site(),
+        site: calgary(),
         ..ThermalInputs::default()
     };
     let inputs = BankInputs {
@@ -249,11 +249,6 @@ fn campaign_bank(plan: &ScenarioPlan, out: &Path, bank: &Path) -> Result<ModelBa
         crate::args::ReadingArg::Auto,
         bank,
     )
-}
-
-/// The chamber's site (the simulator's).
-fn calgary_site() -> Site {
-    calgary()
 }
 
 /// The records of the power-ons after the first, grouped by power-on.
@@ -286,7 +281,10 @@ impl Survey<'_> {
     ) -> Result<EvaluationFile, Failure> {
         let operating_c = mean_temperature_c(&temperature, self.plan.survey_s);
         let run = self.run(temperature)?;
-        let main = self.scenario(&run, 0).map_err(|e| anyhow!("{e}")).data()?;
+        let main = self
+            .scenario(&run, 0, compensation)
+            .map_err(|e| anyhow!("{e}"))
+            .data()?;
         let plan = TournamentPlan {
             noise: CandidateSource::Bank(self.bank),
             thermal: ThermalOptions {
@@ -344,14 +342,21 @@ impl Survey<'_> {
     }
 
     /// Simulation `k` of the survey as a scenario (raw and compensated records).
-    fn scenario(&self, run: &VesselRun, k: usize) -> Result<Scenario, String> {
+    /// The compensated record is made only when `compensation` lets compensated candidates
+    /// in.
+    fn scenario(
+        &self,
+        run: &VesselRun,
+        k: usize,
+        compensation: Compensation,
+    ) -> Result<Scenario, String> {
         let run = VesselRun {
             seed: run.seed.wrapping_add(k as u64),
             ..run.clone()
         };
         let record = simulate_vessel(self.profile, &run).map_err(|e| e.to_string())?;
         let name = Path::new("simulated survey");
-        let compensation = (self.bank.thermal.as_ref(), Compensation::default());
+        let compensation = (self.bank.thermal.as_ref(), compensation);
         let imu = scenario_imu(&record.imu, compensation, name).map_err(|e| e.to_string())?;
         let reference: Vec<TrajectoryPoint> = record
             .reference
