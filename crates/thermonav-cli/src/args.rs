@@ -116,6 +116,11 @@ pub struct EvaluateArgs {
     /// Ignore dual-antenna headings.
     #[arg(long)]
     pub no_heading: bool,
+    /// A simulated survey's truth.json (`simulate vessel`): adds the oracle candidates, the
+    /// true model scheduled by temperature on the raw record and on the record without the
+    /// true bias(T), ranked apart, and every model's gap to the better of them.
+    #[arg(long)]
+    pub truth: Option<PathBuf>,
     /// The sensor's operating temperature, °C (default: the mean of the IMU's temp_c column).
     #[arg(long, allow_hyphen_values = true)]
     pub operating_temperature_c: Option<f64>,
@@ -610,6 +615,11 @@ pub struct VesselArgs {
     /// Time constant of the warm-up, s.
     #[arg(long, default_value_t = DEFAULT_WARM_UP_TIME_CONSTANT_S, allow_negative_numbers = true)]
     pub warm_up_time_constant_s: f64,
+    /// The sensor's temperature over the survey from a CSV with the header `t_s,temp_c`
+    /// (seconds since the start, °C; linear between rows, the end values held), instead of
+    /// --temperature-c or a warm-up.
+    #[arg(long, conflicts_with_all = ["warm_up_from_c", "temperature_c"])]
+    pub temperature_file: Option<PathBuf>,
     /// Serial number of the simulated unit (the same serial as a chamber campaign's is the
     /// same unit, so its calibration applies).
     #[arg(long, default_value_t = DEFAULT_SERIAL)]

@@ -7,8 +7,10 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use thermonav::evaluation::oracle::{OracleError, TrueChannelModel, TrueModel, TrueModelAt};
 use thermonav::imu::Channel;
 use thermonav::imu::ImuSeries;
+use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
@@ -16,21 +18,27 @@ use thermonav::sim::chamber::{
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::unit::RepeatableCurve;
 use thermonav::sim::vessel::{
-    GnssSettings, SURVEY_POWER_ON, VesselRun, harbour_survey, simulate_vessel,
+    GnssSettings, SURVEY_POWER_ON, SurveyTemperature, VesselRun, harbour_survey, simulate_vessel,
 };
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
 use thermonav_io::profile::read_profile;
+use thermonav_io::temperature_table::read_temperature_table;
 use thermonav_io::{write_gnss_file, write_imu_file, write_json_atomically, write_trajectory_file};
 
 /// The name that selects the built-in temperature-sensitive profile instead of a file.
 pub const TEMPERATURE_SENSITIVE_PROFILE: &str = "builtin:temperature-sensitive";
 
+/// True for the name of a profile built into thermonav.
+pub fn is_builtin_profile(path: &Path) -> bool {
+    path == Path::new(TEMPERATURE_SENSITIVE_PROFILE)
+}
+
 /// The profile of `--profile` (a TOML file, or [`TEMPERATURE_SENSITIVE_PROFILE`]), or the
 /// built-in ADIS16364-like one.
 pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
     match path {
-        Some(p) if p == Path::new(TEMPERATURE_SENSITIVE_PROFILE) => Ok(temperature_sensitive()),
+        Some(p) if is_builtin_profile(p) => Ok(temperature_sensitive()),
         Some(p) => read_profile(p).data(),
         None => Ok(adis16364_like()),
     }
@@ -192,11 +200,15 @@ pub fn create_folder(dir: &Path) -> Result<(), Failure> {
 pub struct VesselSummary {
     profile: String,
     seed: u64,
-    /// Sensor temperature, °C.
+    /// Sensor temperature at the end of the survey, °C.
     pub temperature_c: f64,
+    /// Coldest and warmest sensor temperature of the record, °C.
+    pub sensor_temperature_range_c: [f64; 2],
     duration_s: f64,
-    imu_rate_hz: f64,
-    gnss: GnssSettings,
+    /// IMU rate, Hz.
+    pub imu_rate_hz: f64,
+    /// The GNSS receiver.
+    pub gnss: GnssSettings,
     /// Heading sd of the dual-antenna fixes, deg.
     pub heading_sd_deg: f64,
     /// Files written.
@@ -222,9 +234,19 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
         Some(path) => read_motion(path).data()?,
         None => harbour_survey(survey.duration_s),
     };
+    let temperature = match &settings.temperature_file {
+        Some(path) => {
+            let table = read_temperature_table(path).data()?;
+            SurveyTemperature::Table {
+                t_s: table.t_s,
+                temperature_c: table.temperature_c,
+            }
+        }
+        None => settings.temperature.clone(),
+    };
     let run = VesselRun {
         motion,
-        temperature: settings.temperature.clone(),
+        temperature,
         unit: settings.unit,
         clock: SampleClock::new(survey.imu_rate_hz, survey.imu_jitter_s, 0.0).usage()?,
         gnss: GnssSettings::default(),
@@ -256,7 +278,9 @@ pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary,
     let summary = VesselSummary {
         profile: profile.name.clone(),
         seed: settings.seed,
-        temperature_c: settings.survey.temperature_c,
+        temperature_c: run.temperature.at(duration_s),
+        sensor_temperature_range_c: temperature_range_c(&record.imu)
+            .unwrap_or([run.temperature.at(0.0); 2]),
         duration_s,
         imu_rate_hz: settings.survey.imu_rate_hz,
         gnss: run.gnss,
@@ -280,35 +304,13 @@ pub struct SurveyTruth {
     /// The survey power-on's offset per channel, SI unit of the channel.
     pub power_on_offset: BTreeMap<Channel, f64>,
     /// The sensor's temperature through the survey.
-    pub temperature: thermonav::sim::vessel::SurveyTemperature,
+    pub temperature: SurveyTemperature,
     /// The true model on a grid of [`TRUTH_GRID_STEP_C`] over the samples' temperatures.
-    pub models: Vec<ModelAtTemperature>,
+    pub models: Vec<TrueModelAt>,
 }
 
 /// Step of the truth's temperature grid, °C (the simulator re-reads Tc and σ every 0.1 °C).
 pub const TRUTH_GRID_STEP_C: f64 = thermonav::sim::errors::BIAS_PARAMETER_STEP_C;
-
-/// The true error model of every channel at one temperature.
-#[derive(Debug, Serialize)]
-pub struct ModelAtTemperature {
-    /// Temperature, °C.
-    pub temperature_c: f64,
-    /// Per channel.
-    pub channels: BTreeMap<Channel, ChannelModelTruth>,
-}
-
-/// The true error model of one channel at one temperature (SI: rad/s or m/s²).
-#[derive(Debug, Serialize)]
-pub struct ChannelModelTruth {
-    /// Gauss-Markov correlation time, s.
-    pub correlation_time_s: f64,
-    /// Gauss-Markov σ, channel unit.
-    pub sigma: f64,
-    /// White-noise density, channel unit·√s.
-    pub white_noise_density: f64,
-    /// Repeatable bias (unit's fixed bias plus the thermal curve), channel unit.
-    pub repeatable_bias: f64,
-}
 
 fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> SurveyTruth {
     let curves = run.unit.repeatable_curves(profile);
@@ -321,10 +323,7 @@ fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> Su
             (c, offset)
         })
         .collect();
-    let models = truth_grid(imu)
-        .into_iter()
-        .map(|t| model_at(profile, &curves, t))
-        .collect();
+    let models = true_table(profile, &curves, imu);
     SurveyTruth {
         profile: profile.name.clone(),
         unit: UnitTruth {
@@ -337,17 +336,51 @@ fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> Su
     }
 }
 
-/// Grid temperatures covering the samples' range, °C (at most 10 000 points).
-fn truth_grid(imu: &ImuSeries) -> Vec<f64> {
+/// The true model of a simulated survey at every temperature its samples visit: the oracle
+/// that `evaluate --truth` reads from truth.json.
+///
+/// # Errors
+/// [`OracleError`] for a record without temperatures.
+pub fn true_model(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    imu: &ImuSeries,
+) -> Result<TrueModel, OracleError> {
+    let curves = run.unit.repeatable_curves(profile);
+    TrueModel::new(
+        true_table(profile, &curves, imu),
+        &ScaleFactorPrior::default(),
+    )
+}
+
+/// The true model on the truth grid of the samples' temperatures.
+fn true_table(
+    profile: &SensorProfile,
+    curves: &BTreeMap<Channel, RepeatableCurve>,
+    imu: &ImuSeries,
+) -> Vec<TrueModelAt> {
+    truth_grid(imu)
+        .into_iter()
+        .map(|t| model_at(profile, curves, t))
+        .collect()
+}
+
+/// Coldest and warmest temperature of the samples, °C; `None` without any.
+fn temperature_range_c(imu: &ImuSeries) -> Option<[f64; 2]> {
     let temperatures = imu.temperature_c.as_deref().unwrap_or(&[]);
     let (low, high) = temperatures
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &t| {
             (l.min(t), h.max(t))
         });
-    if !(low.is_finite() && high.is_finite()) {
+    (low.is_finite() && high.is_finite()).then_some([low, high])
+}
+
+/// Grid temperatures covering the samples' range, °C (at most 10 000 points).
+fn truth_grid(imu: &ImuSeries) -> Vec<f64> {
+    let Some([low, high]) = temperature_range_c(imu) else {
         return Vec::new();
-    }
+    };
     let first = (low / TRUTH_GRID_STEP_C).floor() as i64;
     let last = (high / TRUTH_GRID_STEP_C).ceil() as i64;
     (first..=last.min(first + 10_000))
@@ -359,22 +392,27 @@ fn model_at(
     profile: &SensorProfile,
     curves: &BTreeMap<Channel, RepeatableCurve>,
     temperature_c: f64,
-) -> ModelAtTemperature {
+) -> TrueModelAt {
     let channels = Channel::ALL
         .iter()
         .filter_map(|&c| {
             let p = profile.channel(c)?;
             let bias = p.bias_at(temperature_c);
-            let truth = ChannelModelTruth {
+            let scale = p.scale_factor_gauss_markov;
+            let truth = TrueChannelModel {
                 correlation_time_s: bias.correlation_time_s,
                 sigma: bias.sigma,
                 white_noise_density: p.white_noise_density,
                 repeatable_bias: curves.get(&c).map_or(0.0, |k| k.value_at(temperature_c)),
+                thermal_scale_factor_ppm: p.scale_factor_temperature_coefficient_ppm_per_c
+                    * (temperature_c - profile.reference_temperature_c),
+                scale_factor_correlation_time_s: scale.map(|g| g.correlation_time_s),
+                scale_factor_sigma: scale.map(|g| g.sigma_ppm * 1e-6),
             };
             Some((c, truth))
         })
         .collect();
-    ModelAtTemperature {
+    TrueModelAt {
         temperature_c,
         channels,
     }

@@ -128,10 +128,11 @@ fn comparison_table(scenario: &Value) -> Table {
         .and_then(Value::as_array)
         .map_or(&[][..], Vec::as_slice)
         .iter()
+        .chain(scenario.pointer("/claim/oracle_bound"))
         .map(comparison_row)
         .collect();
     Table {
-        caption: "The claim's paired comparisons (mean over the replicates of the worse model's horizontal error minus the better one's; each must be positive with p < 0.01)".into(),
+        caption: "The claim's paired comparisons (mean over the replicates of the worse model's horizontal error minus the better one's; each must be positive with p < 0.01); a last row of \"truth scheduled compensated\" is the oracle, the simulator's true model on the record without the true bias(T): what no model can beat".into(),
         header: ["model", "against", "lead m", "paired p", "shown"]
             .map(String::from)
             .to_vec(),

@@ -3,6 +3,7 @@
 //! solution trajectory, its state and innovation files, and returns the summary. Shared by
 //! `integrate` and `demo`.
 
+use crate::campaign::load_profile;
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::settings::navigation::{
@@ -36,7 +37,6 @@ use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
-use thermonav_io::profile::read_profile;
 use thermonav_io::solution::{write_innovations_file, write_solution_states_file};
 use thermonav_io::{
     Strictness, read_gnss_file, read_imu_file, read_trajectory_file, write_trajectory_file,
@@ -117,7 +117,7 @@ pub enum LoadedNoise {
 pub fn load_noise(noise: &NoiseSource) -> Result<LoadedNoise, Failure> {
     match noise {
         NoiseSource::Bank(path) => Ok(LoadedNoise::Bank(read_bank(path)?)),
-        NoiseSource::Profile(path) => Ok(LoadedNoise::Profile(read_profile(path).data()?)),
+        NoiseSource::Profile(path) => Ok(LoadedNoise::Profile(load_profile(Some(path))?)),
     }
 }
 

@@ -11,6 +11,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
 use thermonav::evaluation::metrics::{EpochError, Metric, check_reference_covers};
+use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
 use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
 use thermonav::gnss::GnssFix;
@@ -38,25 +39,45 @@ pub struct EvaluationFile {
     pub report_file: PathBuf,
 }
 
-/// How a scenario's record is compensated: the bank's calibration (if any) and the switch.
-pub type CompensationPlan<'a> = (Option<&'a ThermalCalibration>, Compensation);
+/// How a scenario's records are made: the bank's calibration (if any) under the switch, and
+/// the simulator's truth for the oracle's record (if any).
+#[derive(Debug, Clone, Copy)]
+pub struct RecordPlan<'a> {
+    /// The bank's thermal calibration.
+    pub thermal: Option<&'a ThermalCalibration>,
+    /// Whether it is applied.
+    pub compensation: Compensation,
+    /// The truth of a simulated survey.
+    pub oracle: Option<&'a TrueModel>,
+}
+
+impl<'a> RecordPlan<'a> {
+    /// The plan without an oracle.
+    pub fn calibrated(thermal: Option<&'a ThermalCalibration>, compensation: Compensation) -> Self {
+        Self {
+            thermal,
+            compensation,
+            oracle: None,
+        }
+    }
+}
 
 /// The scenario of the files (start from the reference at the first fix, default initial
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
-/// under `compensation` beside the raw one) and the operating temperature (given, or the
+/// under `records` beside the raw one, and with the truth's bias subtracted for the oracle) and the operating temperature (given, or the
 /// IMU's mean temp_c).
 pub fn scenario_from_files(
     files: &ScenarioFiles,
     engine: EngineSettings,
     outages: &OutageSpec,
     operating_temperature_c: Option<f64>,
-    compensation: CompensationPlan,
+    records: RecordPlan,
 ) -> Result<(Scenario, f64), Failure> {
     let series = read_imu_file(&files.imu, Strictness::Strict).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
-    let imu = scenario_imu(&series, compensation, &files.imu)?;
+    let imu = scenario_imu(&series, records, &files.imu)?;
     let (first, last) = span_of(&imu.increments, &files.imu)?;
     let engine = EngineSettings {
         outages: outages_in(outages, first, last)?,
@@ -69,15 +90,21 @@ pub fn scenario_from_files(
     Ok((scenario, operating_c))
 }
 
-/// The IMU side of a scenario from its record.
+/// The IMU side of a scenario from its record (the oracle's record only when it has
+/// temperatures: without, the oracle is left out with its reason).
 pub fn scenario_imu(
     series: &ImuSeries,
-    (thermal, compensation): CompensationPlan,
+    plan: RecordPlan,
     path: &Path,
 ) -> Result<ScenarioImu, Failure> {
-    ScenarioImu::of(series, thermal, compensation)
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()
+    let named = |e: &dyn std::fmt::Display| Failure::Data(anyhow!("{}: {e}", path.display()));
+    let imu = ScenarioImu::of(series, plan.thermal, plan.compensation).map_err(|e| named(&e))?;
+    match plan.oracle {
+        Some(truth) if imu.temperature.is_some() => {
+            imu.with_oracle(series, truth).map_err(|e| named(&e))
+        }
+        _ => Ok(imu),
+    }
 }
 
 /// The first and last increment times, refusing a record too short to have one.
@@ -103,6 +130,7 @@ pub fn scenario_of(
     Ok(Scenario {
         increments: imu.increments,
         compensated_increments: imu.compensated_increments,
+        oracle_increments: imu.oracle_increments,
         temperature: imu.temperature,
         gnss,
         reference,
@@ -252,15 +280,33 @@ pub fn print_tournament_table(file: &EvaluationFile) {
     if r.significance.replicates > 1 {
         print_significance(r);
     }
+    print_oracle_gaps(r);
     for e in &r.excluded {
         println!("excluded {}: {}", e.label, e.reason);
     }
     println!("\nwritten: {}", file.report_file.display());
 }
 
+/// Every model's horizontal error above the oracle's, when there is one.
+fn print_oracle_gaps(r: &TournamentReport) {
+    if let Some(first) = r.oracle_gaps.first() {
+        println!(
+            "\nAbove the oracle ({}, the simulator's true model; horizontal):",
+            first.oracle
+        );
+    }
+    for g in &r.oracle_gaps {
+        let filter = g.filter.name().to_uppercase();
+        println!(
+            "  {filter} {:<30} {:>+9.2} m ({:.2}x)",
+            g.label, g.excess_m, g.ratio
+        );
+    }
+}
+
 fn print_filter_table(r: &TournamentReport, filter: &str) {
     println!(
-        "\n{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
+        "\n{:<28} {:>15} {:>15} {:>15} {:>13} {:>16}",
         format!("{} model", filter.to_uppercase()),
         "north m",
         "east m",
@@ -279,7 +325,7 @@ fn print_filter_table(r: &TournamentReport, filter: &str) {
             table_cell(m, metric, mark)
         });
         println!(
-            "{:<22} {:>15} {:>15} {:>15} {:>13} {:>16}",
+            "{:<28} {:>15} {:>15} {:>15} {:>13} {:>16}",
             m.label, cells[0], cells[1], cells[2], cells[3], cells[4]
         );
     }

@@ -26,14 +26,6 @@ pub fn parse_bank(bytes: &[u8], input: &str) -> Result<ModelBank, ReadError> {
 /// # Errors
 /// As [`parse_bank`], plus [`ReadErrorKind::Open`] and [`ReadErrorKind::Read`].
 pub fn read_bank_file(path: impl AsRef<Path>) -> Result<ModelBank, ReadError> {
-    let path = path.as_ref();
-    let input = path.display().to_string();
-    let bytes = crate::read_document(path).map_err(|e| {
-        let kind = match e.kind() {
-            std::io::ErrorKind::NotFound => ReadErrorKind::Open(e),
-            _ => ReadErrorKind::Read(e),
-        };
-        ReadError::new(input.clone(), None, kind)
-    })?;
+    let (bytes, input) = crate::read_named_document(path.as_ref())?;
     parse_bank(&bytes, &input)
 }

@@ -160,12 +160,22 @@ impl<R: BufRead> Iterator for ImuReader<R> {
             SampleKind::Increments => INCREMENT_SLOT,
         };
         let temperature = self.temperature;
-        Some(self.rows.next_row()?.map(|(time, values)| ImuSample {
+        let sample = self.rows.next_row()?.map(|(time, values)| ImuSample {
             time,
             gyro: [values[first], values[first + 1], values[first + 2]],
             accel: [values[first + 3], values[first + 4], values[first + 5]],
             temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
-        }))
+        });
+        let strict = self.rows.strictness() == Strictness::Strict;
+        Some(match sample {
+            Ok(ImuSample {
+                temperature_c: Some(t),
+                ..
+            }) if strict && !crate::is_sensor_temperature(t) => Err(self
+                .rows
+                .row_error(crate::temperature_out_of_range("temp_c", t))),
+            other => other,
+        })
     }
 }
 

@@ -76,9 +76,11 @@ pub mod raw_imu;
 mod rows;
 pub mod rtklib_pos;
 pub mod solution;
+pub mod temperature_table;
 mod text;
 pub mod thermal_parameters;
 pub mod trajectory;
+pub mod truth;
 pub mod ulog;
 
 pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
@@ -153,6 +155,22 @@ pub fn read_document(path: &Path) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// [`read_document`] with the path as the input's name; a missing file is
+/// [`ReadErrorKind::Open`], any other failure [`ReadErrorKind::Read`].
+pub(crate) fn read_named_document(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
+    let input = path.display().to_string();
+    match read_document(path) {
+        Ok(bytes) => Ok((bytes, input)),
+        Err(e) => {
+            let kind = match e.kind() {
+                std::io::ErrorKind::NotFound => ReadErrorKind::Open(e),
+                _ => ReadErrorKind::Read(e),
+            };
+            Err(ReadError::new(input, None, kind))
+        }
+    }
+}
+
 /// [`read_document`] as UTF-8 text.
 ///
 /// # Errors
@@ -181,6 +199,26 @@ fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
             };
             Err(ReadError::new(input, None, kind))
         }
+    }
+}
+
+/// Coldest and warmest temperature a sensor record may carry, °C: beyond the −55..+125 °C
+/// that MEMS inertial sensors are specified for, with a margin; outside, the value is a
+/// unit mistake (kelvin, tenths of a degree) or corrupt.
+pub const SENSOR_TEMPERATURE_RANGE_C: [f64; 2] = [-80.0, 150.0];
+
+/// True for a temperature inside [`SENSOR_TEMPERATURE_RANGE_C`].
+pub(crate) fn is_sensor_temperature(temperature_c: f64) -> bool {
+    let [low, high] = SENSOR_TEMPERATURE_RANGE_C;
+    (low..=high).contains(&temperature_c)
+}
+
+/// The error of a temperature outside [`SENSOR_TEMPERATURE_RANGE_C`] in `column`.
+pub(crate) fn temperature_out_of_range(column: &'static str, found: f64) -> ReadErrorKind {
+    ReadErrorKind::OutOfRange {
+        column,
+        found,
+        expected: "-80 to 150 °C, the range of a sensor's temperature",
     }
 }
 

@@ -178,6 +178,7 @@ fn survey(
     Ok(Scenario {
         increments,
         compensated_increments: None,
+        oracle_increments: None,
         temperature: None,
         gnss: record.gnss,
         reference: record

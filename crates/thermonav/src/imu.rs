@@ -145,6 +145,21 @@ impl ImuSeries {
             .map(|c| c.iter().sum::<f64>() / c.len() as f64)
     }
 
+    /// Each sample's interval, s, for a series of increments (the first sample taking the
+    /// second's interval); `None` for rates, whose values need no interval.
+    pub fn increment_intervals_s(&self) -> Option<Vec<f64>> {
+        if self.kind != Some(SampleKind::Increments) {
+            return None;
+        }
+        let mut dt: Vec<f64> = self
+            .time
+            .windows(2)
+            .map(|w| w[1].since(w[0]).as_seconds())
+            .collect();
+        dt.insert(0, dt.first().copied().unwrap_or(0.0));
+        Some(dt)
+    }
+
     /// The column of one channel.
     pub fn channel(&self, channel: Channel) -> &[f64] {
         &self.channels[channel.index()]

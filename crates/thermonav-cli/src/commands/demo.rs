@@ -24,7 +24,7 @@ use crate::thermal_scenarios::{
     ScenarioPlan, ThermalScenarios, print_thermal_scenarios, run_thermal_scenarios,
 };
 use crate::tournament_files::{
-    CompensationPlan, EvaluationFile, print_tournament_table, run_and_write, scenario_from_files,
+    EvaluationFile, RecordPlan, print_tournament_table, run_and_write, scenario_from_files,
     scenario_imu, scenario_of,
 };
 use anyhow::anyhow;
@@ -220,6 +220,7 @@ fn vessel_settings(args: &DemoArgs, p: &Plan) -> VesselSettings {
             temperature_c: SurveySettings::default().temperature_c,
         },
         unit: SimulatedUnit::default(),
+        temperature_file: None,
         motion: None,
         profile: None,
         seed: args.seed,
@@ -314,7 +315,7 @@ fn tournament(
         geometry: survey_geometry(),
         ..EngineSettings::default()
     };
-    let compensation = (bank.thermal.as_ref(), PAPER_SETUP_THERMAL.1);
+    let compensation = RecordPlan::calibrated(bank.thermal.as_ref(), PAPER_SETUP_THERMAL.1);
     let (main, operating_c) = scenario_from_files(
         &scenario_files(files),
         engine,
@@ -357,6 +358,7 @@ fn tournament_plan<'a>(
     filters: Vec<FilterKind>,
 ) -> TournamentPlan<'a> {
     TournamentPlan {
+        oracle: None,
         noise: CandidateSource::Bank(bank),
         thermal: ThermalOptions {
             imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
@@ -373,7 +375,7 @@ fn tournament_plan<'a>(
 
 /// The survey simulated again with the seed moved by `k`, as a scenario like `main`.
 fn resimulated(
-    (profile, run, compensation): (&SensorProfile, &VesselRun, CompensationPlan),
+    (profile, run, compensation): (&SensorProfile, &VesselRun, RecordPlan),
     main: &Scenario,
     k: usize,
     reference_name: &Path,

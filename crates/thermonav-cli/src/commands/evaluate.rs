@@ -8,17 +8,19 @@ use crate::integration::load_noise;
 use crate::report::print_json;
 use crate::settings::navigation::EvaluateSettings;
 use crate::tournament_files::{
-    check_some_model_ran, print_tournament_table, run_and_write, scenario_from_files,
+    RecordPlan, check_some_model_ran, print_tournament_table, run_and_write, scenario_from_files,
 };
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::DatasheetValues;
 use thermonav::evaluation::candidates::ThermalOptions;
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav_io::profile::read_profile;
+use thermonav_io::truth::read_truth_file;
 
 /// Runs `evaluate`.
 pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
@@ -29,13 +31,18 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         aiding: s.aiding,
         ..EngineSettings::default()
     };
-    let compensation = (noise.thermal(), s.compensation);
+    let scale = ScaleFactorPrior::default();
+    let truth = read_truth(s.truth.as_deref(), &scale)?;
+    let records = RecordPlan {
+        oracle: truth.as_ref(),
+        ..RecordPlan::calibrated(noise.thermal(), s.compensation)
+    };
     let (main, operating_c) = scenario_from_files(
         &s.files,
         engine,
         &s.outages,
         s.operating_temperature_c,
-        compensation,
+        records,
     )?;
     let plan = TournamentPlan {
         noise: noise.source(),
@@ -44,7 +51,8 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         source: s.source,
         filters: s.filters.clone(),
         datasheet: Some(datasheet_model(s.datasheet.as_deref())?),
-        scale: ScaleFactorPrior::default(),
+        scale,
+        oracle: truth.as_ref(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
     let replicates = Replicates::ShiftedOutages {
@@ -58,6 +66,11 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         print_tournament_table(&file);
     }
     check_some_model_ran(&file)
+}
+
+/// The survey truth of `--truth`, when given.
+fn read_truth(path: Option<&Path>, scale: &ScaleFactorPrior) -> Result<Option<TrueModel>, Failure> {
+    path.map(|p| read_truth_file(p, scale)).transpose().data()
 }
 
 /// The record's temperature range and the settings' switches.

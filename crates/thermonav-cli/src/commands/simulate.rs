@@ -77,17 +77,39 @@ fn vessel_rows(summary: &VesselSummary) -> [(&'static str, String); 5] {
             "reference trajectory",
             summary.files.reference.display().to_string(),
         ),
-        ("IMU (200 Hz)", summary.files.imu.display().to_string()),
-        ("GNSS (1 Hz)", summary.files.gnss.display().to_string()),
         (
-            "sensor temperature",
-            format!("{} °C", summary.temperature_c),
+            "IMU",
+            format!(
+                "{} ({} Hz)",
+                summary.files.imu.display(),
+                summary.imu_rate_hz
+            ),
         ),
+        (
+            "GNSS",
+            format!(
+                "{} ({} Hz)",
+                summary.files.gnss.display(),
+                summary.gnss.rate_hz
+            ),
+        ),
+        ("sensor temperature", sensor_temperature(summary)),
         (
             "heading sd (2.37 m baseline)",
             format!("{:.3} deg", summary.heading_sd_deg),
         ),
     ]
+}
+
+/// The survey's temperature, or its range when it changes.
+fn sensor_temperature(summary: &VesselSummary) -> String {
+    match summary.sensor_temperature_range_c {
+        [low, high] if low == high => format!("{low} °C"),
+        [low, high] => format!(
+            "{low:.1} to {high:.1} °C (settling at {} °C)",
+            summary.temperature_c
+        ),
+    }
 }
 
 /// Writes the built-in sensor profile as TOML.

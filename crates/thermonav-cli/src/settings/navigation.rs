@@ -120,8 +120,8 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     let temperature = model_temperature(args)?;
     let io = Io::new()
         .input("--imu", &args.imu)
-        .input("--gnss", &args.gnss)
-        .input(noise_option(&noise), noise_path(&noise));
+        .input("--gnss", &args.gnss);
+    let io = with_noise(io, &noise);
     let io = match &args.initial_from {
         Some(path) => io.input("--initial-from", path),
         None => io,
@@ -158,6 +158,14 @@ fn noise_option(noise: &NoiseSource) -> &'static str {
     match noise {
         NoiseSource::Bank(_) => "--bank",
         NoiseSource::Profile(_) => "--profile",
+    }
+}
+
+/// `io` reading the noise model's file (none for a built-in profile).
+fn with_noise(io: Io, noise: &NoiseSource) -> Io {
+    match noise_path(noise) {
+        p if crate::campaign::is_builtin_profile(p) => io,
+        p => io.input(noise_option(noise), p),
     }
 }
 
@@ -303,6 +311,8 @@ pub struct EvaluateSettings {
     pub geometry: AntennaGeometry,
     /// The profile of the data-sheet candidate (none: the ADIS16364 data sheet).
     pub datasheet: Option<PathBuf>,
+    /// A simulated survey's truth, for the oracle candidates.
+    pub truth: Option<PathBuf>,
     /// Output folder.
     pub out: PathBuf,
 }
@@ -336,24 +346,25 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         seed: args.seed,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         datasheet: args.datasheet.clone(),
+        truth: args.truth.clone(),
         out: args.out.clone(),
     };
-    let io = tournament_io(&settings.files, &settings.noise, &settings.out);
-    match &settings.datasheet {
-        Some(profile) => io.input("--datasheet", profile),
-        None => io,
-    }
-    .check()?;
+    tournament_io(&settings.files, &settings.noise, &settings.out)
+        .optional_inputs([
+            ("--datasheet", settings.datasheet.as_ref()),
+            ("--truth", settings.truth.as_ref()),
+        ])
+        .check()?;
     Ok(settings)
 }
 
 /// What a tournament reads and writes.
 pub fn tournament_io(files: &ScenarioFiles, noise: &NoiseSource, out: &Path) -> Io {
-    Io::new()
+    let io = Io::new()
         .input("--imu", &files.imu)
         .input("--gnss", &files.gnss)
-        .input("--reference", &files.reference)
-        .input(noise_option(noise), noise_path(noise))
+        .input("--reference", &files.reference);
+    with_noise(io, noise)
         .output("report", &out.join("evaluation.json"))
         .output_folder("per-model error folder", &out.join("errors"))
 }

@@ -27,6 +27,14 @@ impl Io {
         self
     }
 
+    /// The files of the optional inputs that were given, each named by its option.
+    pub fn optional_inputs(self, options: [(&'static str, Option<&PathBuf>); 2]) -> Self {
+        options
+            .into_iter()
+            .filter_map(|(option, path)| Some((option, path?)))
+            .fold(self, |io, (option, path)| io.input(option, path))
+    }
+
     /// Files read under one option.
     pub fn inputs(mut self, option: &'static str, paths: &[PathBuf]) -> Self {
         self.inputs

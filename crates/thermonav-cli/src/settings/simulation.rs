@@ -141,8 +141,7 @@ fn set_points(temperatures_c: &[f64]) -> Result<Vec<f64>, Failure> {
 }
 
 fn profile_io(profile: Option<&PathBuf>) -> Io {
-    let builtin = std::path::Path::new(crate::campaign::TEMPERATURE_SENSITIVE_PROFILE);
-    match profile.filter(|p| p.as_path() != builtin) {
+    match profile.filter(|p| !crate::campaign::is_builtin_profile(p)) {
         Some(p) => Io::new().input("--profile", p),
         None => Io::new(),
     }
@@ -159,6 +158,8 @@ pub struct VesselSettings {
     pub temperature: SurveyTemperature,
     /// The unit on board.
     pub unit: SimulatedUnit,
+    /// A `t_s,temp_c` table of the sensor's temperature instead of `temperature`.
+    pub temperature_file: Option<PathBuf>,
     /// A motion-definition file instead of the harbour survey.
     pub motion: Option<PathBuf>,
     /// Sensor profile (TOML); none: the built-in one.
@@ -180,12 +181,13 @@ pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
             args.duration_s
         )));
     }
-    let io = profile_io(args.profile.as_ref()).output_folder("survey folder", &args.out);
-    match &args.motion {
-        Some(m) => io.input("--motion", m),
-        None => io,
-    }
-    .check()?;
+    profile_io(args.profile.as_ref())
+        .optional_inputs([
+            ("--motion", args.motion.as_ref()),
+            ("--temperature-file", args.temperature_file.as_ref()),
+        ])
+        .output_folder("survey folder", &args.out)
+        .check()?;
     Ok(VesselSettings {
         out: args.out.clone(),
         temperature: survey_temperature(
@@ -197,6 +199,7 @@ pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
             serial: args.unit_serial,
         },
         survey,
+        temperature_file: args.temperature_file.clone(),
         motion: args.motion.clone(),
         profile: args.profile.clone(),
         seed: args.seed,

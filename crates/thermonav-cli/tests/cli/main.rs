@@ -8,6 +8,7 @@ mod convert_ulog;
 mod lot;
 mod modelling;
 mod navigation;
+mod oracle;
 mod plots;
 mod real_data;
 mod reliability;

@@ -1,6 +1,6 @@
 //! The modelling commands end to end: simulate, characterise, read the bank, Allan, AR, FIR.
 
-use crate::{arg, outcome, thermonav};
+use crate::{arg, outcome, thermonav, write_file};
 use std::path::Path;
 
 fn json_of(args: &[&str]) -> serde_json::Value {
@@ -220,12 +220,7 @@ fn a_warming_survey_follows_its_time_constant_and_states_its_truth() {
         "60",
     ]));
     assert_eq!(status, 0, "{stderr}");
-    let text = std::fs::read_to_string(out.join("imu.csv")).unwrap();
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let rows = imu_rows(&out.join("imu.csv"));
     let t0 = rows[0][0];
     for row in rows.iter().step_by(997) {
         let expected = 20.0 - 20.0 * (-(row[0] - t0) / 60.0).exp();
@@ -259,4 +254,80 @@ fn a_warming_survey_follows_its_time_constant_and_states_its_truth() {
             "{got} vs {expected}"
         );
     }
+}
+
+/// The numbers of every data row of an IMU CSV.
+fn imu_rows(path: &Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
+/// Linear interpolation in a table with the end values held (the temperature file's rule).
+fn table_at(table: &[(f64, f64)], t: f64) -> f64 {
+    let after = table.partition_point(|&(x, _)| x <= t);
+    match after {
+        0 => table[0].1,
+        n if n == table.len() => table[n - 1].1,
+        n => {
+            let ((x0, y0), (x1, y1)) = (table[n - 1], table[n]);
+            y0 + (t - x0) / (x1 - x0) * (y1 - y0)
+        }
+    }
+}
+
+#[test]
+fn a_survey_follows_its_temperature_file_and_refuses_a_bad_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = [(0.0, -5.0), (60.0, 10.0), (100.0, 10.0), (130.0, 0.0)];
+    let file = write_file(
+        dir.path(),
+        "temperature.csv",
+        "t_s,temp_c\n0,-5\n60,10\n100,10\n130,0\n",
+    );
+    let out = dir.path().join("v");
+    let simulate = |file: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "vessel",
+            "--out",
+            arg(&out),
+            "--duration-s",
+            "150",
+        ];
+        args.extend_from_slice(&["--temperature-file", arg(file)]);
+        args.extend_from_slice(extra);
+        outcome(&thermonav(&args))
+    };
+    let (status, _, stderr) = simulate(&file, &[]);
+    assert_eq!(status, 0, "{stderr}");
+    let rows = imu_rows(&out.join("imu.csv"));
+    let t0 = rows[0][0];
+    for row in rows.iter().step_by(101) {
+        let expected = table_at(&table, row[0] - t0);
+        assert!(
+            (row[7] - expected).abs() < 1e-9,
+            "{} s: {} vs {expected}",
+            row[0],
+            row[7]
+        );
+    }
+    let truth = std::fs::read_to_string(out.join("truth.json")).unwrap();
+    assert!(truth.contains("\"kind\": \"table\""), "{truth}");
+    let bad = write_file(dir.path(), "bad.csv", "t_s,temp_c\n0,20\n10,400\n");
+    let (status, _, stderr) = simulate(&bad, &[]);
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("bad.csv:3") && stderr.contains("-80 to 150"),
+        "{stderr}"
+    );
+    let (status, _, stderr) = simulate(&dir.path().join("none.csv"), &[]);
+    assert!(status == 1 && stderr.contains("none.csv"), "{stderr}");
+    let (status, _, stderr) = simulate(&file, &["--warm-up-from-c", "0"]);
+    assert!(
+        status == 2 && stderr.contains("--warm-up-from-c"),
+        "{stderr}"
+    );
 }

@@ -306,3 +306,24 @@ fn reader_streams_without_reading_ahead() {
     let last = reader.take(100_000).last().unwrap().unwrap();
     assert_eq!(last.time.as_nanos(), 99_999 * 5_000_000);
 }
+
+// Issue 20: a temperature no sensor can have (kelvin written as °C, a corrupt field) is
+// refused under Strict naming its line; Lenient keeps it for `inspect` to report.
+#[test]
+fn a_temperature_outside_the_sensor_range_is_refused_strictly_and_kept_leniently() {
+    for (value, shown) in [("-300", "-300"), ("1e6", "1000000"), ("293.15", "293.15")] {
+        let bad = ROW_2.replace("20.5", value);
+        let text = with_rows(&[ROW_1, &bad]);
+        let message = strict_error(&text);
+        let expected = format!("{NAME}:3: column temp_c: value {shown} is out of range");
+        assert!(message.starts_with(&expected), "{message}");
+        assert!(message.contains("-80 to 150 °C"), "{message}");
+        let kept = read(&text, Strictness::Lenient).unwrap();
+        assert_eq!(
+            kept.temperature_c.unwrap()[1],
+            value.parse::<f64>().unwrap()
+        );
+    }
+    let edge = with_rows(&[&ROW_1.replace("20.5", "-80"), &ROW_2.replace("20.5", "150")]);
+    assert_eq!(read(&edge, Strictness::Strict).unwrap().len(), 2);
+}

@@ -14,12 +14,15 @@
 //!   calibration, the bank scheduled by temperature (linear interpolation at every covariance
 //!   step), and the scheduled bank on the compensated record (the compensated ones only when
 //!   the bank holds a calibration);
+//! - **oracle** ([`oracle_candidates`]), when the caller has the simulator's truth: the true
+//!   model scheduled, on the raw record and on the record without the true bias(T);
 //! - **profile** ([`profile_candidates`]), for a sensor without a chamber campaign: a sensor
 //!   profile's model at each of its table temperatures and at the operating temperature, and
 //!   the profile scheduled by temperature.
 
 pub use crate::sensor::DatasheetValues;
 
+use super::oracle::TrueModel;
 use crate::nav::schedule::{Compensation, ModelGrid, Scheduling, TemperatureRule};
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
@@ -67,6 +70,10 @@ pub enum CandidateKind {
         /// The temperature, °C.
         temperature_c: f64,
     },
+    /// The simulator's true model scheduled by temperature (see [`super::oracle`]).
+    Oracle,
+    /// The true model scheduled, on the record with the true repeatable bias subtracted.
+    OracleCompensated,
 }
 
 /// Which IMU record a candidate runs on.
@@ -77,6 +84,8 @@ pub enum Record {
     Raw,
     /// The record with the thermal calibration's bias(T) subtracted.
     Compensated,
+    /// The record with the true repeatable bias(T) subtracted (the oracle's).
+    OracleCompensated,
 }
 
 /// One competing model.
@@ -125,8 +134,18 @@ impl CandidateKind {
             CandidateKind::Pooled
             | CandidateKind::Datasheet
             | CandidateKind::Scheduled { .. }
-            | CandidateKind::ScheduledCompensated { .. } => None,
+            | CandidateKind::ScheduledCompensated { .. }
+            | CandidateKind::Oracle
+            | CandidateKind::OracleCompensated => None,
         }
+    }
+
+    /// True for the oracle, which no user can configure: it is ranked apart.
+    pub fn is_oracle(self) -> bool {
+        matches!(
+            self,
+            CandidateKind::Oracle | CandidateKind::OracleCompensated
+        )
     }
 
     /// True for the baselines that answer no temperature question (pooled, data sheet).
@@ -275,6 +294,7 @@ fn scheduled(
     let kind = match record {
         Record::Raw => CandidateKind::Scheduled { rule },
         Record::Compensated => CandidateKind::ScheduledCompensated { rule },
+        Record::OracleCompensated => CandidateKind::OracleCompensated,
     };
     Candidate {
         label: label.into(),
@@ -315,6 +335,36 @@ pub fn thermal_candidates(
         if compensates {
             field.push(compensated.into(), make(compensated, Record::Compensated));
         }
+    }
+    field.into_parts()
+}
+
+/// The oracle's candidates over the record's temperature range `range_c`: the true model
+/// scheduled on the raw record, and on the record with the true repeatable bias subtracted.
+pub fn oracle_candidates(
+    truth: &TrueModel,
+    range_c: [f64; 2],
+    operating_temperature_c: f64,
+) -> (Vec<Candidate>, Vec<Excluded>) {
+    let mut field = Field::default();
+    let grid = truth.grid(range_c).map(Arc::new).map_err(|e| e.to_string());
+    let runs = [
+        ("truth scheduled", CandidateKind::Oracle, Record::Raw),
+        (
+            "truth scheduled compensated",
+            CandidateKind::OracleCompensated,
+            Record::OracleCompensated,
+        ),
+    ];
+    for (label, kind, record) in runs {
+        let built = grid.as_ref().map_err(Clone::clone).map(|g| Candidate {
+            label: label.into(),
+            kind,
+            model: *g.model_at(operating_temperature_c),
+            schedule: Some(Arc::clone(g)),
+            record,
+        });
+        field.push(label.into(), built);
     }
     field.into_parts()
 }

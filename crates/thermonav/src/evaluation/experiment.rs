@@ -7,9 +7,10 @@
 //! run whatever the number of replicates.
 
 use super::candidates::{
-    Candidate, Excluded, ThermalOptions, profile_candidates, thermal_candidates,
+    Candidate, Excluded, ThermalOptions, oracle_candidates, profile_candidates, thermal_candidates,
     tournament_candidates,
 };
+use super::oracle::TrueModel;
 use super::report::{TournamentReport, report_of};
 use super::tournament::{
     ModelResult, Scenario, horizontal_contrasts, run_tournament, summarize_replicates,
@@ -53,6 +54,9 @@ pub struct TournamentPlan<'a> {
     pub datasheet: Option<ImuStochasticModel>,
     /// Scale-factor prior of every candidate.
     pub scale: ScaleFactorPrior,
+    /// The simulator's truth, for the oracle candidates (ranked apart, see
+    /// [`super::report::TournamentReport::oracle_gaps`]).
+    pub oracle: Option<&'a TrueModel>,
 }
 
 /// How the replicates differ from the main run.
@@ -155,7 +159,10 @@ impl Tournament {
     /// be used: they alone answer no question.
     pub fn new(plan: &TournamentPlan) -> Result<Self, TournamentError> {
         let (candidates, excluded) = plan_candidates(plan);
-        if candidates.iter().all(|c| c.kind.is_baseline()) {
+        if candidates
+            .iter()
+            .all(|c| c.kind.is_baseline() || c.kind.is_oracle())
+        {
             let reasons = excluded
                 .iter()
                 .map(|e| format!("{}: {}", e.label, e.reason))
@@ -241,8 +248,28 @@ impl Tournament {
     }
 }
 
-/// The candidates of a plan and the ones left out.
+/// The candidates of a plan and the ones left out, the oracle's last.
 fn plan_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
+    let (mut candidates, mut excluded) = model_candidates(plan);
+    if let Some(truth) = plan.oracle {
+        let (more, left_out) = match plan.thermal.imu_temperature_range_c {
+            Some(range_c) => oracle_candidates(truth, range_c, plan.operating_temperature_c),
+            None => (
+                Vec::new(),
+                vec![Excluded {
+                    label: "truth scheduled".into(),
+                    reason: "the IMU record has no temp_c to schedule the truth by".into(),
+                }],
+            ),
+        };
+        candidates.extend(more);
+        excluded.extend(left_out);
+    }
+    (candidates, excluded)
+}
+
+/// The candidates of the plan's bank or profile and the ones left out.
+fn model_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
     let (t, scale) = (plan.operating_temperature_c, &plan.scale);
     let bank = match plan.noise {
         CandidateSource::Profile(profile) => {

@@ -6,6 +6,7 @@
 //!   KF-GINS does (RMS of the per-outage maxima).
 //! - [`candidates`]: the models that compete: every bank entry, the bank interpolated at the
 //!   operating temperature, the temperature-blind mean of the bank, and data-sheet values.
+//! - [`oracle`]: the simulator's true model as a candidate, the best any model could do.
 //! - [`tournament`]: every candidate through the same filter on the same data, in parallel,
 //!   and the ranking.
 //! - [`experiment`]: a tournament with its replicates (shifted outages, or scenarios the
@@ -18,6 +19,7 @@
 pub mod candidates;
 pub mod experiment;
 pub mod metrics;
+pub mod oracle;
 pub mod report;
 pub mod significance;
 pub mod tournament;

@@ -103,16 +103,48 @@ pub struct TournamentReport {
     pub models: Vec<ModelReport>,
     /// Candidates that could not be built.
     pub excluded: Vec<Excluded>,
-    /// Per metric key, the best label of the first filter.
+    /// Per metric key, the best label of the first filter (the oracle is not ranked: no
+    /// user can configure it).
     pub best: BTreeMap<&'static str, String>,
     /// Per filter and metric key, the best label.
     pub best_by_filter: BTreeMap<&'static str, BTreeMap<&'static str, String>>,
     /// Whether the rankings are beyond the replicate noise.
     pub significance: SignificanceReport,
+    /// With an oracle: every other model's horizontal error against the best oracle run of
+    /// its filter (empty without one).
+    pub oracle_gaps: Vec<OracleGap>,
+}
+
+/// How far one model is from the best possible one (the oracle) on the horizontal error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OracleGap {
+    /// The model's label.
+    pub label: String,
+    /// The filter.
+    pub filter: FilterKind,
+    /// The oracle it is measured against.
+    pub oracle: String,
+    /// The model's mean of per-outage RMS horizontal error, m (the Monte Carlo mean with
+    /// replicates).
+    pub rms_horizontal_m: f64,
+    /// The oracle's, m.
+    pub oracle_rms_horizontal_m: f64,
+    /// The model's minus the oracle's, m (what a better model could still gain).
+    pub excess_m: f64,
+    /// The model's over the oracle's.
+    pub ratio: f64,
 }
 
 /// A model's label, filter and the values it is ranked by (in [`Metric::ALL`] order).
 type Ranked = (String, FilterKind, [Option<f64>; 5]);
+
+/// Position of the horizontal error in [`Metric::ALL`].
+fn horizontal_index() -> usize {
+    Metric::ALL
+        .iter()
+        .position(|m| *m == Metric::RmsHorizontal)
+        .unwrap_or(0)
+}
 
 pub(super) fn report_of(
     tournament: &Tournament,
@@ -127,7 +159,11 @@ pub(super) fn report_of(
         .zip(summaries)
         .map(|(r, s)| model_report(r, &s.ci95))
         .collect();
-    let ranking = ranking_values(&models, replicates.extra() > 0);
+    let replicated = replicates.extra() > 0;
+    let (oracles, users): (Vec<&ModelReport>, Vec<&ModelReport>) =
+        models.iter().partition(|m| m.candidate.is_oracle());
+    let ranking = ranking_values(&users, replicated);
+    let oracle_gaps = oracle_gaps(&ranking, &ranking_values(&oracles, replicated));
     let filters = tournament.filters().to_vec();
     TournamentReport {
         operating_temperature_c: tournament.operating_temperature_c(),
@@ -145,9 +181,41 @@ pub(super) fn report_of(
             tests,
             horizontal_contrasts,
         },
+        oracle_gaps,
         models,
         filters,
     }
+}
+
+/// Each ranked model against the best oracle of its filter on the horizontal error.
+fn oracle_gaps(ranking: &[Ranked], oracles: &[Ranked]) -> Vec<OracleGap> {
+    let k = horizontal_index();
+    let best_oracle = |filter: FilterKind| {
+        oracles
+            .iter()
+            .filter(|(_, f, _)| *f == filter)
+            .filter_map(|(label, _, v)| v[k].map(|x| (label, x)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    ranking
+        .iter()
+        .filter_map(|(label, filter, v)| {
+            let (oracle, reference) = best_oracle(*filter)?;
+            let value = v[k]?;
+            if reference <= 0.0 {
+                return None;
+            }
+            Some(OracleGap {
+                label: label.clone(),
+                filter: *filter,
+                oracle: oracle.clone(),
+                rms_horizontal_m: value,
+                oracle_rms_horizontal_m: reference,
+                excess_m: value - reference,
+                ratio: value / reference,
+            })
+        })
+        .collect()
 }
 
 fn outage_spans(main: &Scenario) -> Vec<OutageSpan> {
@@ -163,7 +231,7 @@ fn outage_spans(main: &Scenario) -> Vec<OutageSpan> {
 
 /// The values each model is ranked by: the Monte Carlo means when there are replicates,
 /// the main run's values otherwise.
-fn ranking_values(models: &[ModelReport], replicated: bool) -> Vec<Ranked> {
+fn ranking_values(models: &[&ModelReport], replicated: bool) -> Vec<Ranked> {
     models
         .iter()
         .map(|m| {

@@ -3,6 +3,7 @@
 
 use super::candidates::{Candidate, CandidateKind, Record};
 use super::metrics::{EpochError, Metric, RunMetrics, evaluate_solution};
+use super::oracle::{OracleError, TrueModel};
 use super::significance::{MeanInterval, PairedTest, mean_interval, paired_t_test};
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
@@ -28,6 +29,9 @@ pub struct Scenario {
     /// The increments of the record with the thermal calibration's bias(T) subtracted, for
     /// the compensated candidates; `None` when the record was not compensated.
     pub compensated_increments: Option<Vec<Increment>>,
+    /// The increments of the record with the true repeatable bias subtracted, for the
+    /// oracle (see [`super::oracle`]); `None` without a truth.
+    pub oracle_increments: Option<Vec<Increment>>,
     /// The IMU's temperature over time, for the scheduled candidates; `None` without temp_c.
     pub temperature: Option<TemperatureTrack>,
     /// GNSS fixes.
@@ -49,6 +53,8 @@ pub struct ScenarioImu {
     pub increments: Vec<Increment>,
     /// Increments of the compensated record, when compensated.
     pub compensated_increments: Option<Vec<Increment>>,
+    /// Increments of the record compensated with the truth, when given one.
+    pub oracle_increments: Option<Vec<Increment>>,
     /// The temperature over time, when the record has one.
     pub temperature: Option<TemperatureTrack>,
     /// What the compensation did.
@@ -74,9 +80,26 @@ impl ScenarioImu {
             compensated_increments: outcome
                 .applied()
                 .then(|| increments_from_series(&compensated)),
+            oracle_increments: None,
             temperature,
             compensation: outcome,
         })
+    }
+
+    /// Adds the increments of `series` with `truth`'s repeatable bias subtracted, for the
+    /// oracle candidates.
+    ///
+    /// # Errors
+    /// [`OracleError::NoTemperature`] when the record has no usable temperatures.
+    pub fn with_oracle(
+        mut self,
+        series: &ImuSeries,
+        truth: &TrueModel,
+    ) -> Result<Self, OracleError> {
+        let mut compensated = series.clone();
+        truth.compensate(&mut compensated)?;
+        self.oracle_increments = Some(increments_from_series(&compensated));
+        Ok(self)
     }
 }
 
@@ -179,6 +202,7 @@ fn candidate_inputs<'a>(
     let increments = match candidate.record {
         Record::Raw => Some(&scenario.increments),
         Record::Compensated => scenario.compensated_increments.as_ref(),
+        Record::OracleCompensated => scenario.oracle_increments.as_ref(),
     }
     .ok_or("the scenario has no compensated IMU record")?;
     let schedule = match (&candidate.schedule, &scenario.temperature) {
@@ -221,7 +245,7 @@ pub struct Significance {
 
 /// Per-model summaries and winner-against-runner-up tests over replicates, each replicate
 /// holding the same candidates and filters in the same order. A model with a failed run in
-/// any replicate is left out of the tests.
+/// any replicate, and the oracle (which no user can configure), are left out of the tests.
 pub fn summarize_replicates(
     replicates: &[Vec<ModelResult>],
 ) -> (Vec<ModelSummary>, Vec<Significance>) {
@@ -265,7 +289,7 @@ pub fn summarize_replicates(
             let complete: Vec<(usize, Vec<f64>)> = first
                 .iter()
                 .enumerate()
-                .filter(|(_, m)| m.filter == filter)
+                .filter(|(_, m)| m.filter == filter && !m.candidate.is_oracle())
                 .filter_map(|(i, _)| {
                     values(i, metric)
                         .into_iter()

@@ -153,6 +153,8 @@ pub enum TemperatureRule {
     BankLinear,
     /// A sensor profile's Gauss-Markov table at the temperature.
     ProfileTable,
+    /// A simulator's true model at the temperature (the oracle).
+    Truth,
 }
 
 impl TemperatureRule {

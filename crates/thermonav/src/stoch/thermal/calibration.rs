@@ -22,7 +22,7 @@ use super::{
     FitSettings, PowerOnFit, PowerOnOffset, PowerOnRecord, TemperaturePoint, ThermalCurve,
     ThermalError, fit_bias_curve, fit_bias_curve_with_power_ons,
 };
-use crate::imu::{Channel, ImuSeries, SampleKind};
+use crate::imu::{Channel, ImuSeries};
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
@@ -222,7 +222,7 @@ impl ThermalCalibration {
         if let Some(index) = temperatures.iter().position(|t| !t.is_finite()) {
             return Err(CompensationError::NonFiniteTemperature { index });
         }
-        let intervals = sample_intervals_s(series);
+        let intervals = series.increment_intervals_s();
         let clamped = temperatures
             .iter()
             .filter(|&&t| self.outside_range(t))
@@ -245,18 +245,4 @@ impl ThermalCalibration {
             temperature_range_c: range,
         })
     }
-}
-
-/// Each sample's interval, s, for a series of increments; `None` for rates.
-fn sample_intervals_s(series: &ImuSeries) -> Option<Vec<f64>> {
-    if series.kind != Some(SampleKind::Increments) {
-        return None;
-    }
-    let mut dt: Vec<f64> = series
-        .time
-        .windows(2)
-        .map(|w| w[1].since(w[0]).as_seconds())
-        .collect();
-    dt.insert(0, dt.first().copied().unwrap_or(0.0));
-    Some(dt)
 }
