@@ -365,12 +365,17 @@ pub struct CharacterizeArgs {
     #[arg(long, conflicts_with = "manifest")]
     pub power_on: Vec<PowerOnFiles>,
     /// A temperature sweep of the same unit (a static log with temp_c while it warms or
-    /// cools), fitted by block means; repeat for more.
+    /// cools, or a PX4 ULog: its raw sensor_gyro and sensor_accel with their temperature and
+    /// device ids), fitted by block means; repeat for more.
     #[arg(long, conflicts_with = "manifest")]
     pub sweep: Vec<PathBuf>,
     /// Block length of a sweep's block means, s (longer than the bias's correlation time).
     #[arg(long, default_value_t = DEFAULT_SWEEP_BLOCK_S)]
     pub sweep_block_s: f64,
+    /// Which IMU of a PX4 ULog sweep: the instance (multi_id) of its raw sensor_gyro and
+    /// sensor_accel topics.
+    #[arg(long, default_value_t = 0)]
+    pub sweep_instance: u8,
     /// Latitude of the chamber, deg: the gravity a level unit's az reads is taken off its
     /// thermal curve.
     #[arg(long, default_value_t = DEFAULT_SITE_LATITUDE_DEG, allow_negative_numbers = true)]
@@ -451,9 +456,20 @@ pub struct BankExportArgs {
     /// Output parameter file.
     #[arg(long)]
     pub out: PathBuf,
-    /// PX4 device id of the IMU (TC_G0_ID, TC_A0_ID); 0 leaves it for the user to set.
-    #[arg(long, default_value_t = 0)]
-    pub device_id: u32,
+    /// Which IMU of the autopilot: 0 for the first (PX4 TC_G0/TC_A0, ArduPilot INS_TCAL1),
+    /// up to 2 (default: the instance of the ULog sweep the bank was calibrated from, else 0).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(0..=2))]
+    pub instance: Option<u8>,
+    /// PX4 device id of the gyro and the accelerometer (TC_Gn_ID, TC_An_ID), when both are one
+    /// (default: the ids of the ULog sweep, else 0, which leaves them for the user to set).
+    #[arg(long, conflicts_with_all = ["gyro_device_id", "accel_device_id"])]
+    pub device_id: Option<u32>,
+    /// PX4 device id of the gyro (TC_Gn_ID).
+    #[arg(long)]
+    pub gyro_device_id: Option<u32>,
+    /// PX4 device id of the accelerometer (TC_An_ID).
+    #[arg(long)]
+    pub accel_device_id: Option<u32>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,

@@ -7,12 +7,15 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use thermonav::geo::gravity::normal_gravity_m_s2;
 use thermonav::imu::Channel;
+use thermonav::imu::ImuSeries;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::{
-    FitSettings, PowerOnRecord, RecordMean, ThermalCalibration, calibrate, merge_records,
-    power_on_records, record_mean, sweep_records, without_signal,
+    FitSettings, PowerOnRecord, RecordMean, SensorDevices, ThermalCalibration, calibrate,
+    merge_records, power_on_records, record_mean, sweep_records, without_signal,
 };
+use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
+use thermonav_io::ulog::read_ulog_file;
 use thermonav_io::{Strictness, read_imu_file};
 
 /// Block length of a sweep's block means, s: five minutes, longer than most of a MEMS bias's
@@ -43,6 +46,8 @@ pub struct ThermalInputs {
     pub sweeps: Vec<PathBuf>,
     /// Block length of a sweep's block means, s.
     pub sweep_block_s: f64,
+    /// The IMU instance of a ULog sweep.
+    pub sweep_instance: u8,
     /// Where the chamber stands: latitude (rad) and height (m), for the gravity a level unit's
     /// az reads.
     pub site: Site,
@@ -54,6 +59,7 @@ impl Default for ThermalInputs {
             power_ons: Vec::new(),
             sweeps: Vec::new(),
             sweep_block_s: DEFAULT_SWEEP_BLOCK_S,
+            sweep_instance: 0,
             site: default_site(),
         }
     }
@@ -80,20 +86,82 @@ pub fn calibrate_bank(
         parts.push(power_on_records(k as u32 + 2, &means_of(files)?));
     }
     let first_sweep = inputs.power_ons.len() as u32 + 2;
+    let mut devices = Vec::new();
     for (k, file) in inputs.sweeps.iter().enumerate() {
+        let sweep = sweep_series(file, inputs.sweep_instance)?;
+        devices.extend(sweep.devices);
         parts.push(sweep_of(
+            &sweep.series,
             file,
             first_sweep + k as u32,
-            inputs.sweep_block_s,
+            inputs,
         )?);
     }
     let gravity = normal_gravity_m_s2(inputs.site.latitude_rad, inputs.site.height_m);
     let signal = BTreeMap::from([(Channel::Az, -gravity)]);
     let observations = without_signal(merge_records(parts), &signal);
+    let devices = common_devices(&devices, &inputs.sweeps)?;
     Ok(fit(&observations, inputs.given())?.map(|mut c| {
         c.removed_signal = signal;
+        c.devices = devices;
         c
     }))
+}
+
+/// A sweep's samples and, from a ULog, the sensors they came from.
+struct Sweep {
+    series: ImuSeries,
+    devices: Option<SensorDevices>,
+}
+
+/// The sweep in `path`: an IMU CSV, or a PX4 ULog's raw sensors of `instance`.
+fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
+    if !is_ulog(path) {
+        let series = read_imu_file(path, Strictness::Strict).data()?;
+        return Ok(Sweep {
+            series,
+            devices: None,
+        });
+    }
+    let log = read_ulog_file(path).data()?;
+    let scale = time_scale(&log, default_gpst_minus_utc());
+    let raw = raw_sensor_series(&log, &path.display().to_string(), scale, instance).data()?;
+    let devices = SensorDevices {
+        instance,
+        gyro_device_id: raw.gyro_device_id,
+        accel_device_id: raw.accel_device_id,
+    };
+    Ok(Sweep {
+        series: raw.series,
+        devices: Some(devices),
+    })
+}
+
+/// True when the file starts with the ULog magic bytes.
+fn is_ulog(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 7];
+    let read = std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head));
+    read.is_ok() && head.starts_with(&thermonav_io::ulog::MAGIC)
+}
+
+/// The sensors of the ULog sweeps, which must all be the same ones.
+fn common_devices(
+    devices: &[SensorDevices],
+    sweeps: &[PathBuf],
+) -> Result<Option<SensorDevices>, Failure> {
+    match devices {
+        [] => Ok(None),
+        [first, rest @ ..] if rest.iter().all(|d| d == first) => Ok(Some(*first)),
+        _ => Err(Failure::Data(anyhow!(
+            "the ULog sweeps {} come from different sensors (device ids {devices:?}): one calibration is of one unit",
+            sweeps
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))),
+    }
 }
 
 /// The means of the bank's own records (its first power-on).
@@ -147,12 +215,12 @@ fn mean_of(path: &Path) -> Result<RecordMean, Failure> {
 }
 
 fn sweep_of(
+    series: &ImuSeries,
     path: &Path,
     power_on: u32,
-    block_s: f64,
+    inputs: &ThermalInputs,
 ) -> Result<BTreeMap<Channel, Vec<PowerOnRecord>>, Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
-    sweep_records(power_on, &series, block_s)
+    sweep_records(power_on, series, inputs.sweep_block_s)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()
 }

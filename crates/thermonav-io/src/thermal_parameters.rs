@@ -1,6 +1,7 @@
 //! A unit's thermal calibration ([`ThermalCalibration`]) as autopilot parameters: PX4's
 //! `TC_*` thermal-compensation parameters in a QGroundControl `.params` file, and ArduPilot's
-//! `INS_TCAL1_*` parameters in a Mission Planner / MAVProxy `.param` file.
+//! `INS_TCAL1_*` parameters in a Mission Planner / MAVProxy `.param` file; the second and
+//! third IMU (instance 1, 2) take `TC_G1`/`TC_A1`, `INS_TCAL2` and so on ([`ExportTarget`]).
 //!
 //! Each target has its own polynomial, reference temperature and clamping; the curves of the
 //! calibration, b(T) = Σ_k b_k (T − T_ref)^k with their own T_ref, are re-expanded about the
@@ -142,6 +143,11 @@ pub enum ExportError {
         /// The channels, named.
         channels: String,
     },
+    /// A sensor instance the targets have no parameters for.
+    #[error(
+        "sensor instance {0}: the targets hold thermal parameters for instances 0 to {MAX_INSTANCE} (PX4 TC_G0..TC_G2, ArduPilot INS_TCAL1..INS_TCAL3)"
+    )]
+    Instance(u8),
     /// A value that is not finite or overflows a 32-bit float.
     #[error("{name} = {value} cannot be stored as a 32-bit float parameter")]
     NotRepresentable {
@@ -350,27 +356,52 @@ fn stored_temperature_c(temperature_c: f64) -> f64 {
     f64::from(temperature_c as f32)
 }
 
-/// PX4's parameters for the gyro and accelerometer of `device_id` (instance 0): TREF is the
-/// middle of each sensor's shared range (as stored, a 32-bit float, so that the re-expansion
-/// is about the very value PX4 reads).
+/// The highest sensor instance both targets have parameters for: PX4's `TC_G0`..`TC_G2`
+/// (`TC_A0`..`TC_A2`) and ArduPilot's `INS_TCAL1`..`INS_TCAL3`.
+pub const MAX_INSTANCE: u8 = 2;
+
+/// Which of the autopilot's sensors a parameter file is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ExportTarget {
+    /// The IMU's instance, 0 for the first (PX4 `TC_G0`, ArduPilot `INS_TCAL1`).
+    pub instance: u8,
+    /// PX4 device id of its gyro (`TC_Gn_ID`); 0 leaves it for the user to set.
+    pub gyro_device_id: u32,
+    /// PX4 device id of its accelerometer (`TC_An_ID`).
+    pub accel_device_id: u32,
+}
+
+impl ExportTarget {
+    fn checked(self) -> Result<Self, ExportError> {
+        match self.instance <= MAX_INSTANCE {
+            true => Ok(self),
+            false => Err(ExportError::Instance(self.instance)),
+        }
+    }
+}
+
+/// PX4's parameters for the gyro and accelerometer of `target`: TREF is the middle of each
+/// sensor's shared range (as stored, a 32-bit float, so that the re-expansion is about the
+/// very value PX4 reads).
 ///
 /// # Errors
-/// A missing channel, a curve above order 3, channels without a common temperature, or a
-/// value beyond 32-bit float range.
+/// A missing channel, a curve above order 3, channels without a common temperature, a value
+/// beyond 32-bit float range, or an instance above [`MAX_INSTANCE`].
 pub fn px4_parameters(
     calibration: &ThermalCalibration,
-    device_id: u32,
+    target: ExportTarget,
 ) -> Result<ParameterFile, ExportError> {
+    let target = target.checked()?;
     let mut parameters = vec![integer("TC_G_ENABLE", 1), integer("TC_A_ENABLE", 1)];
     let mut sensors = Vec::new();
     for sensor in [ImuSensor::Gyro, ImuSensor::Accelerometer] {
         let range_c = shared_range_c(calibration, &sensor.channels())?;
         let reference_c = stored_temperature_c(0.5 * (range_c[0] + range_c[1]));
         let export = sensor_export(calibration, sensor, range_c, reference_c)?;
-        parameters.extend(px4_sensor_parameters(&export, device_id)?);
+        parameters.extend(px4_sensor_parameters(&export, target)?);
         sensors.push(export);
     }
-    let comments = px4_comments(&sensors, device_id);
+    let comments = px4_comments(&sensors, target);
     Ok(ParameterFile {
         target: ParameterTarget::Px4Tc,
         parameters,
@@ -379,14 +410,14 @@ pub fn px4_parameters(
     })
 }
 
-/// `TC_G0_*` or `TC_A0_*` of one sensor.
+/// `TC_Gn_*` or `TC_An_*` of one sensor.
 fn px4_sensor_parameters(
     export: &SensorExport,
-    device_id: u32,
+    target: ExportTarget,
 ) -> Result<Vec<Parameter>, ExportError> {
-    let prefix = match export.sensor {
-        ImuSensor::Gyro => "TC_G0",
-        ImuSensor::Accelerometer => "TC_A0",
+    let (prefix, device_id) = match export.sensor {
+        ImuSensor::Gyro => (format!("TC_G{}", target.instance), target.gyro_device_id),
+        ImuSensor::Accelerometer => (format!("TC_A{}", target.instance), target.accel_device_id),
     };
     // PX4 stores the id as int32 and compares it as uint32: the same 32 bits.
     let mut out = vec![integer(&format!("{prefix}_ID"), device_id as i32)];
@@ -408,15 +439,16 @@ fn px4_sensor_parameters(
     Ok(out)
 }
 
-fn px4_comments(sensors: &[SensorExport], device_id: u32) -> Vec<String> {
+fn px4_comments(sensors: &[SensorExport], target: ExportTarget) -> Vec<String> {
     let mut lines = vec![
         "PX4 thermal compensation parameters (sensors/temperature_compensation) from a thermonav model bank".to_string(),
         "offset = X3*dT^3 + X2*dT^2 + X1*dT + X0, dT = clamp(T, TMIN, TMAX) - TREF (degC); subtracted from the raw reading".to_string(),
         "units: gyro rad/s per degC^k, accelerometer m/s^2 per degC^k; axes 0,1,2 = x fwd, y right, z down (FRD) of the sensor frame".to_string(),
         "no thermal scale-factor parameters exist in PX4: only the bias is compensated".to_string(),
     ];
-    if device_id == 0 {
-        lines.push("TC_G0_ID and TC_A0_ID are 0: set them to the IMU's device id (or export with --device-id N), else PX4 applies nothing".to_string());
+    let n = target.instance;
+    if target.gyro_device_id == 0 || target.accel_device_id == 0 {
+        lines.push(format!("TC_G{n}_ID or TC_A{n}_ID is 0: set them to the IMU's device ids (calibrate from a ULog sweep, or export with --gyro-device-id/--accel-device-id), else PX4 applies nothing"));
     }
     lines.extend(narrowing_comments(sensors));
     lines.push(String::new());
@@ -439,7 +471,8 @@ fn narrowing_comments(sensors: &[SensorExport]) -> Vec<String> {
         .collect()
 }
 
-/// ArduPilot's parameters for the first IMU (`INS_TCAL1_*`): one TMIN/TMAX, the range all six
+/// ArduPilot's parameters for the IMU of `target` (`INS_TCALn_*`, n = instance + 1): one
+/// TMIN/TMAX, the range all six
 /// curves share; the curves re-expanded about 35 °C, their constants left to ArduPilot's
 /// offset calibration (module docs).
 ///
@@ -447,12 +480,14 @@ fn narrowing_comments(sensors: &[SensorExport]) -> Vec<String> {
 /// As [`px4_parameters`].
 pub fn ardupilot_parameters(
     calibration: &ThermalCalibration,
+    target: ExportTarget,
 ) -> Result<ParameterFile, ExportError> {
+    let prefix = format!("INS_TCAL{}", target.checked()?.instance + 1);
     let range_c = shared_range_c(calibration, &Channel::ALL)?;
     let mut parameters = vec![
-        integer("INS_TCAL1_ENABLE", 1),
-        real("INS_TCAL1_TMIN".into(), range_c[0])?,
-        real("INS_TCAL1_TMAX".into(), range_c[1])?,
+        integer(&format!("{prefix}_ENABLE"), 1),
+        real(format!("{prefix}_TMIN"), range_c[0])?,
+        real(format!("{prefix}_TMAX"), range_c[1])?,
     ];
     let mut sensors = Vec::new();
     for sensor in [ImuSensor::Accelerometer, ImuSensor::Gyro] {
@@ -462,11 +497,11 @@ pub fn ardupilot_parameters(
             range_c,
             ARDUPILOT_REFERENCE_TEMPERATURE_C,
         )?;
-        parameters.extend(ardupilot_sensor_parameters(&export)?);
+        parameters.extend(ardupilot_sensor_parameters(&export, &prefix)?);
         sensors.push(export);
     }
     sensors.reverse();
-    let comments = ardupilot_comments(&sensors);
+    let comments = ardupilot_comments(&sensors, &prefix);
     Ok(ParameterFile {
         target: ParameterTarget::ArdupilotTcal,
         parameters,
@@ -475,8 +510,12 @@ pub fn ardupilot_parameters(
     })
 }
 
-/// `INS_TCAL1_ACCk_*` or `INS_TCAL1_GYRk_*`, k = 1..=3, scaled by 10⁶.
-fn ardupilot_sensor_parameters(export: &SensorExport) -> Result<Vec<Parameter>, ExportError> {
+/// `INS_TCALn_ACCk_*` or `INS_TCALn_GYRk_*` (`prefix` = `INS_TCALn`), k = 1..=3, scaled by
+/// 10⁶.
+fn ardupilot_sensor_parameters(
+    export: &SensorExport,
+    prefix: &str,
+) -> Result<Vec<Parameter>, ExportError> {
     let stem = match export.sensor {
         ImuSensor::Gyro => "GYR",
         ImuSensor::Accelerometer => "ACC",
@@ -485,7 +524,7 @@ fn ardupilot_sensor_parameters(export: &SensorExport) -> Result<Vec<Parameter>, 
     for power in 1..TERMS {
         for (axis, coefficients) in ["X", "Y", "Z"].iter().zip(&export.coefficients) {
             out.push(real(
-                format!("INS_TCAL1_{stem}{power}_{axis}"),
+                format!("{prefix}_{stem}{power}_{axis}"),
                 coefficients[power] * ARDUPILOT_COEFFICIENT_SCALE,
             )?);
         }
@@ -493,13 +532,13 @@ fn ardupilot_sensor_parameters(export: &SensorExport) -> Result<Vec<Parameter>, 
     Ok(out)
 }
 
-fn ardupilot_comments(sensors: &[SensorExport]) -> Vec<String> {
+fn ardupilot_comments(sensors: &[SensorExport], prefix: &str) -> Vec<String> {
     let mut lines = vec![
-        "ArduPilot IMU temperature calibration (AP_InertialSensor_tempcal) of the first IMU, from a thermonav model bank".to_string(),
+        format!("ArduPilot IMU temperature calibration (AP_InertialSensor_tempcal) of the IMU of {prefix}_*, from a thermonav model bank"),
         "correction = p(clamp(T)) - p(clamp(T_cal)), p(T) = 1e-6 * (c1*d + c2*d^2 + c3*d^3), d = T - 35 degC, clamp to TMIN..TMAX".to_string(),
         "ACCk_*/GYRk_* hold c_k = 1e6 x the coefficient of d^k: micro-m/s^2 and micro-rad/s per degC^k; X, Y, Z = x fwd, y right, z down (FRD)".to_string(),
         "no constant term: the bias at 35 degC below is not a parameter; ArduPilot's offset calibration (INS_GYROFFS_* at boot, INS_ACCOFFS_*) measures the bias at T_cal (INS_GYR1_CALTEMP, INS_ACC1_CALTEMP), and with it the total correction is the bank's curve".to_string(),
-        "no thermal scale-factor parameters exist in ArduPilot: only the bias is compensated; INS_TCAL1_ENABLE = 1 takes effect after a reboot".to_string(),
+        format!("no thermal scale-factor parameters exist in ArduPilot: only the bias is compensated; {prefix}_ENABLE = 1 takes effect after a reboot"),
     ];
     for sensor in sensors {
         for (channel, coefficients) in sensor.sensor.channels().iter().zip(&sensor.coefficients) {

@@ -13,8 +13,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::Channel;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
+use thermonav::stoch::thermal::SensorDevices;
 use thermonav_io::thermal_parameters::{
-    ExportSummary, ParameterFile, SensorExport, ardupilot_parameters, px4_parameters,
+    ExportSummary, ExportTarget, ParameterFile, SensorExport, ardupilot_parameters, px4_parameters,
     write_parameter_file,
 };
 
@@ -49,12 +50,29 @@ fn parameter_file(bank: &ModelBank, args: &BankExportArgs) -> Result<ParameterFi
         .thermal
         .as_ref()
         .ok_or_else(|| no_thermal_calibration(&args.bank))?;
+    let target = export_target(calibration.devices.as_ref(), args);
     let file = match args.format {
-        ExportFormatArg::Px4Tc => px4_parameters(calibration, args.device_id),
-        ExportFormatArg::ArdupilotTcal => ardupilot_parameters(calibration),
+        ExportFormatArg::Px4Tc => px4_parameters(calibration, target),
+        ExportFormatArg::ArdupilotTcal => ardupilot_parameters(calibration, target),
     };
     file.map_err(|e| anyhow!("{}: {e}", args.bank.display()))
         .data()
+}
+
+/// The instance and device ids: as given, else the calibration's sensors, else 0.
+fn export_target(devices: Option<&SensorDevices>, args: &BankExportArgs) -> ExportTarget {
+    let of = |pick: fn(&SensorDevices) -> Option<u32>| devices.and_then(pick).unwrap_or(0);
+    ExportTarget {
+        instance: args.instance.or(devices.map(|d| d.instance)).unwrap_or(0),
+        gyro_device_id: args
+            .device_id
+            .or(args.gyro_device_id)
+            .unwrap_or(of(|d| d.gyro_device_id)),
+        accel_device_id: args
+            .device_id
+            .or(args.accel_device_id)
+            .unwrap_or(of(|d| d.accel_device_id)),
+    }
 }
 
 fn no_thermal_calibration(path: &Path) -> Failure {

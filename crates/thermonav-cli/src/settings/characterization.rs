@@ -118,6 +118,7 @@ fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
         power_ons: args.power_on.iter().map(|p| p.0.clone()).collect(),
         sweeps: args.sweep.clone(),
         sweep_block_s: super::positive("--sweep-block-s", args.sweep_block_s)?,
+        sweep_instance: args.sweep_instance,
         site: chamber_site(args)?,
     })
 }

@@ -14,6 +14,9 @@ mod real_data;
 mod reliability;
 mod streaming;
 mod thermal;
+mod thermal_ulog;
+#[path = "../../../thermonav-io/tests/it/ulog_writer.rs"]
+mod ulog_writer;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -18,7 +18,7 @@ const SET_POINTS_C: [f64; 6] = [-40.0, -20.0, 0.0, 20.0, 40.0, 60.0];
 
 /// A campaign of three power-ons at the default set points and a −40..60 °C sweep at
 /// 2 °C/min, 300 s records at 20 Hz, in `dir/tc`.
-fn campaign(dir: &Path) -> PathBuf {
+pub(crate) fn campaign(dir: &Path) -> PathBuf {
     let out = dir.join("tc");
     let (status, _, stderr) = outcome(&thermonav(&[
         "simulate",
@@ -46,6 +46,11 @@ fn records_of(dir: &Path) -> String {
 
 /// `characterize` of the campaign with both further power-ons and the sweep; its `--json`.
 fn characterize(tc: &Path, bank: &Path) -> serde_json::Value {
+    characterize_with_sweep(tc, bank, &tc.join("imu_ramp.csv"))
+}
+
+/// `characterize` of the campaign with both further power-ons and `sweep`; its `--json`.
+pub(crate) fn characterize_with_sweep(tc: &Path, bank: &Path, sweep: &Path) -> serde_json::Value {
     let own: Vec<String> = SET_POINTS_C
         .iter()
         .map(|t| arg(&tc.join(format!("imu_{t}C.csv"))).to_owned())
@@ -54,7 +59,6 @@ fn characterize(tc: &Path, bank: &Path) -> serde_json::Value {
         records_of(&tc.join("power_on_2")),
         records_of(&tc.join("power_on_3")),
     );
-    let ramp = tc.join("imu_ramp.csv");
     let mut args: Vec<&str> = vec!["characterize"];
     args.extend(own.iter().map(String::as_str));
     args.extend([
@@ -63,7 +67,7 @@ fn characterize(tc: &Path, bank: &Path) -> serde_json::Value {
         "--power-on",
         &third,
         "--sweep",
-        arg(&ramp),
+        arg(sweep),
     ]);
     args.extend(SITE);
     args.extend(["--out", arg(bank), "--json"]);
@@ -84,7 +88,7 @@ fn true_bias(curve: &serde_json::Value, temperature_c: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, b| acc * d + b)
 }
 
-fn read_json(path: &Path) -> serde_json::Value {
+pub(crate) fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 

@@ -603,3 +603,158 @@ mod tests {
         assert_eq!(fast, [1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 5.0, 5.0]);
     }
 }
+
+/// What [`raw_sensor_series`] took from the log: one instance of the raw `sensor_gyro` and
+/// `sensor_accel` topics, the data before PX4's own thermal and other calibrations (the
+/// topics PX4's thermal calibration fits, never the corrected `sensor_combined`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RawSensorExtract {
+    /// Rates at the gyro's sample times, each with the nearest accelerometer sample, and the
+    /// gyro's own temperature (°C) as `temp_c`.
+    #[serde(skip)]
+    pub series: ImuSeries,
+    /// The topic instance (`multi_id`) read.
+    pub instance: u8,
+    /// The gyro's `device_id`, when the topic has the field and it is constant.
+    pub gyro_device_id: Option<u32>,
+    /// The accelerometer's `device_id`, likewise.
+    pub accel_device_id: Option<u32>,
+    /// Gyro records left out because their temperature was not finite.
+    pub records_without_temperature: usize,
+}
+
+/// The raw gyro and accelerometer of `instance` on `scale`.
+///
+/// # Errors
+/// [`ReadErrorKind::Unusable`] naming the topic: `sensor_gyro` or `sensor_accel` of that
+/// instance missing, a missing field (`timestamp`, `x`, `y`, `z`, `temperature`), a non-finite
+/// value or a time that does not increase (with the record's byte offset), or no sample.
+pub fn raw_sensor_series(
+    log: &Ulog,
+    input: &str,
+    scale: TimeScale,
+    instance: u8,
+) -> Result<RawSensorExtract, ReadError> {
+    let topic_of = |name: &str| {
+        log.topic(name, instance).ok_or_else(|| {
+            topic_error(
+                input,
+                format!("no topic {name} of instance {instance} (a raw-sensor sweep needs sensor_gyro and sensor_accel)"),
+            )
+        })
+    };
+    let (gyro, accel) = (topic_of("sensor_gyro")?, topic_of("sensor_accel")?);
+    let accel_samples = raw_vectors(accel, input, scale)?;
+    let gyro_samples = raw_vectors(gyro, input, scale)?;
+    let mut extract = RawSensorExtract {
+        series: ImuSeries::new(SampleKind::Rates),
+        instance,
+        gyro_device_id: constant_device_id(gyro),
+        accel_device_id: constant_device_id(accel),
+        records_without_temperature: 0,
+    };
+    let accel_times: Vec<Timestamp> = accel_samples.iter().map(|s| s.time).collect();
+    let nearest_accel = |axis: usize| {
+        let values: Vec<f64> = accel_samples.iter().map(|s| s.vector[axis]).collect();
+        let times: Vec<Timestamp> = gyro_samples.iter().map(|s| s.time).collect();
+        nearest_values(&times, &accel_times, &values)
+    };
+    let accel_columns = [nearest_accel(0), nearest_accel(1), nearest_accel(2)];
+    for (k, sample) in gyro_samples.iter().enumerate() {
+        let Some(temperature_c) = sample.temperature_c.filter(|t| t.is_finite()) else {
+            extract.records_without_temperature += 1;
+            continue;
+        };
+        extract.series.push(&ImuSample {
+            time: sample.time,
+            gyro: sample.vector,
+            accel: accel_columns.each_ref().map(|c| c[k]),
+            temperature_c: Some(temperature_c),
+        });
+    }
+    match extract.series.is_empty() {
+        true => Err(topic_error(
+            input,
+            format!("sensor_gyro of instance {instance} has no sample with a finite temperature"),
+        )),
+        false => Ok(extract),
+    }
+}
+
+/// One record of a raw sensor topic.
+struct RawSample {
+    time: Timestamp,
+    vector: [f64; 3],
+    temperature_c: Option<f64>,
+}
+
+/// The records of a raw sensor topic (`timestamp_sample` when logged, else `timestamp`),
+/// checked for finite vectors and strictly increasing times.
+fn raw_vectors(
+    topic: Topic<'_>,
+    input: &str,
+    scale: TimeScale,
+) -> Result<Vec<RawSample>, ReadError> {
+    let name = topic.name();
+    let stamp = topic
+        .first_field(&["timestamp_sample", "timestamp"])
+        .ok_or_else(|| topic_error(input, format!("topic {name} has no timestamp")))?;
+    let axes = [
+        required(topic, "x", input)?,
+        required(topic, "y", input)?,
+        required(topic, "z", input)?,
+    ];
+    let temperature = required(topic, "temperature", input)?;
+    let mut samples: Vec<RawSample> = Vec::with_capacity(topic.len());
+    for i in 0..topic.len() {
+        let at = topic.file_offset(i);
+        let time = topic
+            .integer(stamp, i)
+            .and_then(|us| u64::try_from(us).ok())
+            .and_then(|us| scale.at(us))
+            .ok_or_else(|| {
+                topic_error(
+                    input,
+                    format!("at byte {at}: {name} record {i} has no usable timestamp"),
+                )
+            })?;
+        let vector = axes.map(|f| topic.real(f, i));
+        if vector.iter().any(|v| !v.is_finite()) {
+            return Err(topic_error(
+                input,
+                format!("at byte {at}: {name} record {i} holds a NaN or infinite value"),
+            ));
+        }
+        if let Some(previous) = samples.last().map(|s| s.time).filter(|&p| time <= p) {
+            return Err(topic_error(
+                input,
+                format!(
+                    "at byte {at}: {name} record {i} is timed {:.6} s, not after the previous record's {:.6} s",
+                    time.as_seconds(),
+                    previous.as_seconds()
+                ),
+            ));
+        }
+        let temperature_c = Some(topic.real(temperature, i));
+        samples.push(RawSample {
+            time,
+            vector,
+            temperature_c,
+        });
+    }
+    match samples.is_empty() {
+        true => Err(topic_error(input, format!("topic {name} has no record"))),
+        false => Ok(samples),
+    }
+}
+
+/// The topic's `device_id` when it has the field and every record gives the same one.
+fn constant_device_id(topic: Topic<'_>) -> Option<u32> {
+    let field = topic.field("device_id")?;
+    let mut ids = (0..topic.len()).map(|i| topic.integer(field, i));
+    let first = ids.next()??;
+    match ids.all(|id| id == Some(first)) {
+        true => u32::try_from(first).ok(),
+        false => None,
+    }
+}

@@ -16,3 +16,4 @@ mod thermal_parameters;
 mod trajectory;
 mod ulog;
 mod ulog_built;
+mod ulog_writer;

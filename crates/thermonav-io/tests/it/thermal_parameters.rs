@@ -18,7 +18,8 @@ use std::collections::BTreeMap;
 use thermonav::imu::Channel;
 use thermonav::stoch::thermal::{FitSettings, PowerOnRecord, ThermalCalibration, calibrate};
 use thermonav_io::thermal_parameters::{
-    ExportError, ardupilot_parameters, px4_parameters, reexpanded, write_parameter_file,
+    ExportError, ExportTarget, ardupilot_parameters, px4_parameters, reexpanded,
+    write_parameter_file,
 };
 
 const EPSILON_F32: f64 = 1.0 / 16_777_216.0;
@@ -180,7 +181,15 @@ fn px4_parameters_read_back_as_the_bank_curve_with_px4_clamping() {
     let calibration = calibration();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("tc.params");
-    let file = px4_parameters(&calibration, 2_490_378).unwrap();
+    let file = px4_parameters(
+        &calibration,
+        ExportTarget {
+            instance: 0,
+            gyro_device_id: 2_490_378,
+            accel_device_id: 2_490_378,
+        },
+    )
+    .unwrap();
     write_parameter_file(&path, &file).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let parsed = parse_qgc_params(&text);
@@ -249,7 +258,7 @@ fn ardupilot_parameters_read_back_as_the_bank_curve_with_its_offset_calibration(
     let calibration = calibration();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("tcal.param");
-    let file = ardupilot_parameters(&calibration).unwrap();
+    let file = ardupilot_parameters(&calibration, ExportTarget::default()).unwrap();
     write_parameter_file(&path, &file).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let parsed = parse_mission_planner_param(&text);
@@ -284,7 +293,9 @@ fn ardupilot_parameters_read_back_as_the_bank_curve_with_its_offset_calibration(
 #[test]
 fn ardupilot_file_names_each_constant_it_leaves_to_the_offset_calibration() {
     let calibration = calibration();
-    let text = ardupilot_parameters(&calibration).unwrap().text();
+    let text = ardupilot_parameters(&calibration, ExportTarget::default())
+        .unwrap()
+        .text();
     for channel in Channel::ALL {
         let line = text
             .lines()
@@ -317,7 +328,7 @@ fn channels_of_different_ranges_share_the_overlap_and_say_so() {
     let mut calibration = calibration();
     let gy = calibration.channels.get_mut(&Channel::Gy).unwrap();
     gy.bias.temperature_range_c = [-25.0, 50.0];
-    let file = px4_parameters(&calibration, 0).unwrap();
+    let file = px4_parameters(&calibration, ExportTarget::default()).unwrap();
     let parsed = parse_qgc_params(&file.text());
     assert_eq!(get(&parsed, "TC_G0_TMIN"), -20.0);
     assert_eq!(get(&parsed, "TC_G0_TMAX"), 50.0);
@@ -332,7 +343,7 @@ fn channels_of_different_ranges_share_the_overlap_and_say_so() {
     assert!(text.contains("set them to the IMU's device id"));
     calibration.channels.remove(&Channel::Az);
     assert_eq!(
-        ardupilot_parameters(&calibration).unwrap_err(),
+        ardupilot_parameters(&calibration, ExportTarget::default()).unwrap_err(),
         ExportError::MissingChannel("az")
     );
 }

@@ -3,62 +3,12 @@
 //! `sensor_accel` temperature, the newer `sensor_gps` with f64 degrees and UTC time, 'M'
 //! continuation, 'O' dropouts, unknown message types and unsubscribed data.
 
+use crate::ulog_writer::{Record, data, format, log_start, message, subscribe, subscribe_instance};
 use thermonav::imu::{Channel, SampleKind};
 use thermonav::time::Duration;
 use thermonav::units::deg_to_rad;
 use thermonav_io::ulog::decode_ulog;
-use thermonav_io::ulog::px4::{TimeScale, gnss_fixes, imu_series, time_scale};
-
-/// Appends one message of type `kind`.
-fn message(out: &mut Vec<u8>, kind: u8, payload: &[u8]) {
-    out.extend_from_slice(&(payload.len() as u16).to_le_bytes());
-    out.push(kind);
-    out.extend_from_slice(payload);
-}
-
-fn format(out: &mut Vec<u8>, text: &str) {
-    message(out, b'F', text.as_bytes());
-}
-
-fn subscribe(out: &mut Vec<u8>, msg_id: u16, name: &str) {
-    let mut payload = vec![0];
-    payload.extend_from_slice(&msg_id.to_le_bytes());
-    payload.extend_from_slice(name.as_bytes());
-    message(out, b'A', &payload);
-}
-
-fn data(out: &mut Vec<u8>, msg_id: u16, record: &[u8]) {
-    let mut payload = msg_id.to_le_bytes().to_vec();
-    payload.extend_from_slice(record);
-    message(out, b'D', &payload);
-}
-
-/// Little-endian concatenation helper.
-#[derive(Default)]
-struct Record(Vec<u8>);
-
-impl Record {
-    fn u64(mut self, v: u64) -> Self {
-        self.0.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    fn f32(mut self, v: f32) -> Self {
-        self.0.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    fn f64(mut self, v: f64) -> Self {
-        self.0.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    fn u16(mut self, v: u16) -> Self {
-        self.0.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    fn u8(mut self, v: u8) -> Self {
-        self.0.push(v);
-        self
-    }
-}
+use thermonav_io::ulog::px4::{TimeScale, gnss_fixes, imu_series, raw_sensor_series, time_scale};
 
 /// UTC µs of the GNSS records minus their boot µs: 1.7e15 µs = 2023-11-14 22:13:20 UTC.
 const BOOT_TO_UTC_US: u64 = 1_700_000_000_000_000;
@@ -198,15 +148,6 @@ fn a_built_log_decodes_to_the_values_written_into_it() {
     assert_eq!(fix.velocity_ned_m_s, Some([1.0, -2.0, 0.25]));
 }
 
-/// The header and flag bits of a log, before its formats.
-fn log_start() -> Vec<u8> {
-    let mut out = b"ULog\x01\x12\x35".to_vec();
-    out.push(1);
-    out.extend_from_slice(&1_000_u64.to_le_bytes());
-    message(&mut out, b'B', &[0; 40]);
-    out
-}
-
 // Arrays of a type without bytes would make flattening loop 2^32 times in a 100-byte file
 // (every element passes the size guard because none advances the offset): refused at the
 // first element, naming it.
@@ -261,4 +202,87 @@ fn temperatures_out_of_order_give_the_nearest_in_time() {
         Some(&[20.5, 20.5, 21.5, 21.5, 21.5, 21.5][..])
     );
     assert_eq!(reversed, temp_c(built_log()));
+}
+
+/// Gyro records of instance 1: boot µs, x rad/s, temperature °C (one NaN).
+const RAW_GYRO: [(u64, f32, f32); 5] = [
+    (1_000_000, 0.0, 30.0),
+    (1_004_000, 0.001, 31.0),
+    (1_008_000, 0.002, f32::NAN),
+    (1_012_000, 0.003, 33.0),
+    (1_016_000, 0.004, 34.0),
+];
+
+/// A log with raw sensor_gyro and sensor_accel of instances 0 and 1 (instance 0 a decoy with
+/// other values and ids); instance 1's accelerometer runs at half the gyro's rate, offset.
+fn raw_sensor_log() -> Vec<u8> {
+    let mut out = log_start();
+    for topic in ["sensor_gyro", "sensor_accel"] {
+        format(
+            &mut out,
+            &format!(
+                "{topic}:uint64_t timestamp;uint64_t timestamp_sample;uint32_t device_id;float x;\
+                 float y;float z;float temperature;uint32_t error_count;"
+            ),
+        );
+    }
+    subscribe_instance(&mut out, 0, "sensor_gyro", 0);
+    subscribe_instance(&mut out, 1, "sensor_gyro", 1);
+    subscribe_instance(&mut out, 2, "sensor_accel", 0);
+    subscribe_instance(&mut out, 3, "sensor_accel", 1);
+    let record = |t: u64, id: u32, v: [f32; 3], c: f32| {
+        let r = Record::default().u64(t + 50).u64(t);
+        let mut bytes = r.0;
+        bytes.extend_from_slice(&id.to_le_bytes());
+        let r = Record(bytes).f32(v[0]).f32(v[1]).f32(v[2]).f32(c);
+        let mut bytes = r.0;
+        bytes.extend_from_slice(&0_u32.to_le_bytes());
+        bytes
+    };
+    for (t, x, c) in RAW_GYRO {
+        data(&mut out, 0, &record(t, 111, [9.0, 9.0, 9.0], 50.0));
+        data(&mut out, 1, &record(t, 2_490_378, [x, -0.002, 0.5], c));
+    }
+    for k in 0..3_u64 {
+        let t = 1_001_000 + 8_000 * k;
+        data(&mut out, 2, &record(t, 222, [9.0, 9.0, 9.0], 50.0));
+        data(
+            &mut out,
+            3,
+            &record(t, 1_310_988, [0.125 * k as f32, 0.0, -9.75], 31.0),
+        );
+    }
+    out
+}
+
+// The raw topics of one instance: the gyro's samples with its own temperature (a NaN one left
+// out), each with the nearest accelerometer sample in time, and both device ids; values are
+// the binary32 numbers written above.
+#[test]
+fn raw_sensors_of_one_instance_give_the_sweep_and_the_device_ids() {
+    let log = decode_ulog(&raw_sensor_log(), "raw.ulg").unwrap();
+    let raw = raw_sensor_series(&log, "raw.ulg", TimeScale::Boot, 1).unwrap();
+    assert_eq!((raw.instance, raw.records_without_temperature), (1, 1));
+    assert_eq!(raw.gyro_device_id, Some(2_490_378));
+    assert_eq!(raw.accel_device_id, Some(1_310_988));
+    let s = &raw.series;
+    let kept: Vec<_> = RAW_GYRO.iter().filter(|g| g.2.is_finite()).collect();
+    assert_eq!(s.len(), kept.len());
+    for (k, (t, x, c)) in kept.iter().enumerate() {
+        assert_eq!(s.time[k].as_nanos(), *t as i64 * 1_000);
+        assert_eq!(s.channel(Channel::Gx)[k], f64::from(*x));
+        assert_eq!(s.temperature_c.as_ref().unwrap()[k], f64::from(*c));
+    }
+    // Gyro at 1.000, 1.004, 1.012, 1.016 s; accelerometer at 1.001, 1.009, 1.017 s.
+    assert_eq!(s.channel(Channel::Ax), &[0.0, 0.0, 0.125, 0.25]);
+    assert_eq!(s.channel(Channel::Az)[0], -9.75);
+    let decoy = raw_sensor_series(&log, "raw.ulg", TimeScale::Boot, 0).unwrap();
+    assert_eq!(decoy.gyro_device_id, Some(111));
+    let missing = raw_sensor_series(&log, "raw.ulg", TimeScale::Boot, 2).unwrap_err();
+    assert!(
+        missing
+            .to_string()
+            .contains("no topic sensor_gyro of instance 2"),
+        "{missing}"
+    );
 }

@@ -78,6 +78,21 @@ pub struct ThermalCalibration {
     /// The observations fitted, per channel (after the removed signal), for plots and refits.
     #[serde(default)]
     pub observations: BTreeMap<Channel, Vec<PowerOnRecord>>,
+    /// The sensors it was fitted to, as the autopilot names them (from a ULog sweep).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub devices: Option<SensorDevices>,
+}
+
+/// The autopilot's identity of the sensors a calibration was fitted to: the topic instance
+/// and the PX4 `device_id`s of a ULog's raw `sensor_gyro` and `sensor_accel`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SensorDevices {
+    /// The topics' instance (`multi_id`): 0 for the first IMU.
+    pub instance: u8,
+    /// The gyro's device id.
+    pub gyro_device_id: Option<u32>,
+    /// The accelerometer's device id.
+    pub accel_device_id: Option<u32>,
 }
 
 /// What a compensation did.
@@ -143,6 +158,7 @@ pub fn calibrate(
         scale_factor: ScaleFactorCalibration::static_level_unit(),
         removed_signal: BTreeMap::new(),
         observations: observations.clone(),
+        devices: None,
     })
 }
 

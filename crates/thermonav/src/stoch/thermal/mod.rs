@@ -76,7 +76,7 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 pub use calibration::{
     ChannelCalibration, CompensationError, CompensationSummary, ScaleFactorCalibration,
-    ThermalCalibration, calibrate, without_signal,
+    SensorDevices, ThermalCalibration, calibrate, without_signal,
 };
 pub use observations::{
     RecordMean, RecordSums, merge_records, power_on_records, record_mean, sweep_records,
