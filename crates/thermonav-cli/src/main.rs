@@ -28,6 +28,7 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     end_quietly_when_stdout_closes();
+    remove_temporaries_on_interrupt();
     let cli = match args::Cli::try_parse() {
         Ok(cli) => cli,
         Err(error) => return print_clap_error(&error),
@@ -40,6 +41,22 @@ fn main() -> ExitCode {
             failure.exit_code()
         }
     }
+}
+
+/// SIGINT (Ctrl-C), SIGTERM and SIGHUP end the command at once, after deleting the temporary
+/// file of every output not yet renamed into place, with the shell's exit code 128 + signal;
+/// outputs already complete stay, inputs are never touched.
+fn remove_temporaries_on_interrupt() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            thermonav_io::remove_pending_temporaries();
+            std::process::exit(128 + signal);
+        }
+    });
 }
 
 /// Help and version go to stdout with success; real usage errors exit with 2.

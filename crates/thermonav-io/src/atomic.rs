@@ -3,7 +3,9 @@
 //! Output goes to a temporary file in the target's directory (same file system, so the final
 //! rename is atomic); [`AtomicFile::commit`] flushes it, syncs it to disk and renames it onto
 //! the target. Dropping an uncommitted [`AtomicFile`] (an error, a panic) deletes the temporary
-//! file and leaves any existing target untouched.
+//! file and leaves any existing target untouched. Every temporary file not yet committed or
+//! dropped is listed, so that a signal handler can remove them ([`remove_pending_temporaries`]):
+//! an interrupted command leaves no hidden partial file behind.
 
 use crate::error::WriteError;
 use serde::Serialize;
@@ -15,6 +17,41 @@ use tempfile::NamedTempFile;
 pub struct AtomicFile {
     target: PathBuf,
     temporary: BufWriter<NamedTempFile>,
+    _pending: Pending,
+}
+
+/// The temporary files of the [`AtomicFile`]s alive now.
+static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// A temporary file's place in [`PENDING`], given up when dropped (after a commit has renamed
+/// the file, or after the temporary file itself was deleted).
+struct Pending(PathBuf);
+
+impl Pending {
+    fn register(path: &Path) -> Self {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        pending.push(path.to_path_buf());
+        Self(path.to_path_buf())
+    }
+}
+
+impl Drop for Pending {
+    fn drop(&mut self) {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(k) = pending.iter().position(|p| *p == self.0) {
+            pending.swap_remove(k);
+        }
+    }
+}
+
+/// Deletes every temporary file of an [`AtomicFile`] not yet committed, for a signal handler
+/// about to end the process (targets are untouched); returns how many were deleted.
+pub fn remove_pending_temporaries() -> usize {
+    let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    pending
+        .drain(..)
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count()
 }
 
 impl AtomicFile {
@@ -29,9 +66,11 @@ impl AtomicFile {
                 path: target.display().to_string(),
                 source,
             })?;
+        let pending = Pending::register(temporary.path());
         Ok(Self {
             target,
             temporary: BufWriter::with_capacity(1 << 16, temporary),
+            _pending: pending,
         })
     }
 

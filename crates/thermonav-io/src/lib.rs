@@ -83,7 +83,7 @@ pub mod trajectory;
 pub mod truth;
 pub mod ulog;
 
-pub use atomic::{AtomicFile, write_atomically, write_json_atomically};
+pub use atomic::{AtomicFile, remove_pending_temporaries, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
 pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,

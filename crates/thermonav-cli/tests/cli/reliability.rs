@@ -278,3 +278,54 @@ fn a_filter_record_never_overwrites_a_file_that_is_not_one() {
         assert_eq!(status, 0, "{stderr}");
     }
 }
+
+/// The hidden temporary files (`.NAME.XXXXXX.tmp`) in `dir`.
+fn temporaries_in(dir: &Path) -> Vec<String> {
+    if !dir.exists() {
+        return Vec::new();
+    }
+    files_in(dir)
+        .into_iter()
+        .filter(|n| n.starts_with('.') && n.ends_with(".tmp"))
+        .collect()
+}
+
+// Issue 20: SIGINT or SIGTERM while `simulate chamber` writes a record (a 70 MB file takes
+// seconds) ends it with 128 + the signal and no hidden temporary file left; the records
+// already renamed into place are whole.
+#[test]
+fn a_signal_during_a_write_leaves_no_temporary_file() {
+    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("tc");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_thermonav"))
+            .args([
+                "simulate",
+                "chamber",
+                "--out",
+                arg(&out),
+                "--duration-s",
+                "7200",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let started = std::time::Instant::now();
+        while temporaries_in(&out).is_empty() && started.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        assert!(
+            !temporaries_in(&out).is_empty(),
+            "no record was being written"
+        );
+        let pid = child.id().to_string();
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &pid])
+            .status();
+        assert!(killed.unwrap().success());
+        let status = child.wait().unwrap();
+        assert_eq!(status.code(), Some(code), "SIG{signal}");
+        assert_eq!(temporaries_in(&out), Vec::<String>::new(), "SIG{signal}");
+    }
+}
