@@ -51,3 +51,16 @@ pub fn nominal_rate_hz(series: &ImuSeries, path: &Path) -> Result<f64, Failure> 
         .map(|s| s.nominal_rate_hz())
         .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", path.display())))
 }
+
+/// Refuses an input that cannot be read twice (a pipe, a FIFO, a process substitution such as
+/// `<(cat f)`) for a command that reads its first bytes to tell its format and then reads it
+/// again; a missing file passes, for the reader to name.
+pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() && !m.is_dir() => Err(Failure::Data(anyhow!(
+            "{}: not a regular file (a pipe or a process substitution such as <(cat f)): {command} reads its first bytes to tell its format and then reads it again; save it to a file first",
+            path.display()
+        ))),
+        _ => Ok(()),
+    }
+}

@@ -116,6 +116,7 @@ struct Sweep {
 
 /// The sweep in `path`: an IMU CSV, or a PX4 ULog's raw sensors of `instance`.
 fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
+    crate::inputs::readable_twice(path, "characterize --sweep")?;
     if !is_ulog(path) {
         let series = read_imu_file(path, Strictness::Strict).data()?;
         return Ok(Sweep {

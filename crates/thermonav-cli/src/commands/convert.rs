@@ -224,6 +224,7 @@ const SNIFF_BYTES: u64 = 64 * 1024;
 
 /// The format of `input` told from its first lines, when only one format fits.
 fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> {
+    crate::inputs::readable_twice(input, "convert")?;
     let head = read_head(input)?;
     format_of_content(&head, tag)
         .map_err(|why| {

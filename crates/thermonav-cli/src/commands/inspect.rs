@@ -151,6 +151,7 @@ fn trajectory_columns(points: Vec<thermonav::trajectory::TrajectoryPoint>) -> Co
 /// Reads any canonical file leniently, choosing the format by its header.
 fn read_columns(path: &Path) -> Result<Columns, Failure> {
     use std::io::{BufRead, Read};
+    crate::inputs::readable_twice(path, "inspect")?;
     let mut header = String::new();
     if let Ok(file) = std::fs::File::open(path) {
         // A failure here is reported by the reader below, with the file name; the sniff reads

@@ -329,3 +329,40 @@ fn a_signal_during_a_write_leaves_no_temporary_file() {
         assert_eq!(temporaries_in(&out), Vec::<String>::new(), "SIG{signal}");
     }
 }
+
+// Issue 20: a process substitution (`<(cat f)`) is a pipe, which the commands that read their
+// first bytes to tell the format cannot read again: they say so, naming it; a command that
+// reads once (`allan`) takes it.
+#[test]
+fn a_process_substitution_is_refused_by_commands_that_read_twice_and_read_by_the_others() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "r.csv", &static_record(6000, 20.0));
+    let bin = env!("CARGO_BIN_EXE_thermonav");
+    let run = |command: &str| {
+        let line = format!("{bin} {command} <(cat {})", file.display());
+        let output = Command::new("bash")
+            .args(["-c", &line])
+            .current_dir(dir.path())
+            .output();
+        outcome(&output.unwrap())
+    };
+    for command in [
+        "inspect",
+        "convert --out o.csv",
+        "characterize --temperature-c 20 --out b --sweep",
+    ] {
+        let command = match command.strip_suffix(" --sweep") {
+            Some(head) => format!("{head} {} --sweep", file.display()),
+            None => command.to_string(),
+        };
+        let (status, _, stderr) = run(&command);
+        assert_eq!(status, 1, "{command}: {stderr}");
+        assert!(
+            stderr.contains("/dev/fd/") && stderr.contains("not a regular file"),
+            "{command}: {stderr}"
+        );
+    }
+    let (status, stdout, stderr) = run("allan --json");
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("\"channels\""), "{stdout}");
+}
