@@ -366,3 +366,30 @@ fn a_process_substitution_is_refused_by_commands_that_read_twice_and_read_by_the
     assert_eq!(status, 0, "{stderr}");
     assert!(stdout.contains("\"channels\""), "{stdout}");
 }
+
+// Issue 20: a stuck sensor (one channel the same value in every sample) is refused by
+// characterize, in memory and streamed, naming the file and the channel, instead of being
+// given a Gauss-Markov model fitted to rounding noise.
+#[test]
+fn a_stuck_channel_is_refused_by_characterize() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = static_record(12_000, 20.0);
+    let mut lines = text.lines();
+    let mut stuck = format!("{}\n", lines.next().unwrap());
+    for line in lines {
+        let mut fields: Vec<&str> = line.split(',').collect();
+        fields[2] = "0.0025";
+        stuck.push_str(&(fields.join(",") + "\n"));
+    }
+    write_file(dir.path(), "stuck.csv", &stuck);
+    for reading in ["in-memory", "streaming"] {
+        let words = format!("characterize @stuck.csv --reading {reading} --out @bank.json");
+        let (status, _, stderr) = run_in(dir.path(), &words);
+        assert_eq!(status, 1, "{reading}: {stderr}");
+        assert!(
+            stderr.contains("stuck.csv") && stderr.contains("channel gy is constant (0.0025"),
+            "{stderr}"
+        );
+        assert!(!dir.path().join("bank.json").exists());
+    }
+}

@@ -108,6 +108,17 @@ pub enum CharacterizeError {
         /// What failed.
         message: String,
     },
+    /// A channel whose every sample is the same value: a stuck sensor (or a column filled
+    /// by hand), which no noise model describes.
+    #[error(
+        "channel {channel} is constant ({value} in every sample): a stuck sensor has no noise to model"
+    )]
+    ConstantChannel {
+        /// Channel name.
+        channel: &'static str,
+        /// Its one value, SI.
+        value: f64,
+    },
     /// Bad settings.
     #[error("{0}")]
     Settings(String),
@@ -134,6 +145,23 @@ pub struct ChannelReport {
     pub allan_limits: (Vec<f64>, Vec<f64>),
 }
 
+/// [`CharacterizeError::ConstantChannel`] for the first channel whose samples are all equal.
+pub fn check_no_constant_channel(series: &ImuSeries) -> Result<(), CharacterizeError> {
+    for channel in Channel::ALL {
+        let column = series.channel(channel);
+        if let Some(&first) = column.first()
+            && column.len() > 1
+            && column.iter().all(|&v| v == first)
+        {
+            return Err(CharacterizeError::ConstantChannel {
+                channel: channel.name(),
+                value: first,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Characterises a static record measured at `temperature_c`.
 ///
 /// # Errors
@@ -152,6 +180,7 @@ pub fn characterize(
         samples: series.len(),
         needed: 2,
     })?;
+    check_no_constant_channel(series)?;
     let conditioning = Conditioning::new(stats.nominal_rate_hz(), settings)?;
     let times_s = series.seconds_from_start();
     let context = Context {
