@@ -34,7 +34,7 @@ use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
 use crate::imu::{Channel, ImuSeries, SampleKind};
-use crate::signal::decimate::decimation_factor;
+use crate::signal::decimate::{check_anti_alias, decimation_factor};
 use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
 use crate::signal::streaming_decimate::filter_and_decimate;
 use crate::signal::timestamps::interval_stats;
@@ -200,12 +200,12 @@ impl Conditioning {
             .with_odd_taps(&spec);
         let factor = decimation_factor(rate_hz, settings.modelling_rate_hz)
             .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
-        if settings.cutoff_hz + settings.transition_hz / 2.0 > settings.modelling_rate_hz / 2.0 {
-            return Err(CharacterizeError::Settings(format!(
-                "cut-off {} Hz plus half the transition {} Hz exceeds the Nyquist frequency of the {} Hz modelling rate",
-                settings.cutoff_hz, settings.transition_hz, settings.modelling_rate_hz
-            )));
-        }
+        check_anti_alias(
+            settings.cutoff_hz,
+            settings.transition_hz,
+            settings.modelling_rate_hz,
+        )
+        .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
         Ok(Self {
             rate_hz,
             filter,
