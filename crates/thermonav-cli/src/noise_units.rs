@@ -1,11 +1,13 @@
 //! IEEE 952 noise terms in the units navigation engineers quote, next to SI.
 
 use serde::Serialize;
+use std::collections::BTreeMap;
 use thermonav::imu::Sensor;
-use thermonav::stoch::noise_terms::{NoiseTerms, Term};
+use thermonav::stoch::noise_terms::{Bound, NoiseTerms, TermReading};
 use thermonav::units::{SECONDS_PER_HOUR, m_per_s2_to_mg, rad_per_s_to_deg_per_h, rad_to_deg};
 
-/// A term with its SI value, its edge-unit value and the τ range it was read over.
+/// A term with its SI value, its edge-unit value, the τ range it was read over and its
+/// confidence interval (both units; `null` when the limits gave none).
 #[derive(Debug, Serialize)]
 pub struct TermJson {
     /// SI value.
@@ -20,9 +22,21 @@ pub struct TermJson {
     pub tau_min_s: f64,
     /// τ range used, s.
     pub tau_max_s: f64,
+    /// Points of the curve used.
+    pub points: usize,
+    /// `estimate`, or `at_most` for an upper bound.
+    pub bound: Bound,
+    /// Lower confidence limit, SI.
+    pub ci_low_si: Option<f64>,
+    /// Upper confidence limit, SI.
+    pub ci_high_si: Option<f64>,
+    /// Lower confidence limit, edge unit.
+    pub ci_low: Option<f64>,
+    /// Upper confidence limit, edge unit.
+    pub ci_high: Option<f64>,
 }
 
-/// The five terms; absent ones are `null`.
+/// The five terms; absent ones are `null`, with their reason in `absent`.
 #[derive(Debug, Serialize)]
 pub struct TermsJson {
     quantization: Option<TermJson>,
@@ -30,75 +44,107 @@ pub struct TermsJson {
     bias_instability: Option<TermJson>,
     rate_random_walk: Option<TermJson>,
     rate_ramp: Option<TermJson>,
+    absent: BTreeMap<&'static str, String>,
 }
 
-fn term(
-    t: Option<Term>,
-    unit_si: &'static str,
-    unit: &'static str,
-    to_edge: impl Fn(f64) -> f64,
-) -> Option<TermJson> {
-    t.map(|t| TermJson {
+/// A term's units: SI, edge, and the conversion between them.
+type Units = (&'static str, &'static str, fn(f64) -> f64);
+
+fn term(t: &TermReading, (unit_si, unit, to_edge): Units) -> Option<TermJson> {
+    t.as_ref().ok().map(|t| TermJson {
         value_si: t.value,
         unit_si,
         value: to_edge(t.value),
         unit,
         tau_min_s: t.tau_min_s,
         tau_max_s: t.tau_max_s,
+        points: t.points,
+        bound: t.bound,
+        ci_low_si: t.ci.map(|c| c.low),
+        ci_high_si: t.ci.map(|c| c.high),
+        ci_low: t.ci.map(|c| to_edge(c.low)),
+        ci_high: t.ci.map(|c| to_edge(c.high)),
     })
+}
+
+/// Units of Q, N, B, K and R of a gyro.
+fn gyro_units() -> [Units; 5] {
+    [
+        ("rad", "deg", rad_to_deg),
+        ("rad/sqrt(s)", "deg/sqrt(h)", |v| {
+            rad_to_deg(v) * SECONDS_PER_HOUR.sqrt()
+        }),
+        ("rad/s", "deg/h", rad_per_s_to_deg_per_h),
+        ("rad/s/sqrt(s)", "deg/h/sqrt(h)", |v| {
+            rad_per_s_to_deg_per_h(v) * SECONDS_PER_HOUR.sqrt()
+        }),
+        ("rad/s^2", "deg/h^2", |v| {
+            rad_per_s_to_deg_per_h(v) * SECONDS_PER_HOUR
+        }),
+    ]
+}
+
+/// Units of Q, N, B, K and R of an accelerometer.
+fn accelerometer_units() -> [Units; 5] {
+    [
+        ("m/s", "m/s", |v| v),
+        ("m/s/sqrt(s)", "m/s/sqrt(h)", |v| {
+            v * SECONDS_PER_HOUR.sqrt()
+        }),
+        ("m/s^2", "mg", m_per_s2_to_mg),
+        ("m/s^2/sqrt(s)", "m/s^2/sqrt(h)", |v| {
+            v * SECONDS_PER_HOUR.sqrt()
+        }),
+        ("m/s^3", "m/s^2/h", |v| v * SECONDS_PER_HOUR),
+    ]
 }
 
 /// Converts terms of a gyro or accelerometer channel.
 pub fn terms_json(terms: &NoiseTerms, sensor: Sensor) -> TermsJson {
-    let sqrt_h = SECONDS_PER_HOUR.sqrt();
-    match sensor {
-        Sensor::Gyro => TermsJson {
-            quantization: term(terms.quantization, "rad", "deg", rad_to_deg),
-            random_walk: term(terms.random_walk, "rad/sqrt(s)", "deg/sqrt(h)", |v| {
-                rad_to_deg(v) * sqrt_h
-            }),
-            bias_instability: term(
-                terms.bias_instability,
-                "rad/s",
-                "deg/h",
-                rad_per_s_to_deg_per_h,
-            ),
-            rate_random_walk: term(
-                terms.rate_random_walk,
-                "rad/s/sqrt(s)",
-                "deg/h/sqrt(h)",
-                |v| rad_per_s_to_deg_per_h(v) * sqrt_h,
-            ),
-            rate_ramp: term(terms.rate_ramp, "rad/s^2", "deg/h^2", |v| {
-                rad_per_s_to_deg_per_h(v) * SECONDS_PER_HOUR
-            }),
-        },
-        Sensor::Accelerometer => TermsJson {
-            quantization: term(terms.quantization, "m/s", "m/s", |v| v),
-            random_walk: term(terms.random_walk, "m/s/sqrt(s)", "m/s/sqrt(h)", |v| {
-                v * sqrt_h
-            }),
-            bias_instability: term(terms.bias_instability, "m/s^2", "mg", m_per_s2_to_mg),
-            rate_random_walk: term(
-                terms.rate_random_walk,
-                "m/s^2/sqrt(s)",
-                "m/s^2/sqrt(h)",
-                |v| v * sqrt_h,
-            ),
-            rate_ramp: term(terms.rate_ramp, "m/s^3", "m/s^2/h", |v| {
-                v * SECONDS_PER_HOUR
-            }),
-        },
+    let [q, n, b, k, r] = match sensor {
+        Sensor::Gyro => gyro_units(),
+        Sensor::Accelerometer => accelerometer_units(),
+    };
+    TermsJson {
+        quantization: term(&terms.quantization, q),
+        random_walk: term(&terms.random_walk, n),
+        bias_instability: term(&terms.bias_instability, b),
+        rate_random_walk: term(&terms.rate_random_walk, k),
+        rate_ramp: term(&terms.rate_ramp, r),
+        absent: absent_reasons(terms),
     }
 }
 
-/// One line summary: "ARW 2.01 deg/sqrt(h), BI 24.3 deg/h, RRW n/a".
-pub fn terms_line(t: &TermsJson) -> String {
-    let show = |name: &str, t: &Option<TermJson>| {
-        t.as_ref().map_or(format!("{name} n/a"), |t| {
-            format!("{name} {:.4} {}", t.value, t.unit)
-        })
+/// Term key → why the curve does not support it.
+fn absent_reasons(terms: &NoiseTerms) -> BTreeMap<&'static str, String> {
+    let named = [
+        ("quantization", &terms.quantization),
+        ("random_walk", &terms.random_walk),
+        ("bias_instability", &terms.bias_instability),
+        ("rate_random_walk", &terms.rate_random_walk),
+        ("rate_ramp", &terms.rate_ramp),
+    ];
+    let reason = |(name, t): (&'static str, &TermReading)| {
+        t.as_ref().err().map(|a| (name, a.reason.clone()))
     };
+    named.into_iter().filter_map(reason).collect()
+}
+
+/// One term of the summary line: "N 2.0100 deg/sqrt(h) (1.98-2.04, tau 0.16-10.2 s)".
+fn show(name: &str, t: &Option<TermJson>) -> String {
+    let Some(t) = t else {
+        return format!("{name} n/a");
+    };
+    let relation = if t.bound == Bound::AtMost { "<=" } else { "" };
+    let ci = (t.ci_low.zip(t.ci_high)).map_or(String::new(), |(l, h)| format!("{l:.4}-{h:.4}, "));
+    format!(
+        "{name} {relation}{:.4} {} ({ci}tau {}-{} s)",
+        t.value, t.unit, t.tau_min_s, t.tau_max_s
+    )
+}
+
+/// One line summary: "N 2.0100 deg/sqrt(h) (…), B <=24.3000 deg/h (…), K n/a, Q n/a".
+pub fn terms_line(t: &TermsJson) -> String {
     [
         show("N", &t.random_walk),
         show("B", &t.bias_instability),

@@ -75,7 +75,7 @@ fn check_confidence(confidence: f64) -> Result<(), Failure> {
 /// One channel's curve with its confidence limits, noise types and fitted noise terms.
 fn channel_json(y: &[f64], curve: AllanCurve, channel: Channel, confidence: f64) -> ChannelJson {
     let ci = confidence_intervals(y, &curve, confidence);
-    let terms = terms_json(&fit_noise_terms(&curve), channel.sensor());
+    let terms = terms_json(&fit_noise_terms(&curve, &ci), channel.sensor());
     ChannelJson {
         unit: channel.si_unit(SampleKind::Rates),
         tau_s: curve.tau_s,

@@ -1,6 +1,6 @@
 //! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
 
-use crate::args::{FilterArgs, KaiserArgs, ModeArg};
+use crate::args::{FilterArgs, ModeArg};
 use crate::failure::{Classify, Failure};
 use crate::fir_design::{FirDesign, describe, design};
 use crate::report::{print_json, print_rows};
@@ -8,10 +8,10 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::path::Path;
 use thermonav::imu::ImuSeries;
-use thermonav::signal::decimate::{decimate, decimation_factor};
+use thermonav::signal::decimate::{decimate_valid, decimation_factor};
 use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
 use thermonav::signal::timestamps::{TimingReport, check_timestamps};
-use thermonav::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
+use thermonav::signal::zero_phase::{ZeroPhaseMode, edge_samples, filter_zero_phase};
 use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
 
 /// The sidecar JSON written next to the output (and printed by `--json`).
@@ -28,6 +28,8 @@ pub struct FilterRecord {
     filter: FirDesign,
     decimation_factor: usize,
     output_rate_hz: f64,
+    /// Input samples left out at each end (outputs that would read the edge extension).
+    edge_samples_dropped: usize,
     temperature_column: &'static str,
 }
 
@@ -55,6 +57,7 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
         filter: describe(&filter, &args.kaiser),
         decimation_factor: factor,
         output_rate_hz: design_rate_hz / factor as f64,
+        edge_samples_dropped: edge_samples_dropped(&filter, mode, factor),
         temperature_column: "not filtered; decimated with the samples",
     };
     write_outputs(&args.out, &filtered, &record)?;
@@ -98,33 +101,28 @@ fn mode_name(mode: ModeArg) -> &'static str {
     }
 }
 
-/// The decimation factor, checked against the filter: the cut-off must lie below the new
-/// Nyquist frequency or the decimated series aliases.
+/// The decimation factor (1 without `--decimate-to-hz`); the anti-alias rule was checked with
+/// the other arguments, before reading (`settings::analysis::check_filter`).
 fn resolve_decimation(args: &FilterArgs, filter: &FirFilter) -> Result<usize, Failure> {
     let Some(target_hz) = args.decimate_to_hz else {
         return Ok(1);
     };
-    let factor = decimation_factor(filter.sample_rate_hz(), target_hz).usage()?;
-    check_below_new_nyquist(&args.kaiser, target_hz)?;
-    Ok(factor)
+    decimation_factor(filter.sample_rate_hz(), target_hz).usage()
 }
 
-/// The error for a pass band reaching past the Nyquist frequency of the decimated rate.
-fn check_below_new_nyquist(kaiser: &KaiserArgs, target_hz: f64) -> Result<(), Failure> {
-    let new_nyquist_hz = target_hz / 2.0;
-    if kaiser.cutoff_hz + kaiser.transition_hz > new_nyquist_hz {
-        return Err(Failure::Usage(anyhow!(
-            "--cutoff-hz {} + --transition-hz {} must not exceed the Nyquist frequency {} Hz of --decimate-to-hz {}",
-            kaiser.cutoff_hz,
-            kaiser.transition_hz,
-            new_nyquist_hz,
-            target_hz
-        )));
+/// Samples dropped at each end: with decimation (factor > 1) only outputs whose filter
+/// response lies inside the record are kept; without, every row is (SciPy's `filtfilt`).
+fn edge_samples_dropped(filter: &FirFilter, mode: ZeroPhaseMode, factor: usize) -> usize {
+    if factor > 1 {
+        edge_samples(filter, mode)
+    } else {
+        0
     }
-    Ok(())
 }
 
-/// Filters every channel and keeps every `factor`-th sample; the temperature column is carried
+/// Filters every channel and keeps every `factor`-th sample, leaving out with decimation the
+/// outputs nearer an end than the filter's response (they would come from the edge
+/// extension; the first would be the raw first sample); the temperature column is carried
 /// along unfiltered.
 pub fn filter_series(
     series: &ImuSeries,
@@ -132,14 +130,15 @@ pub fn filter_series(
     mode: ZeroPhaseMode,
     factor: usize,
 ) -> Result<ImuSeries, thermonav::signal::SignalError> {
+    let edge = edge_samples_dropped(filter, mode, factor);
     let mut out = ImuSeries {
-        time: decimate(&series.time, factor),
-        temperature_c: series.temperature_c.as_ref().map(|t| decimate(t, factor)),
+        time: decimate_valid(&series.time, edge, factor),
+        temperature_c: (series.temperature_c.as_ref()).map(|t| decimate_valid(t, edge, factor)),
         kind: series.kind,
         ..ImuSeries::default()
     };
     for (column, input) in out.channels.iter_mut().zip(&series.channels) {
-        *column = decimate(&filter_zero_phase(filter, input, mode)?, factor);
+        *column = decimate_valid(&filter_zero_phase(filter, input, mode)?, edge, factor);
     }
     Ok(out)
 }

@@ -5,6 +5,7 @@ use super::paths::Io;
 use crate::args::{ConvertArgs, FilterArgs};
 use crate::failure::Failure;
 use std::path::{Path, PathBuf};
+use thermonav::signal::decimate::check_anti_alias;
 
 /// OUT.json: the record written beside an output file.
 pub fn json_sidecar(out: &Path) -> PathBuf {
@@ -20,7 +21,19 @@ pub fn check_filter(args: &FilterArgs) -> Result<(), Failure> {
         .output("filtered output", &args.out)
         .output("filter record", &json_sidecar(&args.out))
         .check()?;
+    check_anti_alias_of(args)?;
     check_sidecar_free(&args.out)
+}
+
+/// With `--decimate-to-hz`, the filter's stop band must start at or below the new Nyquist
+/// frequency (the library's rule: cut-off + transition/2 <= rate/2).
+fn check_anti_alias_of(args: &FilterArgs) -> Result<(), Failure> {
+    let Some(target_hz) = args.decimate_to_hz else {
+        return Ok(());
+    };
+    let k = &args.kaiser;
+    check_anti_alias(k.cutoff_hz, k.transition_hz, target_hz)
+        .map_err(|e| Failure::Usage(anyhow::anyhow!("--decimate-to-hz {target_hz}: {e}")))
 }
 
 /// Refuses an `OUT.json` that exists and is not a record of ours (a JSON object naming its

@@ -123,19 +123,69 @@ fn decimation_keeps_every_nth_timestamp() {
     let record = json_of(&args);
     assert_eq!(record["decimation_factor"], 20);
     assert_eq!(record["output_rate_hz"], 10.0);
-    // 2010 samples, every 20th from the first: indices 0, 20, ..., 2000 -> 101 rows.
-    assert_eq!(record["rows_out"], 101);
-    let text = std::fs::read_to_string(&out).unwrap();
-    let last_time: f64 = text
-        .lines()
-        .last()
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
-    assert_eq!(last_time, 10.0);
+    // 2010 samples, 365 taps (Kaiser 60 dB, 2 Hz transition at 200 Hz): every 20th index from
+    // the first whose 365-sample window lies inside the record, i.e. 182 <= j <= 2009 - 182:
+    // 200, 220, ..., 1820 -> 82 rows from 1.0 s to 9.1 s. (Before the edge fix: every 20th
+    // from the first, 0..2000, 101 rows to 10.0 s; the first row was the raw first sample and
+    // the last ones read the reflected record.)
+    assert_eq!(record["filter"]["num_taps"], 365);
+    assert_eq!(record["edge_samples_dropped"], 182);
+    assert_eq!(record["rows_out"], 82);
+    let times = first_column(&std::fs::read_to_string(&out).unwrap());
+    assert_eq!((times[0], times[times.len() - 1]), (1.0, 9.1));
+    assert!(times.windows(2).all(|w| (w[1] - w[0] - 0.1).abs() < 1e-9));
+}
+
+/// The first column (times) of a CSV with a header.
+fn first_column(text: &str) -> Vec<f64> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn filter_takes_the_characterize_defaults() {
+    // cut-off 0.4 Hz + half the 0.2 Hz transition = 0.5 Hz, the Nyquist frequency of 1 Hz: the
+    // stop band starts exactly there, so nothing above it folds back unattenuated (the rule
+    // was cut-off + the whole transition, which refused characterize's own defaults).
+    // 20 000 samples at 100 Hz, 1815 taps, delay 907: kept 1000, 1100, ..., 19000 (j <= 19092).
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_file(dir.path(), "in.csv", &imu_csv(20_000, 100.0, |_, _| 1.0));
+    let out = dir.path().join("out.csv");
+    let mut args = vec![
+        "filter",
+        arg(&input),
+        "--cutoff-hz",
+        "0.4",
+        "--transition-hz",
+        "0.2",
+        "--decimate-to-hz",
+        "1",
+        "--out",
+        arg(&out),
+        "--json",
+    ];
+    let record = json_of(&args);
+    assert_eq!(
+        (
+            record["decimation_factor"].as_u64(),
+            record["rows_out"].as_u64()
+        ),
+        (Some(100), Some(181))
+    );
+    let times = first_column(&std::fs::read_to_string(&out).unwrap());
+    assert_eq!((times[0], times[180]), (10.0, 190.0));
+    // 0.41 Hz + 0.1 Hz passes 0.5 Hz: refused as usage, before the input is read.
+    std::fs::remove_file(&out).unwrap();
+    args[3] = "0.41";
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("Nyquist") && stderr.contains("0.51"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
 }
 
 #[test]

@@ -149,6 +149,22 @@ fn allan_and_ar_json_follow_the_contract() {
     }
     let arw = &gx["terms"]["random_walk"];
     assert_eq!(arw["unit"], "deg/sqrt(h)");
+    assert_eq!(arw["bound"], "estimate");
+    let value = arw["value"].as_f64().unwrap();
+    assert!(arw["ci_low"].as_f64().unwrap() < value && value < arw["ci_high"].as_f64().unwrap());
+    // Every term is either read or absent with its reason, never both, never neither.
+    let terms = &gx["terms"];
+    for key in [
+        "quantization",
+        "random_walk",
+        "bias_instability",
+        "rate_random_walk",
+        "rate_ramp",
+    ] {
+        let reason = &terms["absent"][key];
+        assert_ne!(terms[key].is_null(), reason.is_null(), "{key}: {terms}");
+        assert!(reason.is_null() || !reason.as_str().unwrap().is_empty());
+    }
     let ar = json_of(&[
         "ar",
         &file,

@@ -44,6 +44,22 @@ pub enum SignalError {
         /// Index of the sample.
         index: usize,
     },
+    /// A low-pass whose stop band starts above the Nyquist frequency of the decimated rate.
+    #[error(
+        "the stop band starts at cut-off {cutoff_hz} Hz + half the transition {transition_hz} Hz = {stop_band_hz} Hz, above the Nyquist frequency {nyquist_hz} Hz of the {target_rate_hz} Hz decimated rate: the decimated series would alias"
+    )]
+    Aliasing {
+        /// Cut-off, Hz.
+        cutoff_hz: f64,
+        /// Transition width, Hz.
+        transition_hz: f64,
+        /// Start of the stop band, Hz.
+        stop_band_hz: f64,
+        /// Nyquist frequency of the decimated rate, Hz.
+        nyquist_hz: f64,
+        /// Decimated rate, Hz.
+        target_rate_hz: f64,
+    },
     /// Decimation impossible.
     #[error("cannot decimate {input_rate_hz} Hz to {target_rate_hz} Hz: {reason}")]
     Decimation {

@@ -1,17 +1,22 @@
 //! Delay-compensated FIR filtering and decimation of a record fed piece by piece.
 //!
-//! The output is that of
+//! The output is y_j = Σ_i h_i x_{j+D−i}, D = (taps − 1)/2, for the kept
+//! j ∈ [`valid_decimated_indices`]: the multiples of F with D ≤ j ≤ n − 1 − D, whose whole
+//! filter window lies inside the record (NumPy's `convolve(x, h, 'valid')`, delay removed,
+//! every F-th sample on the record's own grid j = 0, F, 2F, …). Those samples equal
 //! `decimate(&filter_zero_phase(filter, x, ZeroPhaseMode::DelayCompensated)?, factor)`
-//! (see [`super::zero_phase`]): y_j = Σ_i h_i x̃_{j+D−i} for the kept j = 0, F, 2F, … < n,
-//! D = (taps − 1)/2, where x̃ is x continued by odd reflection about its first and last values
-//! (x̃_{−k} = 2 x_0 − x_k, x̃_{n−1+k} = 2 x_{n−1} − x_{n−1−k}). Only the kept outputs are
-//! computed, each by a direct sum (taps/F multiplications per input sample), and only the
-//! first D + 1 samples and a window of about taps + F recent samples are held: memory is
-//! independent of the record length, apart from the decimated output itself.
+//! (see [`super::zero_phase`]) at the same j; the outputs nearer the ends than D, which there
+//! come from the odd reflection of the record about its end (the first one is the raw first
+//! sample: for a symmetric filter of unit gain Σ h_k (2 x_0 − x_k) over the reflected half
+//! plus the other half gives x_0 back), are not produced. Only the kept outputs are computed,
+//! each by a direct sum (taps/F multiplications per input sample), and only a window of about
+//! taps + F recent samples is held: memory is independent of the record length, apart from
+//! the decimated output itself.
 //!
 //! The in-memory path convolves by FFT; the sums agree to rounding (~taps × ε relative).
 
 use super::SignalError;
+use super::decimate::valid_decimated_indices;
 use super::kaiser::FirFilter;
 
 /// Independent partial sums of the dot product (lets the compiler vectorise it).
@@ -23,7 +28,6 @@ pub struct StreamingDecimator {
     reversed_taps: Vec<f64>,
     delay: usize,
     factor: usize,
-    head: Vec<f64>,
     window: Vec<f64>,
     window_start: usize,
     samples: usize,
@@ -41,15 +45,15 @@ impl StreamingDecimator {
         if taps.len() % 2 == 0 {
             return Err(SignalError::EvenTaps { taps: taps.len() });
         }
+        let (delay, factor) = ((taps.len() - 1) / 2, factor.max(1));
         Ok(Self {
             reversed_taps: taps.iter().rev().copied().collect(),
-            delay: (taps.len() - 1) / 2,
-            factor: factor.max(1),
-            head: Vec::new(),
+            delay,
+            factor,
             window: Vec::new(),
             window_start: 0,
             samples: 0,
-            next_output: 0,
+            next_output: delay.div_ceil(factor) * factor,
             output: Vec::new(),
         })
     }
@@ -64,8 +68,6 @@ impl StreamingDecimator {
                 index: self.samples + k,
             });
         }
-        let head_missing = (self.delay + 1).saturating_sub(self.head.len());
-        self.head.extend_from_slice(&x[..head_missing.min(x.len())]);
         self.window.extend_from_slice(x);
         self.samples += x.len();
         pulp::Arch::new().dispatch(ReadyOutputs(self));
@@ -80,7 +82,7 @@ impl StreamingDecimator {
     #[inline(always)]
     fn compute_ready_outputs(&mut self) {
         while self.next_output + self.delay < self.samples {
-            let y = self.output_at(self.next_output, None);
+            let y = self.output_at(self.next_output);
             self.output.push(y);
             self.next_output += self.factor;
         }
@@ -96,27 +98,23 @@ impl StreamingDecimator {
         }
     }
 
-    /// Output j; `end` is the record's length once it has ended (for the reflection there).
+    /// Output j (D ≤ j, all its inputs arrived).
     #[inline(always)]
-    fn output_at(&self, j: usize, end: Option<usize>) -> f64 {
-        let inside = j >= self.delay && end.is_none_or(|n| j + self.delay < n);
-        if inside {
-            let from = j - self.delay - self.window_start;
-            return dot(
-                &self.reversed_taps,
-                &self.window[from..from + self.reversed_taps.len()],
-            );
-        }
-        let at = |i: usize| self.window[i - self.window_start];
-        edge_output(&self.reversed_taps, j, self.delay, end, &self.head, at)
+    fn output_at(&self, j: usize) -> f64 {
+        let from = j - self.delay - self.window_start;
+        dot(
+            &self.reversed_taps,
+            &self.window[from..from + self.reversed_taps.len()],
+        )
     }
 
-    /// The decimated, filtered record.
+    /// The decimated, filtered record: the outputs at [`valid_decimated_indices`] (every
+    /// output whose inputs have all arrived is already computed).
     ///
     /// # Errors
     /// [`SignalError::TooShort`] when the record is not longer than 3 × taps (the in-memory
     /// filter's edge extension).
-    pub fn finish(mut self) -> Result<Vec<f64>, SignalError> {
+    pub fn finish(self) -> Result<Vec<f64>, SignalError> {
         let taps = self.reversed_taps.len();
         let n = self.samples;
         if n <= 3 * taps {
@@ -126,20 +124,16 @@ impl StreamingDecimator {
                 taps,
             });
         }
-        while self.next_output < n {
-            let y = self.output_at(self.next_output, Some(n));
-            self.output.push(y);
-            self.next_output += self.factor;
-        }
         Ok(self.output)
     }
 }
 
-/// The delay-compensated low-pass output of `filter` on the whole record `x`, keeping every
-/// `factor`-th sample: the output of [`StreamingDecimator`] fed `x` in one piece, bit for bit
-/// (same products in the same order), read from `x` in place instead of a copied window.
-/// Equal to `decimate(&filter_zero_phase(filter, x, DelayCompensated)?, factor)` to rounding,
-/// at taps/factor multiplications per input sample instead of a full FFT convolution.
+/// The delay-compensated low-pass output of `filter` on the whole record `x` at the kept
+/// indices [`valid_decimated_indices`] (every `factor`-th sample whose filter window lies inside
+/// the record): the output of [`StreamingDecimator`] fed `x` in one piece, bit for bit (same
+/// products in the same order), read from `x` in place instead of a copied window. Equal to
+/// `decimate(&filter_zero_phase(filter, x, DelayCompensated)?, factor)` at those indices to
+/// rounding, at taps/factor multiplications per input sample instead of a full FFT convolution.
 ///
 /// # Errors
 /// [`SignalError::EvenTaps`], [`SignalError::TooShort`] (not longer than 3 × taps, as the
@@ -166,10 +160,17 @@ pub fn filter_and_decimate(
         factor: factor.max(1),
     };
     let output = pulp::Arch::new().dispatch(&record);
-    // Every output window is taps long and they are `factor` apart: when they overlap up to
-    // both ends, a NaN or infinity anywhere reaches some output (0 × NaN is NaN), so one
-    // check of the short output stands for the scan of the whole record.
-    let covered = record.factor <= record.delay() + 1;
+    // Every output window is taps long and they are `factor` apart: when they overlap, a NaN
+    // or infinity between the first and the last window reaches some output (0 × NaN is NaN),
+    // so one check of the short output and of the few samples outside every window stands
+    // for the scan of the whole record.
+    let delay = record.delay();
+    let kept = valid_decimated_indices(x.len(), delay, record.factor);
+    let head = &x[..kept.start.saturating_sub(delay).min(x.len())];
+    let tail_start = (output.len() * record.factor + kept.start).saturating_sub(record.factor);
+    let tail = &x[(tail_start + delay + 1).min(x.len())..];
+    let outside_finite = head.iter().chain(tail).all(|v| v.is_finite());
+    let covered = record.factor <= delay + 1 && !output.is_empty() && outside_finite;
     if !covered || output.iter().any(|v| !v.is_finite()) {
         if let Some(index) = x.iter().position(|v| !v.is_finite()) {
             return Err(SignalError::NonFinite { index });
@@ -190,21 +191,14 @@ impl WholeRecord<'_> {
         (self.reversed_taps.len() - 1) / 2
     }
 
-    /// Output j: a dot product inside the record, the odd reflections of
-    /// [`StreamingDecimator`] at its ends.
+    /// Output j (D ≤ j < n − D): a dot product inside the record.
     #[inline(always)]
     fn output_at(&self, j: usize) -> f64 {
-        let (n, delay) = (self.x.len(), self.delay());
-        if j >= delay && j + delay < n {
-            let from = j - delay;
-            return dot(
-                &self.reversed_taps,
-                &self.x[from..from + self.reversed_taps.len()],
-            );
-        }
-        edge_output(&self.reversed_taps, j, delay, Some(n), self.x, |i| {
-            self.x[i]
-        })
+        let from = j - self.delay();
+        dot(
+            &self.reversed_taps,
+            &self.x[from..from + self.reversed_taps.len()],
+        )
     }
 }
 
@@ -215,42 +209,15 @@ impl pulp::WithSimd for &WholeRecord<'_> {
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Vec<f64> {
         // A plain loop, not an iterator adaptor: a closure would be compiled outside this
         // instruction-set context, and its fused multiply-adds would become library calls.
-        let mut output = Vec::with_capacity(self.x.len().div_ceil(self.factor));
-        let mut j = 0;
-        while j < self.x.len() {
+        let kept = valid_decimated_indices(self.x.len(), self.delay(), self.factor);
+        let mut output = Vec::with_capacity(kept.len());
+        let mut j = kept.start;
+        while j < kept.end {
             output.push(self.output_at(j));
             j += self.factor;
         }
         output
     }
-}
-
-/// Output j near an end of the record: Σ_k h_k x̃_{j−D+k} with x̃ the record continued by odd
-/// reflection about its first sample (from `head`, the first D + 1 samples) and, once its length
-/// `end` is known, about its last; `at(i)` is sample i.
-fn edge_output(
-    reversed_taps: &[f64],
-    j: usize,
-    delay: usize,
-    end: Option<usize>,
-    head: &[f64],
-    at: impl Fn(usize) -> f64,
-) -> f64 {
-    let extended = |q: isize| -> f64 {
-        if q < 0 {
-            return 2.0 * head[0] - head[q.unsigned_abs()];
-        }
-        let q = q as usize;
-        match end {
-            Some(n) if q >= n => 2.0 * at(n - 1) - at(2 * (n - 1) - q),
-            _ => at(q),
-        }
-    };
-    reversed_taps
-        .iter()
-        .enumerate()
-        .map(|(k, h)| h * extended(j as isize - delay as isize + k as isize))
-        .sum()
 }
 
 /// [`StreamingDecimator::compute_ready_outputs`] as a [`pulp::WithSimd`] task: compiled once per
@@ -286,14 +253,15 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use crate::rng::named_rng;
-    use crate::signal::decimate::decimate;
+    use crate::signal::decimate::decimate_valid;
     use crate::signal::kaiser::{KaiserSpec, design_kaiser_lowpass};
     use crate::signal::zero_phase::{ZeroPhaseMode, filter_zero_phase};
     use rand::RngExt;
 
-    // Oracle: the in-memory path (odd extension, FFT convolution, delay removal, decimation),
-    // fed in pieces of awkward sizes; the two differ by the rounding of sums of ~taps unit-scale
-    // products (1e-12 absolute on values of order 1 is far above it and far below any signal).
+    // Oracle: the in-memory path (odd extension, FFT convolution, delay removal, decimation) at
+    // the kept indices, fed in pieces of awkward sizes; the two differ by the rounding of sums of
+    // ~taps unit-scale products (1e-12 absolute on values of order 1 is far above it and far
+    // below any signal).
     #[test]
     fn pieces_give_the_in_memory_filter_and_decimation() {
         let spec = KaiserSpec::new(100.0, 2.0, 1.0, 60.0).unwrap();
@@ -303,8 +271,9 @@ mod tests {
             .map(|k| (k as f64 * 0.01).sin() + rng.random_range(-1.0..1.0))
             .collect();
         for (factor, piece) in [(10, 777), (7, 1), (1, 4096), (25, 20_000)] {
-            let expected = decimate(
+            let expected = decimate_valid(
                 &filter_zero_phase(&filter, &x, ZeroPhaseMode::DelayCompensated).unwrap(),
+                (filter.num_taps() - 1) / 2,
                 factor,
             );
             let mut stream = StreamingDecimator::new(&filter, factor).unwrap();
@@ -319,6 +288,35 @@ mod tests {
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max);
             assert!(worst < 1e-12, "factor {factor}, piece {piece}: {worst}");
+        }
+    }
+
+    // Oracle: a ramp x_k = k through a symmetric filter of unit DC gain is the ramp itself
+    // wherever the window lies inside the record (Σ h_i (j + D − i) = j), so the outputs must be
+    // exactly the kept indices j0, j0 + F, … with j0 the first multiple of F at or above the
+    // delay D and the last at most n − 1 − D (rounding: 1e-9 on values up to 1e4). Before, the
+    // first output was the edge value x_0 itself (odd reflection) and the last x_{n-1}.
+    #[test]
+    fn outputs_come_only_from_inside_the_record() {
+        let spec = KaiserSpec::new(100.0, 2.0, 1.0, 60.0).unwrap();
+        let filter = design_kaiser_lowpass(&spec).unwrap().with_odd_taps(&spec);
+        let delay = (filter.num_taps() - 1) / 2;
+        let n = 10_000;
+        let x: Vec<f64> = (0..n).map(|k| k as f64).collect();
+        for factor in [1, 7, 100, 333] {
+            let first = delay.div_ceil(factor) * factor;
+            let expected: Vec<usize> = (first..n - delay).step_by(factor).collect();
+            let mut stream = StreamingDecimator::new(&filter, factor).unwrap();
+            stream.push(&x).unwrap();
+            for got in [
+                filter_and_decimate(&filter, &x, factor).unwrap(),
+                stream.finish().unwrap(),
+            ] {
+                assert_eq!(got.len(), expected.len(), "factor {factor}");
+                for (y, j) in got.iter().zip(&expected) {
+                    assert!((y - *j as f64).abs() < 1e-9, "factor {factor}: {y} at {j}");
+                }
+            }
         }
     }
 
@@ -355,10 +353,12 @@ mod tests {
             }
             let whole = filter_and_decimate(&filter, &x, factor).unwrap();
             assert_eq!(whole, stream.finish().unwrap(), "factor {factor}");
-            let expected = decimate(
+            let expected = decimate_valid(
                 &filter_zero_phase(&filter, &x, ZeroPhaseMode::DelayCompensated).unwrap(),
+                (filter.num_taps() - 1) / 2,
                 factor,
             );
+            assert_eq!(whole.len(), expected.len(), "factor {factor}");
             let worst = whole
                 .iter()
                 .zip(&expected)

@@ -26,6 +26,18 @@ pub enum ZeroPhaseMode {
     ForwardBackward,
 }
 
+/// Half-width of the zero-phase response in samples: an output within this many samples of an
+/// end of the record reads the edge extension. (N − 1)/2 for the one-pass mode (the taps
+/// centred on the output); N − 1 for forward-backward (the response of the two passes is the
+/// filter convolved with itself, 2N − 1 taps).
+pub fn edge_samples(filter: &FirFilter, mode: ZeroPhaseMode) -> usize {
+    let taps = filter.num_taps();
+    match mode {
+        ZeroPhaseMode::DelayCompensated => (taps.saturating_sub(1)) / 2,
+        ZeroPhaseMode::ForwardBackward => taps.saturating_sub(1),
+    }
+}
+
 /// Filters `x` without phase shift; the output has the length of the input.
 ///
 /// # Errors

@@ -109,6 +109,16 @@ pub struct AllanSummary {
     pub bias_instability: Option<f64>,
     /// Rate random walk K (rad/s/√s or m/s²/√s), when identified.
     pub rate_random_walk: Option<f64>,
+    /// Upper bound on B when the curve's minimum is its first or last point (the floor was not
+    /// reached; `bias_instability` is then `None`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bias_instability_at_most: Option<f64>,
+    /// τ range of the white-noise region, s: `[shortest, longest]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub white_noise_tau_range_s: Option<[f64; 2]>,
+    /// Why a term is missing: its key (`white_noise_density`, ...) → the reason.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub absent_terms: BTreeMap<String, String>,
 }
 
 /// An AR model of the conditioned series (paper sign: x_k = Σ c_i x_{k−i} + w_k).
@@ -475,6 +485,9 @@ mod tests {
                 white_noise_density: Some(1e-3),
                 bias_instability: None,
                 rate_random_walk: None,
+                bias_instability_at_most: None,
+                white_noise_tau_range_s: None,
+                absent_terms: BTreeMap::new(),
             },
             ar: ArSummary {
                 method: "burg".into(),

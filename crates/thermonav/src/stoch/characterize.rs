@@ -30,11 +30,11 @@ use super::bank::{
 use super::gauss_markov::{
     Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
 };
-use super::noise_terms::fit_noise_terms;
+use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
 use crate::imu::{Channel, ImuSeries, SampleKind};
-use crate::signal::decimate::decimation_factor;
+use crate::signal::decimate::{check_anti_alias, decimation_factor};
 use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
 use crate::signal::streaming_decimate::filter_and_decimate;
 use crate::signal::timestamps::interval_stats;
@@ -229,12 +229,12 @@ impl Conditioning {
             .with_odd_taps(&spec);
         let factor = decimation_factor(rate_hz, settings.modelling_rate_hz)
             .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
-        if settings.cutoff_hz + settings.transition_hz / 2.0 > settings.modelling_rate_hz / 2.0 {
-            return Err(CharacterizeError::Settings(format!(
-                "cut-off {} Hz plus half the transition {} Hz exceeds the Nyquist frequency of the {} Hz modelling rate",
-                settings.cutoff_hz, settings.transition_hz, settings.modelling_rate_hz
-            )));
-        }
+        check_anti_alias(
+            settings.cutoff_hz,
+            settings.transition_hz,
+            settings.modelling_rate_hz,
+        )
+        .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
         Ok(Self {
             rate_hz,
             filter,
@@ -311,7 +311,7 @@ pub(crate) fn channel_report(
         block_times_s,
         block_means,
     } = inputs;
-    let terms = fit_noise_terms(&allan);
+    let terms = fit_noise_terms(&allan, &limits);
     let chosen = fit_ar_order(&conditioned, settings.ar_order, settings.ar_method)
         .map_err(|e| fail(e.to_string()))?;
     let ar1 = fit_ar(&conditioned, 1, settings.ar_method).map_err(|e| fail(e.to_string()))?;
@@ -319,13 +319,7 @@ pub(crate) fn channel_report(
     let ml = block_ml(&block_times_s, &block_means);
     let model = ChannelModel {
         unit: channel.si_unit(SampleKind::Rates).to_string(),
-        allan: AllanSummary {
-            tau_s: allan.tau_s.clone(),
-            adev: allan.adev.clone(),
-            white_noise_density: terms.random_walk.map(|t| t.value),
-            bias_instability: terms.bias_instability.map(|t| t.value),
-            rate_random_walk: terms.rate_random_walk.map(|t| t.value),
-        },
+        allan: allan_summary(&allan, &terms),
         ar: ar_summary(&chosen, dt_s),
         gauss_markov: GaussMarkovModels {
             ar_based: estimate(ar_based(&ar1_estimate(&ar1, dt_s))),
@@ -338,6 +332,45 @@ pub(crate) fn channel_report(
         allan,
         allan_limits: (limits.low, limits.high),
     })
+}
+
+/// The curve and the terms the bank keeps: N, B (an estimate, or its bound at an end of the
+/// curve) and K, with the white-noise region and the reason for each missing term.
+fn allan_summary(allan: &AllanCurve, terms: &NoiseTerms) -> AllanSummary {
+    let estimate = |t: &TermReading| {
+        t.as_ref()
+            .ok()
+            .filter(|t| t.bound == Bound::Estimate)
+            .map(|t| t.value)
+    };
+    let b = terms.bias_instability.as_ref().ok();
+    AllanSummary {
+        tau_s: allan.tau_s.clone(),
+        adev: allan.adev.clone(),
+        white_noise_density: estimate(&terms.random_walk),
+        bias_instability: estimate(&terms.bias_instability),
+        rate_random_walk: estimate(&terms.rate_random_walk),
+        bias_instability_at_most: b.filter(|t| t.bound == Bound::AtMost).map(|t| t.value),
+        white_noise_tau_range_s: (terms.random_walk.as_ref().ok())
+            .map(|t| [t.tau_min_s, t.tau_max_s]),
+        absent_terms: absent_terms(terms),
+    }
+}
+
+/// Term name → reason, for the terms the bank keeps that the curve does not support.
+fn absent_terms(terms: &NoiseTerms) -> BTreeMap<String, String> {
+    [
+        ("white_noise_density", &terms.random_walk),
+        ("bias_instability", &terms.bias_instability),
+        ("rate_random_walk", &terms.rate_random_walk),
+    ]
+    .into_iter()
+    .filter_map(|(name, t)| {
+        t.as_ref()
+            .err()
+            .map(|a| (name.to_string(), a.reason.clone()))
+    })
+    .collect()
 }
 
 /// Exact GM + white likelihood on block means of the raw record at their mean times.
