@@ -25,6 +25,20 @@ pub enum Channel {
     Az,
 }
 
+/// Why a temperature-dependent error cannot be removed from a series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum TemperatureColumnError {
+    /// The series has no temperature column.
+    #[error("the IMU record has no temp_c column")]
+    Missing,
+    /// A sample's temperature is not finite.
+    #[error("sample {index} has a non-finite temperature")]
+    NonFinite {
+        /// Position of the sample.
+        index: usize,
+    },
+}
+
 /// Which sensor a channel belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Sensor {
@@ -158,6 +172,38 @@ impl ImuSeries {
             .collect();
         dt.insert(0, dt.first().copied().unwrap_or(0.0));
         Some(dt)
+    }
+
+    /// Removes a temperature-dependent bias and scale-factor error from `channels`: each
+    /// sample y becomes (y − b·dt) / (1 + s), with (b, s) = `error(channel, T)` at the sample's
+    /// own temperature T (b in the channel's rate unit, s dimensionless; dt the sample's
+    /// interval for increments, 1 for rates).
+    ///
+    /// # Errors
+    /// [`TemperatureColumnError`] for a series without temperatures or with a non-finite one;
+    /// the series is then unchanged.
+    pub fn remove_thermal_error(
+        &mut self,
+        channels: &[Channel],
+        error: impl Fn(Channel, f64) -> (f64, f64),
+    ) -> Result<(), TemperatureColumnError> {
+        let intervals = self.increment_intervals_s();
+        let temperatures = self
+            .temperature_c
+            .as_deref()
+            .ok_or(TemperatureColumnError::Missing)?;
+        if let Some(index) = temperatures.iter().position(|t| !t.is_finite()) {
+            return Err(TemperatureColumnError::NonFinite { index });
+        }
+        for &channel in channels {
+            let column = &mut self.channels[channel.index()];
+            for (k, value) in column.iter_mut().enumerate() {
+                let (bias, scale) = error(channel, temperatures[k]);
+                let dt = intervals.as_ref().map_or(1.0, |dt| dt[k]);
+                *value = (*value - bias * dt) / (1.0 + scale);
+            }
+        }
+        Ok(())
     }
 
     /// The column of one channel.

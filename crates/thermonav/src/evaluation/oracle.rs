@@ -188,21 +188,13 @@ impl TrueModel {
     /// [`OracleError::NoTemperature`] for a record without temperatures or with a non-finite
     /// one; the series is then unchanged.
     pub fn compensate(&self, series: &mut ImuSeries) -> Result<(), OracleError> {
-        let temperatures = series
-            .temperature_c
-            .clone()
-            .filter(|t| t.iter().all(|x| x.is_finite()))
-            .ok_or(OracleError::NoTemperature)?;
-        let intervals = series.increment_intervals_s();
-        for channel in Channel::ALL {
-            let column = &mut series.channels[channel.index()];
-            for (k, value) in column.iter_mut().enumerate() {
-                let (t, dt) = (temperatures[k], intervals.as_ref().map_or(1.0, |dt| dt[k]));
-                let scale = 1.0 + self.thermal_scale_factor_ppm_at(channel, t) * 1e-6;
-                *value = (*value - self.repeatable_bias_at(channel, t) * dt) / scale;
-            }
-        }
-        Ok(())
+        let error = |c, t| {
+            let ppm = self.thermal_scale_factor_ppm_at(c, t);
+            (self.repeatable_bias_at(c, t), ppm * 1e-6)
+        };
+        series
+            .remove_thermal_error(&Channel::ALL, error)
+            .map_err(|_| OracleError::NoTemperature)
     }
 
     fn nearest_index(&self, temperature_c: f64) -> usize {

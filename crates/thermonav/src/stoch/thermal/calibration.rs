@@ -22,7 +22,7 @@ use super::{
     FitSettings, PowerOnFit, PowerOnOffset, PowerOnRecord, TemperaturePoint, ThermalCurve,
     ThermalError, fit_bias_curve, fit_bias_curve_with_power_ons,
 };
-use crate::imu::{Channel, ImuSeries};
+use crate::imu::{Channel, ImuSeries, TemperatureColumnError};
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
@@ -231,25 +231,20 @@ impl ThermalCalibration {
         &self,
         series: &mut ImuSeries,
     ) -> Result<CompensationSummary, CompensationError> {
-        let temperatures = series
-            .temperature_c
-            .as_ref()
-            .ok_or(CompensationError::NoTemperature)?;
-        if let Some(index) = temperatures.iter().position(|t| !t.is_finite()) {
-            return Err(CompensationError::NonFiniteTemperature { index });
-        }
-        let intervals = series.increment_intervals_s();
+        let channels: Vec<Channel> = self.channels.keys().copied().collect();
+        series
+            .remove_thermal_error(&channels, |c, t| (self.bias_at(c, t).unwrap_or(0.0), 0.0))
+            .map_err(|e| match e {
+                TemperatureColumnError::Missing => CompensationError::NoTemperature,
+                TemperatureColumnError::NonFinite { index } => {
+                    CompensationError::NonFiniteTemperature { index }
+                }
+            })?;
+        let temperatures = series.temperature_c.as_deref().unwrap_or_default();
         let clamped = temperatures
             .iter()
             .filter(|&&t| self.outside_range(t))
             .count();
-        for &channel in self.channels.keys() {
-            let column = &mut series.channels[channel.index()];
-            for (k, value) in column.iter_mut().enumerate() {
-                let bias = self.bias_at(channel, temperatures[k]).unwrap_or(0.0);
-                *value -= bias * intervals.as_ref().map_or(1.0, |dt| dt[k]);
-            }
-        }
         let range = temperatures
             .iter()
             .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &t| {
