@@ -146,6 +146,17 @@ fn is_ulog(path: &Path) -> bool {
     read.is_ok() && head.starts_with(&thermonav_io::ulog::MAGIC)
 }
 
+/// "instance, gyro id, accelerometer id" of a ULog sweep's sensors ("none" for a missing id).
+fn devices_text(d: &SensorDevices) -> String {
+    let id = |v: Option<u32>| v.map_or("none".to_string(), |v| v.to_string());
+    format!(
+        "{}, {}, {}",
+        d.instance,
+        id(d.gyro_device_id),
+        id(d.accel_device_id)
+    )
+}
+
 /// The sensors of the ULog sweeps, which must all be the same ones.
 fn common_devices(
     devices: &[SensorDevices],
@@ -155,12 +166,17 @@ fn common_devices(
         [] => Ok(None),
         [first, rest @ ..] if rest.iter().all(|d| d == first) => Ok(Some(*first)),
         _ => Err(Failure::Data(anyhow!(
-            "the ULog sweeps {} come from different sensors (device ids {devices:?}): one calibration is of one unit",
+            "the ULog sweeps {} come from different sensors (instance, gyro and accelerometer device ids: {}): one calibration is of one unit",
             sweeps
                 .iter()
                 .map(|p| p.display().to_string())
                 .collect::<Vec<_>>()
-                .join(", ")
+                .join(", "),
+            devices
+                .iter()
+                .map(devices_text)
+                .collect::<Vec<_>>()
+                .join("; ")
         ))),
     }
 }

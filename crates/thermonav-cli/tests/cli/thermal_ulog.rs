@@ -30,6 +30,11 @@ fn raw_record(boot_us: u64, id: u32, v: [f64; 3], temperature_c: f64) -> Vec<u8>
 
 /// The IMU CSV at `csv` as a ULog of instance `instance` at `out`.
 fn write_sweep_ulog(csv: &Path, out: &Path, instance: u8) {
+    write_sweep_ulog_of(csv, out, instance, GYRO_ID);
+}
+
+/// As [`write_sweep_ulog`], with the gyro's device id `gyro_id`.
+fn write_sweep_ulog_of(csv: &Path, out: &Path, instance: u8, gyro_id: u32) {
     let series = read_imu_file(csv, Strictness::Strict).unwrap();
     let mut log = log_start();
     for topic in ["sensor_gyro", "sensor_accel"] {
@@ -48,7 +53,7 @@ fn write_sweep_ulog(csv: &Path, out: &Path, instance: u8) {
         data(
             &mut log,
             0,
-            &raw_record(boot_us, GYRO_ID, gyro, temperature_c),
+            &raw_record(boot_us, gyro_id, gyro, temperature_c),
         );
         data(
             &mut log,
@@ -185,4 +190,40 @@ fn a_ulog_sweep_without_the_instance_is_refused_naming_the_topic() {
         stderr.contains("s.ulg") && stderr.contains("no topic sensor_gyro of instance 1"),
         "{stderr}"
     );
+}
+
+#[test]
+fn ulog_sweeps_of_different_sensors_are_refused_naming_their_ids() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("s.csv");
+    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
+    for k in 1..=12_000 {
+        let (a, b) = (1e-3 * (k as f64).sin(), 1e-3 * (0.7 * k as f64).cos());
+        let t = 20.0 + k as f64 * 1e-3;
+        text += &format!("{},{a},{b},{a},{b},{a},{},{t}\n", k as f64 * 0.1, b - 9.8);
+    }
+    std::fs::write(&csv, text).unwrap();
+    let (one, two) = (dir.path().join("one.ulg"), dir.path().join("two.ulg"));
+    write_sweep_ulog_of(&csv, &one, 0, GYRO_ID);
+    write_sweep_ulog_of(&csv, &two, 0, GYRO_ID + 1);
+    let bank = dir.path().join("b.json");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "characterize",
+        arg(&csv),
+        "--sweep",
+        arg(&one),
+        "--sweep",
+        arg(&two),
+        "--sweep-block-s",
+        "60",
+        "--out",
+        arg(&bank),
+    ]));
+    assert_eq!(status, 1, "{stderr}");
+    let ids = format!("0, {GYRO_ID}, {ACCEL_ID}; 0, {}, {ACCEL_ID}", GYRO_ID + 1);
+    assert!(
+        stderr.contains("different sensors") && stderr.contains(&ids),
+        "{stderr}"
+    );
+    assert!(!bank.exists());
 }
