@@ -160,16 +160,24 @@ fn exports_take_the_device_ids_and_the_instance(dir: &Path, bank: &Path) {
     );
 }
 
+/// `dir/s.csv`: `rows` samples at 10 Hz of a level static unit with small deterministic
+/// variations, its temperature 20 °C rising by `warming_c_per_sample` each sample.
+fn static_record(dir: &Path, rows: usize, warming_c_per_sample: f64) -> std::path::PathBuf {
+    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
+    for k in 1..=rows {
+        let (a, b) = (1e-3 * (k as f64).sin(), 1e-3 * (0.7 * k as f64).cos());
+        let t = 20.0 + k as f64 * warming_c_per_sample;
+        text += &format!("{},{a},{b},{a},{b},{a},{},{t}\n", k as f64 * 0.1, b - 9.8);
+    }
+    let path = dir.join("s.csv");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 #[test]
 fn a_ulog_sweep_without_the_instance_is_refused_naming_the_topic() {
     let dir = tempfile::tempdir().unwrap();
-    let csv = dir.path().join("s.csv");
-    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
-    for k in 1..=2000 {
-        let (a, b) = (1e-3 * (k as f64).sin(), 1e-3 * (0.7 * k as f64).cos());
-        text += &format!("{},{a},{b},{a},{b},{a},{},20\n", k as f64 * 0.1, b - 9.8);
-    }
-    std::fs::write(&csv, text).unwrap();
+    let csv = static_record(dir.path(), 2000, 0.0);
     let log = dir.path().join("s.ulg");
     write_sweep_ulog(&csv, &log, 0);
     let bank = dir.path().join("b");
@@ -195,14 +203,7 @@ fn a_ulog_sweep_without_the_instance_is_refused_naming_the_topic() {
 #[test]
 fn ulog_sweeps_of_different_sensors_are_refused_naming_their_ids() {
     let dir = tempfile::tempdir().unwrap();
-    let csv = dir.path().join("s.csv");
-    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
-    for k in 1..=12_000 {
-        let (a, b) = (1e-3 * (k as f64).sin(), 1e-3 * (0.7 * k as f64).cos());
-        let t = 20.0 + k as f64 * 1e-3;
-        text += &format!("{},{a},{b},{a},{b},{a},{},{t}\n", k as f64 * 0.1, b - 9.8);
-    }
-    std::fs::write(&csv, text).unwrap();
+    let csv = static_record(dir.path(), 12_000, 1e-3);
     let (one, two) = (dir.path().join("one.ulg"), dir.path().join("two.ulg"));
     write_sweep_ulog_of(&csv, &one, 0, GYRO_ID);
     write_sweep_ulog_of(&csv, &two, 0, GYRO_ID + 1);
