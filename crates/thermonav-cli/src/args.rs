@@ -136,6 +136,10 @@ pub struct EvaluateArgs {
     /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
     #[arg(long, default_value_t = 1)]
     pub monte_carlo: usize,
+    /// Longest IMU interval the filter crosses, s: a longer gap in the record is refused
+    /// (naming where it is) instead of being dead-reckoned on one held rate.
+    #[arg(long, default_value_t = engine().max_imu_gap_s)]
+    pub max_imu_gap_s: f64,
     /// Seed of the outage shifts.
     #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
@@ -218,6 +222,10 @@ pub struct IntegrateArgs {
     /// aligning from GNSS and the accelerometers.
     #[arg(long)]
     pub initial_from: Option<PathBuf>,
+    /// Longest IMU interval the filter crosses, s: a longer gap in the record is refused
+    /// (naming where it is) instead of being dead-reckoned on one held rate.
+    #[arg(long, default_value_t = engine().max_imu_gap_s)]
+    pub max_imu_gap_s: f64,
     /// Covariance propagation rate, Hz (the nominal state is mechanized at every IMU sample).
     #[arg(long, default_value_t = 1.0 / engine().covariance_interval_s)]
     pub covariance_rate_hz: f64,

@@ -18,7 +18,8 @@ use thermonav::sim::chamber::{
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::unit::RepeatableCurve;
 use thermonav::sim::vessel::{
-    GnssSettings, SURVEY_POWER_ON, SurveyTemperature, VesselRun, harbour_survey, simulate_vessel,
+    GnssSettings, SURVEY_POWER_ON, SurveyTemperature, VesselError, VesselRun, harbour_survey,
+    simulate_vessel,
 };
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
@@ -255,11 +256,21 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
     Ok((profile, run))
 }
 
+/// A motion file whose path leaves the navigable latitudes is bad data, named; the rest are
+/// bad settings.
+fn vessel_failure(error: VesselError, motion: Option<&Path>) -> Failure {
+    match (error, motion) {
+        (VesselError::Motion(e), Some(path)) => Failure::Data(anyhow!("{}: {e}", path.display())),
+        (e, _) => Failure::Usage(e.into()),
+    }
+}
+
 /// Simulates and writes a vessel survey.
 pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary, Failure> {
     let (profile, run) = vessel_run(settings)?;
     let duration_s = run.motion.duration_s();
-    let record = simulate_vessel(&profile, &run).usage()?;
+    let record = simulate_vessel(&profile, &run)
+        .map_err(|e| vessel_failure(e, settings.motion.as_deref()))?;
     create_folder(&settings.out)?;
     let files = VesselFiles {
         reference: settings.out.join("reference.csv"),

@@ -18,7 +18,9 @@ use thermonav::gnss::GnssFix;
 use thermonav::imu::{Channel, ImuSeries};
 use thermonav::ins::state::Increment;
 use thermonav::nav::alignment::{HeadingSource, InitialUncertainty, align_from_gnss, uncorrected};
-use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series, run_scheduled};
+use thermonav::nav::engine::{
+    EngineSettings, FilterKind, NavError, increments_from_series, run_scheduled,
+};
 use thermonav::nav::error_state::Estimate;
 use thermonav::nav::measurement::MeasurementKind;
 use thermonav::nav::outage::{Outage, OutageSpec, Outages};
@@ -68,7 +70,8 @@ pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     };
     let (initial, initial_source) = initial_estimate(settings, &inputs, &engine)?;
     let started = Instant::now();
-    let solution = run_with_progress(&inputs, initial, models.schedule(), &engine)?;
+    let solution = run_with_progress(&inputs, initial, models.schedule(), &engine)
+        .map_err(|e| nav_failure(e, &settings.imu, &settings.gnss))?;
     let processing_s = started.elapsed().as_secs_f64();
     write_outputs(&settings.outputs, &solution)?;
     let run = Run {
@@ -87,7 +90,7 @@ fn run_with_progress(
     initial: Estimate,
     schedule: ModelSchedule,
     engine: &EngineSettings,
-) -> Result<Solution, Failure> {
+) -> Result<Solution, NavError> {
     let label = format!("integrating ({})", engine.filter.name());
     let bar = crate::progress::bar(inputs.increments.len(), &label);
     let solution = run_scheduled(
@@ -98,11 +101,22 @@ fn run_with_progress(
         schedule,
         engine,
         &mut |n| bar.set_position(n as u64),
-    )
-    .map_err(|e| anyhow!("{e}"))
-    .data()?;
+    )?;
     bar.finish_and_clear();
     Ok(solution)
+}
+
+/// A failed run as bad data, naming the file that a refusal of its data is about.
+pub fn nav_failure(error: NavError, imu: &Path, gnss: &Path) -> Failure {
+    let file = match error {
+        NavError::ImuGap { .. } => Some(imu),
+        NavError::PolarFix { .. } => Some(gnss),
+        _ => None,
+    };
+    let named = file
+        .map(|f| format!("{}: ", f.display()))
+        .unwrap_or_default();
+    Failure::Data(anyhow!("{named}{error}"))
 }
 
 /// The noise model's source, read.

@@ -3,9 +3,10 @@
 use crate::failure::{Classify, Failure};
 use serde::Serialize;
 
-/// Prints `value` as one pretty JSON document on stdout.
+/// Prints `value` as one pretty JSON document on stdout (none when it holds a number that is
+/// not finite: the error names it).
 pub fn print_json(value: &impl Serialize) -> Result<(), Failure> {
-    let text = serde_json::to_string_pretty(value).data()?;
+    let text = thermonav_io::finite_json_pretty(value).data()?;
     println!("{text}");
     Ok(())
 }

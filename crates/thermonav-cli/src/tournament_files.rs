@@ -4,7 +4,7 @@
 //! `evaluate` and `demo`.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::{operating_temperature, outages_in};
+use crate::integration::{nav_failure, operating_temperature, outages_in};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -18,7 +18,7 @@ use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
 use thermonav::ins::state::Increment;
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
-use thermonav::nav::engine::EngineSettings;
+use thermonav::nav::engine::{EngineSettings, check_inputs};
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::Compensation;
 use thermonav::stoch::thermal::ThermalCalibration;
@@ -86,6 +86,8 @@ pub fn scenario_from_files(
     check_reference_covers(&reference, engine.outages.windows())
         .map_err(|e| anyhow!("{}: {e}", files.reference.display()))
         .data()?;
+    check_inputs(&imu.increments, &gnss, &engine)
+        .map_err(|e| nav_failure(e, &files.imu, &files.gnss))?;
     let scenario = scenario_of(imu, gnss, reference, engine, &files.reference)?;
     Ok((scenario, operating_c))
 }
@@ -249,20 +251,21 @@ fn write_error_rows(
     )?;
     for (k, outage) in errors.iter().enumerate() {
         for e in outage {
-            writeln!(
-                out,
-                "{},{:.9},{:.9},{},{},{},{}",
-                k + 1,
-                e.time_s,
-                e.since_outage_start_s,
-                e.north_m,
-                e.east_m,
-                e.horizontal_m,
-                e.heading_deg
-            )?;
+            write!(out, "{}", k + 1)?;
+            error_values(out, e)?;
         }
     }
     Ok(())
+}
+
+/// One epoch's values after its outage number, each through the finite gate.
+fn error_values(out: &mut impl std::io::Write, e: &EpochError) -> std::io::Result<()> {
+    let values = [e.time_s, e.since_outage_start_s, e.north_m, e.east_m];
+    for value in values.into_iter().chain([e.horizontal_m, e.heading_deg]) {
+        out.write_all(b",")?;
+        thermonav_io::write_finite(out, value)?;
+    }
+    out.write_all(b"\n")
 }
 
 /// The table of the paper's Figures 13-15, per filter, best marked with '*'.
@@ -363,5 +366,34 @@ fn print_significance(r: &TournamentReport) {
                 "not significant (could be noise)"
             }
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn epoch(heading_deg: f64) -> EpochError {
+        EpochError {
+            time_s: 12.5,
+            since_outage_start_s: 2.5,
+            north_m: 1.0,
+            east_m: -2.0,
+            horizontal_m: 5f64.sqrt(),
+            heading_deg,
+        }
+    }
+
+    // Issue 20: the per-epoch error CSV is a writer like the others: a NaN is refused, not
+    // printed.
+    #[test]
+    fn the_error_rows_are_written_exactly_and_refuse_a_nan() {
+        let mut out = Vec::new();
+        write_error_rows(&mut out, &[vec![epoch(0.25)]]).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let row = text.lines().nth(1).unwrap();
+        assert_eq!(row, format!("1,12.5,2.5,1,-2,{},0.25", 5f64.sqrt()));
+        let error = write_error_rows(&mut Vec::new(), &[vec![epoch(f64::NAN)]]).unwrap_err();
+        assert!(error.to_string().contains("NaN"), "{error}");
     }
 }

@@ -183,13 +183,14 @@ pub fn write_atomically(
 /// Writes `value` as pretty-printed JSON (with a final newline) to `path`, atomically.
 ///
 /// # Errors
-/// As [`write_atomically`]; [`WriteError::Json`] when `value` cannot be encoded.
+/// As [`write_atomically`]; [`WriteError::Io`] of kind `InvalidData` when `value` holds a
+/// number that is not finite ([`crate::finite`]: nothing is written).
 pub fn write_json_atomically(
     path: impl AsRef<Path>,
     value: &impl Serialize,
 ) -> Result<(), WriteError> {
     write_atomically(path, |file| {
-        serde_json::to_writer_pretty(&mut *file, value)?;
+        file.write_all(crate::finite::finite_json_pretty(value)?.as_bytes())?;
         file.write_all(b"\n")?;
         Ok(())
     })

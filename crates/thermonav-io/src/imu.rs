@@ -13,9 +13,10 @@
 use crate::Strictness;
 use crate::atomic::write_atomically;
 use crate::error::{ReadError, ReadErrorKind, WriteError};
+use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, Unit};
 use crate::rows::Rows;
-use crate::text::{write_time, write_value};
+use crate::text::write_time;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -493,7 +494,7 @@ impl<W: Write> ImuWriter<W> {
         write_time(&mut self.out, sample.time)?;
         for &value in sample.gyro.iter().chain(&sample.accel).chain(&temperature) {
             self.out.write_all(b",")?;
-            write_value(&mut self.out, value)?;
+            write_finite(&mut self.out, value)?;
         }
         self.out.write_all(b"\n")?;
         self.rows += 1;

@@ -60,6 +60,7 @@
 pub mod atomic;
 pub mod bank;
 pub mod error;
+pub mod finite;
 mod fixed;
 pub mod gnss;
 pub mod gpst;
@@ -85,6 +86,7 @@ pub mod ulog;
 
 pub use atomic::{AtomicFile, remove_pending_temporaries, write_atomically, write_json_atomically};
 pub use error::{ReadError, ReadErrorKind, WriteError};
+pub use finite::{NonFinite, check_finite, finite_json_pretty, write_finite};
 pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
 };

@@ -51,13 +51,14 @@ pub enum MotionFileError {
         /// What is wrong.
         message: String,
     },
-    /// Values out of range.
-    #[error("{path}: {source}")]
+    /// Values out of range (the validation error is the message, not a chained source, so
+    /// it is printed once).
+    #[error("{path}: {problem}")]
     Invalid {
         /// File.
         path: String,
         /// The validation error.
-        source: thermonav::sim::motion::MotionError,
+        problem: thermonav::sim::motion::MotionError,
     },
 }
 
@@ -170,9 +171,9 @@ pub fn parse_motion(text: &str, path: &str) -> Result<MotionDefinition, MotionFi
     };
     motion
         .validate()
-        .map_err(|source| MotionFileError::Invalid {
+        .map_err(|problem| MotionFileError::Invalid {
             path: path.to_string(),
-            source,
+            problem,
         })?;
     Ok(motion)
 }

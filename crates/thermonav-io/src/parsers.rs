@@ -5,7 +5,10 @@
 //! the input (NMEA keeps headings and level velocities; the raw IMU reader uses a fixed tag).
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
-use crate::{Strictness, bank, kf_gins, nmea, profile, raw_imu, rtklib_pos, ulog};
+use crate::{
+    Strictness, bank, kf_gins, motion, nmea, profile, raw_imu, rtklib_pos, temperature_table,
+    truth, ulog,
+};
 use std::io::Cursor;
 use thermonav::time::{Duration, Timestamp};
 
@@ -37,8 +40,15 @@ pub enum Parser {
     /// RTKLIB time-tag file ([`raw_imu::decode_time_tag`]).
     TimeTag,
     /// PX4 ULog ([`ulog::decode_ulog`]), then its IMU and GNSS extraction
-    /// ([`ulog::px4::imu_series`], [`ulog::px4::gnss_fixes`]).
+    /// ([`ulog::px4::imu_series`], [`ulog::px4::gnss_fixes`]) and the raw sensor series of
+    /// a thermal sweep ([`ulog::px4::raw_sensor_series`]).
     Ulog,
+    /// Survey truth JSON ([`truth::parse_truth`]).
+    TruthJson,
+    /// Temperature table CSV ([`temperature_table::parse_temperature_table`]).
+    TemperatureTable,
+    /// Motion definition TOML ([`motion::parse_motion`]).
+    MotionToml,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -46,7 +56,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 13] = [
+    pub const ALL: [Parser; 16] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -60,6 +70,9 @@ impl Parser {
         Parser::RawImu,
         Parser::TimeTag,
         Parser::Ulog,
+        Parser::TruthJson,
+        Parser::TemperatureTable,
+        Parser::MotionToml,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -78,6 +91,9 @@ impl Parser {
             Parser::RawImu => "raw_imu",
             Parser::TimeTag => "time_tag",
             Parser::Ulog => "ulog",
+            Parser::TruthJson => "truth_json",
+            Parser::TemperatureTable => "temperature_table",
+            Parser::MotionToml => "motion_toml",
         }
     }
 
@@ -113,6 +129,17 @@ impl Parser {
             }
             Parser::TimeTag => raw_imu::decode_time_tag(bytes, input)?.pairs,
             Parser::Ulog => ulog_record_count(bytes, input)?,
+            Parser::TruthJson => {
+                let scale = thermonav::nav::sensor_model::ScaleFactorPrior::default();
+                truth::parse_truth(bytes, input, &scale)?.range_c().len()
+            }
+            Parser::TemperatureTable => temperature_table::parse_temperature_table(text(), input)?
+                .t_s
+                .len(),
+            Parser::MotionToml => {
+                let text = std::str::from_utf8(bytes)?;
+                motion::parse_motion(text, input)?.segments.len()
+            }
         })
     }
 }
@@ -124,6 +151,7 @@ fn ulog_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
     let scale = ulog::px4::time_scale(&log, ulog::px4::default_gpst_minus_utc());
     let _ = ulog::px4::imu_series(&log, input, scale);
     let _ = ulog::px4::gnss_fixes(&log, input, scale);
+    let _ = ulog::px4::raw_sensor_series(&log, input, scale, 0);
     Ok(log.record_counts().values().sum())
 }
 

@@ -12,7 +12,8 @@
 
 use crate::atomic::write_atomically;
 use crate::error::WriteError;
-use crate::text::{write_time, write_value};
+use crate::finite::write_finite;
+use crate::text::write_time;
 use std::io::Write;
 use std::path::Path;
 use thermonav::ins::error_model::STATES;
@@ -105,7 +106,7 @@ pub fn write_solution_states(
         let sd = |range: std::ops::Range<usize>| range.map(|i| epoch.sd[i] * file_unit_factor(i));
         for value in sd(0..9).chain(sensors).chain(sd(9..STATES)) {
             out.write_all(b",")?;
-            write_value(&mut out, value)?;
+            write_finite(&mut out, value)?;
         }
         writeln!(out, ",{}", u8::from(epoch.in_outage))?;
     }
@@ -156,7 +157,7 @@ pub fn write_innovations(
             .chain([r.nis])
         {
             out.write_all(b",")?;
-            write_value(&mut out, value)?;
+            write_finite(&mut out, value)?;
         }
         writeln!(out, ",{},{}", u8::from(r.accepted), u8::from(r.forced))?;
     }

@@ -110,18 +110,6 @@ pub(crate) fn write_time(out: &mut impl Write, time: Timestamp) -> io::Result<()
     write!(out, "{}", SecondsText(time))
 }
 
-/// Writes the shortest text that parses back to exactly `value`: positional notation
-/// (`0.0123`) for magnitudes in [1e-5, 1e16) and zero, scientific (`1.5e-7`) otherwise, so tiny
-/// values do not print hundreds of zeros. NaN and infinities print as `NaN`, `inf`, `-inf`.
-pub(crate) fn write_value(out: &mut impl Write, value: f64) -> io::Result<()> {
-    let magnitude = value.abs();
-    if value.is_finite() && value != 0.0 && !(1e-5..1e16).contains(&magnitude) {
-        write!(out, "{value:e}")
-    } else {
-        write!(out, "{value}")
-    }
-}
-
 /// The degree value whose conversion to radians gives exactly `rad` bits, when one exists within
 /// two units in the last place of `rad_to_deg(rad)`; otherwise `rad_to_deg(rad)`.
 ///
@@ -198,21 +186,6 @@ mod tests {
         assert_eq!(text(-500_000_000), "-0.500000000");
         assert_eq!(text(1), "0.000000001");
         assert_eq!(text(i64::MIN), "-9223372036.854775808");
-    }
-
-    #[test]
-    fn tiny_and_huge_values_use_scientific_notation() {
-        let text = |v: f64| {
-            let mut out = Vec::new();
-            write_value(&mut out, v).unwrap();
-            String::from_utf8(out).unwrap()
-        };
-        assert_eq!(text(0.0123), "0.0123");
-        assert_eq!(text(1.5e-7), "1.5e-7");
-        assert_eq!(text(-2e20), "-2e20");
-        assert_eq!(text(-0.0), "-0");
-        assert_eq!(text(f64::NAN), "NaN");
-        assert_eq!(text(f64::NEG_INFINITY), "-inf");
     }
 }
 

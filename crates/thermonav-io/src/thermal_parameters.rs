@@ -596,7 +596,24 @@ impl ParameterFile {
 /// Writes `file` to `path` atomically.
 ///
 /// # Errors
-/// As [`write_atomically`].
+/// As [`write_atomically`]; a parameter that is not a finite number ([`crate::finite`]), and
+/// nothing is written.
 pub fn write_parameter_file(path: &Path, file: &ParameterFile) -> Result<(), WriteError> {
-    write_atomically(path, |out| Ok(out.write_all(file.text().as_bytes())?))
+    write_atomically(path, |out| {
+        check_parameters_finite(file)?;
+        Ok(out.write_all(file.text().as_bytes())?)
+    })
+}
+
+/// The first real parameter that is not finite, refused through [`crate::finite`].
+fn check_parameters_finite(file: &ParameterFile) -> std::io::Result<()> {
+    let refuse = |name: &str, e: crate::finite::NonFinite| {
+        let path = format!("parameter {name}");
+        let e = crate::finite::NonFinite { path, ..e };
+        std::io::Error::new(std::io::ErrorKind::InvalidData, e)
+    };
+    file.parameters.iter().try_for_each(|p| match p.value {
+        ParameterValue::Real(v) => crate::finite::check_finite(&v).map_err(|e| refuse(&p.name, e)),
+        ParameterValue::Integer(_) => Ok(()),
+    })
 }

@@ -10,9 +10,10 @@
 use crate::Strictness;
 use crate::atomic::write_atomically;
 use crate::error::{ReadError, ReadErrorKind, WriteError};
+use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, TIME_COLUMN, Unit};
 use crate::rows::Rows;
-use crate::text::{degrees_reading_back_exactly, write_time, write_value};
+use crate::text::{degrees_reading_back_exactly, write_time};
 use std::fs::File;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -183,7 +184,7 @@ fn write_point(out: &mut impl Write, p: &TrajectoryPoint) -> Result<(), WriteErr
     ];
     for value in values {
         out.write_all(b",")?;
-        write_value(out, value)?;
+        write_finite(out, value)?;
     }
     out.write_all(b"\n")?;
     Ok(())

@@ -29,6 +29,7 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     let engine = EngineSettings {
         geometry: s.geometry,
         aiding: s.aiding,
+        max_imu_gap_s: s.max_imu_gap_s,
         ..EngineSettings::default()
     };
     let scale = ScaleFactorPrior::default();

@@ -222,6 +222,7 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             velocity: !args.no_velocity,
             heading: !args.no_heading,
         },
+        max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         ..EngineSettings::default()
     })
 }
@@ -309,6 +310,8 @@ pub struct EvaluateSettings {
     pub seed: u64,
     /// Antennas.
     pub geometry: AntennaGeometry,
+    /// Longest IMU interval the filter crosses, s.
+    pub max_imu_gap_s: f64,
     /// The profile of the data-sheet candidate (none: the ADIS16364 data sheet).
     pub datasheet: Option<PathBuf>,
     /// A simulated survey's truth, for the oracle candidates.
@@ -345,6 +348,7 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         extra_replicates: replicates(args.monte_carlo)? - 1,
         seed: args.seed,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
+        max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         datasheet: args.datasheet.clone(),
         truth: args.truth.clone(),
         out: args.out.clone(),

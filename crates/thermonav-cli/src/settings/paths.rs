@@ -55,8 +55,10 @@ impl Io {
     }
 
     /// Refuses (exit 2) an output that is one of the inputs, or a folder of outputs that
-    /// holds one, and two outputs that are one file.
+    /// holds one, two outputs that are one file, and an output whose name the file system
+    /// cannot hold.
     pub fn check(&self) -> Result<(), Failure> {
+        self.check_name_lengths()?;
         for (option, input) in &self.inputs {
             if let Some((what, output)) = self.outputs.iter().find(|(_, o)| same_file(input, o)) {
                 return Err(collision(what, output, option, input));
@@ -67,6 +69,20 @@ impl Io {
             }
         }
         self.check_outputs_distinct()
+    }
+
+    /// A sidecar's name is its output's plus a suffix: a name that fits alone could leave the
+    /// output written and its sidecar failing, so every name is checked before any is written.
+    fn check_name_lengths(&self) -> Result<(), Failure> {
+        let too_long = |(_, p): &&(&str, PathBuf)| file_name_bytes(p) > MAX_FILE_NAME_BYTES;
+        match self.outputs.iter().find(too_long) {
+            Some((what, path)) => Err(Failure::Usage(anyhow!(
+                "the {what} {} has a file name of {} bytes; file systems hold at most {MAX_FILE_NAME_BYTES}: choose a shorter output name",
+                path.display(),
+                file_name_bytes(path)
+            ))),
+            None => Ok(()),
+        }
     }
 
     fn check_outputs_distinct(&self) -> Result<(), Failure> {
@@ -80,6 +96,13 @@ impl Io {
         }
         Ok(())
     }
+}
+
+/// The longest file name (one path component) Linux, macOS and Windows file systems hold, bytes.
+pub const MAX_FILE_NAME_BYTES: usize = 255;
+
+fn file_name_bytes(path: &Path) -> usize {
+    path.file_name().map_or(0, |n| n.as_encoded_bytes().len())
 }
 
 fn collision(what: &str, output: &Path, option: &str, input: &Path) -> Failure {

@@ -12,7 +12,7 @@ fn json_of<S: AsRef<str>>(args: &[S]) -> serde_json::Value {
 }
 
 /// A bank from two short chamber records, and a 240 s vessel run at 17 °C.
-fn inputs(dir: &Path) -> (PathBuf, PathBuf) {
+pub(crate) fn inputs(dir: &Path) -> (PathBuf, PathBuf) {
     let chamber = json_of(&[
         "simulate",
         "chamber",

@@ -396,3 +396,147 @@ fn a_stuck_channel_is_refused_by_characterize() {
         assert!(!dir.path().join("bank.json").exists());
     }
 }
+
+/// `path`'s CSV with the rows (not the header) for which `drop` holds left out.
+fn without_rows(path: &Path, drop: impl Fn(&[&str]) -> bool) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let mut kept = format!("{}\n", lines.next().unwrap());
+    for line in lines.filter(|l| !drop(&l.split(',').collect::<Vec<_>>())) {
+        kept.push_str(&format!("{line}\n"));
+    }
+    kept
+}
+
+// Issue 20: a 60 s hole in the IMU record was crossed in one step on a held rate, with most
+// later fixes rejected and no word. Both navigation commands now refuse a gap longer than
+// --max-imu-gap-s (1 s by default), naming the IMU file and where the gap is, before any
+// output; a larger limit bridges it as documented.
+#[test]
+fn an_imu_gap_longer_than_the_limit_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = crate::navigation::inputs(dir.path());
+    let t_s = |f: &[&str]| f[0].parse::<f64>().unwrap();
+    let holed = without_rows(&vessel.join("imu.csv"), |f| {
+        (100.0..160.0).contains(&t_s(f))
+    });
+    write_file(dir.path(), "holed.csv", &holed);
+    std::fs::copy(vessel.join("gnss.csv"), dir.path().join("gnss.csv")).unwrap();
+    std::fs::copy(
+        vessel.join("reference.csv"),
+        dir.path().join("reference.csv"),
+    )
+    .unwrap();
+    assert_eq!(bank, dir.path().join("bank.json"));
+    let before = files_in(dir.path());
+    let common = "--imu @holed.csv --gnss @gnss.csv --bank @bank.json";
+    for words in [
+        format!("integrate {common} --out @sol.csv"),
+        format!("evaluate {common} --reference @reference.csv --outages 170+10 --out @eval"),
+    ] {
+        let (status, stdout, stderr) = run_in(dir.path(), &words);
+        assert_eq!(status, 1, "{words}: {stderr}");
+        assert!(stdout.is_empty());
+        assert!(
+            stderr.contains("holed.csv: the IMU record has a gap of 60.0"),
+            "{stderr}"
+        );
+        assert!(stderr.contains("--max-imu-gap-s"), "{stderr}");
+        assert_eq!(files_in(dir.path()), before, "{words}");
+    }
+    let words = format!("integrate {common} --out @sol.csv --max-imu-gap-s 61");
+    let (status, _, stderr) = run_in(dir.path(), &words);
+    assert_eq!(status, 0, "{stderr}");
+    let (status, _, stderr) = run_in(dir.path(), &format!("{words} --max-imu-gap-s 0"));
+    assert_eq!(status, 2, "{stderr}");
+}
+
+// Issue 20: the poles. GNSS fixes at -90° ran to -90.0094° with NIS 14134 and exit 0, and a
+// motion from 88.99° N wrote latitudes of 90.33°. thermonav navigates within ±89° (the NED
+// mechanisation divides by cos φ): both are refused, naming the file, with nothing written.
+#[test]
+fn positions_beyond_the_navigable_latitudes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = crate::navigation::inputs(dir.path());
+    let gnss = std::fs::read_to_string(vessel.join("gnss.csv")).unwrap();
+    let mut polar = String::new();
+    for (k, line) in gnss.lines().enumerate() {
+        let mut fields: Vec<&str> = line.split(',').collect();
+        if k > 0 {
+            fields[1] = "-90";
+        }
+        polar.push_str(&(fields.join(",") + "\n"));
+    }
+    write_file(dir.path(), "polar.csv", &polar);
+    let words = format!(
+        "integrate --imu {} --gnss @polar.csv --bank {} --out @sol.csv",
+        arg(&vessel.join("imu.csv")),
+        arg(&bank)
+    );
+    let (status, _, stderr) = run_in(dir.path(), &words);
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("polar.csv: the GNSS fix at t = 1.000 s is at latitude -90"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("sol.csv").exists());
+    let motion = "start = { lat_deg = 88.99, lon_deg = 10.0, h_m = 0.0 }\n\
+                  initial_speed_m_s = 30.0\n\n[[segment]]\nduration_s = 120.0\n";
+    write_file(dir.path(), "north.toml", motion);
+    let (status, _, stderr) = run_in(
+        dir.path(),
+        "simulate vessel --motion @north.toml --out @north --seed 1",
+    );
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("north.toml: the motion reaches latitude 89.0000° at t ="),
+        "{stderr}"
+    );
+    assert!(stderr.contains("within ±89°"), "{stderr}");
+    assert!(!dir.path().join("north").join("imu.csv").exists());
+}
+
+// Issue 20: a bank edited by hand with a negative σ was read, and reported later as a bad
+// correlation time. Every value of every entry is checked on reading, and the message names
+// the entry, the channel and the field.
+#[test]
+fn a_bank_value_that_cannot_be_is_named_on_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, _) = crate::navigation::inputs(dir.path());
+    let text = std::fs::read_to_string(&bank).unwrap();
+    for (field, spoiled) in [
+        ("gauss_markov.ar_based.sigma", "\"sigma\": -"),
+        ("ar.dt_s", "\"dt_s\": -"),
+    ] {
+        let key = spoiled.trim_end_matches('-');
+        let bad = text.replacen(key, spoiled, 1);
+        assert_ne!(bad, text);
+        write_file(dir.path(), "spoiled.json", &bad);
+        let (status, _, stderr) = run_in(dir.path(), "bank show @spoiled.json");
+        assert_eq!(status, 1, "{stderr}");
+        assert!(stderr.contains("spoiled.json: the entry at"), "{stderr}");
+        assert!(
+            stderr.contains(&format!("channel gx: {field} = -")),
+            "{stderr}"
+        );
+        assert!(stderr.contains("expected a finite number > 0"), "{stderr}");
+    }
+}
+
+// Issue 20: a 254-byte output name worked for the CSV but its record `NAME.json` (259 bytes)
+// could not be created, leaving the CSV written and the command failed. Every output's name
+// is checked before anything is read or written.
+#[test]
+fn an_output_name_too_long_for_its_sidecar_is_refused_before_writing() {
+    let dir = tempfile::tempdir().unwrap();
+    write_file(dir.path(), "in.csv", &static_record(2000, 20.0));
+    let name = format!("{}.csv", "a".repeat(250));
+    let words = format!("filter @in.csv --cutoff-hz 10 --out @{name}");
+    let (status, _, stderr) = run_in(dir.path(), &words);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("has a file name of 259 bytes; file systems hold at most 255"),
+        "{stderr}"
+    );
+    assert_eq!(files_in(dir.path()), vec!["in.csv".to_string()]);
+}

@@ -7,6 +7,7 @@ mod imu_errors;
 mod imu_units;
 mod kf_gins;
 mod nmea;
+mod non_finite;
 mod parallel;
 mod raw_imu;
 mod round_trip;

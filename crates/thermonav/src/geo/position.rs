@@ -16,6 +16,18 @@ pub struct Geodetic {
     pub height_m: f64,
 }
 
+/// The largest |latitude| thermonav navigates at, °: the local-level (NED) mechanisation
+/// divides by cos φ (longitude rate, transport rate tan φ), which vanishes at the poles. At 89°
+/// a metre east is already 57 times the longitude change it is at the equator; closer in, the
+/// north and east axes turn faster than a filter step can follow. Motion definitions, GNSS
+/// fixes and the filter's own solution are refused beyond it.
+pub const NAVIGATION_LATITUDE_LIMIT_DEG: f64 = 89.0;
+
+/// True when `latitude_rad` is within [`NAVIGATION_LATITUDE_LIMIT_DEG`] of the equator.
+pub fn within_navigation_latitudes(latitude_rad: f64) -> bool {
+    latitude_rad.to_degrees().abs() <= NAVIGATION_LATITUDE_LIMIT_DEG
+}
+
 /// Meridian radius of curvature R_N(φ) = a (1 − e²) / (1 − e² sin²φ)^{3/2}, m.
 pub fn meridian_radius_m(latitude_rad: f64) -> f64 {
     let s2 = latitude_rad.sin().powi(2);

@@ -32,7 +32,7 @@ use crate::filter::gating::ChiSquareGate;
 use crate::filter::sigma_points::SigmaPointScheme;
 use crate::filter::ukf::Ukf;
 use crate::frames::Vector;
-use crate::geo::position::Geodetic;
+use crate::geo::position::{Geodetic, NAVIGATION_LATITUDE_LIMIT_DEG, within_navigation_latitudes};
 use crate::gnss::GnssFix;
 use crate::imu::{ImuSeries, SampleKind};
 use crate::ins::error_model::{STATES, SystemMatrix, system_matrix};
@@ -113,6 +113,9 @@ pub struct EngineSettings {
     pub default_position_sd_m: [f64; 3],
     /// Velocity standard deviation of GNSS velocities, m/s.
     pub velocity_sd_m_s: [f64; 3],
+    /// Longest IMU interval the filter crosses, s: a longer gap is refused
+    /// ([`NavError::ImuGap`]) rather than dead-reckoned on one held rate.
+    pub max_imu_gap_s: f64,
 }
 
 impl Default for EngineSettings {
@@ -136,6 +139,7 @@ impl Default for EngineSettings {
             },
             default_position_sd_m: [1.0, 1.0, 2.0],
             velocity_sd_m_s: [0.05, 0.05, 0.1],
+            max_imu_gap_s: 1.0,
         }
     }
 }
@@ -164,6 +168,38 @@ pub enum NavError {
     /// No IMU sample after the initial time.
     #[error("no IMU sample after the initial time {0:.3} s")]
     NoImu(f64),
+    /// A GNSS fix beyond [`NAVIGATION_LATITUDE_LIMIT_DEG`].
+    #[error(
+        "the GNSS fix at t = {time_s:.3} s is at latitude {latitude_deg:.4}°: thermonav navigates within ±{NAVIGATION_LATITUDE_LIMIT_DEG}° (the NED mechanisation is singular at the poles)"
+    )]
+    PolarFix {
+        /// Time of the fix, s.
+        time_s: f64,
+        /// Its latitude, °.
+        latitude_deg: f64,
+    },
+    /// The solution beyond [`NAVIGATION_LATITUDE_LIMIT_DEG`].
+    #[error(
+        "the solution reached latitude {latitude_deg:.4}° at t = {time_s:.3} s: thermonav navigates within ±{NAVIGATION_LATITUDE_LIMIT_DEG}° (the NED mechanisation is singular at the poles)"
+    )]
+    PolarSolution {
+        /// When, s.
+        time_s: f64,
+        /// The latitude, °.
+        latitude_deg: f64,
+    },
+    /// An IMU interval longer than [`EngineSettings::max_imu_gap_s`].
+    #[error(
+        "the IMU record has a gap of {length_s:.3} s after t = {start_s:.3} s, longer than the {limit_s} s the filter bridges (dead reckoning on a held rate over a gap is not navigation); cut the run at the gap or raise --max-imu-gap-s to bridge it"
+    )]
+    ImuGap {
+        /// Time of the last sample before the gap, s.
+        start_s: f64,
+        /// Length of the gap, s.
+        length_s: f64,
+        /// The limit, s.
+        limit_s: f64,
+    },
 }
 
 /// IMU increments from a series: each sample covers the interval since the previous one (the
@@ -187,6 +223,59 @@ pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
             }
         })
         .collect()
+}
+
+fn check_settings(settings: &EngineSettings) -> Result<(), NavError> {
+    for (what, value) in [
+        ("covariance_interval_s", settings.covariance_interval_s),
+        ("output_interval_s", settings.output_interval_s),
+        ("max_imu_gap_s", settings.max_imu_gap_s),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(NavError::Setting { what, value });
+        }
+    }
+    Ok(())
+}
+
+/// The data a run refuses before its first step: an IMU interval longer than
+/// [`EngineSettings::max_imu_gap_s`] or a GNSS fix beyond the navigable latitudes.
+///
+/// # Errors
+/// [`NavError::ImuGap`] or [`NavError::PolarFix`] for the first such interval or fix.
+pub fn check_inputs(
+    increments: &[Increment],
+    gnss: &[GnssFix],
+    settings: &EngineSettings,
+) -> Result<(), NavError> {
+    check_imu_gaps(increments, settings.max_imu_gap_s)?;
+    check_fix_latitudes(gnss)
+}
+
+/// The first IMU interval longer than `limit_s`, refused.
+fn check_imu_gaps(increments: &[Increment], limit_s: f64) -> Result<(), NavError> {
+    match increments.iter().find(|i| i.dt_s() > limit_s) {
+        Some(gap) => Err(NavError::ImuGap {
+            start_s: gap.start().as_seconds(),
+            length_s: gap.dt_s(),
+            limit_s,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The first GNSS fix beyond the navigable latitudes, refused.
+fn check_fix_latitudes(gnss: &[GnssFix]) -> Result<(), NavError> {
+    match gnss
+        .iter()
+        .find(|f| !within_navigation_latitudes(f.latitude_rad))
+    {
+        Some(fix) => Err(NavError::PolarFix {
+            time_s: fix.time.as_seconds(),
+            latitude_deg: fix.latitude_rad.to_degrees(),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// The increment split at `at` (strictly inside its interval) into the parts before and
@@ -273,7 +362,8 @@ struct Run<'a> {
 /// samples processed, every few thousand.
 ///
 /// # Errors
-/// [`NavError`] for bad settings, no data after the start, or a divergence.
+/// [`NavError`] for bad settings, no data after the start, the data [`check_inputs`]
+/// refuses, or a divergence.
 pub fn run(
     increments: &[Increment],
     gnss: &[GnssFix],
@@ -301,19 +391,13 @@ pub fn run_scheduled(
     settings: &EngineSettings,
     progress: &mut dyn FnMut(usize),
 ) -> Result<Solution, NavError> {
-    for (what, value) in [
-        ("covariance_interval_s", settings.covariance_interval_s),
-        ("output_interval_s", settings.output_interval_s),
-    ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(NavError::Setting { what, value });
-        }
-    }
+    check_settings(settings)?;
     let start = initial.nav.time;
     let first = increments.partition_point(|i| i.time <= start);
     if first == increments.len() {
         return Err(NavError::NoImu(start.as_seconds()));
     }
+    check_inputs(&increments[first..], gnss, settings)?;
     let mut run = Run::new(initial, p0, schedule, settings)?;
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
     for (n, inc) in increments[first..].iter().enumerate() {
@@ -443,6 +527,12 @@ impl<'a> Run<'a> {
         .all(|v| v.is_finite());
         if !finite {
             return Err(self.diverged("the navigation state is not finite"));
+        }
+        if !within_navigation_latitudes(nav.position.latitude_rad) {
+            return Err(NavError::PolarSolution {
+                time_s: nav.time.as_seconds(),
+                latitude_deg: nav.position.latitude_rad.to_degrees(),
+            });
         }
         if nav.velocity.norm() > 3000.0 {
             return Err(self.diverged(format!(

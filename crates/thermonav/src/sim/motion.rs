@@ -9,7 +9,7 @@
 //! derived from the trajectory reproduces it exactly.
 
 use crate::frames::{Body, Ned, Rotation, Vector};
-use crate::geo::position::Geodetic;
+use crate::geo::position::{Geodetic, NAVIGATION_LATITUDE_LIMIT_DEG, within_navigation_latitudes};
 use crate::ins::mechanization::update_position;
 use crate::ins::state::NavState;
 use crate::time::Timestamp;
@@ -105,6 +105,16 @@ pub enum MotionError {
         /// What was expected.
         expected: &'static str,
     },
+    /// The path starts or passes beyond [`NAVIGATION_LATITUDE_LIMIT_DEG`].
+    #[error(
+        "the motion reaches latitude {lat_deg:.4}° at t = {time_s:.3} s: thermonav navigates within ±{NAVIGATION_LATITUDE_LIMIT_DEG}° (the NED mechanisation is singular at the poles)"
+    )]
+    Polar {
+        /// Seconds from the motion's start.
+        time_s: f64,
+        /// The latitude, °.
+        lat_deg: f64,
+    },
     /// The speed becomes negative.
     #[error("segment {segment}: speed falls to {speed_m_s:.3} m/s; speeds must stay non-negative")]
     NegativeSpeed {
@@ -157,11 +167,10 @@ impl MotionDefinition {
                 expected: "finite and non-negative",
             });
         }
-        if self.start.lat_deg.abs() > 89.0 {
-            return Err(MotionError::Value {
-                what: "start.lat_deg".into(),
-                value: self.start.lat_deg,
-                expected: "within ±89° (NED mechanization is singular at the poles)",
+        if !within_navigation_latitudes(self.start.lat_deg.to_radians()) {
+            return Err(MotionError::Polar {
+                time_s: 0.0,
+                lat_deg: self.start.lat_deg,
             });
         }
         self.validate_segments()?;
@@ -338,6 +347,12 @@ pub fn generate_trajectory_at(
             ),
             None => start,
         };
+        if !within_navigation_latitudes(position.latitude_rad) {
+            return Err(MotionError::Polar {
+                time_s: time.as_seconds(),
+                lat_deg: position.latitude_rad.to_degrees(),
+            });
+        }
         let attitude =
             Rotation::<Body, Ned>::from_euler_zyx(kin.roll_rad, kin.pitch_rad, kin.heading_rad);
         states.push(NavState {

@@ -253,6 +253,22 @@ pub enum BankError {
         /// The value.
         temperature_c: f64,
     },
+    /// A value that is not what it must be (see [`super::bank_values`]).
+    #[error(
+        "the entry at {temperature_c} °C, channel {channel}: {field} = {value} (expected {expected})"
+    )]
+    Value {
+        /// Entry temperature, °C.
+        temperature_c: f64,
+        /// Channel name (`-` for the entry's own values).
+        channel: &'static str,
+        /// The field, as its JSON path inside the channel or entry.
+        field: String,
+        /// The value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
     /// An entry lacks a channel.
     #[error("the entry at {temperature_c} °C has no model for channel {channel}")]
     MissingChannel {
@@ -293,7 +309,7 @@ impl ModelBank {
     }
 
     /// Checks a bank read from a file: version, non-empty, finite and strictly increasing
-    /// temperatures.
+    /// temperatures, and every entry's values ([`TemperatureEntry::check_values`]).
     ///
     /// # Errors
     /// The first [`BankError`] found.
@@ -311,17 +327,19 @@ impl ModelBank {
                 temperature_c: bad.temperature_c,
             });
         }
-        match self
+        if let Some(w) = self
             .entries
             .windows(2)
             .find(|w| w[0].temperature_c >= w[1].temperature_c)
         {
-            Some(w) => Err(BankError::Order {
+            return Err(BankError::Order {
                 previous_c: w[0].temperature_c,
                 next_c: w[1].temperature_c,
-            }),
-            None => Ok(()),
+            });
         }
+        self.entries
+            .iter()
+            .try_for_each(TemperatureEntry::check_values)
     }
 
     /// Temperatures of the entries, °C, increasing.

@@ -5,6 +5,7 @@ pub mod acf;
 pub mod allan;
 pub mod ar;
 pub mod bank;
+pub mod bank_values;
 pub mod characterize;
 pub mod gauss_markov;
 pub mod lot;
