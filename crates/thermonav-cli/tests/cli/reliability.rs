@@ -149,6 +149,10 @@ fn requests_beyond_the_data_or_the_documented_limits_are_refused_at_once() {
             "integrate --imu @imu.csv --gnss @gnss.csv --profile @p.toml --output-rate-hz 1e9 --out @s.csv",
             "above 5000 Hz",
         ),
+        (
+            "fir --fs-hz 100 --cutoff-hz 10 --transition-hz 1e-300",
+            "taps (more than 2000000): widen the transition band",
+        ),
     ];
     for (case, needle) in cases {
         let (code, _, stderr) = run_in(dir.path(), case);
@@ -444,6 +448,12 @@ fn an_imu_gap_longer_than_the_limit_is_refused_naming_the_file() {
         assert!(stderr.contains("--max-imu-gap-s"), "{stderr}");
         assert_eq!(files_in(dir.path()), before, "{words}");
     }
+    // A million periodic outages over 240 s of reference: refused at once, not drawn.
+    let words = "plot trajectory @reference.csv --outages every:10,5,20,1000000 --out @t.svg";
+    let (status, _, stderr) = run_in(dir.path(), words);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("is not inside the data"), "{stderr}");
+    assert_eq!(files_in(dir.path()), before);
     let words = format!("integrate {common} --out @sol.csv --max-imu-gap-s 61");
     let (status, _, stderr) = run_in(dir.path(), &words);
     assert_eq!(status, 0, "{stderr}");
