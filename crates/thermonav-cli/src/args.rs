@@ -255,6 +255,10 @@ pub struct IntegrateArgs {
     /// --operating-temperature-c also fixes the model.
     #[arg(long)]
     pub no_schedule: bool,
+    /// Also run the RTS smoother (EKF only) and write the smoothed trajectory and its
+    /// states beside the solution, as STEM.smoothed.csv and STEM.smoothed.states.csv.
+    #[arg(long)]
+    pub smooth: bool,
     /// Do not subtract the bank's thermal bias calibration bias(T) from the IMU samples.
     #[arg(long)]
     pub no_compensation: bool,

@@ -389,14 +389,21 @@ fn reference_start(path: &Path, inputs: &Inputs) -> Result<(Estimate, InitialSou
 }
 
 fn write_outputs(files: &SolutionFiles, solution: &Solution) -> Result<(), Failure> {
-    let points: Vec<TrajectoryPoint> = solution
-        .epochs
+    write_epochs(&files.solution, &files.states, &solution.epochs)?;
+    if let Some([trajectory, states]) = &files.smoothed {
+        write_epochs(trajectory, states, &solution.smoothed)?;
+    }
+    write_innovations_file(&files.innovations, &solution.innovations).data()
+}
+
+/// A solution's trajectory CSV and its state file.
+fn write_epochs(trajectory: &Path, states: &Path, epochs: &[SolutionEpoch]) -> Result<(), Failure> {
+    let points: Vec<TrajectoryPoint> = epochs
         .iter()
         .map(|e| TrajectoryPoint::from_nav_state(&e.estimate.nav))
         .collect();
-    write_trajectory_file(&files.solution, &points).data()?;
-    write_solution_states_file(&files.states, &solution.epochs).data()?;
-    write_innovations_file(&files.innovations, &solution.innovations).data()
+    write_trajectory_file(trajectory, &points).data()?;
+    write_solution_states_file(states, epochs).data()
 }
 
 /// One channel of the model the filter used.

@@ -27,6 +27,9 @@ fn summary_rows(s: &Summary) -> Vec<Row> {
     rows.push(("solution", s.files.solution.display().to_string()));
     rows.push(("states", s.files.states.display().to_string()));
     rows.push(("innovations", s.files.innovations.display().to_string()));
+    if let Some([trajectory, _]) = &s.files.smoothed {
+        rows.push(("smoothed", trajectory.display().to_string()));
+    }
     rows
 }
 

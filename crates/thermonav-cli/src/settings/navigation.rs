@@ -63,6 +63,9 @@ pub struct SolutionFiles {
     pub states: PathBuf,
     /// STEM.innovations.csv beside it.
     pub innovations: PathBuf,
+    /// With `--smooth`: the RTS-smoothed trajectory STEM.smoothed.csv and its states
+    /// STEM.smoothed.states.csv.
+    pub smoothed: Option<[PathBuf; 2]>,
 }
 
 impl SolutionFiles {
@@ -72,7 +75,34 @@ impl SolutionFiles {
             solution: solution.to_path_buf(),
             states: sidecar(solution, "states"),
             innovations: sidecar(solution, "innovations"),
+            smoothed: None,
         }
+    }
+
+    /// With the smoothed trajectory and its states beside the solution too.
+    pub fn smoothed(self) -> Self {
+        let smoothed = [
+            sidecar(&self.solution, "smoothed"),
+            sidecar(&self.solution, "smoothed.states"),
+        ];
+        Self {
+            smoothed: Some(smoothed),
+            ..self
+        }
+    }
+
+    /// Every file written, each named by what it is.
+    pub fn named(&self) -> Vec<(&'static str, &Path)> {
+        let mut files = vec![
+            ("solution", self.solution.as_path()),
+            ("state file", self.states.as_path()),
+            ("innovations file", self.innovations.as_path()),
+        ];
+        if let Some([trajectory, states]) = &self.smoothed {
+            files.push(("smoothed solution", trajectory.as_path()));
+            files.push(("smoothed state file", states.as_path()));
+        }
+        files
     }
 }
 
@@ -115,7 +145,15 @@ pub struct IntegrateSettings {
 
 /// Resolves `integrate`.
 pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
-    let outputs = SolutionFiles::beside(&args.out);
+    if args.smooth && FilterKind::from(args.filter) != FilterKind::Ekf {
+        return Err(Failure::Usage(anyhow!(
+            "--smooth: the RTS smoother runs on the EKF's covariance; drop --filter ukf"
+        )));
+    }
+    let outputs = match args.smooth {
+        true => SolutionFiles::beside(&args.out).smoothed(),
+        false => SolutionFiles::beside(&args.out),
+    };
     let noise = noise_source(&args.bank, &args.profile)?;
     let temperature = model_temperature(args)?;
     let io = Io::new()
@@ -126,10 +164,11 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         Some(path) => io.input("--initial-from", path),
         None => io,
     };
-    io.output("solution", &outputs.solution)
-        .output("state file", &outputs.states)
-        .output("innovations file", &outputs.innovations)
-        .check()?;
+    let io = outputs
+        .named()
+        .into_iter()
+        .fold(io, |io, (what, path)| io.output(what, path));
+    io.check()?;
     Ok(IntegrateSettings {
         imu: args.imu.clone(),
         gnss: args.gnss.clone(),
@@ -223,6 +262,7 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
             heading: !args.no_heading,
         },
         max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
+        smooth: args.smooth,
         ..EngineSettings::default()
     })
 }

@@ -621,3 +621,69 @@ fn evaluate_exits_non_zero_when_every_model_fails() {
     assert!(stderr.contains("every model's filter failed"), "{stderr}");
     assert!(dir.path().join("ev/evaluation.json").exists());
 }
+
+/// (t_s, north_m, east_m) of a trajectory CSV, north and east from latitude and longitude on
+/// a sphere of the Earth's mean radius (enough for differences of metres).
+fn planar(path: &Path) -> Vec<(f64, f64, f64)> {
+    const RADIUS_M: f64 = 6_371_000.0;
+    positions(path)
+        .into_iter()
+        .map(|(t, lat, lon)| {
+            let north = lat.to_radians() * RADIUS_M;
+            (
+                t,
+                north,
+                lon.to_radians() * RADIUS_M * 44.65_f64.to_radians().cos(),
+            )
+        })
+        .collect()
+}
+
+/// The largest horizontal distance, m, between `solution` and `reference` at the solution's
+/// epochs inside `[from_s, to_s)` (the reference point at the same time, to 1 ms).
+fn max_error_m(solution: &Path, reference: &Path, (from_s, to_s): (f64, f64)) -> f64 {
+    let truth = planar(reference);
+    planar(solution)
+        .into_iter()
+        .filter(|(t, _, _)| (from_s..to_s).contains(t))
+        .filter_map(|(t, n, e)| {
+            let k = truth.partition_point(|p| p.0 < t - 1e-3);
+            let (tt, tn, te) = *truth.get(k)?;
+            ((tt - t).abs() < 1e-3).then(|| (n - tn).hypot(e - te))
+        })
+        .fold(0.0, f64::max)
+}
+
+// Issue 18: `integrate --smooth` writes the RTS-smoothed trajectory and its states beside the
+// forward solution; inside a 60 s outage its largest error against the simulated truth is
+// below half the forward filter's (both ends of the outage tie it to GNSS). The UKF is
+// refused (exit 2) before anything is read.
+#[test]
+fn integrate_smooth_writes_a_smoothed_solution_closer_to_the_truth() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("sol.csv");
+    let args = integrate_args(&vessel, &bank, &out, &["--outages", "120+60", "--smooth"]);
+    let summary = json_of(&args);
+    let smoothed = dir.path().join("sol.smoothed.csv");
+    assert_eq!(summary["files"]["smoothed"][0], arg(&smoothed));
+    assert!(dir.path().join("sol.smoothed.states.csv").exists());
+    let reference = vessel.join("reference.csv");
+    let forward_m = max_error_m(&out, &reference, (120.0, 180.0));
+    let smoothed_m = max_error_m(&smoothed, &reference, (120.0, 180.0));
+    assert!(forward_m > 1.0, "the outage drifts: {forward_m} m");
+    assert!(
+        smoothed_m < 0.5 * forward_m,
+        "smoothed {smoothed_m} m, forward {forward_m} m"
+    );
+    let ukf = dir.path().join("ukf.csv");
+    let args = integrate_args(&vessel, &bank, &ukf, &["--smooth", "--filter", "ukf"]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("--smooth: the RTS smoother runs on the EKF"),
+        "{stderr}"
+    );
+    assert!(!ukf.exists());
+}

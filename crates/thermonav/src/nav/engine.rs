@@ -25,6 +25,7 @@ use super::measurement::{
 use super::outage::Outages;
 use super::schedule::ModelSchedule;
 use super::sensor_model::ImuStochasticModel;
+use super::smoother::{ForwardHistory, MAX_SMOOTHED_STEPS};
 use super::solution::{InnovationRecord, Solution, SolutionEpoch};
 use crate::filter::FilterError;
 use crate::filter::ekf::{joseph_update, propagate_covariance};
@@ -113,6 +114,9 @@ pub struct EngineSettings {
     pub default_position_sd_m: [f64; 3],
     /// Velocity standard deviation of GNSS velocities, m/s.
     pub velocity_sd_m_s: [f64; 3],
+    /// Keep the forward history and run the RTS smoother after the forward pass (EKF only;
+    /// at most [`MAX_SMOOTHED_STEPS`] covariance steps).
+    pub smooth: bool,
     /// Longest IMU interval the filter crosses, s: a longer gap is refused
     /// ([`NavError::ImuGap`]) rather than dead-reckoned on one held rate.
     pub max_imu_gap_s: f64,
@@ -140,6 +144,7 @@ impl Default for EngineSettings {
             default_position_sd_m: [1.0, 1.0, 2.0],
             velocity_sd_m_s: [0.05, 0.05, 0.1],
             max_imu_gap_s: 1.0,
+            smooth: false,
         }
     }
 }
@@ -188,6 +193,9 @@ pub enum NavError {
         /// The latitude, °.
         latitude_deg: f64,
     },
+    /// Smoothing asked of a filter or a run it does not cover.
+    #[error("cannot smooth: {0}")]
+    Smoothing(String),
     /// An IMU interval longer than [`EngineSettings::max_imu_gap_s`].
     #[error(
         "the IMU record has a gap of {length_s:.3} s after t = {start_s:.3} s, longer than the {limit_s} s the filter bridges (dead reckoning on a held rate over a gap is not navigation); cut the run at the gap or raise --max-imu-gap-s to bridge it"
@@ -250,6 +258,33 @@ pub fn check_inputs(
 ) -> Result<(), NavError> {
     check_imu_gaps(increments, settings.max_imu_gap_s)?;
     check_fix_latitudes(gnss)
+}
+
+/// Smoothing needs the EKF's covariance and a history within [`MAX_SMOOTHED_STEPS`]: the
+/// steps are the record's span over the covariance interval plus one per fix (an update ends
+/// a step early).
+fn check_smoothable(
+    increments: &[Increment],
+    gnss: &[GnssFix],
+    settings: &EngineSettings,
+) -> Result<(), NavError> {
+    if settings.filter != FilterKind::Ekf {
+        return Err(NavError::Smoothing(format!(
+            "the RTS smoother runs on the EKF's covariance, not the {}'s",
+            settings.filter.name()
+        )));
+    }
+    let span_s = match (increments.first(), increments.last()) {
+        (Some(a), Some(b)) => (b.time - a.start()).as_seconds(),
+        _ => 0.0,
+    };
+    let steps = (span_s / settings.covariance_interval_s).ceil() as usize + gnss.len();
+    match steps <= MAX_SMOOTHED_STEPS {
+        true => Ok(()),
+        false => Err(NavError::Smoothing(format!(
+            "about {steps} covariance steps, more than the {MAX_SMOOTHED_STEPS} whose history is kept (11 KB each): lower --covariance-rate-hz or smooth a shorter run"
+        ))),
+    }
 }
 
 /// The first IMU interval longer than `limit_s`, refused.
@@ -352,6 +387,7 @@ struct Run<'a> {
     gates: [Option<ChiSquareGate>; 2],
     consecutive_rejections: [usize; 3],
     solution: Solution,
+    history: Option<ForwardHistory>,
     next_output: Timestamp,
     output_step: Duration,
     covariance_step: Duration,
@@ -398,6 +434,9 @@ pub fn run_scheduled(
         return Err(NavError::NoImu(start.as_seconds()));
     }
     check_inputs(&increments[first..], gnss, settings)?;
+    if settings.smooth {
+        check_smoothable(&increments[first..], gnss, settings)?;
+    }
     let mut run = Run::new(initial, p0, schedule, settings)?;
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
     for (n, inc) in increments[first..].iter().enumerate() {
@@ -425,6 +464,13 @@ pub fn run_scheduled(
     }
     run.propagate()?;
     run.record();
+    if let (Some(history), Core::Ekf(p)) = (&mut run.history, &run.core) {
+        // The last updates came after the last step's end: the history ends filtered.
+        history.begin(run.estimate, **p);
+        run.solution.smoothed = history
+            .smooth(&settings.outages)
+            .map_err(|e| NavError::Smoothing(e.to_string()))?;
+    }
     run.solution.imu_samples = increments.len() - first;
     progress(increments.len() - first);
     Ok(run.solution)
@@ -476,7 +522,9 @@ impl<'a> Run<'a> {
                 epochs: Vec::new(),
                 innovations: Vec::new(),
                 imu_samples: 0,
+                smoothed: Vec::new(),
             },
+            history: settings.smooth.then(ForwardHistory::default),
             next_output: initial.nav.time,
             output_step,
             covariance_step,
@@ -495,6 +543,13 @@ impl<'a> Run<'a> {
 
     /// One IMU interval: mechanize the nominal, accumulate the window, propagate when due.
     fn step(&mut self, raw: &Increment) -> Result<(), NavError> {
+        if let (Some(history), Core::Ekf(p), false) = (
+            &mut self.history,
+            &self.core,
+            self.window.raw.dt.is_positive(),
+        ) {
+            history.begin(self.estimate, **p);
+        }
         let corrected = self.estimate.sensors.correct(raw);
         let previous = if self.previous.dt.is_positive() {
             self.previous
@@ -588,7 +643,12 @@ impl<'a> Run<'a> {
         let phi = model.transition_matrix(&f, dt);
         let q = model.process_noise(&start.nav.attitude, &phi, dt);
         match &mut self.core {
-            Core::Ekf(p) => **p = propagate_covariance(p, &phi, &q),
+            Core::Ekf(p) => {
+                **p = propagate_covariance(p, &phi, &q);
+                if let Some(history) = &mut self.history {
+                    history.end(phi, self.estimate, **p);
+                }
+            }
             Core::Ukf(u) => {
                 let raw = self.window.raw;
                 let reference = Estimate {

@@ -27,4 +27,5 @@ pub mod measurement;
 pub mod outage;
 pub mod schedule;
 pub mod sensor_model;
+pub mod smoother;
 pub mod solution;

@@ -69,6 +69,9 @@ pub struct Solution {
     pub innovations: Vec<InnovationRecord>,
     /// IMU samples processed.
     pub imu_samples: usize,
+    /// The RTS-smoothed solution at every covariance step ([`super::smoother`]); empty
+    /// unless [`super::engine::EngineSettings::smooth`] was set.
+    pub smoothed: Vec<SolutionEpoch>,
 }
 
 impl Solution {

@@ -411,3 +411,133 @@ fn velocity_updates_are_consistent() {
     assert!(velocity.offered >= 290, "{velocity:?}");
     assert!((velocity.mean_nis / 3.0 - 1.0).abs() < 0.2, "{velocity:?}");
 }
+
+/// The horizontal errors, m, of the epochs in `epochs` that fall on truth samples and inside
+/// `[from_s, to_s)`.
+fn horizontal_errors_m(
+    record: &VesselRecord,
+    epochs: &[thermonav::nav::solution::SolutionEpoch],
+    (from_s, to_s): (f64, f64),
+) -> Vec<f64> {
+    let states = &record.reference.states;
+    epochs
+        .iter()
+        .filter(|e| (from_s..to_s).contains(&e.estimate.nav.time.as_seconds()))
+        .filter(|e| {
+            let k = states.partition_point(|s| s.time < e.estimate.nav.time);
+            k < states.len() && states[k].time == e.estimate.nav.time
+        })
+        .map(|e| horizontal_error_m(record, &e.estimate))
+        .collect()
+}
+
+// Issue 18: the RTS smoother. On a simulated survey with two 60 s outages, the smoothed
+// solution is closer to the truth than the forward one with GNSS (RMS after convergence) and
+// in each outage its largest error is below the forward filter's largest, by a wide margin
+// (the backward pass ties both ends of the outage to GNSS); its covariance is never above
+// the forward one (P_s <= P_f is a property of the recursion) and still covers its error.
+#[test]
+fn the_smoother_beats_the_forward_filter_with_gnss_and_in_outages() {
+    let record = vessel(5, 600.0);
+    let outages = Outages::from_start_duration(&[(200.0, 60.0), (400.0, 60.0)]).unwrap();
+    let settings = EngineSettings {
+        smooth: true,
+        ..settings(FilterKind::Ekf, outages)
+    };
+    let solution = navigate(&record, 5, &settings);
+    let (forward, smoothed) = (&solution.epochs, &solution.smoothed);
+    assert!(
+        smoothed.len() > 5000,
+        "one epoch per covariance step: {}",
+        smoothed.len()
+    );
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let aided = (60.0, 200.0);
+    let (f, s) = (
+        horizontal_errors_m(&record, forward, aided),
+        horizontal_errors_m(&record, smoothed, aided),
+    );
+    assert!(f.len() > 1000 && s.len() > 1000, "{} {}", f.len(), s.len());
+    eprintln!(
+        "aided RMS: smoothed {:.3} m, forward {:.3} m",
+        rms(&s),
+        rms(&f)
+    );
+    assert!(
+        rms(&s) < rms(&f),
+        "aided RMS: smoothed {} m, forward {} m",
+        rms(&s),
+        rms(&f)
+    );
+    for window in [(200.0, 260.0), (400.0, 460.0)] {
+        let (f, s) = (
+            horizontal_errors_m(&record, forward, window),
+            horizontal_errors_m(&record, smoothed, window),
+        );
+        eprintln!(
+            "outage {window:?}: max smoothed {:.2} m, forward {:.2} m",
+            max(&s),
+            max(&f)
+        );
+        assert!(
+            max(&s) < 0.5 * max(&f),
+            "outage {window:?}: smoothed max {} m, forward max {} m",
+            max(&s),
+            max(&f)
+        );
+    }
+    let forward_at = |t| forward.iter().find(|e| e.estimate.nav.time == t);
+    let mut compared = 0;
+    for e in smoothed {
+        if let Some(f) = forward_at(e.estimate.nav.time) {
+            compared += 1;
+            for i in 0..9 {
+                assert!(
+                    e.sd[i] <= f.sd[i] * (1.0 + 1e-9),
+                    "state {i} at {:?}",
+                    e.estimate.nav.time
+                );
+            }
+        }
+    }
+    assert!(compared > 1000, "{compared}");
+    let mid_outage = smoothed
+        .iter()
+        .find(|e| (e.estimate.nav.time.as_seconds() - 230.0).abs() < 0.05)
+        .unwrap();
+    let error = nav_error(&record, &mid_outage.estimate);
+    for axis in 0..2 {
+        assert!(
+            error[axis].abs() < 3.5 * mid_outage.sd[axis],
+            "axis {axis}: {error:?} vs {:?}",
+            mid_outage.sd
+        );
+    }
+}
+
+// Smoothing needs the EKF's covariance: the UKF is refused with the reason.
+#[test]
+fn the_smoother_refuses_the_ukf() {
+    let record = vessel(5, 30.0);
+    let settings = EngineSettings {
+        smooth: true,
+        ..settings(FilterKind::Ukf, Outages::none())
+    };
+    let (start, uncertainty) = initial(&record, 5);
+    let increments = increments_from_series(&record.imu);
+    let error = run(
+        &increments,
+        &record.gnss,
+        start,
+        uncertainty.covariance(),
+        &true_model(),
+        &settings,
+        &mut |_| {},
+    )
+    .unwrap_err();
+    assert!(
+        error.to_string().contains("RTS smoother runs on the EKF"),
+        "{error}"
+    );
+}
