@@ -3,6 +3,8 @@
 
 use rayon::prelude::*;
 
+use crate::imu::{Channel, ImuSeries};
+
 use super::deviation::{centred_cumulative_sum, checked_factors_for};
 use super::{
     AllanError, DeviationCurve, DeviationKind, TauGrid, hadamard_deviation, modified_adev,
@@ -43,6 +45,27 @@ pub fn deviation(
         DeviationKind::Totdev => total_deviation,
     };
     estimator(y, sample_rate_hz, grid)
+}
+
+/// The deviation `kind` ([`deviation`]) of every channel of `series` (rates sampled at
+/// `sample_rate_hz`), in [`Channel::ALL`] order.
+///
+/// # Errors
+/// The first channel whose curve cannot be computed, with its [`AllanError`].
+pub fn channel_deviations(
+    kind: DeviationKind,
+    series: &ImuSeries,
+    sample_rate_hz: f64,
+    grid: &TauGrid,
+) -> Result<Vec<(Channel, DeviationCurve)>, (Channel, AllanError)> {
+    Channel::ALL
+        .into_iter()
+        .map(|c| {
+            deviation(kind, series.channel(c), sample_rate_hz, grid)
+                .map(|curve| (c, curve))
+                .map_err(|e| (c, e))
+        })
+        .collect()
 }
 
 /// The curve of `kind` whose variance at factor m is `variance(phase, m)`, with the phase

@@ -47,7 +47,7 @@ pub use confidence::{
 };
 pub use deviation::overlapping_adev;
 pub use edf::edf_overlapping_adev;
-pub use family::deviation;
+pub use family::{channel_deviations, deviation};
 pub use hadamard::{hadamard_deviation, overlapping_hadamard_deviation};
 pub use kind::{DeviationCurve, DeviationKind, UnknownDeviationKind};
 pub use modified::{modified_adev, time_deviation};
