@@ -1,14 +1,15 @@
 //! Which member of the Allan family a curve holds, the factors each one can be evaluated at, its
 //! number of terms, and the curve type they share.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A member of the Allan family of two-sample-like deviations, all computed from the phase
 /// x = τ₀ Σ (y − ȳ) of rate samples y (allantools' `data_type='freq'`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DeviationKind {
-    /// Overlapping Allan deviation (allantools `oadev`), unit of the data.
+    /// Overlapping Allan deviation (allantools `oadev`), unit of the data; the default.
+    #[default]
     Adev,
     /// Modified Allan deviation (allantools `mdev`), unit of the data.
     Mdev,
