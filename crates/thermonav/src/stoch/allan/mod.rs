@@ -18,7 +18,11 @@
 //! [`overlapping_hadamard_deviation`]) and the total deviation ([`total_deviation`]), each
 //! equal to allantools 2024.6 with `data_type='freq'` (integration tests, 1e-9 relative).
 //! Confidence limits and the IEEE 952 noise terms below are the overlapping Allan
-//! deviation's only.
+//! deviation's only. The other kinds have none yet, on purpose: their limits need their own
+//! equivalent degrees of freedom (Greenhall & Riley with d = 3 for the Hadamard variances, the
+//! modified-variance case for mdev and tdev, NIST SP 1065 Table 7 for totdev; allantools has
+//! all three) and a noise identification for their difference order, none of which is written
+//! here; the Allan deviation's EDF in their place would give limits that are simply wrong.
 //!
 //! Confidence intervals follow Stable32 1.60: the noise type α at each τ by the lag-1
 //! autocorrelation of the m-averages when at least 30 exist and by Barnes' B1 ratio (with R(n)
