@@ -12,7 +12,7 @@ use thermonav::rng::DEFAULT_SEED;
 use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
 use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
-use thermonav::stoch::allan::DEFAULT_CONFIDENCE;
+use thermonav::stoch::allan::{DEFAULT_CONFIDENCE, DeviationKind};
 use thermonav::stoch::characterize::CharacterizeSettings;
 
 fn engine() -> EngineSettings {
@@ -292,6 +292,12 @@ pub struct AllanArgs {
     /// Confidence level of the limits (0.683 is Stable32's).
     #[arg(long, default_value_t = DEFAULT_CONFIDENCE)]
     pub confidence: f64,
+    /// Which deviation: adev (overlapping Allan, with confidence limits and IEEE 952 noise
+    /// terms), mdev (modified Allan), hdev / ohdev (Hadamard, non-overlapping / overlapping),
+    /// tdev (time deviation, rate unit times s) or totdev (total); all but adev come without
+    /// limits or terms.
+    #[arg(long, default_value = "adev")]
+    pub kind: DeviationKind,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,

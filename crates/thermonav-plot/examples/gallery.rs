@@ -93,7 +93,7 @@ fn allan() -> String {
                 },
             ],
             tau_s,
-            adev,
+            deviation: adev,
         }
     };
     let curves = [

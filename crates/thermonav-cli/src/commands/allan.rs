@@ -1,4 +1,5 @@
-//! `thermonav allan`: overlapping Allan deviation of every channel.
+//! `thermonav allan`: overlapping Allan deviation of every channel, or another member of the
+//! Allan family (`--kind`).
 
 use crate::args::AllanArgs;
 use crate::failure::{Classify, Failure};
@@ -7,8 +8,11 @@ use crate::report::print_json;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use thermonav::imu::{Channel, SampleKind};
-use thermonav::stoch::allan::{AllanCurve, TauGrid, confidence_intervals, overlapping_adev};
+use thermonav::imu::{Channel, ImuSeries, SampleKind};
+use thermonav::stoch::allan::{
+    AllanCurve, DeviationCurve, DeviationKind, TauGrid, channel_deviations, confidence_intervals,
+    overlapping_adev,
+};
 use thermonav::stoch::noise_terms::fit_noise_terms;
 
 /// The JSON document of `allan --json`.
@@ -36,6 +40,9 @@ struct ChannelJson {
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     check_confidence(args.confidence)?;
+    if args.kind != DeviationKind::Adev {
+        return run_family(args);
+    }
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
     let grid: TauGrid = args.taus.into();
     let mut channels = BTreeMap::new();
@@ -113,5 +120,105 @@ fn print_channel(name: &str, c: &ChannelJson) {
             "{:>12.4} {:>14.6e} {:>14.6e} {:>14.6e} {:>10} {:>6}",
             c.tau_s[i], c.adev[i], c.ci_low[i], c.ci_high[i], c.n_terms[i], c.noise_type_alpha[i]
         );
+    }
+}
+
+/// The JSON document of `allan --kind K --json` for a kind other than adev.
+#[derive(Debug, Serialize)]
+struct FamilyJson {
+    file: String,
+    sample_rate_hz: f64,
+    kind: DeviationKind,
+    channels: BTreeMap<&'static str, FamilyChannelJson>,
+}
+
+/// One channel of [`FamilyJson`]: the deviation under the kind's name, in `unit`.
+#[derive(Debug, Serialize)]
+struct FamilyChannelJson {
+    unit: &'static str,
+    tau_s: Vec<f64>,
+    #[serde(flatten)]
+    deviation: BTreeMap<&'static str, Vec<f64>>,
+    n_terms: Vec<usize>,
+}
+
+/// `allan --kind K` for a kind other than adev: each channel's curve, without confidence limits
+/// or noise terms (those are the overlapping Allan deviation's).
+fn run_family(args: &AllanArgs) -> Result<(), Failure> {
+    let doc = family_doc(args)?;
+    if args.json {
+        return print_json(&doc);
+    }
+    print_family_text(&doc);
+    Ok(())
+}
+
+/// Every channel's curve of `args.kind`.
+fn family_doc(args: &AllanArgs) -> Result<FamilyJson, Failure> {
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
+    let curves = family_curves(args, &series, rate_hz)?;
+    Ok(FamilyJson {
+        file: args.file.display().to_string(),
+        sample_rate_hz: rate_hz,
+        kind: args.kind,
+        channels: curves.into_iter().map(family_channel).collect(),
+    })
+}
+
+/// Each channel with its curve.
+type Curves = Vec<(Channel, DeviationCurve)>;
+
+/// The curve of `args.kind` of every channel of `series`, or the first channel's error.
+fn family_curves(args: &AllanArgs, series: &ImuSeries, rate_hz: f64) -> Result<Curves, Failure> {
+    channel_deviations(args.kind, series, rate_hz, &args.taus.into())
+        .map_err(|(c, e)| anyhow!("{}: channel {}: {e}", args.file.display(), c.name()))
+        .data()
+}
+
+/// A channel's name and its part of [`FamilyJson`].
+type NamedChannel = (&'static str, FamilyChannelJson);
+
+/// A channel's name and its curve in its unit: the rate's, or the rate's times seconds (tdev).
+fn family_channel((channel, curve): (Channel, DeviationCurve)) -> NamedChannel {
+    let json = FamilyChannelJson {
+        unit: deviation_unit(curve.kind, channel),
+        tau_s: curve.tau_s,
+        deviation: BTreeMap::from([(curve.kind.name(), curve.deviation)]),
+        n_terms: curve.n_terms,
+    };
+    (channel.name(), json)
+}
+
+/// The SI unit of `kind` on a rate `channel`: rad/s or m/s^2, times seconds (rad, m/s) for tdev.
+fn deviation_unit(kind: DeviationKind, channel: Channel) -> &'static str {
+    let scaled = kind.is_time_scaled();
+    channel.si_unit(if scaled {
+        SampleKind::Increments
+    } else {
+        SampleKind::Rates
+    })
+}
+
+/// The text report of a kind other than adev: a heading line, then each channel's table.
+fn print_family_text(doc: &FamilyJson) {
+    let (kind, rate_hz, title) = (doc.kind, doc.sample_rate_hz, doc.kind.title());
+    println!(
+        "{}: {rate_hz:.3} Hz, {title} ({kind}; no limits or noise terms)",
+        doc.file
+    );
+    for (name, c) in &doc.channels {
+        print_family_channel(name, kind, c);
+    }
+}
+
+/// One channel of a kind other than adev: its unit, then τ, deviation and terms.
+fn print_family_channel(name: &str, kind: DeviationKind, c: &FamilyChannelJson) {
+    let header = format!("{kind} ({})", c.unit);
+    println!(
+        "\n{name} [{}]\n{:>12} {header:>16} {:>10}",
+        c.unit, "tau_s", "n_terms"
+    );
+    for (i, sigma) in c.deviation[kind.name()].iter().enumerate() {
+        println!("{:>12.4} {sigma:>16.6e} {:>10}", c.tau_s[i], c.n_terms[i]);
     }
 }

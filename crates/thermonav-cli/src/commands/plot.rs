@@ -13,6 +13,7 @@ use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
 use thermonav::nav::outage::Outages;
 use thermonav::stoch::acf::{Demean, autocovariance};
+use thermonav::stoch::allan::DeviationKind;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
 use thermonav::trajectory::TrajectoryPoint;
@@ -20,7 +21,7 @@ use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{
     AllanCurve, ConfidenceBand, NoiseTerm, NoiseTermReading, allan_curves_of_entry,
-    allan_deviation_figure,
+    allan_deviation_figure, deviation_figure, deviation_name,
 };
 use thermonav_plot::figures::autocorrelation::{
     Autocovariance, GaussMarkovFit, autocorrelation_figure,
@@ -142,20 +143,24 @@ struct TermsJson {
     rate_ramp: Option<TermJson>,
 }
 
-/// One channel of `allan --json`.
+/// One channel of `allan --json` of any `--kind`: the deviation is under the kind's name, the
+/// limits and terms are there for adev only.
 #[derive(Debug, Deserialize)]
 struct AllanChannelJson {
     tau_s: Vec<f64>,
-    adev: Vec<f64>,
-    ci_low: Vec<f64>,
-    ci_high: Vec<f64>,
-    terms: TermsJson,
+    ci_low: Option<Vec<f64>>,
+    ci_high: Option<Vec<f64>>,
+    terms: Option<TermsJson>,
+    #[serde(flatten)]
+    other: BTreeMap<String, serde_json::Value>,
 }
 
-/// The document of `allan --json`.
+/// The document of `allan --json` (no `kind` means adev, as `allan` wrote it before `--kind`).
 #[derive(Debug, Deserialize)]
 struct AllanJson {
-    confidence: f64,
+    #[serde(default)]
+    kind: DeviationKind,
+    confidence: Option<f64>,
     channels: BTreeMap<Channel, AllanChannelJson>,
 }
 
@@ -176,14 +181,17 @@ fn allan_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
         return bank_allan_svg(args, units);
     }
     let doc = allan_json_of(json, &args.input)?;
-    let curves: Vec<AllanCurve> = doc
+    let curves = doc
         .channels
         .into_iter()
-        .map(|(channel, c)| allan_curve(channel, c, doc.confidence))
-        .collect();
-    let title = format!("Allan deviation, {}", file_name(&args.input));
-    Ok(allan_deviation_figure(
+        .map(|(channel, c)| allan_curve(channel, c, doc.kind, doc.confidence))
+        .collect::<Result<Vec<AllanCurve>, String>>()
+        .map_err(|e| anyhow!("{}: {e}", args.input.display()))
+        .data()?;
+    let title = format!("{}, {}", deviation_name(doc.kind), file_name(&args.input));
+    Ok(deviation_figure(
         &title_or(args, title),
+        doc.kind,
         &curves,
         units,
     ))
@@ -234,19 +242,33 @@ fn entry_index(
     }
 }
 
-/// One channel of `allan --json` as a curve with its confidence band and noise terms.
-fn allan_curve(channel: Channel, c: AllanChannelJson, confidence: f64) -> AllanCurve {
-    AllanCurve {
+/// One channel of `allan --json` as a curve of `kind` with its confidence band and noise terms
+/// when the document has them; an error names the channel whose `kind` values are missing.
+fn allan_curve(
+    channel: Channel,
+    mut c: AllanChannelJson,
+    kind: DeviationKind,
+    confidence: Option<f64>,
+) -> Result<AllanCurve, String> {
+    let values = c.other.remove(kind.name()).unwrap_or_default();
+    Ok(AllanCurve {
         channel,
         tau_s: c.tau_s,
-        adev: c.adev,
-        confidence: Some(ConfidenceBand {
-            level: confidence,
-            low: c.ci_low,
-            high: c.ci_high,
-        }),
-        terms: term_readings(c.terms),
-    }
+        deviation: serde_json::from_value(values)
+            .map_err(|e| format!("channel {}: `{kind}` values: {e}", channel.name()))?,
+        confidence: confidence_band(confidence, c.ci_low, c.ci_high),
+        terms: c.terms.map(term_readings).unwrap_or_default(),
+    })
+}
+
+/// The band of `allan --json` when it has a level and both limits.
+fn confidence_band(
+    level: Option<f64>,
+    low: Option<Vec<f64>>,
+    high: Option<Vec<f64>>,
+) -> Option<ConfidenceBand> {
+    let (level, low, high) = (level?, low?, high?);
+    Some(ConfidenceBand { level, low, high })
 }
 
 /// The noise terms `allan --json` gives, each with its τ range.

@@ -347,3 +347,73 @@ fn a_survey_follows_its_temperature_file_and_refuses_a_bad_one() {
         "{stderr}"
     );
 }
+
+/// The generated white-FM series of `tools/oracles/allan_family.py` and allantools' curves of
+/// it (`crates/thermonav/tests/data/allan_family.json`).
+fn allan_family_white_fm() -> serde_json::Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../thermonav/tests/data/allan_family.json"
+    ))
+    .unwrap();
+    serde_json::from_str::<serde_json::Value>(&text).unwrap()["generated"]["white_fm"].take()
+}
+
+/// The JSON array `v` as numbers.
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+// `allan --kind mdev --json` on a record whose six channels are the white-FM series (5000
+// samples at 10 Hz, written with Rust's shortest round-trip decimals, so read back bit for
+// bit) must give allantools' mdev on the octave grid: same factors and term counts, values to
+// 1e-9 relative (the library's tolerance; see tests/it/allan_family.rs). tdev carries the
+// rate's unit times seconds: rad and m/s.
+#[test]
+fn allan_kind_mdev_json_is_allantools_mdev() {
+    let fixture = allan_family_white_fm();
+    let y = numbers(&fixture["y"]);
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(
+        dir.path(),
+        "white.csv",
+        &crate::imu_csv(y.len(), 10.0, |_, t| y[(t * 10.0).round() as usize]),
+    );
+    let doc = json_of(&["allan", arg(&file), "--kind", "mdev", "--json"]);
+    assert_eq!(doc["kind"], "mdev");
+    assert!(doc.get("confidence").is_none());
+    let expected = &fixture["octave"]["mdev"];
+    for channel in ["gx", "ay"] {
+        let c = &doc["channels"][channel];
+        assert_eq!(c["n_terms"], expected["n_terms"], "{channel}");
+        let pairs = numbers(&c["mdev"])
+            .into_iter()
+            .zip(numbers(&expected["deviation"]));
+        for (got, want) in pairs {
+            assert!(
+                (got / want - 1.0).abs() < 1e-9,
+                "{channel}: {got} vs {want}"
+            );
+        }
+        for (tau_s, m) in numbers(&c["tau_s"]).iter().zip(numbers(&expected["m"])) {
+            assert!(
+                (tau_s - m / 10.0).abs() < 1e-9 * tau_s,
+                "{tau_s} s vs m = {m}"
+            );
+        }
+    }
+    let tdev = json_of(&["allan", arg(&file), "--kind", "tdev", "--json"]);
+    assert_eq!(tdev["channels"]["gx"]["unit"], "rad");
+    assert_eq!(tdev["channels"]["ax"]["unit"], "m/s");
+    let got = numbers(&tdev["channels"]["gz"]["tdev"]);
+    for (got, want) in got
+        .iter()
+        .zip(numbers(&fixture["octave"]["tdev"]["deviation"]))
+    {
+        assert!((got / want - 1.0).abs() < 1e-9, "tdev: {got} vs {want}");
+    }
+}

@@ -180,3 +180,32 @@ fn the_trajectory_figure_highlights_each_outage() {
     ]));
     assert_eq!(status, 2);
 }
+
+// `plot allan` of `allan --kind K --json` draws that kind: its name in the title and on the
+// y axis with its unit (the rate's times seconds for tdev), no confidence band (those kinds
+// carry none). The record is 2000 samples at 100 Hz of a fixed pseudo-random pattern.
+#[test]
+fn plot_allan_draws_the_kind_the_file_carries() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = crate::imu_csv(2000, 100.0, |c, t| {
+        let k = (t * 100.0).round() as usize;
+        ((k * 7919 + c * 104_729) % 1013) as f64 * 1e-4
+    });
+    let record = crate::write_file(dir.path(), "record.csv", &text);
+    for (kind, gyro_label) in [
+        ("mdev", "Modified Allan deviation mod σ(τ) (deg/h)"),
+        ("hdev", "Hadamard deviation Hσ(τ) (deg/h)"),
+        ("ohdev", "Overlapping Hadamard deviation Hσ(τ) (deg/h)"),
+        ("tdev", "Time deviation σx(τ) (deg/h·s)"),
+        ("totdev", "Total deviation σtotal(τ) (deg/h)"),
+    ] {
+        let json = dir.path().join(format!("{kind}.json"));
+        let doc = succeed(&["allan", arg(&record), "--kind", kind, "--json"]);
+        std::fs::write(&json, doc).unwrap();
+        let svg = dir.path().join(format!("{kind}.svg"));
+        succeed(&["plot", "allan", arg(&json), "--out", arg(&svg)]);
+        assert!(axis_labels(&svg).contains(&gyro_label.to_owned()), "{kind}");
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(!text.contains("% confidence"), "{kind}");
+    }
+}

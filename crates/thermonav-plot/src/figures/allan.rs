@@ -7,18 +7,20 @@ use crate::chart::{Chart, Figure, Layer, Marker, Shape, Stroke};
 use crate::palette;
 use crate::scale::Axis;
 use thermonav::imu::{Channel, Sensor};
+use thermonav::stoch::allan::DeviationKind;
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::noise_terms::BIAS_INSTABILITY_FACTOR;
 
-/// An Allan deviation curve of one channel, SI (rad/s or m/s²).
+/// A deviation curve of one channel (Allan or another kind of the family), SI (rad/s or m/s²;
+/// times seconds for the time deviation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct AllanCurve {
     /// The channel.
     pub channel: Channel,
     /// Averaging times, s.
     pub tau_s: Vec<f64>,
-    /// Allan deviation at each τ.
-    pub adev: Vec<f64>,
+    /// The deviation at each τ (the figure's kind).
+    pub deviation: Vec<f64>,
     /// Confidence limits, when known.
     pub confidence: Option<ConfidenceBand>,
     /// Noise terms read off the curve.
@@ -107,8 +109,44 @@ impl NoiseTerm {
     }
 }
 
-/// The figure: a log-log panel per sensor present in `curves`.
+/// The figure of the overlapping Allan deviation: [`deviation_figure`] of
+/// [`DeviationKind::Adev`].
 pub fn allan_deviation_figure(title: &str, curves: &[AllanCurve], units: DisplayUnits) -> String {
+    deviation_figure(title, DeviationKind::Adev, curves, units)
+}
+
+/// The name of a deviation kind as a figure states it, e.g. "Modified Allan deviation".
+pub fn deviation_name(kind: DeviationKind) -> &'static str {
+    match kind {
+        DeviationKind::Adev => "Allan deviation",
+        DeviationKind::Mdev => "Modified Allan deviation",
+        DeviationKind::Hdev => "Hadamard deviation",
+        DeviationKind::Ohdev => "Overlapping Hadamard deviation",
+        DeviationKind::Tdev => "Time deviation",
+        DeviationKind::Totdev => "Total deviation",
+    }
+}
+
+/// The y-axis label of `kind` in the display unit of a rate `rate_unit`: the name, its symbol,
+/// and the unit (the rate's times seconds for the time deviation).
+fn deviation_axis_label(kind: DeviationKind, rate_unit: &str) -> String {
+    let (symbol, unit) = match kind {
+        DeviationKind::Adev => ("σ(τ)", rate_unit.to_owned()),
+        DeviationKind::Mdev => ("mod σ(τ)", rate_unit.to_owned()),
+        DeviationKind::Hdev | DeviationKind::Ohdev => ("Hσ(τ)", rate_unit.to_owned()),
+        DeviationKind::Tdev => ("σx(τ)", format!("{rate_unit}·s")),
+        DeviationKind::Totdev => ("σtotal(τ)", rate_unit.to_owned()),
+    };
+    format!("{} {symbol} ({unit})", deviation_name(kind))
+}
+
+/// The figure of curves of deviation `kind`: a log-log panel per sensor present in `curves`.
+pub fn deviation_figure(
+    title: &str,
+    kind: DeviationKind,
+    curves: &[AllanCurve],
+    units: DisplayUnits,
+) -> String {
     let panels = [Sensor::Gyro, Sensor::Accelerometer]
         .into_iter()
         .filter_map(|sensor| {
@@ -116,13 +154,18 @@ pub fn allan_deviation_figure(title: &str, curves: &[AllanCurve], units: Display
                 .iter()
                 .filter(|c| c.channel.sensor() == sensor)
                 .collect();
-            (!of_sensor.is_empty()).then(|| allan_panel(sensor, &of_sensor, units))
+            (!of_sensor.is_empty()).then(|| allan_panel(sensor, kind, &of_sensor, units))
         })
         .collect();
     Figure::stacked(title, panels).to_svg()
 }
 
-fn allan_panel(sensor: Sensor, curves: &[&AllanCurve], units: DisplayUnits) -> Chart {
+fn allan_panel(
+    sensor: Sensor,
+    kind: DeviationKind,
+    curves: &[&AllanCurve],
+    units: DisplayUnits,
+) -> Chart {
     let shown = |v: f64| units.rate(sensor, v);
     let mut bands = Vec::new();
     let mut lines = Vec::new();
@@ -143,7 +186,7 @@ fn allan_panel(sensor: Sensor, curves: &[&AllanCurve], units: DisplayUnits) -> C
             points: curve
                 .tau_s
                 .iter()
-                .zip(&curve.adev)
+                .zip(&curve.deviation)
                 .map(|(&t, &a)| (t, shown(a)))
                 .collect(),
             stroke: Stroke::solid(color),
@@ -153,10 +196,7 @@ fn allan_panel(sensor: Sensor, curves: &[&AllanCurve], units: DisplayUnits) -> C
     Chart {
         title: sensor_title(sensor).to_owned(),
         x: Axis::log10("averaging time τ (s)"),
-        y: Axis::log10(format!(
-            "Allan deviation σ(τ) ({})",
-            units.rate_unit(sensor)
-        )),
+        y: Axis::log10(deviation_axis_label(kind, units.rate_unit(sensor))),
         layers: bands.into_iter().chain(lines).chain(terms).collect(),
     }
 }
@@ -167,7 +207,7 @@ fn term_layers(curve: &AllanCurve, shown: &impl Fn(f64) -> f64) -> Vec<Layer> {
     let minimum_tau_s = curve
         .tau_s
         .iter()
-        .zip(&curve.adev)
+        .zip(&curve.deviation)
         .min_by(|a, b| a.1.total_cmp(b.1))
         .map_or(1.0, |(&t, _)| t);
     let mut layers = Vec::new();
@@ -225,7 +265,7 @@ pub fn allan_curves_of_entry(entry: &TemperatureEntry) -> Vec<AllanCurve> {
             AllanCurve {
                 channel,
                 tau_s: summary.tau_s.clone(),
-                adev: summary.adev.clone(),
+                deviation: summary.adev.clone(),
                 confidence: None,
                 terms,
             }
@@ -257,7 +297,7 @@ mod tests {
                 tau_range_s: Some((tau_s[0], tau_s[14])),
             }],
             tau_s,
-            adev,
+            deviation: adev,
         }
     }
 
@@ -319,7 +359,7 @@ mod tests {
     fn bias_instability_is_marked_at_0_664_b_at_the_curve_minimum() {
         let mut curve = white(Channel::Gz, 1e-3);
         curve.confidence = None;
-        let minimum = curve.adev[14];
+        let minimum = curve.deviation[14];
         curve.terms = vec![NoiseTermReading {
             term: NoiseTerm::BiasInstability,
             value_si: minimum / BIAS_INSTABILITY_FACTOR,

@@ -2,6 +2,7 @@
 
 mod allan;
 mod allan_confidence;
+mod allan_family;
 mod ar;
 mod error_model;
 mod evaluation;

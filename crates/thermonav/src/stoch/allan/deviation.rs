@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use crate::stoch::acf::sum_of;
 
-use super::{AllanCurve, AllanError, TauGrid};
+use super::{AllanCurve, AllanError, DeviationKind, TauGrid};
 
 /// The overlapping Allan deviation of rate samples `y` at `sample_rate_hz` on `grid`.
 ///
@@ -55,6 +55,16 @@ pub(super) fn checked_factors(
     sample_rate_hz: f64,
     grid: &TauGrid,
 ) -> Result<Vec<usize>, AllanError> {
+    checked_factors_for(DeviationKind::Adev, n, sample_rate_hz, grid)
+}
+
+/// [`checked_factors`] for the factors that `kind` can be evaluated at.
+pub(super) fn checked_factors_for(
+    kind: DeviationKind,
+    n: usize,
+    sample_rate_hz: f64,
+    grid: &TauGrid,
+) -> Result<Vec<usize>, AllanError> {
     if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
         return Err(AllanError::Rate {
             rate_hz: sample_rate_hz,
@@ -63,7 +73,7 @@ pub(super) fn checked_factors(
     if n < 3 {
         return Err(AllanError::TooShort { samples: n });
     }
-    let factors = grid.factors(n);
+    let factors = grid.factors_for(kind, n);
     if factors.is_empty() {
         return Err(AllanError::EmptyGrid { samples: n });
     }
