@@ -18,6 +18,7 @@ mod thermal;
 mod thermal_recovery;
 mod ukf;
 mod vessel;
+mod wavelet_variance;
 
 use std::path::PathBuf;
 
