@@ -8,6 +8,7 @@ pub mod ar;
 pub mod bank;
 pub mod characterize;
 pub mod gauss_markov;
+pub mod gmwm;
 pub mod lot;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;

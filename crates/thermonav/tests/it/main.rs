@@ -7,6 +7,7 @@ mod error_model;
 mod evaluation;
 mod gauss_markov;
 mod geo;
+mod gmwm;
 mod ideal_imu;
 mod ins;
 mod navigation;
