@@ -1,5 +1,6 @@
 //! Stochastic characterisation (the heart of the paper): autocorrelation, autoregressive
-//! models, Gauss-Markov models and Allan variance; and the deterministic thermal curves
+//! models, Gauss-Markov models, Allan variance, the Haar wavelet variance and the composite
+//! models fitted to it (GMWM); and the deterministic thermal curves
 //! (`thermal`).
 pub mod acf;
 pub mod allan;
@@ -8,8 +9,10 @@ pub mod bank;
 pub mod bank_values;
 pub mod characterize;
 pub mod gauss_markov;
+pub mod gmwm;
 pub mod lot;
 pub mod noise_terms;
 pub mod noisy_gauss_markov;
 pub mod streaming;
 pub mod thermal;
+pub mod wavelet_variance;

@@ -8,6 +8,7 @@ mod error_model;
 mod evaluation;
 mod gauss_markov;
 mod geo;
+mod gmwm;
 mod ideal_imu;
 mod ins;
 mod navigation;
@@ -19,6 +20,7 @@ mod thermal;
 mod thermal_recovery;
 mod ukf;
 mod vessel;
+mod wavelet_variance;
 
 use std::path::PathBuf;
 

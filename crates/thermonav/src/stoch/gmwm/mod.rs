@@ -1,0 +1,69 @@
+//! The Generalized Method of Wavelet Moments (GMWM): a composite noise model (white noise,
+//! quantisation noise, random walk, drift and k first-order Gauss-Markov processes) fitted to
+//! the whole Haar wavelet variance of a series (Guerrier, Skaloud, Stebler & Victoria-Feser
+//! 2013, JASA 108(502)).
+//!
+//! θ̂ = argmin (ν̂ − ν(θ))ᵀ Ω (ν̂ − ν(θ)), ν̂ the Haar wavelet variance at scales 2^j
+//! ([`crate::stoch::wavelet_variance`]), ν(θ) the sum of the processes' closed forms
+//! ([`theory`]) and Ω = diag(1/var(ν̂²_j)) from the η₃ chi-square approximation. The
+//! optimiser works on the logarithms of the variances and of the correlation times (so every
+//! variance stays positive); the Gauss-Markov processes are labelled by increasing correlation
+//! time. Starting values are automatic ([`fit_gmwm`]); intervals come from a parametric
+//! bootstrap ([`estimate_gmwm`]), and candidate composites are ranked by the Wavelet
+//! Information Criterion ([`select_model`]). Results are reported in physical units
+//! ([`Parameter`]).
+//!
+//! The R package gmwm (SMAC-Group) is the reference implementation of the method; it is not on
+//! this machine (CRAN is unreachable), so the oracles are the closed forms against their slow
+//! definitions, recovery and interval coverage on simulated composites, and the exact
+//! likelihood of white noise plus one Gauss-Markov process
+//! ([`crate::stoch::noisy_gauss_markov`]).
+
+mod bootstrap;
+mod fit;
+pub mod levenberg_marquardt;
+mod model;
+mod simulate;
+pub mod theory;
+
+pub use bootstrap::{
+    BootstrapSettings, GmwmEstimate, ParameterEstimate, estimate_gmwm, select_model,
+};
+pub use fit::{GmwmFit, fit_gmwm};
+pub use model::{
+    ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
+    physical_parameters,
+};
+pub use simulate::simulate;
+
+/// Why a GMWM fit cannot be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GmwmError {
+    /// Not more scales than parameters.
+    #[error("{scales} wavelet scales cannot identify {parameters} parameters")]
+    TooFewScales {
+        /// Scales of the wavelet variance.
+        scales: usize,
+        /// Parameters of the model.
+        parameters: usize,
+    },
+    /// A scale with zero wavelet variance (a constant series) has no weight.
+    #[error("the wavelet variance is zero at scale {scale_samples} samples")]
+    ZeroWaveletVariance {
+        /// The scale, samples.
+        scale_samples: usize,
+    },
+    /// Bad bootstrap settings.
+    #[error(
+        "the bootstrap needs at least 10 replicates and a level in (0, 1), got {replicates} and {confidence}"
+    )]
+    Bootstrap {
+        /// Replicates asked for.
+        replicates: usize,
+        /// Level asked for.
+        confidence: f64,
+    },
+    /// No candidate model.
+    #[error("no candidate model to select from")]
+    NoCandidates,
+}

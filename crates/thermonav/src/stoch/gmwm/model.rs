@@ -1,0 +1,341 @@
+//! Composite models: which processes are summed ([`ModelSpec`], parsed from `wn+rw+2gm`), the
+//! processes with their per-sample parameters ([`Term`]) and their physical values.
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::Serialize;
+
+use super::theory;
+
+/// Which processes a composite sums: white noise (WN), quantisation noise (QN), random walk
+/// (RW), drift (DR) and k first-order Gauss-Markov processes (GM).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct ModelSpec {
+    /// White noise.
+    pub white: bool,
+    /// Quantisation noise.
+    pub quantisation: bool,
+    /// Random walk.
+    pub random_walk: bool,
+    /// Drift (a linear trend).
+    pub drift: bool,
+    /// Number of Gauss-Markov processes.
+    pub gauss_markov: usize,
+}
+
+/// A model specification that does not parse.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ModelSpecError {
+    /// A part that names no process.
+    #[error("'{0}' is not a process: use wn, qn, rw, dr, gm or kgm (e.g. wn+rw+2gm)")]
+    Unknown(String),
+    /// A process named twice.
+    #[error("'{0}' appears twice: write 2gm for two Gauss-Markov processes")]
+    Repeated(String),
+    /// No process at all.
+    #[error("the model is empty")]
+    Empty,
+}
+
+impl FromStr for ModelSpec {
+    type Err = ModelSpecError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let mut spec = ModelSpec::default();
+        for part in text.split('+').map(|p| p.trim().to_ascii_lowercase()) {
+            spec.add(&part)?;
+        }
+        if spec.n_terms() == 0 {
+            return Err(ModelSpecError::Empty);
+        }
+        Ok(spec)
+    }
+}
+
+impl ModelSpec {
+    fn add(&mut self, part: &str) -> Result<(), ModelSpecError> {
+        let flag = match part {
+            "wn" => &mut self.white,
+            "qn" => &mut self.quantisation,
+            "rw" => &mut self.random_walk,
+            "dr" => &mut self.drift,
+            _ => return self.add_gauss_markov(part),
+        };
+        if *flag {
+            return Err(ModelSpecError::Repeated(part.into()));
+        }
+        *flag = true;
+        Ok(())
+    }
+
+    fn add_gauss_markov(&mut self, part: &str) -> Result<(), ModelSpecError> {
+        let count = part
+            .strip_suffix("gm")
+            .map(|k| {
+                if k.is_empty() {
+                    Ok(1)
+                } else {
+                    k.parse::<usize>()
+                }
+            })
+            .and_then(Result::ok)
+            .filter(|&k| k > 0)
+            .ok_or_else(|| ModelSpecError::Unknown(part.into()))?;
+        if self.gauss_markov > 0 {
+            return Err(ModelSpecError::Repeated(part.into()));
+        }
+        self.gauss_markov = count;
+        Ok(())
+    }
+
+    /// Number of processes.
+    pub fn n_terms(&self) -> usize {
+        [self.white, self.quantisation, self.random_walk, self.drift]
+            .iter()
+            .filter(|&&b| b)
+            .count()
+            + self.gauss_markov
+    }
+
+    /// Number of free parameters (two per Gauss-Markov process, one for each other process).
+    pub fn n_parameters(&self) -> usize {
+        self.n_terms() + self.gauss_markov
+    }
+}
+
+impl fmt::Display for ModelSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts: Vec<String> = [
+            (self.white, "wn"),
+            (self.quantisation, "qn"),
+            (self.random_walk, "rw"),
+            (self.drift, "dr"),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| name.to_string())
+        .collect();
+        match self.gauss_markov {
+            0 => {}
+            1 => parts.push("gm".into()),
+            k => parts.push(format!("{k}gm")),
+        }
+        write!(f, "{}", parts.join("+"))
+    }
+}
+
+/// One process with its parameters per sample (variances in the unit of the data squared).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "process", rename_all = "snake_case")]
+pub enum Term {
+    /// White noise of variance σ² per sample.
+    White {
+        /// σ², unit².
+        variance: f64,
+    },
+    /// Quantisation noise x_t − x_{t−1}, var(x) = Q².
+    Quantisation {
+        /// Q², unit².
+        variance: f64,
+    },
+    /// Random walk with increments of variance γ².
+    RandomWalk {
+        /// γ², unit².
+        variance: f64,
+    },
+    /// Drift ω t (t in samples).
+    Drift {
+        /// ω, unit per sample.
+        slope: f64,
+    },
+    /// First-order Gauss-Markov: AR(1) with φ = exp(−1/Tc), stationary variance s².
+    GaussMarkov {
+        /// Tc, samples.
+        correlation_samples: f64,
+        /// s², unit².
+        variance: f64,
+    },
+}
+
+impl Term {
+    /// The theoretical Haar wavelet variance at scale `tau` samples.
+    pub fn wavelet_variance(&self, tau: f64) -> f64 {
+        match *self {
+            Term::White { variance } => theory::white(variance, tau),
+            Term::Quantisation { variance } => theory::quantisation(variance, tau),
+            Term::RandomWalk { variance } => theory::random_walk(variance, tau),
+            Term::Drift { slope } => theory::drift(slope, tau),
+            Term::GaussMarkov {
+                correlation_samples,
+                variance,
+            } => theory::gauss_markov(correlation_samples, variance, tau),
+        }
+    }
+
+    /// The unconstrained coordinates the optimiser moves: logarithms of the variances (of ω²
+    /// for the drift) and of Tc.
+    pub(super) fn coordinates(&self) -> Vec<f64> {
+        match *self {
+            Term::White { variance }
+            | Term::Quantisation { variance }
+            | Term::RandomWalk { variance } => vec![variance.ln()],
+            Term::Drift { slope } => vec![(slope * slope).ln()],
+            Term::GaussMarkov {
+                correlation_samples,
+                variance,
+            } => vec![correlation_samples.ln(), variance.ln()],
+        }
+    }
+
+    /// The same process with the coordinates `c` (as many as [`Term::coordinates`] returns).
+    pub(super) fn with_coordinates(&self, c: &[f64]) -> Term {
+        match self {
+            Term::White { .. } => Term::White {
+                variance: c[0].exp(),
+            },
+            Term::Quantisation { .. } => Term::Quantisation {
+                variance: c[0].exp(),
+            },
+            Term::RandomWalk { .. } => Term::RandomWalk {
+                variance: c[0].exp(),
+            },
+            Term::Drift { .. } => Term::Drift {
+                slope: (c[0] / 2.0).exp(),
+            },
+            Term::GaussMarkov { .. } => Term::GaussMarkov {
+                correlation_samples: c[0].exp(),
+                variance: c[1].exp(),
+            },
+        }
+    }
+
+    /// Number of coordinates.
+    pub(super) fn n_coordinates(&self) -> usize {
+        match self {
+            Term::GaussMarkov { .. } => 2,
+            _ => 1,
+        }
+    }
+
+    /// The physical parameters of this process for sampling interval `dt_s`, in the order of
+    /// its coordinates (Tc before σ); `gm_index` numbers the Gauss-Markov processes from 1.
+    pub fn physical(&self, dt_s: f64, gm_index: usize) -> Vec<PhysicalParameter> {
+        let p = |kind, value| PhysicalParameter { kind, value };
+        match *self {
+            Term::White { variance } => {
+                vec![p(Parameter::WhiteNoiseDensity, (variance * dt_s).sqrt())]
+            }
+            Term::Quantisation { variance } => {
+                vec![p(Parameter::Quantisation, variance.sqrt() * dt_s)]
+            }
+            Term::RandomWalk { variance } => {
+                vec![p(Parameter::RandomWalk, (variance / dt_s).sqrt())]
+            }
+            Term::Drift { slope } => vec![p(Parameter::DriftRate, slope.abs() / dt_s)],
+            Term::GaussMarkov {
+                correlation_samples,
+                variance,
+            } => vec![
+                p(
+                    Parameter::CorrelationTime(gm_index),
+                    correlation_samples * dt_s,
+                ),
+                p(Parameter::GaussMarkovSigma(gm_index), variance.sqrt()),
+            ],
+        }
+    }
+}
+
+/// What a physical parameter is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Parameter {
+    /// White-noise density N = σ √dt: unit·√s = unit/√Hz (ARW, VRW).
+    WhiteNoiseDensity,
+    /// Quantisation coefficient Q dt: unit·s (IEEE 952's Q, AVAR = 3Q²/τ²).
+    Quantisation,
+    /// Random-walk coefficient K = γ/√dt: unit/√s = unit·√Hz (IEEE 952's K, AVAR ≈ K² τ/3).
+    RandomWalk,
+    /// Drift rate |ω|/dt: unit/s.
+    DriftRate,
+    /// Correlation time of the k-th Gauss-Markov process (k from 1, shortest first), s.
+    CorrelationTime(usize),
+    /// Standard deviation of the k-th Gauss-Markov process, unit.
+    GaussMarkovSigma(usize),
+}
+
+impl Parameter {
+    /// A snake_case name with the unit as a suffix, the unit of the data written `unit`.
+    pub fn name(&self) -> String {
+        match self {
+            Parameter::WhiteNoiseDensity => "white_noise_density_unit_sqrt_s".into(),
+            Parameter::Quantisation => "quantisation_unit_s".into(),
+            Parameter::RandomWalk => "random_walk_unit_per_sqrt_s".into(),
+            Parameter::DriftRate => "drift_rate_unit_per_s".into(),
+            Parameter::CorrelationTime(k) => format!("gm{k}_correlation_time_s"),
+            Parameter::GaussMarkovSigma(k) => format!("gm{k}_sigma_unit"),
+        }
+    }
+}
+
+/// A physical parameter and its value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PhysicalParameter {
+    /// Which parameter.
+    pub kind: Parameter,
+    /// Its value in the unit the kind names.
+    pub value: f64,
+}
+
+/// The sum of `terms`' wavelet variances at scale `tau` samples.
+pub fn composite_wavelet_variance(terms: &[Term], tau: f64) -> f64 {
+    terms.iter().map(|t| t.wavelet_variance(tau)).sum()
+}
+
+/// The physical parameters of a composite, Gauss-Markov processes numbered from 1 in order.
+pub fn physical_parameters(terms: &[Term], dt_s: f64) -> Vec<PhysicalParameter> {
+    let mut gm = 0;
+    terms
+        .iter()
+        .flat_map(|t| {
+            if matches!(t, Term::GaussMarkov { .. }) {
+                gm += 1;
+            }
+            t.physical(dt_s, gm)
+        })
+        .collect()
+}
+
+/// Composites from physical values: white-noise density (unit/√Hz) etc.; the inverse of
+/// [`Term::physical`], for simulations and tests.
+impl Term {
+    /// White noise of density `density` (unit·√s) sampled every `dt_s`.
+    pub fn white_from_density(density: f64, dt_s: f64) -> Term {
+        Term::White {
+            variance: density * density / dt_s,
+        }
+    }
+
+    /// A random walk of coefficient `k` (unit/√s) sampled every `dt_s`.
+    pub fn random_walk_from_k(k: f64, dt_s: f64) -> Term {
+        Term::RandomWalk {
+            variance: k * k * dt_s,
+        }
+    }
+
+    /// Quantisation noise of coefficient `q` (unit·s) sampled every `dt_s`.
+    pub fn quantisation_from_q(q: f64, dt_s: f64) -> Term {
+        Term::Quantisation {
+            variance: (q / dt_s).powi(2),
+        }
+    }
+
+    /// A Gauss-Markov process of correlation time `tc_s` and standard deviation `sigma`.
+    pub fn gauss_markov_from(tc_s: f64, sigma: f64, dt_s: f64) -> Term {
+        Term::GaussMarkov {
+            correlation_samples: tc_s / dt_s,
+            variance: sigma * sigma,
+        }
+    }
+}
