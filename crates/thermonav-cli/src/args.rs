@@ -54,6 +54,8 @@ pub enum Command {
     Allan(AllanArgs),
     /// AR model per channel and its Gauss-Markov equivalent.
     Ar(ArArgs),
+    /// Composite noise model per channel fitted to the Haar wavelet variance (GMWM).
+    Gmwm(GmwmArgs),
     /// Build the temperature model bank from static records (one per temperature).
     Characterize(CharacterizeArgs),
     /// Read a model bank.
@@ -298,6 +300,27 @@ pub struct AllanArgs {
     /// limits or terms.
     #[arg(long, default_value = "adev")]
     pub kind: DeviationKind,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `gmwm`.
+#[derive(Debug, Args)]
+pub struct GmwmArgs {
+    /// The IMU CSV (rates, raw: white noise must not be filtered away).
+    pub file: PathBuf,
+    /// The composite, e.g. wn+rw+2gm or wn+qn+gm (wn, qn, rw, dr, gm, kgm), or auto: the
+    /// candidate with the smallest Wavelet Information Criterion.
+    #[arg(long, default_value = "auto")]
+    pub model: String,
+    /// Parametric-bootstrap replicates for the intervals and the WIC (each simulates the
+    /// whole record once).
+    #[arg(long, default_value_t = 100)]
+    pub replicates: usize,
+    /// Seed of the bootstrap's named random streams.
+    #[arg(long, default_value_t = DEFAULT_SEED)]
+    pub seed: u64,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,

@@ -9,6 +9,7 @@ mod demo;
 mod evaluate;
 mod filter;
 mod fir;
+mod gmwm;
 mod inspect;
 mod integrate;
 mod lot;
@@ -28,6 +29,7 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Filter(args) => filter::run(&args),
         Command::Allan(args) => allan::run(&args),
         Command::Ar(args) => ar::run(&args),
+        Command::Gmwm(args) => gmwm::run(&args),
         Command::Characterize(args) => characterize::run(&args),
         Command::Bank(args) => bank::run(&args),
         Command::Lot(args) => lot::run(&args),

@@ -417,3 +417,59 @@ fn allan_kind_mdev_json_is_allantools_mdev() {
         assert!((got / want - 1.0).abs() < 1e-9, "tdev: {got} vs {want}");
     }
 }
+
+// Issue 15: `thermonav gmwm` on a simulated chamber record whose truth is known. Fitting
+// WN + GM to the whole Haar wavelet variance recovers the simulated white-noise density of
+// every channel within 5 % (the target the issue sets for the bank; the Allan slope method
+// was 1.29-1.66x off on the demo's 0 °C record), the interval brackets it, and the implied
+// wavelet variance has one value per scale. A bad --model is a usage error.
+#[test]
+fn gmwm_recovers_the_simulated_white_noise_density() {
+    let dir = tempfile::tempdir().unwrap();
+    let chamber = chamber(dir.path());
+    let file = chamber["files"][1].as_str().unwrap().to_string();
+    let truth_path = dir.path().join("chamber").join("truth.json");
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(truth_path).unwrap()).unwrap();
+    let at_20 = &truth["temperatures"][1]["channels"];
+    let args = [
+        "gmwm",
+        &file,
+        "--model",
+        "wn+gm",
+        "--replicates",
+        "20",
+        "--json",
+    ];
+    let doc = json_of(&args);
+    assert_eq!(doc["model"], "wn+gm");
+    for (name, channel) in doc["channels"].as_object().unwrap() {
+        let wv = &channel["wavelet_variance"];
+        let scales = wv["scale_s"].as_array().unwrap().len();
+        assert_eq!(wv["implied_unit2"].as_array().unwrap().len(), scales);
+        let (key, p) = channel["parameters"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .find(|(k, _)| k.starts_with("white_noise_density"))
+            .unwrap();
+        let value = p["value"].as_f64().unwrap();
+        let simulated = at_20[name]["white_noise_density"].as_f64().unwrap();
+        let ratio = value / simulated;
+        assert!(
+            (0.95..1.05).contains(&ratio),
+            "{name} {key}: {value} vs {simulated}"
+        );
+        let (low, high) = (
+            p["ci_low"].as_f64().unwrap(),
+            p["ci_high"].as_f64().unwrap(),
+        );
+        assert!(
+            low <= value && value <= high,
+            "{name}: {low} {value} {high}"
+        );
+    }
+    let (status, _, stderr) = outcome(&thermonav(&["gmwm", &file, "--model", "wn+xx"]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("--model wn+xx"), "{stderr}");
+}

@@ -191,6 +191,25 @@ fn optimism(moment_sd: &[f64], replicates: &[Replicate]) -> f64 {
         .sum()
 }
 
+/// The composites `auto` compares: white noise with one or two Gauss-Markov processes, with
+/// or without a random walk, and with quantisation noise.
+pub const AUTO_CANDIDATES: [&str; 6] = [
+    "wn+gm",
+    "wn+2gm",
+    "wn+rw+gm",
+    "wn+rw+2gm",
+    "wn+qn+gm",
+    "wn+qn+rw+2gm",
+];
+
+/// [`AUTO_CANDIDATES`] parsed.
+pub fn auto_candidates() -> Vec<super::ModelSpec> {
+    AUTO_CANDIDATES
+        .iter()
+        .map(|s| s.parse().expect("the candidates parse"))
+        .collect()
+}
+
 /// Every candidate estimated, sorted by increasing WIC (the first is the one selected);
 /// candidates that cannot be fitted (too few scales) are left out.
 ///

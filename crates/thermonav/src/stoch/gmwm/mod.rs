@@ -27,7 +27,8 @@ mod simulate;
 pub mod theory;
 
 pub use bootstrap::{
-    BootstrapSettings, GmwmEstimate, ParameterEstimate, estimate_gmwm, select_model,
+    AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, ParameterEstimate, auto_candidates,
+    estimate_gmwm, select_model,
 };
 pub use fit::{GmwmFit, fit_gmwm};
 pub use model::{
