@@ -605,15 +605,18 @@ pub fn write_parameter_file(path: &Path, file: &ParameterFile) -> Result<(), Wri
     })
 }
 
-/// The first real parameter that is not finite, refused through [`crate::finite`].
+/// The first real parameter that is not finite, refused as [`crate::finite`] refuses.
 fn check_parameters_finite(file: &ParameterFile) -> std::io::Result<()> {
-    let refuse = |name: &str, e: crate::finite::NonFinite| {
-        let path = format!("parameter {name}");
-        let e = crate::finite::NonFinite { path, ..e };
-        std::io::Error::new(std::io::ErrorKind::InvalidData, e)
-    };
-    file.parameters.iter().try_for_each(|p| match p.value {
-        ParameterValue::Real(v) => crate::finite::check_finite(&v).map_err(|e| refuse(&p.name, e)),
-        ParameterValue::Integer(_) => Ok(()),
-    })
+    let bad = file.parameters.iter().find_map(|p| match p.value {
+        ParameterValue::Real(v) if !v.is_finite() => Some((p, f64::from(v))),
+        _ => None,
+    });
+    match bad {
+        Some((p, value)) => {
+            let path = format!("parameter {}", p.name);
+            let e = crate::finite::NonFinite { path, value };
+            Err(std::io::Error::new(std::io::ErrorKind::InvalidData, e))
+        }
+        None => Ok(()),
+    }
 }

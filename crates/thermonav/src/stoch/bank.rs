@@ -308,12 +308,25 @@ impl ModelBank {
         Ok(bank)
     }
 
-    /// Checks a bank read from a file: version, non-empty, finite and strictly increasing
-    /// temperatures, and every entry's values ([`TemperatureEntry::check_values`]).
+    /// Checks a bank read from a file: its layout ([`ModelBank::check_layout`]) and every
+    /// entry's values ([`TemperatureEntry::check_values`]).
     ///
     /// # Errors
     /// The first [`BankError`] found.
     pub fn validate(&self) -> Result<(), BankError> {
+        self.check_layout()?;
+        self.entries
+            .iter()
+            .try_for_each(TemperatureEntry::check_values)
+    }
+
+    /// What selecting a model relies on: a readable version, at least one entry, finite and
+    /// strictly increasing temperatures. (The values a selection takes are checked again by
+    /// the model built from them; the whole bank's values are checked once, on reading.)
+    ///
+    /// # Errors
+    /// The first [`BankError`] found.
+    pub fn check_layout(&self) -> Result<(), BankError> {
         if !(OLDEST_READABLE_BANK_VERSION..=BANK_VERSION).contains(&self.version) {
             return Err(BankError::Version {
                 found: self.version,
@@ -337,9 +350,7 @@ impl ModelBank {
                 next_c: w[1].temperature_c,
             });
         }
-        self.entries
-            .iter()
-            .try_for_each(TemperatureEntry::check_values)
+        Ok(())
     }
 
     /// Temperatures of the entries, °C, increasing.
@@ -370,7 +381,7 @@ impl ModelBank {
         if !temperature_c.is_finite() {
             return Err(BankError::Temperature { temperature_c });
         }
-        self.validate()?;
+        self.check_layout()?;
         let placement = self.placement(temperature_c, selection);
         match placement {
             Placement::Entry { temperature_c: t } | Placement::Clamped { temperature_c: t } => {
