@@ -13,7 +13,8 @@ use thermonav::stoch::gmwm::{
 use thermonav::stoch::wavelet_variance::{WaveletVariance, haar_wavelet_variance};
 
 /// How the parameter intervals are made, in words (for the JSON and the heading).
-const INTERVALS: &str = "95 % basic parametric bootstrap on the log scale";
+const INTERVALS: &str =
+    "95 % parametric bootstrap: Wald on the log scale, spread from the interquartile range";
 
 #[derive(Debug, Serialize)]
 struct GmwmJson {

@@ -159,27 +159,26 @@ fn assert_coverage(truth: &[Term], model: &str, n: usize, seeds: u64) {
     }
 }
 
-// Coverage with seeds 1..=100 (the reduced version) and 1..=200 (the version). All are
-// ignored for now because they FAIL: measured on this machine (B = 100, seeds 1..=100),
-// wn+gm: density 92, Tc 88 (p = 0.009), σ not reached; wn+qn+gm: density 94, Q 90, Tc 88
-// (p = 0.009); wn+rw+2gm: density 94, K 95, Tc₁ 97, σ₁ 95, Tc₂ 91, σ₂ 88 (p = 0.009). The
-// basic bootstrap intervals of the Gauss-Markov parameters are too narrow on records of
-// 2¹⁵-2¹⁶ samples (about 0.8 of the width they need). Run them with
-// `cargo test --release -p thermonav gmwm -- --ignored --nocapture`.
+// Coverage with seeds 1..=100 (the reduced version) and 1..=200 (the version), each
+// replicate refitted with every automatic start. They pass; ignored only for time (B = 100
+// bootstrap fits per seed: about 9 minutes for the four on the 2-core machine under load).
+// Measured (seeds 1..=100): wn+gm: density 96, Tc 92, σ 90; wn+qn+gm: density 95, Q 91,
+// Tc 89, σ 89 (p = 0.023, the lowest); wn+rw+2gm: density 96, K 96, Tc₁ 97, σ₁ 94, Tc₂ 93,
+// σ₂ 92. Run them with `cargo test --release -p thermonav gmwm -- --ignored --nocapture`.
 #[test]
-#[ignore = "fails today (Gauss-Markov intervals cover 88 of 100); about 20 s"]
+#[ignore = "about 1 minute"]
 fn intervals_cover_white_noise_plus_gauss_markov() {
     assert_coverage(&wn_gm(), "wn+gm", 1 << 15, 100);
 }
 
 #[test]
-#[ignore = "fails today (Tc covered 88 of 100); about 20 s"]
+#[ignore = "about 1 minute"]
 fn intervals_cover_white_plus_quantisation_noise_plus_gauss_markov() {
     assert_coverage(&wn_qn_gm(), "wn+qn+gm", 1 << 15, 100);
 }
 
 #[test]
-#[ignore = "fails today (σ₂ covered 88 of 100); about 40 s"]
+#[ignore = "about 2 minutes"]
 fn intervals_cover_white_noise_random_walk_and_two_gauss_markov_processes() {
     assert_coverage(&wn_rw_2gm(), "wn+rw+2gm", 1 << 16, 100);
 }

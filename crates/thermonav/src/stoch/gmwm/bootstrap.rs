@@ -1,15 +1,23 @@
 //! Parameter intervals by parametric bootstrap, and the Wavelet Information Criterion.
 //!
 //! Each replicate b simulates N samples from the fitted composite θ̂ (its own named stream
-//! `gmwm/<model>/<b>`), computes their wavelet variance and refits from θ̂. The intervals are
-//! basic bootstrap intervals on the log scale (Davison & Hinkley 1997, §5.2, eq. 5.6 applied
-//! to ln p): \[p̂² / q*(1 − α/2), p̂² / q*(α/2)\], q* the quantiles of the replicates' physical
-//! parameter p*. They stay positive, and unlike the percentile interval they correct for the
-//! estimator's bias as the replicates see it (on white noise + one Gauss-Markov process,
-//! 2¹⁶ samples, 100 seeds: Tc covered 94 times against 93 for the percentile interval). A Wald
-//! interval with the replicates' standard deviation of ln p was tried first and is useless for
-//! a weakly identified term (a random walk that some replicates drive towards zero gave a
-//! standard deviation of 40 in its logarithm).
+//! `gmwm/<model>/<b>`), computes their wavelet variance and fits it exactly as the data were
+//! fitted (all automatic starts, not only θ̂). The intervals are Wald intervals on the log scale
+//! with a robust spread: p̂ exp(∓z s), s the interquartile range of the replicates' ln p* over
+//! 1.349. Measured on the three composites of the tests (seeds 1..=100, B = 100), from the
+//! worst parameter's count of 100:
+//! - basic intervals (p̂²/q*), replicates refitted from θ̂ only: 88 (Tc of wn+gm and wn+qn+gm,
+//!   σ₂ of wn+rw+2gm; p = 0.009, rejected);
+//! - studentised (bootstrap-t with Gauss-Newton standard errors): 86 (p = 0.001, rejected);
+//! - this rule, replicates fitted with every start: 89 (wn+qn+gm Tc and σ, p = 0.023), and the
+//!   issue's test over seeds 1..=200 of all three passes the binomial test at 1 %.
+//!
+//! On wn+gm, 2¹⁵ samples, ln Tĉ over 1000 seeds has sd 0.100 and kurtosis 3.2, nearly normal
+//! and unbiased (mean −0.002), while the basic interval's reflection made the upper limit
+//! short for low estimates (7 misses on each side out of 100). The plain standard deviation of
+//! ln p* is useless for a weakly identified term (a random walk that some replicates drive
+//! towards zero gave a standard deviation of 40 in its logarithm); the interquartile range is
+//! not moved by those few replicates.
 //!
 //! The WIC (Guerrier, Stebler, Skaloud & Victoria-Feser's prediction-error criterion for GMWM)
 //! estimates the objective that θ̂ would reach on an independent copy of the wavelet variance:
@@ -19,7 +27,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::fit::{GmwmFit, refit_from};
+use super::fit::GmwmFit;
 use super::model::{Parameter, physical_parameters};
 use super::simulate::simulate;
 use super::{GmwmError, fit_gmwm};
@@ -65,7 +73,7 @@ pub struct ParameterEstimate {
 pub struct GmwmEstimate {
     /// The fit.
     pub fit: GmwmFit,
-    /// Physical parameters with basic parametric-bootstrap intervals (log scale).
+    /// Physical parameters with parametric-bootstrap intervals (robust Wald, log scale).
     pub parameters: Vec<ParameterEstimate>,
     /// The Wavelet Information Criterion (dimensionless; smaller is better).
     pub wic: f64,
@@ -123,7 +131,7 @@ fn replicate(wv: &WaveletVariance, fit: &GmwmFit, seed: u64, b: usize) -> Option
     let y = simulate(&fit.terms, wv.n_samples, &mut rng);
     let levels = Some(wv.scale_samples.len());
     let wv_star = haar_wavelet_variance(&y, 1.0 / wv.dt_s, levels, wv.confidence).ok()?;
-    let refit = refit_from(&wv_star, fit.model, &fit.terms).ok()?;
+    let refit = fit_gmwm(&wv_star, fit.model).ok()?;
     Some(Replicate {
         physical: physical_parameters(&refit.terms, fit.dt_s)
             .iter()
@@ -134,23 +142,33 @@ fn replicate(wv: &WaveletVariance, fit: &GmwmFit, seed: u64, b: usize) -> Option
     })
 }
 
-/// \[p̂²/q*(1 − α/2), p̂²/q*(α/2)\] of each physical parameter, q* its replicates' quantiles.
+/// Robust Wald intervals on the log scale of each physical parameter ([`robust_log_wald`]).
 fn intervals(fit: &GmwmFit, replicates: &[Replicate], confidence: f64) -> Vec<ParameterEstimate> {
     let tail = (1.0 - confidence) / 2.0;
     physical_parameters(&fit.terms, fit.dt_s)
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            let mut column: Vec<f64> = replicates.iter().map(|r| r.physical[k]).collect();
-            column.sort_by(f64::total_cmp);
+            let (ci_low, ci_high) = robust_log_wald(p.value, replicates, k, tail);
             ParameterEstimate {
                 kind: p.kind,
                 value: p.value,
-                ci_low: p.value * p.value / quantile(&column, 1.0 - tail),
-                ci_high: p.value * p.value / quantile(&column, tail),
+                ci_low,
+                ci_high,
             }
         })
         .collect()
+}
+
+/// p̂ exp(∓z s), s the interquartile range of ln p* over 1.349 (the standard deviation of a
+/// normal with that range), z the normal quantile.
+fn robust_log_wald(value: f64, replicates: &[Replicate], k: usize, tail: f64) -> (f64, f64) {
+    use statrs::distribution::{ContinuousCDF, Normal};
+    let mut logs: Vec<f64> = replicates.iter().map(|r| r.physical[k].ln()).collect();
+    logs.sort_by(f64::total_cmp);
+    let s = (quantile(&logs, 0.75) - quantile(&logs, 0.25)) / 1.349;
+    let z = Normal::standard().inverse_cdf(1.0 - tail);
+    (value * (-z * s).exp(), value * (z * s).exp())
 }
 
 /// The p-quantile of sorted `x` by linear interpolation between order statistics (type 7 of

@@ -111,17 +111,6 @@ pub fn fit_gmwm(wv: &WaveletVariance, model: ModelSpec) -> Result<GmwmFit, GmwmE
     Ok(second_step(wv, model, &moments, &best))
 }
 
-/// Refits `model` to `wv` from `start` alone (the bootstrap's replicates start at θ̂).
-pub(super) fn refit_from(
-    wv: &WaveletVariance,
-    model: ModelSpec,
-    start: &[Term],
-) -> Result<GmwmFit, GmwmError> {
-    let moments = Moments::of(wv)?;
-    let first = refine(&moments, start);
-    Ok(second_step(wv, model, &moments, &first))
-}
-
 /// The second GMWM step: Ω from the first step's model, var(ν̂²_j) ≈ 2 ν⁴_j(θ̂₁)/η_j, and a
 /// refit from θ̂₁. Weights from ν̂² itself favour the scales where ν̂² happens to be low and
 /// pull every variance down (by a few per cent on 10⁶ samples, as much as the intervals are
