@@ -15,6 +15,7 @@ use crate::allan_family::numbers;
 use crate::oracle_json;
 use rand_distr::{Distribution, StandardNormal, Uniform};
 use serde_json::Value;
+use thermonav::imu::Channel;
 use thermonav::rng::{SimRng, named_rng};
 use thermonav::signal::wavelet::daubechies::Daubechies;
 use thermonav::signal::wavelet::denoise::{DecompositionLevel, WaveletDenoise, denoise};
@@ -24,6 +25,10 @@ use thermonav::signal::wavelet::threshold::{
 use thermonav::signal::wavelet::transform::{
     Decomposition, ExtensionMode, max_level, wavedec, waverec,
 };
+use thermonav::stoch::characterize::{
+    CharacterizeError, CharacterizeSettings, Denoiser, characterize,
+};
+use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
 
 fn mode_of(v: &Value) -> ExtensionMode {
     match v.as_str().expect("mode") {
@@ -390,4 +395,49 @@ fn every_rule_reduces_the_error_on_a_noisy_smooth_signal() {
             );
         }
     }
+}
+
+/// `characterize` with the wavelet de-noiser: the bank says so (and not Kaiser), the series the
+/// AR fit sees changes, the exact likelihood (on raw block means) does not.
+#[test]
+fn characterisation_records_the_wavelet_denoiser_and_only_the_ar_side_changes() {
+    let series = crate::streaming::chamber_record(1200.0);
+    let kaiser = CharacterizeSettings::default();
+    let wavelet = CharacterizeSettings {
+        denoise: Denoiser::Wavelet(WaveletDenoise::default()),
+        ..kaiser.clone()
+    };
+    let (k, _) = characterize(&series, 10.0, "sim", &kaiser).unwrap();
+    let (w, _) = characterize(&series, 10.0, "sim", &wavelet).unwrap();
+    assert!(k.preprocessing.filter.is_some() && k.preprocessing.wavelet.is_none());
+    let summary = w.preprocessing.wavelet.as_ref().expect("wavelet recorded");
+    assert!(w.preprocessing.filter.is_none());
+    assert_eq!(
+        (summary.wavelet.as_str(), summary.threshold.as_str()),
+        ("db4", "universal")
+    );
+    assert_eq!(summary.level, max_level(series.len(), 8));
+    assert_eq!(w.preprocessing.decimation_factor, 50);
+    for channel in Channel::ALL {
+        let (km, wm) = (&k.channels[&channel], &w.channels[&channel]);
+        assert_eq!(km.gauss_markov.irregular_ml, wm.gauss_markov.irregular_ml);
+        assert_ne!(km.ar.coefficients, wm.ar.coefficients, "{channel:?}");
+    }
+}
+
+/// Streaming cannot de-noise by wavelets (the transform needs the whole record): refused.
+#[test]
+fn streamed_characterisation_refuses_the_wavelet_denoiser() {
+    let series = crate::streaming::chamber_record(200.0);
+    let settings = CharacterizeSettings {
+        denoise: Denoiser::Wavelet(WaveletDenoise::default()),
+        ..CharacterizeSettings::default()
+    };
+    let streaming = StreamingSettings {
+        prefix_samples: 4096,
+        ..StreamingSettings::default()
+    };
+    let mut stream = StreamingCharacterizer::new(settings, streaming);
+    let error = stream.push(&crate::streaming::piece(&series, 0..series.len()));
+    assert!(matches!(error, Err(CharacterizeError::Settings(m)) if m.contains("whole record")));
 }
