@@ -73,6 +73,18 @@ pub enum SignalError {
         /// Taps of the wavelet's filters.
         filter_len: usize,
     },
+    /// A signal too short for one level of the wavelet transform.
+    #[error(
+        "{samples} samples are too few for a wavelet decomposition with a {filter_len}-tap wavelet: at least {needed} are needed"
+    )]
+    WaveletTooShort {
+        /// Samples.
+        samples: usize,
+        /// Samples needed for one level (taps − 1).
+        needed: usize,
+        /// Taps of the wavelet's filters.
+        filter_len: usize,
+    },
     /// Decimation impossible.
     #[error("cannot decimate {input_rate_hz} Hz to {target_rate_hz} Hz: {reason}")]
     Decimation {

@@ -70,8 +70,8 @@ impl WaveletDenoise {
     /// The level these settings use for `samples` samples.
     ///
     /// # Errors
-    /// [`SignalError::WaveletLevel`] when the level is 0 or above the maximum for the length
-    /// (with [`DecompositionLevel::Max`], when the signal is too short for one level).
+    /// [`SignalError::WaveletLevel`] when the level is 0 or above the maximum for the length,
+    /// [`SignalError::WaveletTooShort`] when the signal is too short for one level.
     pub fn level_for(&self, samples: usize) -> Result<usize, SignalError> {
         let filter_len = self.wavelet.filter_len();
         let level = match self.level {
@@ -86,8 +86,8 @@ impl WaveletDenoise {
 /// `x` de-noised by wavelet shrinkage with `settings`.
 ///
 /// # Errors
-/// [`SignalError::NonFinite`] for a NaN or infinite sample, [`SignalError::WaveletLevel`] for
-/// a level the length does not allow.
+/// [`SignalError::NonFinite`] for a NaN or infinite sample, [`SignalError::WaveletLevel`] or
+/// [`SignalError::WaveletTooShort`] for a level the length does not allow.
 pub fn denoise(x: &[f64], settings: &WaveletDenoise) -> Result<Denoised, SignalError> {
     let level = settings.level_for(x.len())?;
     let bank = settings.wavelet.filter_bank();

@@ -188,7 +188,8 @@ impl Decomposition {
 ///
 /// # Errors
 /// [`SignalError::NonFinite`] for a NaN or infinite sample; [`SignalError::WaveletLevel`] for
-/// a level of 0 or above [`max_level`] for this length and filter.
+/// a level of 0 or above [`max_level`] for this length and filter,
+/// [`SignalError::WaveletTooShort`] when the length allows none.
 pub fn wavedec(
     x: &[f64],
     bank: &FilterBank,
@@ -227,11 +228,19 @@ pub fn waverec(decomposition: &Decomposition, bank: &FilterBank) -> Vec<f64> {
     a
 }
 
+/// [`SignalError::WaveletTooShort`] when no level is possible, else
 /// [`SignalError::WaveletLevel`] unless 1 ≤ `level` ≤ [`max_level`].
 pub fn check_level(level: usize, samples: usize, filter_len: usize) -> Result<(), SignalError> {
     let max = max_level(samples, filter_len);
     if (1..=max).contains(&level) {
         return Ok(());
+    }
+    if max == 0 {
+        return Err(SignalError::WaveletTooShort {
+            samples,
+            needed: filter_len.saturating_sub(1).max(1),
+            filter_len,
+        });
     }
     Err(SignalError::WaveletLevel {
         level,
@@ -373,6 +382,10 @@ mod tests {
             Err(SignalError::WaveletLevel { max_level: 1, .. })
         ));
         assert!(wavedec(&x, &bank, ExtensionMode::Symmetric, 0).is_err());
+        assert!(matches!(
+            wavedec(&[1.0; 6], &bank, ExtensionMode::Symmetric, 1),
+            Err(SignalError::WaveletTooShort { needed: 7, .. })
+        ));
         assert!(wavedec(&[], &bank, ExtensionMode::Symmetric, 1).is_err());
         let mut y = x.clone();
         y[3] = f64::NAN;
