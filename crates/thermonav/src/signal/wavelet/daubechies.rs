@@ -30,11 +30,11 @@ pub struct Daubechies {
 pub struct FilterBank {
     /// Analysis (decomposition) low pass: the scaling filter reversed.
     pub dec_lo: Vec<f64>,
-    /// Analysis high pass: dec_hi[k] = (−1)^{k+1} h[k].
+    /// Analysis high pass: dec_hi_k = (−1)^{k+1} h_k.
     pub dec_hi: Vec<f64>,
     /// Synthesis (reconstruction) low pass: the scaling filter h, Σ h = √2.
     pub rec_lo: Vec<f64>,
-    /// Synthesis high pass: rec_hi[k] = (−1)^k h[2N − 1 − k].
+    /// Synthesis high pass: rec_hi_k = (−1)^k h_{2N−1−k}.
     pub rec_hi: Vec<f64>,
 }
 
