@@ -9,6 +9,10 @@ use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::rng::DEFAULT_SEED;
+use thermonav::signal::wavelet::daubechies::Daubechies;
+use thermonav::signal::wavelet::denoise::WaveletDenoise;
+use thermonav::signal::wavelet::threshold::{ThresholdRule, Thresholding};
+use thermonav::signal::wavelet::transform::ExtensionMode;
 use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
 use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
@@ -26,6 +30,41 @@ fn campaign() -> CampaignSettings {
 fn conditioning() -> CharacterizeSettings {
     CharacterizeSettings::default()
 }
+
+fn wavelet_default() -> WaveletDenoise {
+    WaveletDenoise::default()
+}
+
+/// `text` with its default, for an optional argument whose default is applied by the settings.
+fn with_default(text: &str, default: impl std::fmt::Display) -> String {
+    format!("{text} [default: {default}]")
+}
+
+/// The command-line name of a value.
+fn value_name(value: impl ValueEnum) -> String {
+    value
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string())
+}
+
+/// The help of `characterize --denoise`, with the wavelet settings it uses.
+fn denoise_help() -> String {
+    let w = wavelet_default();
+    format!(
+        "De-noising before AR modelling: the Kaiser low-pass (--cutoff-hz, --transition-hz), or wavelet shrinkage ({}, deepest level, {}, {} threshold, {}; in memory only), then decimation to --modelling-rate-hz; the bank records which",
+        w.wavelet,
+        w.mode.name(),
+        w.rule.name(),
+        w.thresholding.name()
+    )
+}
+
+/// Kaiser transition width of `fir` and `filter`, Hz.
+pub const DEFAULT_TRANSITION_HZ: f64 = 1.0;
+/// Kaiser attenuation of `fir` and `filter`, dB.
+pub const DEFAULT_RIPPLE_DB: f64 = 60.0;
+/// Zero-phase mode of `filter`.
+pub const DEFAULT_FILTER_MODE: ModeArg = ModeArg::ZeroPhase;
 
 /// Temperature-dependent stochastic modelling of MEMS IMU errors and GNSS/INS filtering.
 #[derive(Debug, Parser)]
@@ -386,6 +425,8 @@ pub struct CharacterizeArgs {
     /// With --manifest: only the unit at this 0-based position (e.g. $SLURM_ARRAY_TASK_ID).
     #[arg(long, requires = "manifest")]
     pub unit_index: Option<usize>,
+    #[arg(long, value_enum, default_value_t = DenoiseArg::Kaiser, help = denoise_help())]
+    pub denoise: DenoiseArg,
     /// Kaiser cut-off of the conditioning before AR modelling, Hz.
     #[arg(long, default_value_t = conditioning().cutoff_hz)]
     pub cutoff_hz: f64,
@@ -738,10 +779,10 @@ pub struct KaiserArgs {
     #[arg(long)]
     pub cutoff_hz: f64,
     /// Width of the transition band, Hz.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = DEFAULT_TRANSITION_HZ)]
     pub transition_hz: f64,
     /// Stop-band attenuation and pass-band ripple, dB (positive).
-    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = DEFAULT_RIPPLE_DB, allow_negative_numbers = true)]
     pub ripple_db: f64,
 }
 
@@ -768,29 +809,101 @@ pub enum ModeArg {
     Filtfilt,
 }
 
+/// How a record is de-noised (`filter --method`, `characterize --denoise`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DenoiseArg {
+    /// Kaiser-window low-pass, zero phase (the paper's).
+    Kaiser,
+    /// Wavelet shrinkage with a Daubechies wavelet (the paper's named alternative).
+    Wavelet,
+}
+
+/// Threshold rules of the wavelet de-noising.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ThresholdArg {
+    /// σ √(2 ln n), σ from the median absolute finest detail / 0.6745 (VisuShrink).
+    Universal,
+    /// Stein's unbiased risk estimate minimised per level, at most the band's universal one.
+    Sure,
+    /// SURE, or the band's universal threshold where the band is sparse (SureShrink, 1995).
+    SureHybrid,
+}
+
+/// Soft or hard thresholding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ThresholdingArg {
+    /// sign(x) max(|x| − λ, 0).
+    Soft,
+    /// x where |x| ≥ λ, else 0.
+    Hard,
+}
+
+/// Extension of the signal beyond its ends (PyWavelets' modes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ExtensionArg {
+    /// Half-sample symmetric reflection.
+    Symmetric,
+    /// Periodic (an orthogonal transform; the ends meet).
+    Periodization,
+}
+
 /// Arguments of `filter`.
 #[derive(Debug, Args)]
 pub struct FilterArgs {
     /// The IMU CSV to filter.
     pub input: PathBuf,
-    /// The filter specification.
+    /// De-noising method.
+    #[arg(long, value_enum, default_value_t = DenoiseArg::Kaiser)]
+    pub method: DenoiseArg,
+    /// Options of --method kaiser.
     #[command(flatten)]
-    pub kaiser: KaiserArgs,
-    /// Zero-phase mode.
-    #[arg(long, value_enum, default_value_t = ModeArg::ZeroPhase)]
-    pub mode: ModeArg,
-    /// Decimate to this rate after filtering, Hz (must divide the input rate).
-    #[arg(long)]
-    pub decimate_to_hz: Option<f64>,
-    /// Sampling rate used for the design, Hz (default: the nominal rate of the file).
-    #[arg(long)]
-    pub fs_hz: Option<f64>,
+    pub kaiser: FilterKaiserArgs,
+    /// Options of --method wavelet.
+    #[command(flatten)]
+    pub wavelet: WaveletArgs,
     /// Output CSV; a sidecar OUT.json records what was done.
     #[arg(long)]
     pub out: PathBuf,
     /// Print one JSON document (the sidecar) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// The options of `filter --method kaiser` (refused with the wavelet method).
+#[derive(Debug, Args, Clone, Copy)]
+pub struct FilterKaiserArgs {
+    /// Kaiser: pass-band edge (cut-off), Hz (required with --method kaiser).
+    #[arg(long)]
+    pub cutoff_hz: Option<f64>,
+    #[arg(long, help = with_default("Kaiser: width of the transition band, Hz", DEFAULT_TRANSITION_HZ))]
+    pub transition_hz: Option<f64>,
+    #[arg(long, allow_negative_numbers = true, help = with_default("Kaiser: stop-band attenuation and pass-band ripple, dB (positive)", DEFAULT_RIPPLE_DB))]
+    pub ripple_db: Option<f64>,
+    #[arg(long, value_enum, help = with_default("Kaiser: zero-phase mode", value_name(DEFAULT_FILTER_MODE)))]
+    pub mode: Option<ModeArg>,
+    /// Kaiser: decimate to this rate after filtering, Hz (must divide the input rate).
+    #[arg(long)]
+    pub decimate_to_hz: Option<f64>,
+    /// Kaiser: sampling rate used for the design, Hz (default: the nominal rate of the file).
+    #[arg(long)]
+    pub fs_hz: Option<f64>,
+}
+
+/// The options of `filter --method wavelet` (refused with the Kaiser method).
+#[derive(Debug, Args, Clone, Copy)]
+pub struct WaveletArgs {
+    #[arg(long, help = with_default("Wavelet: Daubechies wavelet db1..db10 (haar = db1)", wavelet_default().wavelet))]
+    pub wavelet: Option<Daubechies>,
+    /// Wavelet: decomposition level, 1 to PyWavelets' dwt_max_level for the record's length
+    /// and the wavelet [default: that maximum].
+    #[arg(long)]
+    pub level: Option<usize>,
+    #[arg(long, value_enum, help = with_default("Wavelet: threshold rule", wavelet_default().rule.name()))]
+    pub threshold: Option<ThresholdArg>,
+    #[arg(long, value_enum, help = with_default("Wavelet: thresholding", wavelet_default().thresholding.name()))]
+    pub thresholding: Option<ThresholdingArg>,
+    #[arg(long, value_enum, help = with_default("Wavelet: extension at the ends", wavelet_default().mode.name()))]
+    pub extension: Option<ExtensionArg>,
 }
 
 /// Foreign formats read by `convert`.
@@ -1020,6 +1133,34 @@ impl From<ArMethodArg> for thermonav::stoch::ar::ArMethod {
             ArMethodArg::Burg => Self::Burg,
             ArMethodArg::Covariance => Self::Covariance,
             ArMethodArg::ModifiedCovariance => Self::ModifiedCovariance,
+        }
+    }
+}
+
+impl From<ThresholdArg> for ThresholdRule {
+    fn from(t: ThresholdArg) -> Self {
+        match t {
+            ThresholdArg::Universal => Self::Universal,
+            ThresholdArg::Sure => Self::Sure,
+            ThresholdArg::SureHybrid => Self::SureHybrid,
+        }
+    }
+}
+
+impl From<ThresholdingArg> for Thresholding {
+    fn from(t: ThresholdingArg) -> Self {
+        match t {
+            ThresholdingArg::Soft => Self::Soft,
+            ThresholdingArg::Hard => Self::Hard,
+        }
+    }
+}
+
+impl From<ExtensionArg> for ExtensionMode {
+    fn from(e: ExtensionArg) -> Self {
+        match e {
+            ExtensionArg::Symmetric => Self::Symmetric,
+            ExtensionArg::Periodization => Self::Periodization,
         }
     }
 }

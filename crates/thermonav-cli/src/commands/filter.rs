@@ -1,16 +1,20 @@
-//! `thermonav filter`: Kaiser low-pass every channel, optionally decimate, record what was done.
+//! `thermonav filter`: de-noise every channel (the Kaiser low-pass, optionally decimated, or
+//! wavelet shrinkage), record what was done.
 
-use crate::args::{FilterArgs, ModeArg};
+use crate::args::ModeArg;
 use crate::failure::{Classify, Failure};
 use crate::fir_design::{FirDesign, describe, design};
 use crate::report::{print_json, print_rows};
+use crate::settings::analysis::{FilterPlan, KaiserPlan, json_sidecar, resolve_filter};
 use anyhow::anyhow;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::Path;
-use thermonav::imu::ImuSeries;
+use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::decimate::{decimate_valid, decimation_factor};
 use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
 use thermonav::signal::timestamps::{TimingReport, check_timestamps};
+use thermonav::signal::wavelet::denoise::{DecompositionLevel, Denoised, WaveletDenoise, denoise};
 use thermonav::signal::zero_phase::{ZeroPhaseMode, edge_samples, filter_zero_phase};
 use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
 
@@ -24,27 +28,69 @@ pub struct FilterRecord {
     rows_out: usize,
     input_nominal_rate_hz: f64,
     input_gap_count: usize,
-    mode: &'static str,
-    filter: FirDesign,
-    decimation_factor: usize,
     output_rate_hz: f64,
-    /// Input samples left out at each end (outputs that would read the edge extension).
-    edge_samples_dropped: usize,
+    /// What was done: `"method": "kaiser"` or `"wavelet"` and its own fields.
+    #[serde(flatten)]
+    method: MethodRecord,
     temperature_column: &'static str,
 }
 
+/// The method and what it did.
+#[derive(Debug, Serialize)]
+#[serde(tag = "method", rename_all = "lowercase")]
+enum MethodRecord {
+    Kaiser(KaiserRecord),
+    Wavelet(WaveletRecord),
+}
+
+/// The Kaiser low-pass as run.
+#[derive(Debug, Serialize)]
+struct KaiserRecord {
+    mode: &'static str,
+    filter: FirDesign,
+    decimation_factor: usize,
+    /// Input samples left out at each end (outputs that would read the edge extension).
+    edge_samples_dropped: usize,
+}
+
+/// The wavelet shrinkage as run: its settings and, per channel, σ̂ and the thresholds.
+#[derive(Debug, Serialize)]
+struct WaveletRecord {
+    wavelet: String,
+    level: usize,
+    extension: &'static str,
+    threshold: &'static str,
+    thresholding: &'static str,
+    channels: ChannelRecords,
+}
+
+/// σ̂ and the threshold of every level (finest first), in `unit`.
+#[derive(Debug, Serialize)]
+struct WaveletChannelRecord {
+    unit: &'static str,
+    noise_sigma: f64,
+    thresholds_finest_first: Vec<f64>,
+}
+
+/// A de-noised series and the record of how.
+type Conditioned = (ImuSeries, MethodRecord);
+
+/// The de-noised series and what was done to each channel.
+type Shrunk = (ImuSeries, ChannelRecords);
+
+/// σ̂ and thresholds per channel name.
+type ChannelRecords = BTreeMap<&'static str, WaveletChannelRecord>;
+
 /// Runs `filter`.
-pub fn run(args: &FilterArgs) -> Result<(), Failure> {
-    crate::settings::analysis::check_filter(args)?;
+pub fn run(args: &crate::args::FilterArgs) -> Result<(), Failure> {
+    let plan = resolve_filter(args)?;
     let series = read_imu_file(&args.input, Strictness::Strict).data()?;
     let timing = check_timestamps(&series.time);
     let nominal_rate_hz = nominal_rate_of(&timing, &args.input)?;
-    let design_rate_hz = args.fs_hz.unwrap_or(nominal_rate_hz);
-    let (spec, designed) = design(design_rate_hz, &args.kaiser)?;
-    let mode = args.mode.into();
-    let filter = filter_for_mode(designed, &spec, mode);
-    let factor = resolve_decimation(args, &filter)?;
-    let filtered = filter_series(&series, &filter, mode, factor).data()?;
+    let (filtered, method) = match &plan {
+        FilterPlan::Kaiser(k) => run_kaiser(k, &series, nominal_rate_hz)?,
+        FilterPlan::Wavelet(w) => run_wavelet(w, &series, &args.input)?,
+    };
     let record = FilterRecord {
         input: args.input.display().to_string(),
         output: args.out.display().to_string(),
@@ -53,16 +99,84 @@ pub fn run(args: &FilterArgs) -> Result<(), Failure> {
         rows_out: filtered.len(),
         input_nominal_rate_hz: nominal_rate_hz,
         input_gap_count: timing.gap_count,
-        mode: mode_name(args.mode),
-        filter: describe(&filter, &args.kaiser),
-        decimation_factor: factor,
-        output_rate_hz: design_rate_hz / factor as f64,
-        edge_samples_dropped: edge_samples_dropped(&filter, mode, factor),
+        output_rate_hz: method.output_rate_hz(nominal_rate_hz),
+        method,
         temperature_column: "not filtered; decimated with the samples",
     };
     write_outputs(&args.out, &filtered, &record)?;
     warn_about_gaps(&args.input, timing.gap_count);
     report(args.json, &record)
+}
+
+/// The Kaiser path: design at the file's rate (or --fs-hz), filter, decimate.
+fn run_kaiser(plan: &KaiserPlan, x: &ImuSeries, rate_hz: f64) -> Result<Conditioned, Failure> {
+    let (spec, designed) = design(plan.fs_hz.unwrap_or(rate_hz), &plan.kaiser)?;
+    let mode = plan.mode.into();
+    let filter = filter_for_mode(designed, &spec, mode);
+    let factor = resolve_decimation(plan, &filter)?;
+    let filtered = filter_series(x, &filter, mode, factor).data()?;
+    Ok((filtered, kaiser_record(plan, &filter, factor)))
+}
+
+fn kaiser_record(plan: &KaiserPlan, filter: &FirFilter, factor: usize) -> MethodRecord {
+    MethodRecord::Kaiser(KaiserRecord {
+        mode: mode_name(plan.mode),
+        filter: describe(filter, &plan.kaiser),
+        decimation_factor: factor,
+        edge_samples_dropped: edge_samples_dropped(filter, plan.mode.into(), factor),
+    })
+}
+
+/// The wavelet path: every channel shrunk at the record's rate, same rows out.
+fn run_wavelet(w: &WaveletDenoise, x: &ImuSeries, input: &Path) -> Result<Conditioned, Failure> {
+    let level = wavelet_level(w, x.len(), input)?;
+    let (out, channels) = shrink_channels(w, x)?;
+    Ok((
+        out,
+        MethodRecord::Wavelet(wavelet_record(w, level, channels)),
+    ))
+}
+
+/// Every channel de-noised, and what was done to each.
+fn shrink_channels(w: &WaveletDenoise, x: &ImuSeries) -> Result<Shrunk, Failure> {
+    let (mut out, mut channels) = (x.clone(), BTreeMap::new());
+    for channel in Channel::ALL {
+        let shrunk = denoise(x.channel(channel), w).data()?;
+        channels.insert(channel.name(), channel_record(channel, x.kind, &shrunk));
+        out.channels[channel.index()] = shrunk.values;
+    }
+    Ok((out, channels))
+}
+
+/// The level for `rows` samples: a --level the record does not allow is a usage error, a
+/// record too short for one level a data error.
+fn wavelet_level(w: &WaveletDenoise, rows: usize, input: &Path) -> Result<usize, Failure> {
+    let level = (w.level_for(rows)).map_err(|e| anyhow!("{}: {rows} rows: {e}", input.display()));
+    match w.level {
+        DecompositionLevel::Fixed(l) => {
+            level.map_err(|e| Failure::Usage(e.context(format!("--level {l}"))))
+        }
+        DecompositionLevel::Max => level.map_err(Failure::Data),
+    }
+}
+
+fn channel_record(c: Channel, kind: Option<SampleKind>, d: &Denoised) -> WaveletChannelRecord {
+    WaveletChannelRecord {
+        unit: c.si_unit(kind.unwrap_or(SampleKind::Rates)),
+        noise_sigma: d.noise_sigma,
+        thresholds_finest_first: d.thresholds.clone(),
+    }
+}
+
+fn wavelet_record(w: &WaveletDenoise, level: usize, channels: ChannelRecords) -> WaveletRecord {
+    WaveletRecord {
+        wavelet: w.wavelet.to_string(),
+        level,
+        extension: w.mode.name(),
+        threshold: w.rule.name(),
+        thresholding: w.thresholding.name(),
+        channels,
+    }
 }
 
 /// The input's nominal sample rate; an error when it has fewer than two samples.
@@ -102,9 +216,9 @@ fn mode_name(mode: ModeArg) -> &'static str {
 }
 
 /// The decimation factor (1 without `--decimate-to-hz`); the anti-alias rule was checked with
-/// the other arguments, before reading (`settings::analysis::check_filter`).
-fn resolve_decimation(args: &FilterArgs, filter: &FirFilter) -> Result<usize, Failure> {
-    let Some(target_hz) = args.decimate_to_hz else {
+/// the other arguments, before reading (`settings::analysis::resolve_filter`).
+fn resolve_decimation(plan: &KaiserPlan, filter: &FirFilter) -> Result<usize, Failure> {
+    let Some(target_hz) = plan.decimate_to_hz else {
         return Ok(1);
     };
     decimation_factor(filter.sample_rate_hz(), target_hz).usage()
@@ -146,7 +260,7 @@ pub fn filter_series(
 /// Writes the filtered series and its JSON record.
 fn write_outputs(out: &Path, series: &ImuSeries, record: &FilterRecord) -> Result<(), Failure> {
     write_imu_file(out, series).data()?;
-    write_json_atomically(crate::settings::analysis::json_sidecar(out), record).data()
+    write_json_atomically(json_sidecar(out), record).data()
 }
 
 /// Prints the record, as JSON with `--json`.
@@ -156,6 +270,51 @@ fn report(json: bool, record: &FilterRecord) -> Result<(), Failure> {
     }
     print_rows(&summary_rows(record));
     Ok(())
+}
+
+impl MethodRecord {
+    /// The method in one line.
+    fn describe(&self) -> String {
+        match self {
+            MethodRecord::Kaiser(k) => k.describe(),
+            MethodRecord::Wavelet(w) => w.describe(),
+        }
+    }
+
+    /// The decimation factor (1 for the wavelet method).
+    fn decimation_factor(&self) -> usize {
+        match self {
+            MethodRecord::Kaiser(k) => k.decimation_factor,
+            MethodRecord::Wavelet(_) => 1,
+        }
+    }
+
+    /// The output rate, Hz, from the input's nominal rate.
+    fn output_rate_hz(&self, input_rate_hz: f64) -> f64 {
+        match self {
+            MethodRecord::Kaiser(k) => k.filter.sample_rate_hz / k.decimation_factor as f64,
+            MethodRecord::Wavelet(_) => input_rate_hz,
+        }
+    }
+}
+
+impl KaiserRecord {
+    fn describe(&self) -> String {
+        let f = &self.filter;
+        format!(
+            "Kaiser low-pass, {} taps, beta {:.4}, {}",
+            f.num_taps, f.beta, self.mode
+        )
+    }
+}
+
+impl WaveletRecord {
+    fn describe(&self) -> String {
+        format!(
+            "wavelet shrinkage, {} level {}, {} extension, {} threshold, {}",
+            self.wavelet, self.level, self.extension, self.threshold, self.thresholding
+        )
+    }
 }
 
 /// The text summary: input, filter, decimation, output and where the record is.
@@ -168,18 +327,13 @@ fn summary_rows(record: &FilterRecord) -> [(&'static str, String); 5] {
                 record.input, record.rows_in, record.input_nominal_rate_hz
             ),
         ),
-        (
-            "filter",
-            format!(
-                "Kaiser low-pass, {} taps, beta {:.4}, {}",
-                record.filter.num_taps, record.filter.beta, record.mode
-            ),
-        ),
+        ("filter", record.method.describe()),
         (
             "decimation",
             format!(
                 "x{} -> {:.3} Hz",
-                record.decimation_factor, record.output_rate_hz
+                record.method.decimation_factor(),
+                record.output_rate_hz
             ),
         ),
         (
@@ -188,7 +342,7 @@ fn summary_rows(record: &FilterRecord) -> [(&'static str, String); 5] {
         ),
         (
             "record",
-            crate::settings::analysis::json_sidecar(Path::new(&record.output))
+            json_sidecar(Path::new(&record.output))
                 .display()
                 .to_string(),
         ),

@@ -1,13 +1,14 @@
 //! Settings of `characterize` (files or a production lot).
 
 use super::paths::Io;
-use crate::args::{CharacterizeArgs, ReadingArg};
+use crate::args::{CharacterizeArgs, DenoiseArg, ReadingArg};
 use crate::failure::Failure;
 use crate::thermal_calibration::ThermalInputs;
 use anyhow::anyhow;
 use std::path::PathBuf;
+use thermonav::signal::wavelet::denoise::WaveletDenoise;
 use thermonav::sim::chamber::Site;
-use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser};
 
 /// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
 /// MEMS data sheets (-55..+125 °C) with a margin; anything else is a typo or a unit mix-up.
@@ -73,7 +74,7 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure>
             manifest: manifest.clone(),
             units: unit_choice(args),
             conditioning,
-            reading: args.reading,
+            reading: reading(args)?,
             out: args.out.clone(),
         })),
         None => bank_job(args, conditioning).map(CharacterizeJob::Bank),
@@ -106,7 +107,7 @@ fn bank_job(
         files: args.files.clone(),
         temperatures_c: args.temperature_c.clone(),
         conditioning,
-        reading: args.reading,
+        reading: reading(args)?,
         out: args.out.clone(),
         thermal,
     })
@@ -162,6 +163,27 @@ fn conditioning(args: &CharacterizeArgs) -> Result<CharacterizeSettings, Failure
         cutoff_hz: super::positive("--cutoff-hz", args.cutoff_hz)?,
         transition_hz: super::positive("--transition-hz", args.transition_hz)?,
         modelling_rate_hz: super::positive("--modelling-rate-hz", args.modelling_rate_hz)?,
+        denoise: denoiser(args.denoise),
         ..CharacterizeSettings::default()
     })
+}
+
+/// `--denoise`: the wavelet de-noiser takes the library's wavelet defaults.
+fn denoiser(denoise: DenoiseArg) -> Denoiser {
+    match denoise {
+        DenoiseArg::Kaiser => Denoiser::Kaiser,
+        DenoiseArg::Wavelet => Denoiser::Wavelet(WaveletDenoise::default()),
+    }
+}
+
+/// `--reading`: the wavelet transform needs the whole record, so it reads in memory (auto) and
+/// refuses streaming.
+fn reading(args: &CharacterizeArgs) -> Result<ReadingArg, Failure> {
+    match (args.denoise, args.reading) {
+        (DenoiseArg::Wavelet, ReadingArg::Streaming) => Err(Failure::Usage(anyhow!(
+            "--denoise wavelet needs the whole record in memory: --reading streaming cannot be used with it"
+        ))),
+        (DenoiseArg::Wavelet, _) => Ok(ReadingArg::InMemory),
+        (DenoiseArg::Kaiser, reading) => Ok(reading),
+    }
 }

@@ -5,6 +5,7 @@ mod bank_export;
 mod commands;
 mod convert;
 mod convert_ulog;
+mod denoise;
 mod lot;
 mod modelling;
 mod navigation;

@@ -1,14 +1,13 @@
 //! Signal conditioning: timestamp checks, Kaiser-window FIR design, zero-phase filtering and
-//! decimation (paper step 2: de-noising before stochastic modelling).
-//!
-//! Wavelet de-noising, the paper's named alternative, belongs here as a sibling module when it
-//! comes; it would take the same `&[f64]` in and give the same length out.
+//! decimation (paper step 2: de-noising before stochastic modelling), and wavelet de-noising,
+//! the paper's named alternative ([`wavelet`]: the same `&[f64]` in, the same length out).
 
 pub mod convolution;
 pub mod decimate;
 pub mod kaiser;
 pub mod streaming_decimate;
 pub mod timestamps;
+pub mod wavelet;
 pub mod zero_phase;
 
 /// Why a signal-conditioning step cannot run.
@@ -59,6 +58,32 @@ pub enum SignalError {
         nyquist_hz: f64,
         /// Decimated rate, Hz.
         target_rate_hz: f64,
+    },
+    /// A wavelet decomposition level the signal's length does not allow.
+    #[error(
+        "wavelet level {level} is not possible for {samples} samples and a {filter_len}-tap wavelet: the level must be 1..={max_level} (PyWavelets' dwt_max_level)"
+    )]
+    WaveletLevel {
+        /// Level asked for.
+        level: usize,
+        /// Deepest level for the length (0: too short for one).
+        max_level: usize,
+        /// Samples.
+        samples: usize,
+        /// Taps of the wavelet's filters.
+        filter_len: usize,
+    },
+    /// A signal too short for one level of the wavelet transform.
+    #[error(
+        "{samples} samples are too few for a wavelet decomposition with a {filter_len}-tap wavelet: at least {needed} are needed"
+    )]
+    WaveletTooShort {
+        /// Samples.
+        samples: usize,
+        /// Samples needed for one level (taps − 1).
+        needed: usize,
+        /// Taps of the wavelet's filters.
+        filter_len: usize,
     },
     /// Decimation impossible.
     #[error("cannot decimate {input_rate_hz} Hz to {target_rate_hz} Hz: {reason}")]

@@ -57,8 +57,11 @@ pub struct TemperatureEntry {
 pub struct Preprocessing {
     /// Nominal rate of the raw record, Hz.
     pub input_rate_hz: f64,
-    /// Low-pass filter, when one was applied.
+    /// Low-pass filter, when the Kaiser filter was the de-noiser.
     pub filter: Option<FilterSummary>,
+    /// Wavelet de-noising, when it was the de-noiser (absent in banks from before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wavelet: Option<WaveletSummary>,
     /// Keep-every-n-th factor after filtering (1 = none).
     pub decimation_factor: usize,
     /// Nominal rate of the modelled series, Hz.
@@ -80,6 +83,22 @@ pub struct FilterSummary {
     pub beta: f64,
     /// Zero-phase mode (`zero-phase` or `filtfilt`).
     pub mode: String,
+}
+
+/// Wavelet de-noising as applied ([`crate::signal::wavelet::denoise`]), then every
+/// `decimation_factor`-th sample kept.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WaveletSummary {
+    /// The wavelet (`db1`..`db10`).
+    pub wavelet: String,
+    /// Decomposition level used.
+    pub level: usize,
+    /// Extension mode (PyWavelets' name: `symmetric` or `periodization`).
+    pub mode: String,
+    /// Threshold rule (`universal`, `sure` or `sure-hybrid`).
+    pub threshold: String,
+    /// Thresholding (`soft` or `hard`).
+    pub thresholding: String,
 }
 
 /// Every model of one channel at one temperature. Values are SI: rad/s for gyros, m/s² for
@@ -538,6 +557,7 @@ mod tests {
             preprocessing: Preprocessing {
                 input_rate_hz: 200.0,
                 filter: None,
+                wavelet: None,
                 decimation_factor: 1,
                 modelling_rate_hz: 200.0,
             },

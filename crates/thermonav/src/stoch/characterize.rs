@@ -6,7 +6,9 @@
 //! 2. The paper's conditioning: Kaiser low-pass at `cutoff_hz` (zero-phase), then decimation to
 //!    `modelling_rate_hz`, a rate consistent with the cut-off, so the AR fit does not measure
 //!    the filter's own correlation. Only the kept samples are filtered
-//!    ([`filter_and_decimate`]), taps/factor multiplications per input sample.
+//!    ([`filter_and_decimate`]), taps/factor multiplications per input sample. Or, with
+//!    [`Denoiser::Wavelet`], the paper's alternative: wavelet shrinkage of the whole record at
+//!    its own rate ([`denoise`]), then every factor-th sample (in memory only).
 //! 3. On the conditioned series: the chosen AR model, the AR(1) fit and its AR-based
 //!    Gauss-Markov model (the paper's), and the classical fit to the autocorrelation.
 //! 4. On block means of the raw record with their actual times: the exact Gauss-Markov +
@@ -25,7 +27,7 @@ use super::ar::order::{Criterion, Order, fit_ar_order};
 use super::ar::{ArMethod, ArModel, fit_ar};
 use super::bank::{
     AllanSummary, ArSummary, ChannelModel, FilterSummary, GaussMarkovEstimate, GaussMarkovModels,
-    Preprocessing, TemperatureEntry,
+    Preprocessing, TemperatureEntry, WaveletSummary,
 };
 use super::gauss_markov::{
     Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
@@ -34,10 +36,12 @@ use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
 use crate::imu::{Channel, ImuSeries, SampleKind};
-use crate::signal::decimate::{check_anti_alias, decimation_factor};
+use crate::signal::SignalError;
+use crate::signal::decimate::{check_anti_alias, decimate, decimation_factor};
 use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
 use crate::signal::streaming_decimate::filter_and_decimate;
 use crate::signal::timestamps::interval_stats;
+use crate::signal::wavelet::denoise::{WaveletDenoise, denoise};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -64,6 +68,19 @@ pub struct CharacterizeSettings {
     pub acf_window: LagWindow,
     /// Block length of the means fed to the exact likelihood, s.
     pub ml_block_s: f64,
+    /// What de-noises the record before the AR and ACF fits.
+    pub denoise: Denoiser,
+}
+
+/// The de-noising before decimation to the modelling rate (the Allan curve and the exact
+/// likelihood always see the raw record).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Denoiser {
+    /// The Kaiser low-pass of `cutoff_hz`, `transition_hz`, `ripple_db` (the paper's).
+    #[default]
+    Kaiser,
+    /// Wavelet shrinkage with these settings (needs the whole record in memory).
+    Wavelet(WaveletDenoise),
 }
 
 impl Default for CharacterizeSettings {
@@ -82,6 +99,7 @@ impl Default for CharacterizeSettings {
             },
             acf_window: LagWindow::FirstZeroCrossing,
             ml_block_s: 0.5,
+            denoise: Denoiser::Kaiser,
         }
     }
 }
@@ -200,7 +218,30 @@ pub fn characterize(
         results.into_iter().collect::<Result<_, _>>()?;
     let mut entry = conditioning.entry(temperature_c, source, settings, &reports);
     entry.record_mean = record_mean(series, series.mean_temperature_c().unwrap_or(temperature_c));
+    record_denoiser(&mut entry.preprocessing, settings.denoise, series.len())?;
     Ok((entry, reports))
+}
+
+/// With wavelet de-noising, the bank records it in place of the Kaiser filter.
+fn record_denoiser(
+    preprocessing: &mut Preprocessing,
+    denoiser: Denoiser,
+    samples: usize,
+) -> Result<(), CharacterizeError> {
+    if let Denoiser::Wavelet(w) = denoiser {
+        let level = w
+            .level_for(samples)
+            .map_err(|e| CharacterizeError::Settings(e.to_string()))?;
+        preprocessing.filter = None;
+        preprocessing.wavelet = Some(WaveletSummary {
+            wavelet: w.wavelet.to_string(),
+            level,
+            mode: w.mode.name().into(),
+            threshold: w.rule.name().into(),
+            thresholding: w.thresholding.name().into(),
+        });
+    }
+    Ok(())
 }
 
 /// The conditioning of a record at `rate_hz`: the Kaiser low-pass and the decimation factor.
@@ -273,6 +314,7 @@ impl Conditioning {
                     beta: self.filter.beta(),
                     mode: "zero-phase".into(),
                 }),
+                wavelet: None,
                 decimation_factor: self.factor,
                 modelling_rate_hz: self.rate_hz / self.factor as f64,
             },
@@ -410,8 +452,7 @@ impl Context<'_> {
         let allan = overlapping_adev(values, c.rate_hz, &self.settings.allan_grid)
             .map_err(|e| fail(e.to_string()))?;
         let limits = confidence_intervals(values, &allan, self.settings.ci_level);
-        let conditioned =
-            filter_and_decimate(&c.filter, values, c.factor).map_err(|e| fail(e.to_string()))?;
+        let conditioned = self.conditioned(values).map_err(|e| fail(e.to_string()))?;
         let per_block = c.samples_per_ml_block(self.settings);
         let inputs = ChannelInputs {
             allan,
@@ -421,6 +462,17 @@ impl Context<'_> {
             block_means: block_means(values, per_block),
         };
         channel_report(channel, inputs, c.modelling_dt_s(), self.settings)
+    }
+}
+
+impl Context<'_> {
+    /// The record de-noised and decimated to the modelling rate.
+    fn conditioned(&self, values: &[f64]) -> Result<Vec<f64>, SignalError> {
+        let c = self.conditioning;
+        match &self.settings.denoise {
+            Denoiser::Kaiser => filter_and_decimate(&c.filter, values, c.factor),
+            Denoiser::Wavelet(w) => Ok(decimate(&denoise(values, w)?.values, c.factor)),
+        }
     }
 }
 

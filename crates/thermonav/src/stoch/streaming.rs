@@ -26,7 +26,7 @@
 use super::allan::{ChiSquareQuantile, CiSettings, StreamingAllan, StreamingAllanSettings};
 use super::bank::TemperatureEntry;
 use super::characterize::{
-    ChannelInputs, ChannelReport, CharacterizeError, CharacterizeSettings, Conditioning,
+    ChannelInputs, ChannelReport, CharacterizeError, CharacterizeSettings, Conditioning, Denoiser,
     channel_report, characterize,
 };
 use super::thermal::RecordSums;
@@ -278,6 +278,11 @@ impl StreamingCharacterizer {
             samples: prefix.len(),
             needed: 2,
         })?;
+        if self.settings.denoise != Denoiser::Kaiser {
+            return Err(CharacterizeError::Settings(
+                "wavelet de-noising needs the whole record: characterise it in memory".into(),
+            ));
+        }
         let conditioning = Conditioning::new(stats.nominal_rate_hz(), &self.settings)?;
         let per_block = conditioning.samples_per_ml_block(&self.settings);
         let channels = Channel::ALL

@@ -18,7 +18,7 @@ const KINDS: [DeviationKind; 5] = [
 ];
 
 /// The JSON array `v` as numbers.
-fn numbers(v: &Value) -> Vec<f64> {
+pub(crate) fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()
         .expect("array")
         .iter()

@@ -20,6 +20,7 @@ mod thermal;
 mod thermal_recovery;
 mod ukf;
 mod vessel;
+mod wavelet_denoise;
 mod wavelet_variance;
 
 use std::path::PathBuf;

@@ -77,7 +77,8 @@ fn streaming_allan_with_default_bounds_is_exact_below_and_close_above() {
     eprintln!("worst decimated-overlap difference: {worst_fraction} of the half-width");
 }
 
-fn chamber_record(seconds: f64) -> ImuSeries {
+/// A simulated static 50 Hz chamber record of `seconds` at 10 °C (the ADIS16364-like unit).
+pub(crate) fn chamber_record(seconds: f64) -> ImuSeries {
     let run = ChamberRun {
         temperature: thermonav::sim::chamber::ChamberTemperature::SetPoint {
             temperature_c: 10.0,
@@ -99,7 +100,7 @@ fn chamber_record(seconds: f64) -> ImuSeries {
 }
 
 /// The samples of `range`, for feeding a series piece by piece.
-fn piece(series: &ImuSeries, range: std::ops::Range<usize>) -> ImuSeries {
+pub(crate) fn piece(series: &ImuSeries, range: std::ops::Range<usize>) -> ImuSeries {
     let mut out = ImuSeries::new(series.kind.unwrap());
     out.time = series.time[range.clone()].to_vec();
     for c in Channel::ALL {
