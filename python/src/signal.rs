@@ -119,7 +119,7 @@ pub fn decimate<'py>(
         .detach(|| filter_zero_phase(&filter, &x, mode).map(|y| decimate_valid(&y, edge, factor)))
         .map_err(error)?;
     let out = PyDict::new(py);
-    out.set_item("values", array(py, y))?;
+    out.set_item("samples", array(py, y))?;
     out.set_item("decimation_factor", factor)?;
     out.set_item("output_rate_hz", rate_hz / factor as f64)?;
     out.set_item("edge_samples_dropped", edge)?;

@@ -105,9 +105,9 @@ class FirDesign(Record):
     taps: Floats
 
 class Decimated(Record):
-    """``values`` (the kept outputs), ``decimation_factor``, ``output_rate_hz`` (Hz),
+    """``samples`` (the kept outputs), ``decimation_factor``, ``output_rate_hz`` (Hz),
     ``edge_samples_dropped`` (input samples left out at each end) and ``num_taps``."""
-    values: Floats
+    samples: Floats
     decimation_factor: int
     output_rate_hz: float
     edge_samples_dropped: int
