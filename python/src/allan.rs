@@ -62,7 +62,7 @@ fn adev_with_limits(
 /// Allan deviation of rate samples `x` taken at `rate_hz` (module docs of the Python package:
 /// `thermonav.allan`).
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, taus=None, kind="adev", confidence=DEFAULT_CONFIDENCE))]
+#[pyo3(signature = (x, rate_hz, taus=None, kind="adev", confidence=DEFAULT_CONFIDENCE, limits=true))]
 pub fn allan<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,
@@ -70,6 +70,7 @@ pub fn allan<'py>(
     taus: Option<&Bound<'py, PyAny>>,
     kind: &str,
     confidence: f64,
+    limits: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let kind: DeviationKind = kind.parse().map_err(error)?;
     let grid = tau_grid(taus)?;
@@ -77,7 +78,7 @@ pub fn allan<'py>(
     let out = PyDict::new(py);
     out.set_item("kind", kind.name())?;
     out.set_item("sample_rate_hz", rate_hz)?;
-    if kind != DeviationKind::Adev {
+    if kind != DeviationKind::Adev || !limits {
         let curve = py
             .detach(|| deviation(kind, &y, rate_hz, &grid))
             .map_err(error)?;

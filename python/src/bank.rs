@@ -207,6 +207,7 @@ fn bank_text(bank: &ModelBank) -> PyResult<String> {
 
 /// Characterises static records into a model bank: the JSON text of `bank.json` and the notes.
 #[pyfunction]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
 #[pyo3(signature = (records, temperatures_c=None, cutoff_hz=None, transition_hz=None, modelling_rate_hz=None, chamber_latitude_deg=DEFAULT_SITE_LATITUDE_DEG, chamber_height_m=DEFAULT_SITE_HEIGHT_M))]
 pub fn characterize(
     py: Python<'_>,

@@ -97,7 +97,7 @@ pub fn zero_phase<'py>(
 /// `x` low-passed and decimated to `to_hz`, as `thermonav filter --decimate-to-hz`.
 #[pyfunction]
 #[pyo3(signature = (x, rate_hz, to_hz, cutoff_hz, transition_hz=DEFAULT_TRANSITION_HZ, ripple_db=DEFAULT_RIPPLE_DB, mode="zero-phase"))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
 pub fn decimate<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,

@@ -152,11 +152,10 @@ def _given(**settings: Any) -> dict[str, Any]:
     return {k: v for k, v in settings.items() if v is not None}
 
 
-def allan(x, rate_hz, taus="octave", kind="adev", confidence=None) -> AllanResult:
+def allan(x, rate_hz, taus="octave", kind="adev", confidence=None, limits=True) -> AllanResult:
     """The Allan deviation (or another member of the family) of rate samples, as ``thermonav allan``."""
-    result = _native.allan(
-        _samples("x", x), float(rate_hz), **_given(taus=taus, kind=kind, confidence=confidence)
-    )
+    settings = _given(taus=taus, kind=kind, confidence=confidence)
+    result = _native.allan(_samples("x", x), float(rate_hz), limits=bool(limits), **settings)
     return AllanResult(result)
 
 

@@ -32,7 +32,7 @@ class AllanResult(Record):
     Always: ``kind`` (the deviation's name), ``sample_rate_hz`` (Hz), ``tau_s`` (averaging
     times, s), ``averaging_factor`` (m = tau / tau0), ``n_terms`` (terms averaged), and the
     deviation under the kind's name (``adev``, ``mdev``, ... in the data's unit; ``tdev`` in
-    the data's unit times s). For ``kind="adev"`` also ``confidence`` (level of the limits),
+    the data's unit times s). For ``kind="adev"`` (unless ``limits=False``) also ``confidence`` (level of the limits),
     ``ci_low`` and ``ci_high`` (Stable32-style limits of the deviation, data's unit),
     ``noise_type_alpha`` (identified power-law exponent per tau) and ``edf`` (equivalent
     degrees of freedom).
@@ -147,13 +147,15 @@ def allan(
     taus: TauGrid = "octave",
     kind: DeviationKind = "adev",
     confidence: float | None = None,
+    limits: bool = True,
 ) -> AllanResult:
     """The Allan deviation of rate samples ``x`` (float64, any unit) taken at ``rate_hz`` (Hz).
 
     ``taus``: "octave" (m = 1, 2, 4, ...), "decade", "dense" (20 per decade) or explicit
     averaging factors. ``kind``: "adev" (overlapping, allantools ``oadev``), "mdev", "hdev",
     "ohdev", "tdev", "totdev" (each allantools' function with ``data_type='freq'``).
-    ``confidence``: level of adev's limits (default 0.683). As ``thermonav allan``.
+    ``confidence``: level of adev's limits (default 0.683); ``limits=False`` leaves out the
+    limits, noise types and edf (the curve alone, 4-5x faster). As ``thermonav allan``.
     """
 
 def noise_terms(
