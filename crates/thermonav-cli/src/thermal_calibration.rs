@@ -11,8 +11,8 @@ use thermonav::imu::ImuSeries;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::{
-    FitSettings, PowerOnRecord, RecordMean, SensorDevices, ThermalCalibration, calibrate,
-    merge_records, power_on_records, record_mean, sweep_records, without_signal,
+    FitSettings, PowerOnRecord, RecordMean, SensorDevices, ThermalCalibration, bank_power_on,
+    calibrate, calibrate_level_unit, merge_records, power_on_records, record_mean, sweep_records,
 };
 use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
 use thermonav_io::ulog::read_ulog_file;
@@ -22,13 +22,7 @@ use thermonav_io::{Strictness, read_imu_file};
 /// correlation times, so that neighbouring blocks are nearly independent.
 pub const DEFAULT_SWEEP_BLOCK_S: f64 = 300.0;
 
-/// The chamber site assumed unless given: 45° latitude at sea level. Gravity there is within
-/// 0.5 mg of that at 38-52° and 0 to 1 km would add 0.3 mg per 100 m: an error in the site
-/// moves only az's constant, which the filter's bias state takes up.
-pub const DEFAULT_SITE_LATITUDE_DEG: f64 = 45.0;
-
-/// Height of the default chamber site, m.
-pub const DEFAULT_SITE_HEIGHT_M: f64 = 0.0;
+pub use thermonav::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 
 fn default_site() -> Site {
     Site {
@@ -81,7 +75,7 @@ pub fn calibrate_bank(
     bank: &ModelBank,
     inputs: &ThermalInputs,
 ) -> Result<Option<ThermalCalibration>, Failure> {
-    let mut parts = vec![power_on_records(1, &own_means(bank))];
+    let mut parts = vec![bank_power_on(bank)];
     for (k, files) in inputs.power_ons.iter().enumerate() {
         parts.push(power_on_records(k as u32 + 2, &means_of(files)?));
     }
@@ -98,11 +92,8 @@ pub fn calibrate_bank(
         )?);
     }
     let gravity = normal_gravity_m_s2(inputs.site.latitude_rad, inputs.site.height_m);
-    let signal = BTreeMap::from([(Channel::Az, -gravity)]);
-    let observations = without_signal(merge_records(parts), &signal);
     let devices = common_devices(&devices, &inputs.sweeps)?;
-    Ok(fit(&observations, inputs.given())?.map(|mut c| {
-        c.removed_signal = signal;
+    Ok(fit(parts, gravity, inputs.given())?.map(|mut c| {
         c.devices = devices;
         c
     }))
@@ -181,16 +172,10 @@ fn common_devices(
     }
 }
 
-/// The means of the bank's own records (its first power-on).
-fn own_means(bank: &ModelBank) -> Vec<RecordMean> {
-    let means = bank.entries.iter().filter_map(|e| e.record_mean.clone());
-    means.collect()
-}
-
 /// Why a bank built from its records alone has no thermal calibration: what fitting their
 /// means says.
 pub fn missing_reason(bank: &ModelBank) -> String {
-    let observations = merge_records(vec![power_on_records(1, &own_means(bank))]);
+    let observations = merge_records(vec![bank_power_on(bank)]);
     match calibrate(&observations, FitSettings::default()) {
         Err(e) => format!("the records' means alone: {e}"),
         Ok(c) if c.channels.is_empty() => "the records carry no means to fit".into(),
@@ -198,13 +183,15 @@ pub fn missing_reason(bank: &ModelBank) -> String {
     }
 }
 
+/// The calibration of the power-ons `parts` of a level unit under `gravity_m_s2`; a failed
+/// fit is an error when further inputs were given (`required`), else a note and none.
 fn fit(
-    observations: &BTreeMap<Channel, Vec<PowerOnRecord>>,
+    parts: Vec<BTreeMap<Channel, Vec<PowerOnRecord>>>,
+    gravity_m_s2: f64,
     required: bool,
 ) -> Result<Option<ThermalCalibration>, Failure> {
-    match calibrate(observations, FitSettings::default()) {
-        Ok(calibration) if !calibration.channels.is_empty() => Ok(Some(calibration)),
-        Ok(_) => Ok(None),
+    match calibrate_level_unit(parts, gravity_m_s2) {
+        Ok(calibration) => Ok(calibration),
         Err(e) if required => Err(Failure::Data(anyhow!("thermal calibration: {e}"))),
         Err(e) => {
             eprintln!("note: no thermal calibration: {e}");

@@ -511,6 +511,18 @@ impl<W: Write> ImuWriter<W> {
     }
 }
 
+/// The canonical names of the six channel columns of `kind`, in [`Channel::ALL`] order
+/// (`gx_rad_s` .. `az_m_s2`, or `dthx_rad` .. `dvz_m_s`), as written.
+///
+/// [`Channel::ALL`]: thermonav::imu::Channel::ALL
+pub fn channel_column_names(kind: SampleKind) -> [&'static str; 6] {
+    let names = match kind {
+        SampleKind::Rates => RATE_NAMES,
+        SampleKind::Increments => INCREMENT_NAMES,
+    };
+    names.map(|(name, _)| name)
+}
+
 /// The header line for a kind, with `temp_c` when written.
 fn header(kind: SampleKind, temperature: TemperatureColumn) -> String {
     let names = match kind {

@@ -12,10 +12,12 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::decimate::{decimate_valid, decimation_factor};
-use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
+use thermonav::signal::kaiser::FirFilter;
 use thermonav::signal::timestamps::{TimingReport, check_timestamps};
 use thermonav::signal::wavelet::denoise::{DecompositionLevel, Denoised, WaveletDenoise, denoise};
-use thermonav::signal::zero_phase::{ZeroPhaseMode, edge_samples, filter_zero_phase};
+use thermonav::signal::zero_phase::{
+    ZeroPhaseMode, decimation_edge_samples, filter_for_mode, filter_zero_phase,
+};
 use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
 
 /// The sidecar JSON written next to the output (and printed by `--json`).
@@ -123,7 +125,7 @@ fn kaiser_record(plan: &KaiserPlan, filter: &FirFilter, factor: usize) -> Method
         mode: mode_name(plan.mode),
         filter: describe(filter, &plan.kaiser),
         decimation_factor: factor,
-        edge_samples_dropped: edge_samples_dropped(filter, plan.mode.into(), factor),
+        edge_samples_dropped: decimation_edge_samples(filter, plan.mode.into(), factor),
     })
 }
 
@@ -187,15 +189,6 @@ fn nominal_rate_of(timing: &TimingReport, input: &Path) -> Result<f64, Failure> 
         .ok_or_else(|| Failure::Data(anyhow!("{}: fewer than two samples", input.display())))
 }
 
-/// The filter as run: one-pass zero phase needs a whole-sample delay, so an even design gets
-/// one more tap.
-fn filter_for_mode(designed: FirFilter, spec: &KaiserSpec, mode: ZeroPhaseMode) -> FirFilter {
-    match mode {
-        ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(spec),
-        ZeroPhaseMode::ForwardBackward => designed,
-    }
-}
-
 /// The warning that the filter treats a record with gaps as evenly spaced.
 fn warn_about_gaps(input: &Path, gap_count: usize) {
     if gap_count > 0 {
@@ -224,16 +217,6 @@ fn resolve_decimation(plan: &KaiserPlan, filter: &FirFilter) -> Result<usize, Fa
     decimation_factor(filter.sample_rate_hz(), target_hz).usage()
 }
 
-/// Samples dropped at each end: with decimation (factor > 1) only outputs whose filter
-/// response lies inside the record are kept; without, every row is (SciPy's `filtfilt`).
-fn edge_samples_dropped(filter: &FirFilter, mode: ZeroPhaseMode, factor: usize) -> usize {
-    if factor > 1 {
-        edge_samples(filter, mode)
-    } else {
-        0
-    }
-}
-
 /// Filters every channel and keeps every `factor`-th sample, leaving out with decimation the
 /// outputs nearer an end than the filter's response (they would come from the edge
 /// extension; the first would be the raw first sample); the temperature column is carried
@@ -244,7 +227,7 @@ pub fn filter_series(
     mode: ZeroPhaseMode,
     factor: usize,
 ) -> Result<ImuSeries, thermonav::signal::SignalError> {
-    let edge = edge_samples_dropped(filter, mode, factor);
+    let edge = decimation_edge_samples(filter, mode, factor);
     let mut out = ImuSeries {
         time: decimate_valid(&series.time, edge, factor),
         temperature_c: (series.temperature_c.as_ref()).map(|t| decimate_valid(t, edge, factor)),

@@ -15,7 +15,7 @@
 
 use super::SignalError;
 use super::convolution::convolve;
-use super::kaiser::FirFilter;
+use super::kaiser::{FirFilter, KaiserSpec};
 
 /// How the delay of the filter is removed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,6 +35,28 @@ pub fn edge_samples(filter: &FirFilter, mode: ZeroPhaseMode) -> usize {
     match mode {
         ZeroPhaseMode::DelayCompensated => (taps.saturating_sub(1)) / 2,
         ZeroPhaseMode::ForwardBackward => taps.saturating_sub(1),
+    }
+}
+
+/// The filter as run in `mode`, from the design of `spec`: the one-pass mode needs a
+/// whole-sample delay, so an even design gets one more tap ([`FirFilter::with_odd_taps`]);
+/// forward-backward runs the design as it is.
+pub fn filter_for_mode(designed: FirFilter, spec: &KaiserSpec, mode: ZeroPhaseMode) -> FirFilter {
+    match mode {
+        ZeroPhaseMode::DelayCompensated => designed.with_odd_taps(spec),
+        ZeroPhaseMode::ForwardBackward => designed,
+    }
+}
+
+/// Samples left out at each end when a filtered record is decimated by `factor`: with
+/// decimation (factor > 1) only outputs whose response lies inside the record are kept
+/// ([`edge_samples`]; the first output would be the raw first sample); without, every row is
+/// (SciPy's `filtfilt`).
+pub fn decimation_edge_samples(filter: &FirFilter, mode: ZeroPhaseMode, factor: usize) -> usize {
+    if factor > 1 {
+        edge_samples(filter, mode)
+    } else {
+        0
     }
 }
 

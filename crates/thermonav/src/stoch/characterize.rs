@@ -484,7 +484,9 @@ fn block_means(values: &[f64], per_block: usize) -> Vec<f64> {
         .collect()
 }
 
-fn ar1_estimate(ar1: &ArModel, dt_s: f64) -> Ar1Estimate {
+/// The AR(1) fit `ar1` of a series sampled every `dt_s` seconds, as the input of
+/// [`ar_based`].
+pub fn ar1_estimate(ar1: &ArModel, dt_s: f64) -> Ar1Estimate {
     Ar1Estimate {
         c1: ar1.coefficients[0],
         c1_std_error: ar1.std_errors[0],
@@ -502,7 +504,8 @@ fn ar_summary(model: &ArModel, dt_s: f64) -> ArSummary {
     }
 }
 
-fn estimate(outcome: GaussMarkovOutcome) -> GaussMarkovEstimate {
+/// A Gauss-Markov outcome as the bank keeps it.
+pub fn estimate(outcome: GaussMarkovOutcome) -> GaussMarkovEstimate {
     match outcome {
         GaussMarkovOutcome::Model {
             model,
@@ -516,7 +519,9 @@ fn estimate(outcome: GaussMarkovOutcome) -> GaussMarkovEstimate {
     }
 }
 
-fn acf_model(conditioned: &[f64], dt_s: f64, window: LagWindow) -> GaussMarkovEstimate {
+/// The classical fit of σ² exp(−τ/Tc) to the autocovariance of `conditioned` (sampled every
+/// `dt_s` seconds, lags up to a quarter of its length), as the bank's `acf_fit`.
+pub fn acf_model(conditioned: &[f64], dt_s: f64, window: LagWindow) -> GaussMarkovEstimate {
     let max_lag = (conditioned.len() / 4)
         .max(2)
         .min(conditioned.len().saturating_sub(1));

@@ -62,6 +62,7 @@
 //! estimation noise; [`PowerOnFit::between_power_on_sd`] removes it by the method of moments:
 //! σ̂_b² = max(0, (Σ_j (α̂_j − ᾱ)² − Σ_j Var(α̂_j − ᾱ)) / (J − 1)).
 
+mod bank_calibration;
 mod calibration;
 mod observations;
 mod power_on;
@@ -74,6 +75,9 @@ use serde::{Deserialize, Serialize};
 use solve::{LeastSquares, Scaling, distinct, least_squares, range, to_reference_basis};
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
+pub use bank_calibration::{
+    DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG, bank_power_on, calibrate_level_unit,
+};
 pub use calibration::{
     ChannelCalibration, CompensationError, CompensationSummary, ScaleFactorCalibration,
     SensorDevices, ThermalCalibration, calibrate, without_signal,
