@@ -22,6 +22,7 @@
 mod bootstrap;
 mod fit;
 pub mod levenberg_marquardt;
+mod mapping;
 mod model;
 mod simulate;
 pub mod theory;
@@ -31,6 +32,7 @@ pub use bootstrap::{
     estimate_gmwm, select_model,
 };
 pub use fit::{GmwmFit, fit_gmwm};
+pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
 pub use model::{
     ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
     physical_parameters,
