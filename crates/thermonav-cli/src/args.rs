@@ -17,7 +17,7 @@ use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
 use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
 use thermonav::stoch::allan::{DEFAULT_CONFIDENCE, DeviationKind};
-use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM_MODEL};
 
 fn engine() -> EngineSettings {
     EngineSettings::default()
@@ -427,6 +427,10 @@ pub struct CharacterizeArgs {
     pub unit_index: Option<usize>,
     #[arg(long, value_enum, default_value_t = DenoiseArg::Kaiser, help = denoise_help())]
     pub denoise: DenoiseArg,
+    /// The composite fitted to each channel's wavelet variance (GMWM) and mapped onto the
+    /// filter's white noise and bias state (`--model gmwm` of integrate and evaluate), or off.
+    #[arg(long, default_value_t = DEFAULT_GMWM_MODEL.to_string())]
+    pub gmwm: String,
     /// Kaiser cut-off of the conditioning before AR modelling, Hz.
     #[arg(long, default_value_t = conditioning().cutoff_hz)]
     pub cutoff_hz: f64,
@@ -604,6 +608,8 @@ pub enum GmSourceArg {
     ArBased,
     /// The classical fit to the autocorrelation.
     AcfFit,
+    /// The bias state of the GMWM composite, with the composite's white noise.
+    Gmwm,
 }
 
 /// Arguments of `bank show`.
@@ -1082,6 +1088,7 @@ impl From<GmSourceArg> for thermonav::stoch::bank::GaussMarkovSource {
             GmSourceArg::IrregularMl => Self::IrregularMl,
             GmSourceArg::ArBased => Self::ArBased,
             GmSourceArg::AcfFit => Self::AcfFit,
+            GmSourceArg::Gmwm => Self::Gmwm,
         }
     }
 }

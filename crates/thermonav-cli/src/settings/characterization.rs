@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use thermonav::signal::wavelet::denoise::WaveletDenoise;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser};
+use thermonav::stoch::gmwm::ModelSpec;
 
 /// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
 /// MEMS data sheets (-55..+125 °C) with a margin; anything else is a typo or a unit mix-up.
@@ -164,8 +165,19 @@ fn conditioning(args: &CharacterizeArgs) -> Result<CharacterizeSettings, Failure
         transition_hz: super::positive("--transition-hz", args.transition_hz)?,
         modelling_rate_hz: super::positive("--modelling-rate-hz", args.modelling_rate_hz)?,
         denoise: denoiser(args.denoise),
+        gmwm: gmwm_model(&args.gmwm)?,
         ..CharacterizeSettings::default()
     })
+}
+
+/// `--gmwm`: a composite, or `off`.
+fn gmwm_model(text: &str) -> Result<Option<ModelSpec>, Failure> {
+    if text.eq_ignore_ascii_case("off") {
+        return Ok(None);
+    }
+    let spec = text.parse::<ModelSpec>();
+    spec.map(Some)
+        .map_err(|e| Failure::Usage(anyhow!("--gmwm {text}: {e} (or off)")))
 }
 
 /// `--denoise`: the wavelet de-noiser takes the library's wavelet defaults.

@@ -127,6 +127,7 @@ pub fn family_label(source: GaussMarkovSource) -> &'static str {
         GaussMarkovSource::ArBased => "AR(1)-based",
         GaussMarkovSource::IrregularMl => "exact ML (irregular t)",
         GaussMarkovSource::AcfFit => "autocorrelation fit",
+        GaussMarkovSource::Gmwm => "GMWM bias state",
     }
 }
 

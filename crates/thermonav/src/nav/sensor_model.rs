@@ -15,7 +15,7 @@ use crate::frames::{Body, Ned, Rotation};
 use crate::imu::Channel;
 use crate::ins::error_model::{CorrelationTimes, STATES, SystemMatrix, block};
 use crate::stoch::bank::{
-    BankError, GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection,
+    BankError, ChannelModel, GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection,
 };
 use nalgebra::Matrix3;
 use serde::Serialize;
@@ -143,7 +143,7 @@ impl ImuStochasticModel {
                 choice.source,
                 choice.selection,
             )?;
-            let white = white_density(bank, &selected.placement, channel)?;
+            let white = white_density(bank, &selected.placement, channel, choice.source)?;
             Ok::<_, SensorModelError>(AxisModel {
                 white_noise_density: white,
                 bias: GaussMarkovParameters {
@@ -298,18 +298,24 @@ fn invalid_part(gm: GaussMarkovParameters) -> Option<(&'static str, f64)> {
     (!(gm.sigma.is_finite() && gm.sigma >= 0.0)).then_some(("sigma", gm.sigma))
 }
 
-/// The white-noise density of `channel` at the entries a placement refers to.
+/// The white-noise density of `channel` at the entries a placement refers to: the GMWM
+/// composite's mapped density with the GMWM bias state, the Allan curve's N otherwise.
 fn white_density(
     bank: &ModelBank,
     placement: &Placement,
     channel: Channel,
+    source: GaussMarkovSource,
 ) -> Result<f64, SensorModelError> {
+    let density = |m: &ChannelModel| match source {
+        GaussMarkovSource::Gmwm => m.gmwm.as_ref().map(|g| g.white_noise_density),
+        _ => m.allan.white_noise_density,
+    };
     let at = |temperature_c: f64| {
         bank.entries
             .iter()
             .find(|e| e.temperature_c == temperature_c)
             .and_then(|e| e.channels.get(&channel))
-            .and_then(|m| m.allan.white_noise_density)
+            .and_then(density)
             .ok_or(SensorModelError::NoWhiteNoise {
                 temperature_c,
                 channel: channel.name(),

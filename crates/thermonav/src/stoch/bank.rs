@@ -13,6 +13,7 @@
 //! holds the end value outside the covered range (reported as [`Placement::Clamped`]).
 
 use crate::imu::Channel;
+use crate::stoch::gmwm::Fold;
 use crate::stoch::thermal::{RecordMean, ThermalCalibration};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -113,6 +114,34 @@ pub struct ChannelModel {
     pub ar: ArSummary,
     /// The three Gauss-Markov models.
     pub gauss_markov: GaussMarkovModels,
+    /// The composite model fitted to the whole wavelet variance (GMWM), when fitted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gmwm: Option<GmwmSummary>,
+}
+
+/// A composite noise model fitted to the raw record's Haar wavelet variance by GMWM
+/// ([`crate::stoch::gmwm`]), and what the filter takes from it
+/// ([`crate::stoch::gmwm::map_to_filter_states`]); its bias state is
+/// [`GaussMarkovModels::gmwm`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GmwmSummary {
+    /// The composite (`wn+rw+2gm`, ...).
+    pub model: String,
+    /// Its physical parameters by name; `unit` in a name is the channel's unit
+    /// (`white_noise_density_unit_sqrt_s`, `gm1_correlation_time_s`, ...).
+    pub parameters: BTreeMap<String, f64>,
+    /// The minimised GMWM objective, dimensionless (about the number of scales for a model
+    /// that describes the data).
+    pub objective: f64,
+    /// Wavelet scales fitted.
+    pub scales: usize,
+    /// The averaging times the mapping onto the filter's states is made for, s.
+    pub band_tau_s: [f64; 2],
+    /// The filter's white-noise density from the composite (channel unit·√s): the white
+    /// noise plus the Gauss-Markov processes shorter than the bias state.
+    pub white_noise_density: f64,
+    /// What became of each process, in the order of `model`.
+    pub folds: Vec<Fold>,
 }
 
 /// An Allan deviation curve and the IEEE Std 952 noise terms fitted to it (SI units).
@@ -162,7 +191,18 @@ pub struct GaussMarkovModels {
     pub irregular_ml: GaussMarkovEstimate,
     /// Classical fit of σ² exp(−τ/Tc) to the autocorrelation.
     pub acf_fit: GaussMarkovEstimate,
+    /// The bias state mapped from the GMWM composite ([`ChannelModel::gmwm`]), when fitted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gmwm: Option<GaussMarkovEstimate>,
 }
+
+/// What [`GaussMarkovModels::get`] gives for a bank without a GMWM fit.
+static NO_GMWM: std::sync::LazyLock<GaussMarkovEstimate> =
+    std::sync::LazyLock::new(|| GaussMarkovEstimate::NoEquivalent {
+        reason: "the bank has no GMWM model (characterized with --gmwm off, or before GMWM \
+                 entered the bank)"
+            .into(),
+    });
 
 /// Which of the three Gauss-Markov models to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -174,6 +214,9 @@ pub enum GaussMarkovSource {
     IrregularMl,
     /// Fit to the autocorrelation.
     AcfFit,
+    /// The bias state of the GMWM composite (and its white noise, see
+    /// [`crate::stoch::gmwm::map_to_filter_states`]).
+    Gmwm,
 }
 
 /// A Gauss-Markov estimate, or the reason there is none.
@@ -488,6 +531,7 @@ impl GaussMarkovModels {
             GaussMarkovSource::ArBased => &self.ar_based,
             GaussMarkovSource::IrregularMl => &self.irregular_ml,
             GaussMarkovSource::AcfFit => &self.acf_fit,
+            GaussMarkovSource::Gmwm => self.gmwm.as_ref().unwrap_or(&NO_GMWM),
         }
     }
 }
@@ -549,7 +593,9 @@ mod tests {
                 acf_fit: GaussMarkovEstimate::NoEquivalent {
                     reason: "c1 >= 1".into(),
                 },
+                gmwm: None,
             },
+            gmwm: None,
         };
         TemperatureEntry {
             temperature_c,

@@ -27,14 +27,16 @@ use super::ar::order::{Criterion, Order, fit_ar_order};
 use super::ar::{ArMethod, ArModel, fit_ar};
 use super::bank::{
     AllanSummary, ArSummary, ChannelModel, FilterSummary, GaussMarkovEstimate, GaussMarkovModels,
-    Preprocessing, TemperatureEntry, WaveletSummary,
+    GmwmSummary, Preprocessing, TemperatureEntry, WaveletSummary,
 };
 use super::gauss_markov::{
     Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
 };
+use super::gmwm::{ModelSpec, TauBand, fit_gmwm, map_to_filter_states, physical_parameters};
 use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
+use super::wavelet_variance::from_allan_curve;
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::signal::SignalError;
 use crate::signal::decimate::{check_anti_alias, decimate, decimation_factor};
@@ -70,7 +72,22 @@ pub struct CharacterizeSettings {
     pub ml_block_s: f64,
     /// What de-noises the record before the AR and ACF fits.
     pub denoise: Denoiser,
+    /// The GMWM composite fitted to the raw record's wavelet variance, or none.
+    pub gmwm: Option<ModelSpec>,
+    /// The averaging times the composite is mapped onto the filter's states for.
+    pub gmwm_band: TauBand,
 }
+
+/// The composite `characterize` fits by default: white noise, a random walk and two
+/// Gauss-Markov processes (one for a sensor's internal low-pass or a short correlated
+/// component, one for the bias); a process the data do not hold comes out small.
+pub const DEFAULT_GMWM_MODEL: ModelSpec = ModelSpec {
+    white: true,
+    quantisation: false,
+    random_walk: true,
+    drift: false,
+    gauss_markov: 2,
+};
 
 /// The de-noising before decimation to the modelling rate (the Allan curve and the exact
 /// likelihood always see the raw record).
@@ -100,6 +117,8 @@ impl Default for CharacterizeSettings {
             acf_window: LagWindow::FirstZeroCrossing,
             ml_block_s: 0.5,
             denoise: Denoiser::Kaiser,
+            gmwm: Some(DEFAULT_GMWM_MODEL),
+            gmwm_band: TauBand::default(),
         }
     }
 }
@@ -359,6 +378,9 @@ pub(crate) fn channel_report(
     let ar1 = fit_ar(&conditioned, 1, settings.ar_method).map_err(|e| fail(e.to_string()))?;
     let acf = acf_model(&conditioned, dt_s, settings.acf_window);
     let ml = block_ml(&block_times_s, &block_means);
+    let gmwm = settings
+        .gmwm
+        .and_then(|spec| gmwm_summary(&allan, spec, settings.gmwm_band));
     let model = ChannelModel {
         unit: channel.si_unit(SampleKind::Rates).to_string(),
         allan: allan_summary(&allan, &terms),
@@ -367,13 +389,48 @@ pub(crate) fn channel_report(
             ar_based: estimate(ar_based(&ar1_estimate(&ar1, dt_s))),
             irregular_ml: ml,
             acf_fit: acf,
+            gmwm: gmwm.as_ref().map(|(_, bias)| bias.clone()),
         },
+        gmwm: gmwm.map(|(summary, _)| summary),
     };
     Ok(ChannelReport {
         model,
         allan,
         allan_limits: (limits.low, limits.high),
     })
+}
+
+/// The composite `spec` fitted to the wavelet variance read off the raw octave Allan curve,
+/// and its bias state for the filter; `None` when the curve has too few octaves for the
+/// model or the fit fails (a constant stretch: zero variance at a scale).
+fn gmwm_summary(
+    allan: &AllanCurve,
+    spec: ModelSpec,
+    band: TauBand,
+) -> Option<(GmwmSummary, GaussMarkovEstimate)> {
+    let wv = from_allan_curve(allan, DEFAULT_CONFIDENCE)?;
+    let fit = fit_gmwm(&wv, spec).ok()?;
+    let record_s = allan.n_samples as f64 * allan.tau0_s;
+    let mapped = map_to_filter_states(&fit.terms, fit.dt_s, record_s, band);
+    let parameters = physical_parameters(&fit.terms, fit.dt_s)
+        .iter()
+        .map(|p| (p.kind.name(), p.value))
+        .collect();
+    let summary = GmwmSummary {
+        model: spec.to_string(),
+        parameters,
+        objective: fit.objective,
+        scales: fit.scale_samples.len(),
+        band_tau_s: [band.shortest_s, band.longest_s],
+        white_noise_density: mapped.white_noise_density,
+        folds: mapped.folds,
+    };
+    let bias = GaussMarkovEstimate::Model {
+        correlation_time_s: mapped.bias_correlation_time_s,
+        sigma: mapped.bias_sigma,
+        ci95_correlation_time_s: [None, None],
+    };
+    Some((summary, bias))
 }
 
 /// The curve and the terms the bank keeps: N, B (an estimate, or its bound at an end of the

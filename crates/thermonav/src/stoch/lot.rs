@@ -215,6 +215,7 @@ fn family_name(family: GaussMarkovSource) -> &'static str {
         GaussMarkovSource::IrregularMl => "irregular_ml",
         GaussMarkovSource::ArBased => "ar_based",
         GaussMarkovSource::AcfFit => "acf_fit",
+        GaussMarkovSource::Gmwm => "gmwm",
     }
 }
 

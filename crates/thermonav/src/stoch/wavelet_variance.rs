@@ -21,7 +21,7 @@
 
 use serde::Serialize;
 
-use crate::stoch::allan::overlapping_adev;
+use crate::stoch::allan::{AllanCurve, overlapping_adev};
 use crate::stoch::allan::{AllanError, ChiSquareQuantile, TauGrid, chi_square_quantile};
 
 /// Why a wavelet variance cannot be computed.
@@ -116,32 +116,56 @@ pub fn haar_wavelet_variance(
     }
     let factors: Vec<usize> = (0..levels).map(|j| 1 << j).collect();
     let curve = overlapping_adev(y, sample_rate_hz, &TauGrid::Explicit(factors))?;
-    let variance: Vec<f64> = curve.adev.iter().map(|d| d * d / 2.0).collect();
-    let scale_samples: Vec<usize> = curve.averaging_factor.iter().map(|m| 2 * m).collect();
+    Ok(from_allan_curve(&curve, confidence).expect("the factors are 1, 2, 4, ..."))
+}
+
+/// The Haar wavelet variance read off an overlapping Allan curve that holds the averaging
+/// factors 1, 2, 4, ..., 2^(J−1) (an octave curve): ν²(τ_j = 2^j) = σ²_A(m = 2^(j−1))/2, with
+/// the same number of coefficients, at the levels j ≤ [`max_level`]. `None` when the curve
+/// lacks factor 1 or the confidence level is outside (0, 1).
+pub fn from_allan_curve(curve: &AllanCurve, confidence: f64) -> Option<WaveletVariance> {
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return None;
+    }
+    let levels = max_level(curve.n_samples);
+    let picked: Vec<usize> = (0..levels)
+        .map_while(|j| curve.averaging_factor.iter().position(|&m| m == 1 << j))
+        .collect();
+    if picked.is_empty() {
+        return None;
+    }
+    let variance: Vec<f64> = picked
+        .iter()
+        .map(|&i| curve.adev[i].powi(2) / 2.0)
+        .collect();
+    let scale_samples: Vec<usize> = picked
+        .iter()
+        .map(|&i| 2 * curve.averaging_factor[i])
+        .collect();
+    let n_coefficients: Vec<usize> = picked.iter().map(|&i| curve.n_terms[i]).collect();
     let edf: Vec<f64> = scale_samples
         .iter()
-        .zip(&curve.n_terms)
+        .zip(&n_coefficients)
         .map(|(&tau, &m)| (m as f64 / tau as f64).max(1.0))
         .collect();
     let (ci_low, ci_high) = chi_square_limits(&variance, &edf, confidence);
-    Ok(WaveletVariance {
+    Some(WaveletVariance {
         scale_s: scale_samples
             .iter()
-            .map(|&t| t as f64 / sample_rate_hz)
+            .map(|&t| t as f64 * curve.tau0_s)
             .collect(),
         scale_samples,
         variance,
-        n_coefficients: curve.n_terms,
+        n_coefficients,
         edf,
         ci_low,
         ci_high,
         confidence,
-        n_samples: y.len(),
-        dt_s: 1.0 / sample_rate_hz,
+        n_samples: curve.n_samples,
+        dt_s: curve.tau0_s,
     })
 }
 
-/// \[η ν̂² / χ²_η(1 − α/2), η ν̂² / χ²_η(α/2)\] at each scale.
 fn chi_square_limits(variance: &[f64], edf: &[f64], confidence: f64) -> (Vec<f64>, Vec<f64>) {
     let tail = (1.0 - confidence) / 2.0;
     let quantile = |p: f64, eta: f64| {

@@ -221,3 +221,40 @@ fn model_specifications_parse_and_print() {
         assert!(bad.parse::<ModelSpec>().is_err(), "{bad}");
     }
 }
+
+// `characterize` carries the default composite (wn+rw+2gm) per channel. The wiring is checked
+// against the direct path (the wavelet variance computed from the raw channel, fitted and
+// mapped here), and the mapped white-noise density against the simulated unit's (the
+// ADIS16364-like profile, 1 h at 50 Hz, 10 °C): within 5 %, the target for the demo
+// campaign (the white density's own sampling error on 180 000 samples is about 0.3 %, the
+// rest is the profile's output quantisation, which adds white-like noise of step²/12).
+#[test]
+fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_unit() {
+    use thermonav::sensor::adis16364_like;
+    use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM_MODEL, characterize};
+    use thermonav::stoch::gmwm::{TauBand, fit_gmwm, map_to_filter_states};
+    let series = crate::streaming::chamber_record(3600.0);
+    let (entry, _) = characterize(&series, 10.0, "sim", &CharacterizeSettings::default()).unwrap();
+    let profile = adis16364_like();
+    for channel in thermonav::imu::Channel::ALL {
+        let model = &entry.channels[&channel];
+        let summary = model.gmwm.as_ref().expect("a GMWM summary");
+        assert_eq!(summary.model, "wn+rw+2gm");
+        let wv = haar_wavelet_variance(series.channel(channel), 50.0, None, 0.95).unwrap();
+        let direct = fit_gmwm(&wv, DEFAULT_GMWM_MODEL).unwrap();
+        let record_s = series.len() as f64 / 50.0;
+        let mapped = map_to_filter_states(&direct.terms, direct.dt_s, record_s, TauBand::default());
+        assert!((summary.objective / direct.objective - 1.0).abs() < 1e-9);
+        assert!((summary.white_noise_density / mapped.white_noise_density - 1.0).abs() < 1e-9);
+        let truth = profile.channels[&channel].white_noise_density;
+        let ratio = summary.white_noise_density / truth;
+        let allan_ratio = model.allan.white_noise_density.unwrap() / truth;
+        eprintln!(
+            "{}: GMWM N / simulated {ratio:.4}, Allan N / simulated {allan_ratio:.4}, objective {:.1} over {} scales",
+            channel.name(),
+            summary.objective,
+            summary.scales
+        );
+        assert!((ratio - 1.0).abs() < 0.05, "{}: {ratio}", channel.name());
+    }
+}

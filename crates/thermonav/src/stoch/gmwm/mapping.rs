@@ -30,12 +30,12 @@
 //! The mapped model is an approximation; [`MappedNoise::band_ratio`] says by how much its
 //! wavelet variance departs from the composite's at the scales of the band.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::model::{Term, composite_wavelet_variance};
 
 /// The outage band of averaging times the mapping is made for, s.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TauBand {
     /// Shortest averaging time, s.
     pub shortest_s: f64,
@@ -55,7 +55,7 @@ impl Default for TauBand {
 }
 
 /// What became of one process of the composite.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Fold {
     /// Into the white-noise density.
