@@ -165,6 +165,38 @@ fn integrate_follows_the_truth_and_reports_innovations() {
     );
 }
 
+// `--model gmwm` hands the filter the bank's GMWM mapping: each channel's bias state is the
+// bank's `gauss_markov.gmwm` and its white noise the composite's mapped density (read back
+// from the bank file here), and the aided solution still follows the truth.
+#[test]
+fn integrate_with_the_gmwm_model_uses_the_banks_mapping() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("gmwm.csv");
+    let json = json_of(&integrate_args(&vessel, &bank, &out, &["--model", "gmwm"]));
+    assert_eq!(json["model"]["gauss_markov_source"], "gmwm");
+    let bank_json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&bank).unwrap()).unwrap();
+    let distance = |e: &&serde_json::Value| (e["temperature_c"].as_f64().unwrap() - 25.0).abs();
+    let entry = bank_json["entries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+        .unwrap();
+    for used in json["model"]["channels"].as_array().unwrap() {
+        let channel = &entry["channels"][used["channel"].as_str().unwrap()];
+        let bias = &channel["gauss_markov"]["gmwm"];
+        assert_eq!(used["bias_correlation_time_s"], bias["correlation_time_s"]);
+        assert_eq!(used["bias_sigma"], bias["sigma"]);
+        assert_eq!(
+            used["white_noise_density"],
+            channel["gmwm"]["white_noise_density"]
+        );
+    }
+    assert!(json["final"]["sd_position_ned_m"][0].as_f64().unwrap() < 1.0);
+}
+
 // The UKF on the same data, started from the reference trajectory, agrees with the EKF's
 // end state to well under the GNSS noise.
 #[test]
