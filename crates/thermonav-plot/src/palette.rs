@@ -21,6 +21,8 @@ pub const INK: Color = Color("#333333");
 pub const GRID: Color = Color("#dddddd");
 /// Pale grey for grid lines between decades.
 pub const MINOR_GRID: Color = Color("#f0f0f0");
+/// Mid grey for secondary lines (the processes of a composite model).
+pub const MUTED: Color = Color("#999999");
 /// Fill of highlighted x intervals (e.g. GNSS outages).
 pub const HIGHLIGHT: Color = Color("#f4a582");
 

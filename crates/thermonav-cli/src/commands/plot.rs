@@ -258,6 +258,7 @@ fn allan_curve(
             .map_err(|e| format!("channel {}: `{kind}` values: {e}", channel.name()))?,
         confidence: confidence_band(confidence, c.ci_low, c.ci_high),
         terms: c.terms.map(term_readings).unwrap_or_default(),
+        model: None,
     })
 }
 

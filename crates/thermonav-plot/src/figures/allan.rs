@@ -8,7 +8,8 @@ use crate::palette;
 use crate::scale::Axis;
 use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::allan::DeviationKind;
-use thermonav::stoch::bank::TemperatureEntry;
+use thermonav::stoch::bank::{ChannelModel, TemperatureEntry};
+use thermonav::stoch::gmwm::{Term, terms_from_parameters};
 use thermonav::stoch::noise_terms::BIAS_INSTABILITY_FACTOR;
 
 /// A deviation curve of one channel (Allan or another kind of the family), SI (rad/s or m/s²;
@@ -25,6 +26,62 @@ pub struct AllanCurve {
     pub confidence: Option<ConfidenceBand>,
     /// Noise terms read off the curve.
     pub terms: Vec<NoiseTermReading>,
+    /// A composite model's implied curve, when one was fitted.
+    pub model: Option<ImpliedCurve>,
+}
+
+/// The Allan deviation a fitted composite implies at the curve's τ: each process and their
+/// sum (σ²_A = Σ 2 ν²_k(2m), [`thermonav::stoch::gmwm::Term::allan_variance`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImpliedCurve {
+    /// The composite (`wn+rw+2gm`).
+    pub name: String,
+    /// Each process: its label (`WN`, `GM1`, ...) and its deviation at each τ.
+    pub components: Vec<(String, Vec<f64>)>,
+    /// The sum's deviation at each τ.
+    pub total: Vec<f64>,
+}
+
+impl ImpliedCurve {
+    /// The curve of `terms` (sampled every `dt_s`) at averaging times `tau_s`.
+    pub fn of(name: &str, terms: &[Term], dt_s: f64, tau_s: &[f64]) -> Self {
+        let deviation = |term: &Term| {
+            tau_s
+                .iter()
+                .map(|&t| term.allan_variance(t / dt_s).sqrt())
+                .collect::<Vec<f64>>()
+        };
+        let mut gm = 0;
+        let components = terms
+            .iter()
+            .map(|term| {
+                let label = match term {
+                    Term::GaussMarkov { .. } => {
+                        gm += 1;
+                        format!("GM{gm}")
+                    }
+                    _ => term.label().to_owned(),
+                };
+                (label, deviation(term))
+            })
+            .collect();
+        let total = tau_s
+            .iter()
+            .map(|&t| {
+                let m = t / dt_s;
+                terms
+                    .iter()
+                    .map(|k| k.allan_variance(m))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .collect();
+        ImpliedCurve {
+            name: name.to_owned(),
+            components,
+            total,
+        }
+    }
 }
 
 /// Confidence limits of an Allan curve, one pair per τ.
@@ -192,6 +249,7 @@ fn allan_panel(
             stroke: Stroke::solid(color),
         });
         terms.extend(term_layers(curve, &shown));
+        terms.extend(model_layers(curve, &shown));
     }
     Chart {
         title: sensor_title(sensor).to_owned(),
@@ -200,6 +258,52 @@ fn allan_panel(
         layers: bands.into_iter().chain(lines).chain(terms).collect(),
     }
 }
+
+/// The implied curve of the composite: its sum dashed in the channel's colour, each process
+/// a thin dashed grey line where it is within a factor 30 of the data's lowest point (a
+/// process far below the curve would only stretch the axis).
+fn model_layers(curve: &AllanCurve, shown: &impl Fn(f64) -> f64) -> Vec<Layer> {
+    let Some(model) = &curve.model else {
+        return Vec::new();
+    };
+    let floor = curve
+        .deviation
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min)
+        / 30.0;
+    let line = |name: String, values: &[f64], stroke: Stroke| Layer::Line {
+        name,
+        points: curve
+            .tau_s
+            .iter()
+            .zip(values)
+            .filter(|(_, v)| v.is_finite() && **v >= floor)
+            .map(|(&t, &v)| (t, shown(v)))
+            .collect(),
+        stroke,
+    };
+    let thin = Stroke {
+        width: 0.8,
+        ..Stroke::dashed(palette::MUTED)
+    };
+    let mut layers = vec![line(
+        format!("{} model ({})", curve.channel.name(), model.name),
+        &model.total,
+        Stroke::dashed(channel_color(curve.channel)),
+    )];
+    layers.extend(
+        model
+            .components
+            .iter()
+            .map(|(_, values)| line(PROCESSES_LEGEND.to_owned(), values, thin))
+            .filter(|layer| matches!(layer, Layer::Line { points, .. } if points.len() > 1)),
+    );
+    layers
+}
+
+/// The legend entry of a composite's processes (one for all of them).
+const PROCESSES_LEGEND: &str = "each process of the model";
 
 /// A dashed asymptote over the term's region (when known) and a marker at its reading point.
 fn term_layers(curve: &AllanCurve, shown: &impl Fn(f64) -> f64) -> Vec<Layer> {
@@ -264,6 +368,7 @@ pub fn allan_curves_of_entry(entry: &TemperatureEntry) -> Vec<AllanCurve> {
             .collect();
             AllanCurve {
                 channel,
+                model: implied_of_model(model, entry.preprocessing.input_rate_hz, &summary.tau_s),
                 tau_s: summary.tau_s.clone(),
                 deviation: summary.adev.clone(),
                 confidence: None,
@@ -271,6 +376,14 @@ pub fn allan_curves_of_entry(entry: &TemperatureEntry) -> Vec<AllanCurve> {
             }
         })
         .collect()
+}
+
+/// The implied curve of a channel's GMWM composite in the bank, at `tau_s`.
+fn implied_of_model(model: &ChannelModel, rate_hz: f64, tau_s: &[f64]) -> Option<ImpliedCurve> {
+    let gmwm = model.gmwm.as_ref()?;
+    let dt_s = 1.0 / rate_hz;
+    let terms = terms_from_parameters(&gmwm.parameters, dt_s)?;
+    Some(ImpliedCurve::of(&gmwm.model, &terms, dt_s, tau_s))
 }
 
 #[cfg(test)]
@@ -298,6 +411,7 @@ mod tests {
             }],
             tau_s,
             deviation: adev,
+            model: None,
         }
     }
 
@@ -332,6 +446,33 @@ mod tests {
         }
         let si = figure(DisplayUnits::Si);
         assert!(si.contains("(rad/s)") && si.contains("(m/s²)"));
+    }
+
+    // A white-noise composite implies σ(τ) = N/√τ (IEEE 952), which is the curve itself: the
+    // model's sum and its one process are drawn exactly over the data, point for point.
+    #[test]
+    fn the_implied_curve_of_white_noise_lies_on_the_white_noise_curve() {
+        let dt_s = 0.01;
+        let mut curve = white(Channel::Gx, 1e-3);
+        let terms = [Term::white_from_density(1e-3, dt_s)];
+        curve.model = Some(ImpliedCurve::of("wn", &terms, dt_s, &curve.tau_s));
+        let text = allan_deviation_figure("Allan deviation", &[curve], DisplayUnits::Si);
+        let svg = ParsedSvg::parse(&text);
+        assert_complete_figure(&svg);
+        let points = |name: &str| {
+            polyline_points(&layers_named(&svg, name)[0].first_element_child().unwrap())
+        };
+        let data = points("gx");
+        for name in ["gx model (wn)", PROCESSES_LEGEND] {
+            let model = points(name);
+            assert_eq!(model.len(), data.len(), "{name}");
+            for (m, d) in model.iter().zip(&data) {
+                assert!(
+                    (m.0 - d.0).abs() < 0.01 && (m.1 - d.1).abs() < 0.01,
+                    "{name}"
+                );
+            }
+        }
     }
 
     #[test]

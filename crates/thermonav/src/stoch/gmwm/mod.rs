@@ -35,7 +35,7 @@ pub use fit::{GmwmFit, fit_gmwm};
 pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
 pub use model::{
     ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
-    physical_parameters,
+    physical_parameters, terms_from_parameters,
 };
 pub use simulate::simulate;
 

@@ -342,3 +342,126 @@ impl Term {
         }
     }
 }
+
+impl Term {
+    /// The theoretical overlapping Allan variance at averaging factor `m` (τ = m dt): twice the
+    /// Haar wavelet variance at scale 2m, σ²_A(m) = 2 ν²(2m), unit².
+    pub fn allan_variance(&self, m: f64) -> f64 {
+        2.0 * self.wavelet_variance(2.0 * m)
+    }
+
+    /// A short label of the process (`WN`, `QN`, `RW`, `DR`, `GM`).
+    pub fn label(&self) -> &'static str {
+        match self {
+            Term::White { .. } => "WN",
+            Term::Quantisation { .. } => "QN",
+            Term::RandomWalk { .. } => "RW",
+            Term::Drift { .. } => "DR",
+            Term::GaussMarkov { .. } => "GM",
+        }
+    }
+}
+
+/// The processes of a composite from its physical parameters by name ([`Parameter::name`],
+/// as the bank stores them), sampled every `dt_s`: the inverse of [`physical_parameters`],
+/// Gauss-Markov processes in the order of their index. `None` when a name is not a
+/// parameter, or a Gauss-Markov process lacks its correlation time or its σ.
+pub fn terms_from_parameters(
+    parameters: &std::collections::BTreeMap<String, f64>,
+    dt_s: f64,
+) -> Option<Vec<Term>> {
+    let mut terms = Vec::new();
+    let mut gm: std::collections::BTreeMap<usize, (Option<f64>, Option<f64>)> = Default::default();
+    for (name, &value) in parameters {
+        match name.as_str() {
+            "white_noise_density_unit_sqrt_s" => terms.push(Term::white_from_density(value, dt_s)),
+            "quantisation_unit_s" => terms.push(Term::quantisation_from_q(value, dt_s)),
+            "random_walk_unit_per_sqrt_s" => terms.push(Term::random_walk_from_k(value, dt_s)),
+            "drift_rate_unit_per_s" => terms.push(Term::Drift {
+                slope: value * dt_s,
+            }),
+            _ => {
+                let (index, part) = gauss_markov_part(name)?;
+                let slot = gm.entry(index).or_default();
+                match part {
+                    GmPart::CorrelationTime => slot.0 = Some(value),
+                    GmPart::Sigma => slot.1 = Some(value),
+                }
+            }
+        }
+    }
+    for (tc_s, sigma) in gm.values() {
+        terms.push(Term::gauss_markov_from((*tc_s)?, (*sigma)?, dt_s));
+    }
+    Some(terms)
+}
+
+enum GmPart {
+    CorrelationTime,
+    Sigma,
+}
+
+/// (k, which) of `gm{k}_correlation_time_s` or `gm{k}_sigma_unit`.
+fn gauss_markov_part(name: &str) -> Option<(usize, GmPart)> {
+    let rest = name.strip_prefix("gm")?;
+    let (index, part) = rest.split_once('_')?;
+    let part = match part {
+        "correlation_time_s" => GmPart::CorrelationTime,
+        "sigma_unit" => GmPart::Sigma,
+        _ => return None,
+    };
+    Some((index.parse().ok()?, part))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // IEEE Std 952's closed forms: white noise σ²_A = N²/τ exactly; a random walk
+    // σ²_A = K²τ/3 as τ grows (the discrete form is K²τ/3 · (1 + 1/(2m²))).
+    #[test]
+    fn allan_variance_follows_ieee_952() {
+        let dt = 0.01;
+        let white = Term::white_from_density(2e-3, dt);
+        let walk = Term::random_walk_from_k(5e-5, dt);
+        for m in [1.0, 8.0, 1024.0] {
+            let tau = m * dt;
+            assert!((white.allan_variance(m) / (4e-6 / tau) - 1.0).abs() < 1e-13);
+            let continuous = 25e-10 * tau / 3.0;
+            let discrete = continuous * (1.0 + 1.0 / (2.0 * m * m));
+            assert!((walk.allan_variance(m) / discrete - 1.0).abs() < 1e-13);
+        }
+    }
+
+    // The bank's parameters by name give back the processes they were written from.
+    #[test]
+    fn terms_from_parameters_inverts_physical_parameters() {
+        let dt = 0.005;
+        let terms = vec![
+            Term::white_from_density(2e-3, dt),
+            Term::quantisation_from_q(1e-6, dt),
+            Term::random_walk_from_k(5e-5, dt),
+            Term::Drift { slope: 3e-9 },
+            Term::gauss_markov_from(0.02, 0.01, dt),
+            Term::gauss_markov_from(150.0, 2e-4, dt),
+        ];
+        let named = physical_parameters(&terms, dt)
+            .iter()
+            .map(|p| (p.kind.name(), p.value))
+            .collect();
+        let back = terms_from_parameters(&named, dt).unwrap();
+        assert_eq!(back.len(), terms.len());
+        for tau in [2.0, 64.0, 65536.0] {
+            let (a, b) = (
+                composite_wavelet_variance(&terms, tau),
+                composite_wavelet_variance(&back, tau),
+            );
+            assert!((a / b - 1.0).abs() < 1e-12, "scale {tau}");
+        }
+        let mut broken = named.clone();
+        broken.remove("gm2_sigma_unit");
+        assert_eq!(terms_from_parameters(&broken, dt), None);
+        broken.insert("gm2_colour".into(), 1.0);
+        assert_eq!(terms_from_parameters(&broken, dt), None);
+    }
+}
