@@ -75,6 +75,7 @@ fn allan() -> String {
             .collect();
         AllanCurve {
             channel,
+            model: None,
             confidence: Some(ConfidenceBand {
                 level: 0.683,
                 low: adev.iter().map(|a| a * 0.9).collect(),
