@@ -71,6 +71,7 @@ mod lines;
 pub mod lot;
 pub mod motion;
 pub mod nmea;
+pub mod noise_export;
 pub mod noise_terms;
 pub mod parsers;
 pub mod profile;

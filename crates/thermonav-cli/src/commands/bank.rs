@@ -1,7 +1,8 @@
 //! `thermonav bank show`: the bank, or the model selected for an operating temperature;
-//! `thermonav bank export`: its thermal calibration as autopilot parameters.
+//! `thermonav bank export`: its thermal calibration as autopilot parameters, or its noise
+//! model at a temperature as another tool's noise configuration.
 
-use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportFormatArg};
+use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportKind};
 use crate::bank_tables::print_bank_table;
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
@@ -14,9 +15,13 @@ use std::path::Path;
 use thermonav::imu::Channel;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
 use thermonav::stoch::thermal::SensorDevices;
+use thermonav_io::noise_export::{
+    ExportOptions, ImuNoise, NoiseExportError, NoiseExportSummary, NoiseFormat, noise_config_text,
+    placement_words, write_noise_config,
+};
 use thermonav_io::thermal_parameters::{
-    ExportSummary, ExportTarget, ParameterFile, SensorExport, ardupilot_parameters, px4_parameters,
-    write_parameter_file,
+    ExportSummary, ExportTarget, ParameterFile, ParameterTarget, SensorExport,
+    ardupilot_parameters, px4_parameters, write_parameter_file,
 };
 
 /// Runs `bank`.
@@ -29,7 +34,68 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
 
 fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
     export_io(args).check()?;
-    let file = parameter_file(&read_bank(&args.bank)?, args)?;
+    let bank = read_bank(&args.bank)?;
+    match ExportKind::from(args.format) {
+        ExportKind::Thermal(target) => export_thermal(&bank, target, args),
+        ExportKind::Noise(format) => export_noise(&bank, format, args),
+    }
+}
+
+fn export_noise(
+    bank: &ModelBank,
+    format: NoiseFormat,
+    args: &BankExportArgs,
+) -> Result<(), Failure> {
+    let noise = noise_at_temperature(bank, args)?;
+    let text = noise_config_text(format, &noise, &export_options(args));
+    write_noise_config(&args.out, &text.map_err(|e| noise_failure(e, args))?).data()?;
+    if args.json {
+        return print_json(&NoiseExportSummary::new(format, &noise));
+    }
+    print_noise_rows(&noise, args);
+    Ok(())
+}
+
+/// The bank's noise at the operating temperature.
+fn noise_at_temperature(bank: &ModelBank, args: &BankExportArgs) -> Result<ImuNoise, Failure> {
+    let (selection, source) = (args.method.into(), args.model.into());
+    ImuNoise::at_temperature(bank, args.temperature_c, selection, source)
+        .map_err(|e| anyhow!("{}: {e}", args.bank.display()))
+        .data()
+}
+
+fn print_noise_rows(noise: &ImuNoise, args: &BankExportArgs) {
+    let at = format!(
+        "{} °C, {}",
+        noise.temperature_c,
+        placement_words(noise.placement)
+    );
+    print_rows(&[("written", args.out.display().to_string()), ("at", at)]);
+}
+
+fn export_options(args: &BankExportArgs) -> ExportOptions {
+    ExportOptions {
+        bank_name: args.bank.display().to_string(),
+        rostopic: args.rostopic.clone(),
+        scale_factor_std_ppm: args.scale_factor_std_ppm,
+    }
+}
+
+/// A missing option is a usage error (2); what the bank lacks is a data error (1).
+fn noise_failure(error: NoiseExportError, args: &BankExportArgs) -> Failure {
+    let message = anyhow!("{}: {error}", args.bank.display());
+    match error {
+        NoiseExportError::ScaleFactorNeeded(_) => Failure::Usage(message),
+        _ => Failure::Data(message),
+    }
+}
+
+fn export_thermal(
+    bank: &ModelBank,
+    target: ParameterTarget,
+    args: &BankExportArgs,
+) -> Result<(), Failure> {
+    let file = parameter_file(bank, target, args)?;
     write_parameter_file(&args.out, &file).data()?;
     if args.json {
         return print_json(&file.summary());
@@ -41,19 +107,23 @@ fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
 fn export_io(args: &BankExportArgs) -> Io {
     Io::new()
         .input("BANK", &args.bank)
-        .output("parameter file", &args.out)
+        .output("exported file", &args.out)
 }
 
 /// The bank's thermal calibration in the chosen target's parameters.
-fn parameter_file(bank: &ModelBank, args: &BankExportArgs) -> Result<ParameterFile, Failure> {
+fn parameter_file(
+    bank: &ModelBank,
+    target_format: ParameterTarget,
+    args: &BankExportArgs,
+) -> Result<ParameterFile, Failure> {
     let calibration = bank
         .thermal
         .as_ref()
         .ok_or_else(|| no_thermal_calibration(&args.bank))?;
     let target = export_target(calibration.devices.as_ref(), args);
-    let file = match args.format {
-        ExportFormatArg::Px4Tc => px4_parameters(calibration, target),
-        ExportFormatArg::ArdupilotTcal => ardupilot_parameters(calibration, target),
+    let file = match target_format {
+        ParameterTarget::Px4Tc => px4_parameters(calibration, target),
+        ParameterTarget::ArdupilotTcal => ardupilot_parameters(calibration, target),
     };
     file.map_err(|e| anyhow!("{}: {e}", args.bank.display()))
         .data()
