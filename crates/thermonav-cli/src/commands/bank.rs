@@ -34,11 +34,22 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
 
 fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
     export_io(args).check()?;
+    let kind = checked_kind(args)?;
     let bank = read_bank(&args.bank)?;
-    match ExportKind::from(args.format) {
+    match kind {
         ExportKind::Thermal(target) => export_thermal(&bank, target, args),
         ExportKind::Noise(format) => export_noise(&bank, format, args),
     }
+}
+
+/// The export's kind, with the options a noise format needs checked (usage errors, before
+/// any file is read).
+fn checked_kind(args: &BankExportArgs) -> Result<ExportKind, Failure> {
+    let kind = ExportKind::from(args.format);
+    if let ExportKind::Noise(format) = kind {
+        format.check_options(&export_options(args)).usage()?;
+    }
+    Ok(kind)
 }
 
 fn export_noise(
@@ -81,13 +92,8 @@ fn export_options(args: &BankExportArgs) -> ExportOptions {
     }
 }
 
-/// A missing option is a usage error (2); what the bank lacks is a data error (1).
 fn noise_failure(error: NoiseExportError, args: &BankExportArgs) -> Failure {
-    let message = anyhow!("{}: {error}", args.bank.display());
-    match error {
-        NoiseExportError::ScaleFactorNeeded(_) => Failure::Usage(message),
-        _ => Failure::Data(message),
-    }
+    Failure::Data(anyhow!("{}: {error}", args.bank.display()))
 }
 
 fn export_thermal(

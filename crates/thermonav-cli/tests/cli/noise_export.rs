@@ -101,9 +101,8 @@ fn edited_bank(dir: &Path, channel: &str, edit: impl Fn(&mut Value)) -> PathBuf 
     write_bank(dir, "edited.json", &bank)
 }
 
-/// Runs the export; returns the file's text, failing the test on a non-zero exit.
-fn exported(bank: &Path, format: &str, extra: &[&str]) -> String {
-    let out = bank.with_file_name(format!("out-{format}"));
+/// Exports `bank` as `format` to `out`: exit code and stderr.
+fn export_to(bank: &Path, format: &str, out: &Path, extra: &[&str]) -> (i32, String) {
     let mut args = vec![
         "bank",
         "export",
@@ -111,28 +110,33 @@ fn exported(bank: &Path, format: &str, extra: &[&str]) -> String {
         "--format",
         format,
         "--out",
-        arg(&out),
+        arg(out),
     ];
     args.extend_from_slice(extra);
     let (status, _, stderr) = outcome(&thermonav(&args));
+    (status, stderr)
+}
+
+/// Runs the export; returns the file's text, failing the test on a non-zero exit.
+fn exported(bank: &Path, format: &str, extra: &[&str]) -> String {
+    let out = bank.with_file_name(format!("out-{format}"));
+    let (status, stderr) = export_to(bank, format, &out, extra);
     assert_eq!(status, 0, "{stderr}");
     std::fs::read_to_string(out).unwrap()
+}
+
+/// The file `format` exports from the two-entry bank at `temperature_c`.
+fn export_of_fixture(format: &str, temperature_c: &str, extra: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["--temperature-c", temperature_c];
+    args.extend_from_slice(extra);
+    exported(&two_entry_bank(dir.path()), format, &args)
 }
 
 /// Runs a failing export: its exit code and message; no output file is left.
 fn refused(bank: &Path, format: &str, extra: &[&str]) -> (i32, String) {
     let out = bank.with_file_name("refused.out");
-    let mut args = vec![
-        "bank",
-        "export",
-        arg(bank),
-        "--format",
-        format,
-        "--out",
-        arg(&out),
-    ];
-    args.extend_from_slice(extra);
-    let (status, _, stderr) = outcome(&thermonav(&args));
+    let (status, stderr) = export_to(bank, format, &out, extra);
     assert!(!out.exists(), "no file after a refusal: {stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     (status, stderr)
@@ -231,39 +235,22 @@ fn geometric_mean_tc_s(of: impl Fn(usize) -> Truth) -> f64 {
 
 #[test]
 fn kalibr_export_holds_continuous_si_densities_and_the_rate() {
-    let dir = tempfile::tempdir().unwrap();
-    let text = exported(
-        &two_entry_bank(dir.path()),
-        "kalibr",
-        &["--temperature-c", "20", "--rostopic", "/imu/data"],
-    );
+    let text = export_of_fixture("kalibr", "20", &["--rostopic", "/imu/data"]);
     let v = yaml_values(&text);
     // Kalibr: rad/s/√Hz = rad/√s, one value per sensor (the largest axis).
-    close(
-        numbers(&v, "gyroscope_noise_density")[0],
-        largest(at_20(GYRO, |t| t.n)),
-        1e-15,
-        "gyro N",
-    );
-    close(
-        numbers(&v, "gyroscope_random_walk")[0],
-        largest(at_20(GYRO, |t| t.k)),
-        1e-15,
-        "gyro K",
-    );
-    close(
-        numbers(&v, "accelerometer_noise_density")[0],
-        largest(at_20(ACCEL, |t| t.n)),
-        1e-15,
-        "accel N",
-    );
-    close(
-        numbers(&v, "accelerometer_random_walk")[0],
-        largest(at_20(ACCEL, |t| t.k)),
-        1e-15,
-        "accel K",
-    );
-    assert_eq!(numbers(&v, "update_rate"), vec![RATE_HZ]);
+    let expected = [
+        ("gyroscope_noise_density", largest(at_20(GYRO, |t| t.n))),
+        ("gyroscope_random_walk", largest(at_20(GYRO, |t| t.k))),
+        (
+            "accelerometer_noise_density",
+            largest(at_20(ACCEL, |t| t.n)),
+        ),
+        ("accelerometer_random_walk", largest(at_20(ACCEL, |t| t.k))),
+        ("update_rate", RATE_HZ),
+    ];
+    for (key, value) in expected {
+        close_all(&numbers(&v, key), &[value], 1e-15, key);
+    }
     assert_eq!(v["rostopic"], Err("/imu/data".to_string()));
     assert!(text.contains("continuous"), "{text}");
 }
@@ -293,52 +280,36 @@ fn kalibr_export_without_a_random_walk_writes_the_gauss_markov_stand_in() {
 
 #[test]
 fn kf_gins_export_holds_its_units_and_3_vectors() {
-    let dir = tempfile::tempdir().unwrap();
-    let text = exported(
-        &two_entry_bank(dir.path()),
+    let v = yaml_values(&export_of_fixture(
         "kf-gins",
-        &["--temperature-c", "20", "--scale-factor-std-ppm", "1000"],
-    );
-    let v = yaml_values(&text);
-    let scaled = |axes, pick, factor: f64| {
-        at_20(axes, pick)
-            .iter()
-            .map(|x| x * factor)
-            .collect::<Vec<_>>()
-    };
-    close_all(
-        &numbers(&v, "imunoise.arw"),
-        &scaled(GYRO, |t| t.n, DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S),
-        1e-14,
-        "arw",
-    );
-    close_all(
-        &numbers(&v, "imunoise.vrw"),
-        &scaled(ACCEL, |t| t.n, PER_SQRT_H_PER_PER_SQRT_S),
-        1e-14,
-        "vrw",
-    );
-    close_all(
-        &numbers(&v, "imunoise.gbstd"),
-        &scaled(GYRO, |t| t.sigma, DEG_PER_H_PER_RAD_PER_S),
-        1e-14,
-        "gbstd",
-    );
-    close_all(
-        &numbers(&v, "imunoise.abstd"),
-        &scaled(ACCEL, |t| t.sigma, MGAL_PER_M_S2),
-        1e-14,
-        "abstd",
-    );
-    assert_eq!(numbers(&v, "imunoise.gsstd"), vec![1000.0; 3]);
-    assert_eq!(numbers(&v, "imunoise.asstd"), vec![1000.0; 3]);
-    let corrtime_h = geometric_mean_tc_s(|c| truth(0, c)) / 3600.0;
-    close(
-        numbers(&v, "imunoise.corrtime")[0],
-        corrtime_h,
-        1e-14,
-        "corrtime",
-    );
+        "20",
+        &["--scale-factor-std-ppm", "1000"],
+    ));
+    let scaled = |axes, pick, factor: f64| at_20(axes, pick).iter().map(|x| x * factor).collect();
+    let expected: [(&str, Vec<f64>); 7] = [
+        (
+            "imunoise.arw",
+            scaled(GYRO, |t| t.n, DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S),
+        ),
+        (
+            "imunoise.vrw",
+            scaled(ACCEL, |t| t.n, PER_SQRT_H_PER_PER_SQRT_S),
+        ),
+        (
+            "imunoise.gbstd",
+            scaled(GYRO, |t| t.sigma, DEG_PER_H_PER_RAD_PER_S),
+        ),
+        ("imunoise.abstd", scaled(ACCEL, |t| t.sigma, MGAL_PER_M_S2)),
+        ("imunoise.gsstd", vec![1000.0; 3]),
+        ("imunoise.asstd", vec![1000.0; 3]),
+        (
+            "imunoise.corrtime",
+            vec![geometric_mean_tc_s(|c| truth(0, c)) / 3600.0],
+        ),
+    ];
+    for (key, values) in expected {
+        close_all(&numbers(&v, key), &values, 1e-14, key);
+    }
 }
 
 #[test]
@@ -375,10 +346,10 @@ fn kf_gins_export_interpolates_linearly_between_entries() {
         "corrtime",
     );
     // Nearest at 25 °C: the 20 °C entry as it is.
-    let v = yaml_values(&exported(
-        &two_entry_bank(dir.path()),
+    let v = yaml_values(&export_of_fixture(
         "kf-gins",
-        &["--temperature-c", "25", "--scale-factor-std-ppm", "500"],
+        "25",
+        &["--scale-factor-std-ppm", "500"],
     ));
     close_all(
         &numbers(&v, "imunoise.arw"),
@@ -390,42 +361,32 @@ fn kf_gins_export_interpolates_linearly_between_entries() {
 
 #[test]
 fn ob_gins_export_holds_scalars_in_its_units() {
-    let dir = tempfile::tempdir().unwrap();
-    let v = yaml_values(&exported(
-        &two_entry_bank(dir.path()),
-        "ob-gins",
-        &["--temperature-c", "20"],
-    ));
-    close(
-        numbers(&v, "imumodel.arw")[0],
-        largest(at_20(GYRO, |t| t.n)) * DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S,
-        1e-14,
-        "arw",
-    );
-    close(
-        numbers(&v, "imumodel.vrw")[0],
-        largest(at_20(ACCEL, |t| t.n)) * PER_SQRT_H_PER_PER_SQRT_S,
-        1e-14,
-        "vrw",
-    );
-    close(
-        numbers(&v, "imumodel.gbstd")[0],
-        largest(at_20(GYRO, |t| t.sigma)) * DEG_PER_H_PER_RAD_PER_S,
-        1e-14,
-        "gbstd",
-    );
-    close(
-        numbers(&v, "imumodel.abstd")[0],
-        largest(at_20(ACCEL, |t| t.sigma)) * MGAL_PER_M_S2,
-        1e-14,
-        "abstd",
-    );
-    close(
-        numbers(&v, "imumodel.corrtime")[0],
-        geometric_mean_tc_s(|c| truth(0, c)) / 3600.0,
-        1e-14,
-        "corrtime",
-    );
+    let v = yaml_values(&export_of_fixture("ob-gins", "20", &[]));
+    let expected = [
+        (
+            "imumodel.arw",
+            largest(at_20(GYRO, |t| t.n)) * DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S,
+        ),
+        (
+            "imumodel.vrw",
+            largest(at_20(ACCEL, |t| t.n)) * PER_SQRT_H_PER_PER_SQRT_S,
+        ),
+        (
+            "imumodel.gbstd",
+            largest(at_20(GYRO, |t| t.sigma)) * DEG_PER_H_PER_RAD_PER_S,
+        ),
+        (
+            "imumodel.abstd",
+            largest(at_20(ACCEL, |t| t.sigma)) * MGAL_PER_M_S2,
+        ),
+        (
+            "imumodel.corrtime",
+            geometric_mean_tc_s(|c| truth(0, c)) / 3600.0,
+        ),
+    ];
+    for (key, value) in expected {
+        close_all(&numbers(&v, key), &[value], 1e-14, key);
+    }
     assert!(!v.contains_key("imumodel.gsstd"));
 }
 
@@ -451,82 +412,55 @@ fn python_arrays(text: &str) -> BTreeMap<String, Vec<f64>> {
 
 #[test]
 fn gnss_ins_sim_export_holds_its_imu_err_keys_and_units() {
-    let dir = tempfile::tempdir().unwrap();
-    let text = exported(
-        &two_entry_bank(dir.path()),
-        "gnss-ins-sim",
-        &["--temperature-c", "20"],
-    );
+    let text = export_of_fixture("gnss-ins-sim", "20", &[]);
     assert!(
         text.contains("import numpy as np") && text.contains("imu_err = {"),
         "{text}"
     );
     let a = python_arrays(&text);
-    let scaled = |axes, pick, factor: f64| {
-        at_20(axes, pick)
-            .iter()
-            .map(|x| x * factor)
-            .collect::<Vec<_>>()
-    };
-    close_all(
-        &a["gyro_arw"],
-        &scaled(GYRO, |t| t.n, DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S),
-        1e-14,
-        "gyro_arw",
-    );
-    close_all(
-        &a["gyro_b_stability"],
-        &scaled(GYRO, |t| t.sigma, DEG_PER_H_PER_RAD_PER_S),
-        1e-14,
-        "gyro_b_stability",
-    );
-    close_all(
-        &a["gyro_b_corr"],
-        &at_20(GYRO, |t| t.tc_s),
-        0.0,
-        "gyro_b_corr",
-    );
-    close_all(
-        &a["accel_vrw"],
-        &scaled(ACCEL, |t| t.n, PER_SQRT_H_PER_PER_SQRT_S),
-        1e-14,
-        "accel_vrw",
-    );
-    close_all(
-        &a["accel_b_stability"],
-        &at_20(ACCEL, |t| t.sigma),
-        0.0,
-        "accel_b_stability",
-    );
-    close_all(
-        &a["accel_b_corr"],
-        &at_20(ACCEL, |t| t.tc_s),
-        0.0,
-        "accel_b_corr",
-    );
-    assert_eq!(a["gyro_b"], vec![0.0; 3]);
-    assert_eq!(a["accel_b"], vec![0.0; 3]);
+    let scaled = |axes, pick, factor: f64| at_20(axes, pick).iter().map(|x| x * factor).collect();
+    let expected: [(&str, Vec<f64>); 8] = [
+        ("gyro_b", vec![0.0; 3]),
+        (
+            "gyro_arw",
+            scaled(GYRO, |t| t.n, DEG_PER_SQRT_H_PER_RAD_PER_SQRT_S),
+        ),
+        (
+            "gyro_b_stability",
+            scaled(GYRO, |t| t.sigma, DEG_PER_H_PER_RAD_PER_S),
+        ),
+        ("gyro_b_corr", at_20(GYRO, |t| t.tc_s)),
+        ("accel_b", vec![0.0; 3]),
+        (
+            "accel_vrw",
+            scaled(ACCEL, |t| t.n, PER_SQRT_H_PER_PER_SQRT_S),
+        ),
+        ("accel_b_stability", at_20(ACCEL, |t| t.sigma)),
+        ("accel_b_corr", at_20(ACCEL, |t| t.tc_s)),
+    ];
+    assert_eq!(a.len(), expected.len());
+    for (key, values) in expected {
+        close_all(&a[key], &values, 1e-14, key);
+    }
 }
 
-/// A QGroundControl `.params` file: `#` comments, then vehicle, component, name, value, type.
-fn qgc_parameters(text: &str) -> BTreeMap<String, (f32, u8)> {
+/// A QGroundControl `.params` file: `#` comments, then vehicle, component, name, value and
+/// type (9 = REAL32), tab-separated.
+fn qgc_parameters(text: &str) -> BTreeMap<String, f64> {
     let rows = text
         .lines()
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
     rows.map(|line| {
         let fields: Vec<&str> = line.split('\t').collect();
         assert_eq!(fields.len(), 5, "{line}");
-        assert_eq!((fields[0], fields[1]), ("1", "1"));
-        (
-            fields[2].to_string(),
-            (fields[3].parse().unwrap(), fields[4].parse().unwrap()),
-        )
+        assert_eq!((fields[0], fields[1], fields[4]), ("1", "1", "9"), "{line}");
+        (fields[2].to_string(), fields[3].parse().unwrap())
     })
     .collect()
 }
 
 /// An ArduPilot `.parm` file: `#` comments, then `NAME VALUE` (or `NAME,VALUE`) lines.
-fn ardupilot_parameters(text: &str) -> BTreeMap<String, f32> {
+fn ardupilot_parameters(text: &str) -> BTreeMap<String, f64> {
     let rows = text
         .lines()
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
@@ -552,45 +486,41 @@ fn per_step(dt_s: f64) -> [f64; 4] {
     ]
 }
 
-#[test]
-fn px4_ekf2_export_holds_per_step_noise_for_a_10_ms_prediction() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = qgc_parameters(&exported(
-        &two_entry_bank(dir.path()),
-        "px4-ekf2",
-        &["--temperature-c", "20"],
-    ));
-    let names = [
-        "EKF2_GYR_NOISE",
-        "EKF2_ACC_NOISE",
-        "EKF2_GYR_B_NOISE",
-        "EKF2_ACC_B_NOISE",
-    ];
-    assert_eq!(p.len(), names.len());
-    for (name, expected) in names.iter().zip(per_step(0.010)) {
-        // f32 storage: 2^-24 relative.
-        close(f64::from(p[*name].0), expected, 1e-7, name);
-        assert_eq!(p[*name].1, 9, "REAL32");
-    }
-}
+type ParameterParser = fn(&str) -> BTreeMap<String, f64>;
 
 #[test]
-fn ardupilot_ek3_export_holds_per_step_noise_for_a_12_ms_step() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = ardupilot_parameters(&exported(
-        &two_entry_bank(dir.path()),
-        "ardupilot-ek3",
-        &["--temperature-c", "20"],
-    ));
-    let names = [
-        "EK3_GYRO_P_NSE",
-        "EK3_ACC_P_NSE",
-        "EK3_GBIAS_P_NSE",
-        "EK3_ABIAS_P_NSE",
+fn px4_ekf2_and_ardupilot_ek3_exports_hold_per_step_noise_for_their_steps() {
+    let targets: [(&str, ParameterParser, [&str; 4], f64); 2] = [
+        (
+            "px4-ekf2",
+            qgc_parameters,
+            [
+                "EKF2_GYR_NOISE",
+                "EKF2_ACC_NOISE",
+                "EKF2_GYR_B_NOISE",
+                "EKF2_ACC_B_NOISE",
+            ],
+            0.010,
+        ),
+        (
+            "ardupilot-ek3",
+            ardupilot_parameters,
+            [
+                "EK3_GYRO_P_NSE",
+                "EK3_ACC_P_NSE",
+                "EK3_GBIAS_P_NSE",
+                "EK3_ABIAS_P_NSE",
+            ],
+            0.012,
+        ),
     ];
-    assert_eq!(p.len(), names.len());
-    for (name, expected) in names.iter().zip(per_step(0.012)) {
-        close(f64::from(p[*name]), expected, 1e-7, name);
+    for (format, parse, names, dt_s) in targets {
+        let p = parse(&export_of_fixture(format, "20", &[]));
+        assert_eq!(p.len(), names.len());
+        for (name, expected) in names.iter().zip(per_step(dt_s)) {
+            // 32-bit float storage: 2^-24 relative.
+            close(p[*name], expected, 1e-7, name);
+        }
     }
 }
 
@@ -613,12 +543,7 @@ fn matlab_property(text: &str, variable: &str, property: &str) -> Vec<f64> {
 
 #[test]
 fn matlab_export_sets_gyroparams_and_accelparams_in_si() {
-    let dir = tempfile::tempdir().unwrap();
-    let text = exported(
-        &two_entry_bank(dir.path()),
-        "matlab",
-        &["--temperature-c", "40"],
-    );
+    let text = export_of_fixture("matlab", "40", &[]);
     let at_40 = |axes: [usize; 3], pick: fn(Truth) -> f64| axes.map(|c| pick(truth(1, c))).to_vec();
     for (variable, axes) in [("gyro", GYRO), ("accel", ACCEL)] {
         close_all(
@@ -649,12 +574,7 @@ fn matlab_export_sets_gyroparams_and_accelparams_in_si() {
 
 #[test]
 fn ros_export_holds_per_sample_variances_row_major() {
-    let dir = tempfile::tempdir().unwrap();
-    let v = yaml_values(&exported(
-        &two_entry_bank(dir.path()),
-        "ros-imu-covariance",
-        &["--temperature-c", "20"],
-    ));
+    let v = yaml_values(&export_of_fixture("ros-imu-covariance", "20", &[]));
     for (key, axes) in [
         ("angular_velocity_covariance", GYRO),
         ("linear_acceleration_covariance", ACCEL),
@@ -732,19 +652,8 @@ fn export_never_overwrites_the_bank() {
     let dir = tempfile::tempdir().unwrap();
     let bank = two_entry_bank(dir.path());
     let before = std::fs::read(&bank).unwrap();
-    let args = [
-        "bank",
-        "export",
-        arg(&bank),
-        "--format",
-        "kalibr",
-        "--out",
-        arg(&bank),
-        "--temperature-c",
-        "20",
-    ];
-    let (status, _, stderr) = outcome(&thermonav(&args));
-    assert_ne!(status, 0);
+    let (status, stderr) = export_to(&bank, "kalibr", &bank, &["--temperature-c", "20"]);
+    assert_eq!(status, 2, "a usage error, before any file is read");
     assert!(stderr.contains("would overwrite the input"), "{stderr}");
     assert_eq!(std::fs::read(&bank).unwrap(), before);
 }

@@ -13,41 +13,39 @@
 //!
 //! Ours: N and K (or the Gauss-Markov stand-in), the largest of the three axes, dt = 12 ms.
 
-use super::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, commented, filter_step_noise,
-    provenance,
-};
+use super::ekf_parameters::{EkfParameters, ekf_parameters_text};
+use super::{ExportOptions, ImuNoise, NoiseExportError, NoiseFormat};
 use crate::thermal_parameters::ParameterValue;
 
 /// The EKF step the values are computed for, s (`EKF_TARGET_DT`).
 pub const EK3_STEP_S: f64 = 0.012;
+
+const ARDUPILOT_EK3: EkfParameters = EkfParameters {
+    format: NoiseFormat::ArdupilotEk3,
+    step_s: EK3_STEP_S,
+    names: [
+        "EK3_GYRO_P_NSE",
+        "EK3_ACC_P_NSE",
+        "EK3_GBIAS_P_NSE",
+        "EK3_ABIAS_P_NSE",
+    ],
+    step_comments: [
+        "discrete values for EKF3's step dt = 0.012 s (EKF_TARGET_DT; a vehicle whose loop is slower than 83 Hz steps at its loop interval: multiply every value by sqrt(0.012 / that)):",
+        "P_NSE = N / sqrt(dt) from the continuous white-noise density N; BIAS_P_NSE = K / sqrt(dt) from the continuous bias random walk K",
+    ],
+    header: None,
+    line: parm_line,
+};
 
 /// The file's text.
 ///
 /// # Errors
 /// A missing white-noise density, neither K nor a Gauss-Markov model, or a non-finite value.
 pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseExportError> {
-    let step = filter_step_noise(noise, EK3_STEP_S)?;
-    let parameters = [
-        ("EK3_GYRO_P_NSE", step.gyro_rad_s, "rad/s"),
-        ("EK3_ACC_P_NSE", step.accel_m_s2, "m/s^2"),
-        ("EK3_GBIAS_P_NSE", step.gyro_bias_rad_s2, "rad/s^2"),
-        ("EK3_ABIAS_P_NSE", step.accel_bias_m_s3, "m/s^3"),
-    ];
-    let mut comments = provenance(NoiseFormat::ArdupilotEk3, noise, options);
-    comments.extend([
-        "discrete values for EKF3's step dt = 0.012 s (EKF_TARGET_DT; a vehicle whose loop is slower than 83 Hz steps at its loop interval: multiply every value by sqrt(0.012 / that)):".to_string(),
-        "P_NSE = N / sqrt(dt) from the continuous white-noise density N; BIAS_P_NSE = K / sqrt(dt) from the continuous bias random walk K".to_string(),
-        "one value per sensor: the largest of the three axes x, y, z".to_string(),
-    ]);
-    comments.extend(step.comments);
-    let mut body = String::new();
-    for (name, value, unit) in parameters {
-        body.push_str(&format!("# {name} [{unit}]\n"));
-        body.push_str(&format!(
-            "{name} {}\n",
-            ParameterValue::Real(value as f32).text()
-        ));
-    }
-    Ok(commented("#", &comments) + &body)
+    ekf_parameters_text(noise, options, &ARDUPILOT_EK3)
+}
+
+/// `NAME VALUE`.
+fn parm_line(name: &str, value: ParameterValue) -> String {
+    format!("{name} {}\n", value.text())
 }

@@ -30,6 +30,7 @@
 //! takes the axes as given.
 
 pub mod ardupilot_ek3;
+mod ekf_parameters;
 pub mod gnss_ins_sim;
 pub mod kalibr;
 pub mod kf_gins;
@@ -83,6 +84,25 @@ impl NoiseFormat {
             NoiseFormat::ArdupilotEk3 => "ardupilot-ek3",
             NoiseFormat::Matlab => "matlab",
             NoiseFormat::RosImuCovariance => "ros-imu-covariance",
+        }
+    }
+}
+
+impl NoiseFormat {
+    /// Checks that `options` hold what the format needs from the user (before any file is
+    /// read): KF-GINS's scale-factor standard deviation, a finite number ≥ 0 when given.
+    ///
+    /// # Errors
+    /// [`NoiseExportError::ScaleFactorNeeded`], [`NoiseExportError::ScaleFactorInvalid`].
+    pub fn check_options(self, options: &ExportOptions) -> Result<(), NoiseExportError> {
+        match options.scale_factor_std_ppm {
+            Some(ppm) if !(ppm.is_finite() && ppm >= 0.0) => {
+                Err(NoiseExportError::ScaleFactorInvalid(ppm))
+            }
+            None if self == NoiseFormat::KfGins => {
+                Err(NoiseExportError::ScaleFactorNeeded(self.name()))
+            }
+            _ => Ok(()),
         }
     }
 }
@@ -155,6 +175,9 @@ pub enum NoiseExportError {
         "{0} needs the scale-factor standard deviation (gsstd, asstd, ppm), which a static record does not measure: give it with --scale-factor-std-ppm"
     )]
     ScaleFactorNeeded(&'static str),
+    /// A scale-factor standard deviation that is not a number ≥ 0.
+    #[error("--scale-factor-std-ppm {0}: expected a finite number >= 0 (ppm)")]
+    ScaleFactorInvalid(f64),
     /// A value that would not be a finite number.
     #[error("{key} would be {value}, not a finite number: nothing written")]
     NotFinite {

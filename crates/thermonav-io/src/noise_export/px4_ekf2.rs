@@ -17,44 +17,43 @@
 //! Ours: N and K (or the Gauss-Markov stand-in), the largest of the three axes, with
 //! dt = 10 ms (`EKF2_PREDICT_US` default).
 
-use super::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, commented, filter_step_noise,
-    provenance,
-};
+use super::ekf_parameters::{EkfParameters, ekf_parameters_text};
+use super::{ExportOptions, ImuNoise, NoiseExportError, NoiseFormat};
 use crate::thermal_parameters::ParameterValue;
 
 /// The prediction interval the values are computed for, s (`EKF2_PREDICT_US` = 10000).
 pub const PX4_PREDICTION_INTERVAL_S: f64 = 0.010;
+
+const PX4_EKF2: EkfParameters = EkfParameters {
+    format: NoiseFormat::Px4Ekf2,
+    step_s: PX4_PREDICTION_INTERVAL_S,
+    names: [
+        "EKF2_GYR_NOISE",
+        "EKF2_ACC_NOISE",
+        "EKF2_GYR_B_NOISE",
+        "EKF2_ACC_B_NOISE",
+    ],
+    step_comments: [
+        "discrete values for EKF2's prediction step dt = 0.01 s (EKF2_PREDICT_US = 10000, the default; for another interval multiply every value by sqrt(10000 / EKF2_PREDICT_US)):",
+        "NOISE = N / sqrt(dt) from the continuous white-noise density N; B_NOISE = K / sqrt(dt) from the continuous bias random walk K",
+    ],
+    header: Some("Vehicle-Id Component-Id Name Value Type"),
+    line: qgc_line,
+};
 
 /// The file's text.
 ///
 /// # Errors
 /// A missing white-noise density, neither K nor a Gauss-Markov model, or a non-finite value.
 pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseExportError> {
-    let step = filter_step_noise(noise, PX4_PREDICTION_INTERVAL_S)?;
-    let parameters = [
-        ("EKF2_GYR_NOISE", step.gyro_rad_s, "rad/s"),
-        ("EKF2_ACC_NOISE", step.accel_m_s2, "m/s^2"),
-        ("EKF2_GYR_B_NOISE", step.gyro_bias_rad_s2, "rad/s^2"),
-        ("EKF2_ACC_B_NOISE", step.accel_bias_m_s3, "m/s^3"),
-    ];
-    let mut comments = provenance(NoiseFormat::Px4Ekf2, noise, options);
-    comments.extend([
-        "discrete values for EKF2's prediction step dt = 0.01 s (EKF2_PREDICT_US = 10000, the default; for another interval multiply every value by sqrt(10000 / EKF2_PREDICT_US)):".to_string(),
-        "NOISE = N / sqrt(dt) from the continuous white-noise density N; B_NOISE = K / sqrt(dt) from the continuous bias random walk K".to_string(),
-        "one value per sensor: the largest of the three axes x, y, z".to_string(),
-    ]);
-    comments.extend(step.comments);
-    comments.push("Vehicle-Id Component-Id Name Value Type".to_string());
-    let mut body = String::new();
-    for (name, value, unit) in parameters {
-        let value = ParameterValue::Real(value as f32);
-        body.push_str(&format!("# {name} [{unit}]\n"));
-        body.push_str(&format!(
-            "1\t1\t{name}\t{}\t{}\n",
-            value.text(),
-            value.mav_param_type()
-        ));
-    }
-    Ok(commented("#", &comments) + &body)
+    ekf_parameters_text(noise, options, &PX4_EKF2)
+}
+
+/// `1<TAB>1<TAB>NAME<TAB>VALUE<TAB>TYPE`: vehicle and component 1, `MAV_PARAM_TYPE`.
+fn qgc_line(name: &str, value: ParameterValue) -> String {
+    format!(
+        "1\t1\t{name}\t{}\t{}\n",
+        value.text(),
+        value.mav_param_type()
+    )
 }
