@@ -90,15 +90,21 @@ fn write_bank(dir: &Path, name: &str, bank: &Value) -> PathBuf {
     write_file(dir, name, &serde_json::to_string_pretty(bank).unwrap())
 }
 
-/// `bank`, with `edit` applied to channel `channel` of every entry.
+/// The two-entry bank with `edit` applied to channel `channel` of every entry.
 fn edited_bank(dir: &Path, channel: &str, edit: impl Fn(&mut Value)) -> PathBuf {
-    let bank_path = two_entry_bank(dir);
-    let mut bank: Value =
-        serde_json::from_str(&std::fs::read_to_string(bank_path).unwrap()).unwrap();
+    edited_channels(dir, &[channel], edit).0
+}
+
+/// The two-entry bank with `edit` applied to `channels` of every entry; its path and JSON.
+fn edited_channels(dir: &Path, channels: &[&str], edit: impl Fn(&mut Value)) -> (PathBuf, Value) {
+    let text = std::fs::read_to_string(two_entry_bank(dir)).unwrap();
+    let mut bank: Value = serde_json::from_str(&text).unwrap();
     for entry in bank["entries"].as_array_mut().unwrap() {
-        edit(&mut entry["channels"][channel]);
+        for channel in channels {
+            edit(&mut entry["channels"][*channel]);
+        }
     }
-    write_bank(dir, "edited.json", &bank)
+    (write_bank(dir, "edited.json", &bank), bank)
 }
 
 /// Exports `bank` as `format` to `out`: exit code and stderr.
@@ -274,6 +280,42 @@ fn kalibr_export_without_a_random_walk_writes_the_gauss_markov_stand_in() {
     );
     assert!(
         text.contains("gz: no rate random walk K") && text.contains("sigma*sqrt(2/Tc)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn kalibr_export_of_white_noise_alone_writes_the_largest_random_walk_the_curve_allows() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, json) = edited_channels(dir.path(), &["gx", "gy", "gz"], |ch| {
+        ch["allan"]["rate_random_walk"] = Value::Null;
+        ch["gauss_markov"]["irregular_ml"] = json!({"status": "no_equivalent", "reason": "white"});
+    });
+    let text = exported(&bank, "kalibr", &["--temperature-c", "20"]);
+    // IEEE Std 952: a rate random walk K gives sigma(tau) = K sqrt(tau/3); the largest K under
+    // the curve's last point (tau, sigma) is sigma sqrt(3/tau).
+    let bound = |name: &str| {
+        let allan = &json["entries"][0]["channels"][name]["allan"];
+        let last = |key: &str| {
+            allan[key]
+                .as_array()
+                .unwrap()
+                .last()
+                .unwrap()
+                .as_f64()
+                .unwrap()
+        };
+        last("adev") * (3.0 / last("tau_s")).sqrt()
+    };
+    let expected = largest(["gx", "gy", "gz"].map(bound).to_vec());
+    close(
+        numbers(&yaml_values(&text), "gyroscope_random_walk")[0],
+        expected,
+        1e-15,
+        "bound",
+    );
+    assert!(
+        text.contains("the largest K the Allan curve allows"),
         "{text}"
     );
 }
