@@ -9,6 +9,7 @@ use crate::inputs::read_bank;
 use crate::report::{print_json, print_rows};
 use crate::settings::paths::Io;
 use anyhow::anyhow;
+use clap::ValueEnum;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -42,14 +43,54 @@ fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
     }
 }
 
-/// The export's kind, with the options a noise format needs checked (usage errors, before
-/// any file is read).
+/// The export's kind, with its options checked (usage errors, before any file is read): what
+/// a noise format needs, and no option of the other kind of export.
 fn checked_kind(args: &BankExportArgs) -> Result<ExportKind, Failure> {
     let kind = ExportKind::from(args.format);
     if let ExportKind::Noise(format) = kind {
         format.check_options(&export_options(args)).usage()?;
     }
-    Ok(kind)
+    match misplaced_option(kind, args) {
+        Some(option) => Err(not_applicable(option, args)),
+        None => Ok(kind),
+    }
+}
+
+/// An option of the other kind of export, if one was given.
+fn misplaced_option(kind: ExportKind, args: &BankExportArgs) -> Option<&'static str> {
+    match kind {
+        ExportKind::Noise(_) => thermal_option(args),
+        ExportKind::Thermal(_) => noise_option(args),
+    }
+}
+
+fn not_applicable(option: &str, args: &BankExportArgs) -> Failure {
+    let format = args.format.to_possible_value();
+    let format = format.map_or_else(String::new, |v| v.get_name().to_string());
+    Failure::Usage(anyhow!("{option} does not apply to --format {format}"))
+}
+
+/// A thermal-export option given, if any.
+fn thermal_option(args: &BankExportArgs) -> Option<&'static str> {
+    let given = [
+        ("--instance", args.instance.is_some()),
+        ("--device-id", args.device_id.is_some()),
+        ("--gyro-device-id", args.gyro_device_id.is_some()),
+        ("--accel-device-id", args.accel_device_id.is_some()),
+    ];
+    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
+}
+
+/// A noise-export option without a default given, if any.
+fn noise_option(args: &BankExportArgs) -> Option<&'static str> {
+    let given = [
+        ("--temperature-c", args.temperature_c.is_some()),
+        (
+            "--scale-factor-std-ppm",
+            args.scale_factor_std_ppm.is_some(),
+        ),
+    ];
+    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
 }
 
 fn export_noise(

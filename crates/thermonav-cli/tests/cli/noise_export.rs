@@ -699,3 +699,25 @@ fn export_never_overwrites_the_bank() {
     assert!(stderr.contains("would overwrite the input"), "{stderr}");
     assert_eq!(std::fs::read(&bank).unwrap(), before);
 }
+
+#[test]
+fn export_options_of_the_other_kind_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let bank = two_entry_bank(dir.path());
+    let (status, stderr) = refused(
+        &bank,
+        "kalibr",
+        &["--temperature-c", "20", "--instance", "1"],
+    );
+    assert_eq!(status, 2);
+    assert!(
+        stderr.contains("--instance does not apply to --format kalibr"),
+        "{stderr}"
+    );
+    let (status, stderr) = refused(&bank, "px4-tc", &["--temperature-c", "20"]);
+    assert_eq!(status, 2);
+    assert!(
+        stderr.contains("--temperature-c does not apply to --format px4-tc"),
+        "{stderr}"
+    );
+}
