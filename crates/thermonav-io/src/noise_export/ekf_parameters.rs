@@ -7,6 +7,9 @@ use super::{
 };
 use crate::thermal_parameters::ParameterValue;
 
+/// What the values are and are not.
+const FLOOR_NOT_TUNING: &str = "these are the sensor's own noise in a static record: the autopilot's defaults are larger on purpose (vibration, unmodelled errors in flight), so treat them as a floor, not as a tuning";
+
 /// How one autopilot names and lays out its EKF's noise parameters.
 pub struct EkfParameters {
     /// The format.
@@ -43,6 +46,7 @@ pub fn ekf_parameters_text(
     let mut comments = provenance(target.format, noise, options);
     comments.extend(target.step_comments.map(String::from));
     comments.push("one value per sensor: the largest of the three axes x, y, z".to_string());
+    comments.push(FLOOR_NOT_TUNING.to_string());
     comments.extend(step.comments);
     comments.extend(target.header.map(String::from));
     let mut body = String::new();

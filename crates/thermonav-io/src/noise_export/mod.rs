@@ -18,6 +18,9 @@
 //!   channels (KF-GINS, OB_GINS): the geometric mean of their Tc (correlation times spread over
 //!   decades; the log scale is the natural average), each channel's Tc listed beside it.
 //!
+//! The PX4 and ArduPilot files also say that their values are the sensor's own noise, a floor
+//! under the autopilots' larger defaults (which cover vibration in flight), not a tuning.
+//!
 //! A quantity the format needs and the bank lacks, with no documented stand-in, is refused
 //! with an error naming the channel, the quantity and the bank's reason; so is any value that
 //! would not be a finite number. Files are written through a temporary file renamed into place
