@@ -721,3 +721,24 @@ fn export_options_of_the_other_kind_are_refused() {
         "{stderr}"
     );
 }
+
+#[test]
+fn linear_export_drops_a_term_that_one_of_the_two_entries_lacks() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(two_entry_bank(dir.path())).unwrap();
+    let mut bank: Value = serde_json::from_str(&text).unwrap();
+    bank["entries"][1]["channels"]["gz"]["allan"]["rate_random_walk"] = Value::Null;
+    let bank = write_bank(dir.path(), "one_side.json", &bank);
+    let args = ["--temperature-c", "25", "--method", "linear"];
+    let text = exported(&bank, "matlab", &args);
+    // gz's K exists at 20 °C only: absent at 25 °C, so MATLAB's RandomWalk is 0 and gx, gy
+    // are interpolated.
+    let expected = [truth_at_25(0).k, truth_at_25(1).k, 0.0];
+    close_all(
+        &matlab_property(&text, "gyro", "RandomWalk"),
+        &expected,
+        1e-14,
+        "K",
+    );
+    assert!(text.contains("gz: no rate random walk K"), "{text}");
+}
