@@ -518,30 +518,94 @@ pub struct BankArgs {
 pub enum BankAction {
     /// Show the bank, or the model selected for an operating temperature.
     Show(BankShowArgs),
-    /// Write the bank's thermal calibration as autopilot parameters (PX4 or ArduPilot).
+    /// Write the bank as another tool's configuration: its thermal calibration as autopilot
+    /// parameters (px4-tc, ardupilot-tcal), or its noise model at a temperature as a filter's
+    /// or simulator's noise block (the other formats; see the README's table).
     Export(BankExportArgs),
 }
 
-/// Autopilot parameter files.
+/// Export formats.
 #[derive(Debug, Clone, Copy, ValueEnum)]
 pub enum ExportFormatArg {
     /// PX4 TC_* thermal compensation, a QGroundControl .params file.
     Px4Tc,
     /// ArduPilot INS_TCAL1_* temperature calibration, a Mission Planner/MAVProxy .param file.
     ArdupilotTcal,
+    /// Kalibr imu.yaml (noise densities and random walks, continuous).
+    Kalibr,
+    /// KF-GINS imunoise: block (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime).
+    KfGins,
+    /// OB_GINS imumodel: block (arw, vrw, gbstd, abstd, corrtime).
+    ObGins,
+    /// gnss-ins-sim imu_err dictionary (Python).
+    GnssInsSim,
+    /// PX4 EKF2_GYR/ACC(_B)_NOISE parameters, a QGroundControl .params file.
+    Px4Ekf2,
+    /// ArduPilot EK3_*_P_NSE parameters, a .parm file.
+    ArdupilotEk3,
+    /// MATLAB gyroparams/accelparams/imuSensor script.
+    Matlab,
+    /// ROS sensor_msgs/Imu covariances (YAML).
+    RosImuCovariance,
+}
+
+/// What an export format writes.
+#[derive(Debug, Clone, Copy)]
+pub enum ExportKind {
+    /// The thermal calibration as autopilot parameters.
+    Thermal(thermonav_io::thermal_parameters::ParameterTarget),
+    /// The noise model at a temperature.
+    Noise(thermonav_io::noise_export::NoiseFormat),
+}
+
+impl From<ExportFormatArg> for ExportKind {
+    fn from(format: ExportFormatArg) -> Self {
+        use thermonav_io::noise_export::NoiseFormat as N;
+        use thermonav_io::thermal_parameters::ParameterTarget as T;
+        match format {
+            ExportFormatArg::Px4Tc => Self::Thermal(T::Px4Tc),
+            ExportFormatArg::ArdupilotTcal => Self::Thermal(T::ArdupilotTcal),
+            ExportFormatArg::Kalibr => Self::Noise(N::Kalibr),
+            ExportFormatArg::KfGins => Self::Noise(N::KfGins),
+            ExportFormatArg::ObGins => Self::Noise(N::ObGins),
+            ExportFormatArg::GnssInsSim => Self::Noise(N::GnssInsSim),
+            ExportFormatArg::Px4Ekf2 => Self::Noise(N::Px4Ekf2),
+            ExportFormatArg::ArdupilotEk3 => Self::Noise(N::ArdupilotEk3),
+            ExportFormatArg::Matlab => Self::Noise(N::Matlab),
+            ExportFormatArg::RosImuCovariance => Self::Noise(N::RosImuCovariance),
+        }
+    }
 }
 
 /// Arguments of `bank export`.
 #[derive(Debug, Args)]
 pub struct BankExportArgs {
-    /// The bank (JSON) with a thermal calibration.
+    /// The bank (JSON); with a thermal calibration for px4-tc and ardupilot-tcal.
     pub bank: PathBuf,
-    /// Which autopilot's parameters.
+    /// Which tool's configuration.
     #[arg(long, value_enum)]
     pub format: ExportFormatArg,
-    /// Output parameter file.
+    /// Output file (never the bank).
     #[arg(long)]
     pub out: PathBuf,
+    /// Noise formats: the operating temperature, °C, inside the bank's range (default: the
+    /// bank's only entry).
+    #[arg(long, allow_negative_numbers = true)]
+    pub temperature_c: Option<f64>,
+    /// Noise formats: the entry nearest --temperature-c, or linear interpolation between the
+    /// two around it.
+    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    pub method: SelectArg,
+    /// Noise formats: which Gauss-Markov family gives the bias model.
+    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    pub model: GmSourceArg,
+    /// Kalibr: the IMU's ROS topic.
+    #[arg(long, default_value = "/imu0")]
+    pub rostopic: String,
+    /// KF-GINS: the scale-factor standard deviation (gsstd, asstd), ppm, which a static bank
+    /// does not measure.
+    #[arg(long)]
+    pub scale_factor_std_ppm: Option<f64>,
     /// Which IMU of the autopilot: 0 for the first (PX4 TC_G0/TC_A0, ArduPilot INS_TCAL1),
     /// up to 2 (default: the instance of the ULog sweep the bank was calibrated from, else 0).
     #[arg(long, value_parser = clap::value_parser!(u8).range(0..=2))]

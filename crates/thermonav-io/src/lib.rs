@@ -42,6 +42,11 @@
 //! [`thermal_parameters`]: a bank's thermal calibration as PX4 `TC_*` (QGroundControl
 //! `.params`) or ArduPilot `INS_TCAL1_*` (`.param`) parameters.
 //!
+//! ## Noise configurations of other tools
+//! [`noise_export`]: a bank's noise model at a temperature as Kalibr `imu.yaml`, KF-GINS
+//! `imunoise:`, OB_GINS `imumodel:`, gnss-ins-sim `imu_err`, PX4 EKF2 and ArduPilot EKF3
+//! parameters, a MATLAB `imuSensor` script or ROS `sensor_msgs/Imu` covariances.
+//!
 //! ## Production lots
 //! [`lot`]: lot manifests (TOML): the units of a production lot and their chamber records.
 //!
@@ -71,6 +76,7 @@ mod lines;
 pub mod lot;
 pub mod motion;
 pub mod nmea;
+pub mod noise_export;
 pub mod noise_terms;
 pub mod parsers;
 pub mod profile;

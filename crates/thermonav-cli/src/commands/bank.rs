@@ -1,22 +1,28 @@
 //! `thermonav bank show`: the bank, or the model selected for an operating temperature;
-//! `thermonav bank export`: its thermal calibration as autopilot parameters.
+//! `thermonav bank export`: its thermal calibration as autopilot parameters, or its noise
+//! model at a temperature as another tool's noise configuration.
 
-use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportFormatArg};
+use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportKind};
 use crate::bank_tables::print_bank_table;
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::{print_json, print_rows};
 use crate::settings::paths::Io;
 use anyhow::anyhow;
+use clap::ValueEnum;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::Channel;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
 use thermonav::stoch::thermal::SensorDevices;
+use thermonav_io::noise_export::{
+    ExportOptions, ImuNoise, NoiseExportError, NoiseExportSummary, NoiseFormat, noise_config_text,
+    placement_words, write_noise_config,
+};
 use thermonav_io::thermal_parameters::{
-    ExportSummary, ExportTarget, ParameterFile, SensorExport, ardupilot_parameters, px4_parameters,
-    write_parameter_file,
+    ExportSummary, ExportTarget, ParameterFile, ParameterTarget, SensorExport,
+    ardupilot_parameters, px4_parameters, write_parameter_file,
 };
 
 /// Runs `bank`.
@@ -29,7 +35,114 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
 
 fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
     export_io(args).check()?;
-    let file = parameter_file(&read_bank(&args.bank)?, args)?;
+    let kind = checked_kind(args)?;
+    let bank = read_bank(&args.bank)?;
+    match kind {
+        ExportKind::Thermal(target) => export_thermal(&bank, target, args),
+        ExportKind::Noise(format) => export_noise(&bank, format, args),
+    }
+}
+
+/// The export's kind, with its options checked (usage errors, before any file is read): what
+/// a noise format needs, and no option of the other kind of export.
+fn checked_kind(args: &BankExportArgs) -> Result<ExportKind, Failure> {
+    let kind = ExportKind::from(args.format);
+    if let ExportKind::Noise(format) = kind {
+        format.check_options(&export_options(args)).usage()?;
+    }
+    match misplaced_option(kind, args) {
+        Some(option) => Err(not_applicable(option, args)),
+        None => Ok(kind),
+    }
+}
+
+/// An option of the other kind of export, if one was given.
+fn misplaced_option(kind: ExportKind, args: &BankExportArgs) -> Option<&'static str> {
+    match kind {
+        ExportKind::Noise(_) => thermal_option(args),
+        ExportKind::Thermal(_) => noise_option(args),
+    }
+}
+
+fn not_applicable(option: &str, args: &BankExportArgs) -> Failure {
+    let format = args.format.to_possible_value();
+    let format = format.map_or_else(String::new, |v| v.get_name().to_string());
+    Failure::Usage(anyhow!("{option} does not apply to --format {format}"))
+}
+
+/// A thermal-export option given, if any.
+fn thermal_option(args: &BankExportArgs) -> Option<&'static str> {
+    let given = [
+        ("--instance", args.instance.is_some()),
+        ("--device-id", args.device_id.is_some()),
+        ("--gyro-device-id", args.gyro_device_id.is_some()),
+        ("--accel-device-id", args.accel_device_id.is_some()),
+    ];
+    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
+}
+
+/// A noise-export option without a default given, if any.
+fn noise_option(args: &BankExportArgs) -> Option<&'static str> {
+    let given = [
+        ("--temperature-c", args.temperature_c.is_some()),
+        (
+            "--scale-factor-std-ppm",
+            args.scale_factor_std_ppm.is_some(),
+        ),
+    ];
+    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
+}
+
+fn export_noise(
+    bank: &ModelBank,
+    format: NoiseFormat,
+    args: &BankExportArgs,
+) -> Result<(), Failure> {
+    let noise = noise_at_temperature(bank, args)?;
+    let text = noise_config_text(format, &noise, &export_options(args));
+    write_noise_config(&args.out, &text.map_err(|e| noise_failure(e, args))?).data()?;
+    if args.json {
+        return print_json(&NoiseExportSummary::new(format, &noise));
+    }
+    print_noise_rows(&noise, args);
+    Ok(())
+}
+
+/// The bank's noise at the operating temperature.
+fn noise_at_temperature(bank: &ModelBank, args: &BankExportArgs) -> Result<ImuNoise, Failure> {
+    let (selection, source) = (args.method.into(), args.model.into());
+    ImuNoise::at_temperature(bank, args.temperature_c, selection, source)
+        .map_err(|e| anyhow!("{}: {e}", args.bank.display()))
+        .data()
+}
+
+fn print_noise_rows(noise: &ImuNoise, args: &BankExportArgs) {
+    let at = format!(
+        "{} °C, {}",
+        noise.temperature_c,
+        placement_words(noise.placement)
+    );
+    print_rows(&[("written", args.out.display().to_string()), ("at", at)]);
+}
+
+fn export_options(args: &BankExportArgs) -> ExportOptions {
+    ExportOptions {
+        bank_name: args.bank.display().to_string(),
+        rostopic: args.rostopic.clone(),
+        scale_factor_std_ppm: args.scale_factor_std_ppm,
+    }
+}
+
+fn noise_failure(error: NoiseExportError, args: &BankExportArgs) -> Failure {
+    Failure::Data(anyhow!("{}: {error}", args.bank.display()))
+}
+
+fn export_thermal(
+    bank: &ModelBank,
+    target: ParameterTarget,
+    args: &BankExportArgs,
+) -> Result<(), Failure> {
+    let file = parameter_file(bank, target, args)?;
     write_parameter_file(&args.out, &file).data()?;
     if args.json {
         return print_json(&file.summary());
@@ -41,19 +154,23 @@ fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
 fn export_io(args: &BankExportArgs) -> Io {
     Io::new()
         .input("BANK", &args.bank)
-        .output("parameter file", &args.out)
+        .output("exported file", &args.out)
 }
 
 /// The bank's thermal calibration in the chosen target's parameters.
-fn parameter_file(bank: &ModelBank, args: &BankExportArgs) -> Result<ParameterFile, Failure> {
+fn parameter_file(
+    bank: &ModelBank,
+    target_format: ParameterTarget,
+    args: &BankExportArgs,
+) -> Result<ParameterFile, Failure> {
     let calibration = bank
         .thermal
         .as_ref()
         .ok_or_else(|| no_thermal_calibration(&args.bank))?;
     let target = export_target(calibration.devices.as_ref(), args);
-    let file = match args.format {
-        ExportFormatArg::Px4Tc => px4_parameters(calibration, target),
-        ExportFormatArg::ArdupilotTcal => ardupilot_parameters(calibration, target),
+    let file = match target_format {
+        ParameterTarget::Px4Tc => px4_parameters(calibration, target),
+        ParameterTarget::ArdupilotTcal => ardupilot_parameters(calibration, target),
     };
     file.map_err(|e| anyhow!("{}: {e}", args.bank.display()))
         .data()

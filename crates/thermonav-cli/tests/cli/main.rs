@@ -9,6 +9,7 @@ mod denoise;
 mod lot;
 mod modelling;
 mod navigation;
+mod noise_export;
 mod oracle;
 mod plots;
 mod real_data;
