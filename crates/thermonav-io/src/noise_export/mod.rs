@@ -496,6 +496,7 @@ pub fn source_name(source: GaussMarkovSource) -> &'static str {
         GaussMarkovSource::ArBased => "ar-based",
         GaussMarkovSource::IrregularMl => "irregular-ml",
         GaussMarkovSource::AcfFit => "acf-fit",
+        GaussMarkovSource::Gmwm => "gmwm",
     }
 }
 

@@ -246,15 +246,15 @@ fn channel_noise(
 ) -> Result<ChannelNoise, NoiseExportError> {
     let mut noise = match bank.placement(temperature_c, selection) {
         Placement::Entry { temperature_c } | Placement::Clamped { temperature_c } => {
-            entry_noise(entry_at(bank, temperature_c), channel)?
+            entry_noise(entry_at(bank, temperature_c), channel, source)?
         }
         Placement::Between {
             lower_c,
             upper_c,
             weight,
         } => {
-            let lower = entry_noise(entry_at(bank, lower_c), channel)?;
-            let upper = entry_noise(entry_at(bank, upper_c), channel)?;
+            let lower = entry_noise(entry_at(bank, lower_c), channel, source)?;
+            let upper = entry_noise(entry_at(bank, upper_c), channel, source)?;
             interpolated(&lower, &upper, weight, [lower_c, upper_c])
         }
     };
@@ -278,8 +278,14 @@ fn entry_at(bank: &ModelBank, temperature_c: f64) -> &TemperatureEntry {
     &bank.entries[k]
 }
 
-/// The Allan terms of one entry's channel (the Gauss-Markov model is added by the caller).
-fn entry_noise(entry: &TemperatureEntry, channel: Channel) -> Result<ChannelNoise, BankError> {
+/// The Allan terms of one entry's channel (the Gauss-Markov model is added by the caller);
+/// with the GMWM family, the white-noise density is the composite's mapped one, as the filter
+/// takes it.
+fn entry_noise(
+    entry: &TemperatureEntry,
+    channel: Channel,
+    source: GaussMarkovSource,
+) -> Result<ChannelNoise, BankError> {
     let model = entry
         .channels
         .get(&channel)
@@ -309,8 +315,12 @@ fn entry_noise(entry: &TemperatureEntry, channel: Channel) -> Result<ChannelNois
         );
         absent.insert(Term::RateRandomWalkAtMost, reason);
     }
+    let white_noise_density = match (source, &model.gmwm) {
+        (GaussMarkovSource::Gmwm, Some(gmwm)) => Some(gmwm.white_noise_density),
+        _ => allan.white_noise_density,
+    };
     let noise = ChannelNoise {
-        white_noise_density: allan.white_noise_density,
+        white_noise_density,
         bias_instability: allan.bias_instability,
         rate_random_walk: allan.rate_random_walk,
         rate_random_walk_at_most: at_most,
