@@ -17,7 +17,7 @@ use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
 use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
 use thermonav::stoch::allan::{DEFAULT_CONFIDENCE, DeviationKind};
-use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM_MODEL};
+use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM};
 
 fn engine() -> EngineSettings {
     EngineSettings::default()
@@ -428,8 +428,10 @@ pub struct CharacterizeArgs {
     #[arg(long, value_enum, default_value_t = DenoiseArg::Kaiser, help = denoise_help())]
     pub denoise: DenoiseArg,
     /// The composite fitted to each channel's wavelet variance (GMWM) and mapped onto the
-    /// filter's white noise and bias state (`--model gmwm` of integrate and evaluate), or off.
-    #[arg(long, default_value_t = DEFAULT_GMWM_MODEL.to_string())]
+    /// filter's white noise and bias state (`--model gmwm` of integrate and evaluate): a model
+    /// such as wn+rw+2gm, auto (the candidate of least objective + 2 × parameters, no
+    /// bootstrap), or off.
+    #[arg(long, default_value_t = DEFAULT_GMWM.to_string())]
     pub gmwm: String,
     /// Kaiser cut-off of the conditioning before AR modelling, Hz.
     #[arg(long, default_value_t = conditioning().cutoff_hz)]

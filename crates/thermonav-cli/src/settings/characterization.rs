@@ -8,7 +8,7 @@ use anyhow::anyhow;
 use std::path::PathBuf;
 use thermonav::signal::wavelet::denoise::WaveletDenoise;
 use thermonav::sim::chamber::Site;
-use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser};
+use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser, GmwmChoice};
 use thermonav::stoch::gmwm::ModelSpec;
 
 /// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
@@ -170,14 +170,16 @@ fn conditioning(args: &CharacterizeArgs) -> Result<CharacterizeSettings, Failure
     })
 }
 
-/// `--gmwm`: a composite, or `off`.
-fn gmwm_model(text: &str) -> Result<Option<ModelSpec>, Failure> {
-    if text.eq_ignore_ascii_case("off") {
-        return Ok(None);
+/// `--gmwm`: a composite, `auto` or `off`.
+fn gmwm_model(text: &str) -> Result<Option<GmwmChoice>, Failure> {
+    match text.to_ascii_lowercase().as_str() {
+        "off" => Ok(None),
+        "auto" => Ok(Some(GmwmChoice::Auto)),
+        _ => text
+            .parse::<ModelSpec>()
+            .map(|spec| Some(GmwmChoice::Model(spec)))
+            .map_err(|e| Failure::Usage(anyhow!("--gmwm {text}: {e} (or auto, or off)"))),
     }
-    let spec = text.parse::<ModelSpec>();
-    spec.map(Some)
-        .map_err(|e| Failure::Usage(anyhow!("--gmwm {text}: {e} (or off)")))
 }
 
 /// `--denoise`: the wavelet de-noiser takes the library's wavelet defaults.

@@ -163,9 +163,11 @@ pub struct Excluded {
     pub reason: String,
 }
 
-/// Label of a bank entry's candidate.
+/// Label of a bank entry's candidate, to 0.1 °C (an entry measured at −0.04 °C is
+/// "bank 0.0 °C", not "bank -0.0 °C").
 pub fn entry_label(temperature_c: f64) -> String {
-    format!("bank {temperature_c:.1} °C")
+    let rounded = (temperature_c * 10.0).round() / 10.0 + 0.0;
+    format!("bank {rounded:.1} °C")
 }
 
 /// The candidates of a bank at an operating temperature with one Gauss-Markov family, plus
@@ -485,6 +487,13 @@ pub fn pooled(models: &[ImuStochasticModel]) -> Option<ImuStochasticModel> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn entry_labels_have_no_negative_zero() {
+        assert_eq!(entry_label(-0.042), "bank 0.0 °C");
+        assert_eq!(entry_label(-39.966), "bank -40.0 °C");
+        assert_eq!(entry_label(20.0029), "bank 20.0 °C");
+    }
 
     // Closed forms: pooling two models with Tc 100 s and 400 s gives 200 s (geometric mean);
     // σ 3 and 4 give √12.5 (RMS). The data-sheet σ is the stability over 0.62.

@@ -32,7 +32,10 @@ use super::bank::{
 use super::gauss_markov::{
     Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
 };
-use super::gmwm::{ModelSpec, TauBand, fit_gmwm, map_to_filter_states, physical_parameters};
+use super::gmwm::{
+    ModelSpec, TauBand, auto_candidates, fit_gmwm, map_to_filter_states, physical_parameters,
+    rank_by_asymptotic_wic,
+};
 use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
@@ -73,21 +76,34 @@ pub struct CharacterizeSettings {
     /// What de-noises the record before the AR and ACF fits.
     pub denoise: Denoiser,
     /// The GMWM composite fitted to the raw record's wavelet variance, or none.
-    pub gmwm: Option<ModelSpec>,
+    pub gmwm: Option<GmwmChoice>,
     /// The averaging times the composite is mapped onto the filter's states for.
     pub gmwm_band: TauBand,
 }
 
-/// The composite `characterize` fits by default: white noise, a random walk and two
-/// Gauss-Markov processes (one for a sensor's internal low-pass or a short correlated
-/// component, one for the bias); a process the data do not hold comes out small.
-pub const DEFAULT_GMWM_MODEL: ModelSpec = ModelSpec {
-    white: true,
-    quantisation: false,
-    random_walk: true,
-    drift: false,
-    gauss_markov: 2,
-};
+/// Which composite `characterize` fits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GmwmChoice {
+    /// This one.
+    Model(ModelSpec),
+    /// The candidate of [`crate::stoch::gmwm::AUTO_CANDIDATES`] with the least asymptotic
+    /// WIC ([`rank_by_asymptotic_wic`]; no bootstrap).
+    Auto,
+}
+
+impl std::fmt::Display for GmwmChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            GmwmChoice::Model(spec) => write!(f, "{spec}"),
+            GmwmChoice::Auto => write!(f, "auto"),
+        }
+    }
+}
+
+/// The composite `characterize` fits by default: the automatic choice. A fixed `wn+rw+2gm`
+/// split one slow process into a 1-3 s process and a random walk on the demo's 30-minute
+/// records; the criterion picks `wn+gm` there and the richer composites on the real runs.
+pub const DEFAULT_GMWM: GmwmChoice = GmwmChoice::Auto;
 
 /// The de-noising before decimation to the modelling rate (the Allan curve and the exact
 /// likelihood always see the raw record).
@@ -117,7 +133,7 @@ impl Default for CharacterizeSettings {
             acf_window: LagWindow::FirstZeroCrossing,
             ml_block_s: 0.5,
             denoise: Denoiser::Kaiser,
-            gmwm: Some(DEFAULT_GMWM_MODEL),
+            gmwm: Some(DEFAULT_GMWM),
             gmwm_band: TauBand::default(),
         }
     }
@@ -400,16 +416,25 @@ pub(crate) fn channel_report(
     })
 }
 
-/// The composite `spec` fitted to the wavelet variance read off the raw octave Allan curve,
+/// The composite `choice` fitted to the wavelet variance read off the raw octave Allan curve,
 /// and its bias state for the filter; `None` when the curve has too few octaves for the
 /// model or the fit fails (a constant stretch: zero variance at a scale).
 fn gmwm_summary(
     allan: &AllanCurve,
-    spec: ModelSpec,
+    choice: GmwmChoice,
     band: TauBand,
 ) -> Option<(GmwmSummary, GaussMarkovEstimate)> {
     let wv = from_allan_curve(allan, DEFAULT_CONFIDENCE)?;
-    let fit = fit_gmwm(&wv, spec).ok()?;
+    let fit = match choice {
+        GmwmChoice::Model(spec) => fit_gmwm(&wv, spec).ok()?,
+        GmwmChoice::Auto => {
+            rank_by_asymptotic_wic(&wv, &auto_candidates())
+                .ok()?
+                .swap_remove(0)
+                .0
+        }
+    };
+    let spec = fit.model;
     let record_s = allan.n_samples as f64 * allan.tau0_s;
     let mapped = map_to_filter_states(&fit.terms, fit.dt_s, record_s, band);
     let parameters = physical_parameters(&fit.terms, fit.dt_s)

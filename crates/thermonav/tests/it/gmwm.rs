@@ -222,7 +222,7 @@ fn model_specifications_parse_and_print() {
     }
 }
 
-// `characterize` carries the default composite (wn+rw+2gm) per channel. The wiring is checked
+// `characterize` carries the default composite (the automatic choice) per channel. The wiring is checked
 // against the direct path (the wavelet variance computed from the raw channel, fitted and
 // mapped here), and the mapped white-noise density against the simulated unit's (the
 // ADIS16364-like profile, 1 h at 50 Hz, 10 °C): within 5 %, the target for the demo
@@ -231,17 +231,22 @@ fn model_specifications_parse_and_print() {
 #[test]
 fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_unit() {
     use thermonav::sensor::adis16364_like;
-    use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM_MODEL, characterize};
-    use thermonav::stoch::gmwm::{TauBand, fit_gmwm, map_to_filter_states};
+    use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
+    use thermonav::stoch::gmwm::{
+        TauBand, auto_candidates, map_to_filter_states, rank_by_asymptotic_wic,
+    };
     let series = crate::streaming::chamber_record(3600.0);
     let (entry, _) = characterize(&series, 10.0, "sim", &CharacterizeSettings::default()).unwrap();
     let profile = adis16364_like();
     for channel in thermonav::imu::Channel::ALL {
         let model = &entry.channels[&channel];
         let summary = model.gmwm.as_ref().expect("a GMWM summary");
-        assert_eq!(summary.model, "wn+rw+2gm");
         let wv = haar_wavelet_variance(series.channel(channel), 50.0, None, 0.95).unwrap();
-        let direct = fit_gmwm(&wv, DEFAULT_GMWM_MODEL).unwrap();
+        let direct = rank_by_asymptotic_wic(&wv, &auto_candidates())
+            .unwrap()
+            .swap_remove(0)
+            .0;
+        assert_eq!(summary.model, direct.model.to_string());
         let record_s = series.len() as f64 / 50.0;
         let mapped = map_to_filter_states(&direct.terms, direct.dt_s, record_s, TauBand::default());
         assert!((summary.objective / direct.objective - 1.0).abs() < 1e-9);
@@ -250,8 +255,9 @@ fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_
         let ratio = summary.white_noise_density / truth;
         let allan_ratio = model.allan.white_noise_density.unwrap() / truth;
         eprintln!(
-            "{}: GMWM N / simulated {ratio:.4}, Allan N / simulated {allan_ratio:.4}, objective {:.1} over {} scales",
+            "{}: {} GMWM N / simulated {ratio:.4}, Allan N / simulated {allan_ratio:.4}, objective {:.1} over {} scales",
             channel.name(),
+            summary.model,
             summary.objective,
             summary.scales
         );

@@ -29,7 +29,7 @@ pub mod theory;
 
 pub use bootstrap::{
     AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, ParameterEstimate, auto_candidates,
-    estimate_gmwm, select_model,
+    estimate_gmwm, rank_by_asymptotic_wic, select_model,
 };
 pub use fit::{GmwmFit, fit_gmwm};
 pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
