@@ -145,3 +145,25 @@ def test_bad_inputs_and_settings_are_named(data, tmp_path):
     empty.write_text(gnss.read_text().splitlines()[0] + "\n")
     with pytest.raises(ThermonavError, match="gnss.csv"):
         thermonav.integrate(imu, empty, bank=data["bank"])
+
+
+def test_integrate_and_gmwm_let_other_threads_run(data):
+    import threading
+    import time
+
+    x = np.random.default_rng(1).standard_normal(65536)
+    calls = [lambda: thermonav.integrate(data["imu"], data["gnss"], bank=data["bank"]),
+             lambda: thermonav.gmwm(x, 100.0, replicates=10)]
+    for call in calls:
+        start = time.perf_counter()
+        call()
+        alone_s = time.perf_counter() - start
+        done, ticks = threading.Event(), []
+        worker = threading.Thread(target=lambda: (call(), done.set()))
+        worker.start()
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+        worker.join()
+        # Holding the GIL would stop this loop for the whole call (see test_threads.py).
+        assert len(ticks) > 5 and np.diff(ticks).max() < max(0.5 * alone_s, 0.02)
