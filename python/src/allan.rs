@@ -103,7 +103,7 @@ pub fn allan<'py>(
 }
 
 /// The sensor of `sensor`: "gyro", "accelerometer", or a channel name (gx .. az).
-fn sensor_of(sensor: &str) -> PyResult<Sensor> {
+pub(crate) fn sensor_of(sensor: &str) -> PyResult<Sensor> {
     match sensor {
         "gyro" => Ok(Sensor::Gyro),
         "accelerometer" => Ok(Sensor::Accelerometer),

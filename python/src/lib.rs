@@ -11,7 +11,9 @@
 mod allan;
 mod arrays;
 mod bank;
+mod gmwm;
 mod models;
+mod navigation;
 mod records;
 mod signal;
 
@@ -57,5 +59,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(records::read_gnss, m)?)?;
     m.add_function(wrap_pyfunction!(bank::characterize, m)?)?;
     m.add_function(wrap_pyfunction!(bank::load_bank, m)?)?;
+    m.add_function(wrap_pyfunction!(gmwm::gmwm, m)?)?;
+    m.add_function(wrap_pyfunction!(navigation::integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(navigation::evaluate, m)?)?;
     Ok(())
 }

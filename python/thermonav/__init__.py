@@ -20,6 +20,8 @@ Example::
     imu = thermonav.read_imu("imu_20C.csv")
     curve = thermonav.allan(imu["gx_rad_s"], rate_hz=200.0)
     bank = thermonav.characterize(["imu_0C.csv", "imu_20C.csv"])
+    run = thermonav.integrate("imu.csv", "gnss.csv", bank="bank.json", outages="60+20")
+    print(run.final.sd_position_ned_m, run.solution.lat_deg[-1])
 """
 
 from __future__ import annotations
@@ -40,8 +42,11 @@ __all__ = [
     "Decimated",
     "FirDesign",
     "GaussMarkovModel",
+    "GmwmFit",
     "GnssRecord",
+    "Evaluation",
     "ImuRecord",
+    "Integration",
     "NoiseTerms",
     "Record",
     "ThermonavError",
@@ -50,8 +55,11 @@ __all__ = [
     "ar",
     "characterize",
     "decimate",
+    "evaluate",
     "filtfilt",
     "gauss_markov",
+    "gmwm",
+    "integrate",
     "kaiser_fir",
     "load_bank",
     "noise_terms",
@@ -112,6 +120,24 @@ class FirDesign(Record):
 
 class Decimated(Record):
     """A filtered, decimated series (see :func:`decimate`)."""
+
+    __slots__ = ()
+
+
+class GmwmFit(Record):
+    """A GMWM fit of one channel (see :func:`gmwm`)."""
+
+    __slots__ = ()
+
+
+class Integration(Record):
+    """A GNSS/INS run (see :func:`integrate`)."""
+
+    __slots__ = ()
+
+
+class Evaluation(Record):
+    """A model tournament (see :func:`evaluate`)."""
 
     __slots__ = ()
 
@@ -219,6 +245,55 @@ def read_imu(path, strict=True) -> ImuRecord:
 def read_gnss(path, strict=True) -> GnssRecord:
     """A canonical GNSS CSV as arrays named like its columns."""
     return GnssRecord(_native.read_gnss(os.fspath(path), strict))
+
+
+def gmwm(x, rate_hz, model="auto", sensor="gyro", replicates=100, seed=2009) -> GmwmFit:
+    """A composite noise model fitted to the Haar wavelet variance, as one channel of ``thermonav gmwm --json``."""
+    result = _wrap(
+        _native.gmwm(_samples("x", x), float(rate_hz), model, sensor, int(replicates), int(seed)),
+        GmwmFit,
+    )
+    wv = result["wavelet_variance"]
+    for key in list(wv):
+        wv[key] = np.asarray(wv[key], dtype=float)
+    return result
+
+
+def _path(path):
+    return None if path is None else os.fspath(path)
+
+
+def _triple(name, value):
+    if value is None:
+        return None
+    values = [float(v) for v in value]
+    if len(values) != 3:
+        raise ThermonavError(f"{name}: expected three values, got {len(values)}")
+    return values
+
+
+def integrate(imu, gnss, bank=None, profile=None, **options) -> Integration:
+    """The GNSS/INS filter on an IMU and a GNSS CSV with a bank's or a profile's noise model, as ``thermonav integrate``."""
+    for key in ("lever_arm_m", "baseline"):
+        options[key] = _triple(key, options.get(key))
+    if options.get("velocity_sd_m_s") is not None:
+        options["velocity_sd_m_s"] = [float(v) for v in np.atleast_1d(options["velocity_sd_m_s"])]
+    if options.get("initial_from") is not None:
+        options["initial_from"] = os.fspath(options["initial_from"])
+    result = _native.integrate(os.fspath(imu), os.fspath(gnss), _path(bank), _path(profile), **options)
+    return _wrap(result, Integration)
+
+
+def evaluate(imu, gnss, reference, bank=None, profile=None, **options) -> Evaluation:
+    """The temperature-model tournament on one data set, as ``thermonav evaluate`` (its ``evaluation.json``)."""
+    for key in ("lever_arm_m", "baseline"):
+        options[key] = _triple(key, options.get(key))
+    for key in ("datasheet", "truth"):
+        options[key] = _path(options.get(key))
+    result = _native.evaluate(
+        os.fspath(imu), os.fspath(gnss), os.fspath(reference), _path(bank), _path(profile), **options
+    )
+    return _wrap(result, Evaluation)
 
 
 class Bank:

@@ -16,6 +16,8 @@ DeviationKind = Literal["adev", "mdev", "hdev", "ohdev", "tdev", "totdev"]
 ArMethod = Literal["yule-walker", "burg", "covariance", "modified-covariance"]
 Family = Literal["irregular_ml", "ar_based", "acf_fit"]
 Mode = Literal["zero-phase", "filtfilt"]
+GaussMarkovSource = Literal["irregular_ml", "ar_based", "acf_fit"]
+Triple = Sequence[float]
 
 class ThermonavError(ValueError):
     """Bad data or settings: the message names the file, the line and what was expected."""
@@ -112,6 +114,86 @@ class Decimated(Record):
     output_rate_hz: float
     edge_samples_dropped: int
     num_taps: int
+
+class GmwmFit(Record):
+    """A GMWM fit of one channel, keys as one channel of ``thermonav gmwm --json`` plus its run.
+
+    ``sample_rate_hz`` (Hz), ``model`` (as asked), ``interval_method``, ``bootstrap_replicates``;
+    ``unit`` (the data's SI unit: "rad/s" or "m/s^2"), ``selected_model`` (e.g. "wn+gm"),
+    ``wic`` (its wavelet information criterion); ``wavelet_variance`` with NumPy arrays
+    ``scale_s`` (tau_j = 2^j / rate, s), ``variance_unit2``, ``ci_low_unit2``, ``ci_high_unit2``
+    (the Haar wavelet variance and its 95 % chi-square limits, unit squared) and
+    ``implied_unit2`` (the selected model's); ``parameters``: name (unit in it, e.g.
+    ``white_noise_density_rad_per_s_sqrt_s``, ``gm1_correlation_time_s``,
+    ``gm1_sigma_rad_per_s``) to ``value``, ``ci_low``, ``ci_high`` (95 % parametric bootstrap);
+    ``candidates``: ``model``, ``wic``, ``objective``, best first.
+    """
+    sample_rate_hz: float
+    model: str
+    interval_method: str
+    bootstrap_replicates: int
+    unit: str
+    selected_model: str
+    wic: float
+    wavelet_variance: Record
+    parameters: dict[str, Record]
+    candidates: list[Record]
+
+class Integration(Record):
+    """A GNSS/INS run: the keys of ``thermonav integrate --json`` (without the file names) and
+    the solution.
+
+    ``filter`` ("ekf"/"ukf"), ``model`` (the model used: ``gauss_markov_source``,
+    ``selection``, ``temperature_c`` in degrees Celsius, ``channels`` with
+    ``bias_correlation_time_s`` (s), ``bias_sigma`` (rad/s or m/s^2), ``white_noise_density``),
+    ``schedule`` (``kind`` "fixed" or "scheduled"), ``compensation`` (``status``), ``initial``
+    ("dual_antenna_heading", "course_over_ground" or "reference"), ``covariance_rate_hz``,
+    ``output_rate_hz`` (Hz), ``outages`` (``start_s``, ``end_s``), ``imu_samples``,
+    ``duration_s`` (s), ``processing_time_s`` (wall time, s), ``real_time_factor``,
+    ``innovations`` (per kind: ``offered``, ``rejected``, ``mean_nis``, ``fraction_nis_in_95``,
+    ``rms_innovation_ned_m`` / ``_ned_m_s`` / ``_deg``) and ``final`` (the last epoch's
+    ``sd_position_ned_m``, ``sd_attitude_ned_deg``, ``gyro_bias_deg_h``, ``accel_bias_mg``, ...).
+
+    ``solution`` (and ``smoothed`` with ``smooth=True``, else None): NumPy arrays named like the
+    columns of the CLI's solution CSV and its state file: ``t_ns`` (int64 ns), ``t_s``,
+    ``lat_deg``, ``lon_deg``, ``h_m``, ``vn_m_s``, ``ve_m_s``, ``vd_m_s``, ``roll_deg``,
+    ``pitch_deg``, ``yaw_deg``, ``sd_n_m`` .. ``sd_att_d_deg``, ``bgx_deg_h`` .. ``baz_mg``,
+    ``sgx_ppm`` .. ``saz_ppm``, ``sd_bgx_deg_h`` .. ``sd_saz_ppm`` and ``in_outage`` (bool).
+    ``notes``: what the CLI prints as notes on stderr.
+    """
+    filter: str
+    model: Record
+    schedule: Record
+    compensation: Record
+    initial: str
+    covariance_rate_hz: float
+    output_rate_hz: float
+    outages: list[Record]
+    imu_samples: int
+    duration_s: float
+    processing_time_s: float
+    real_time_factor: float
+    innovations: list[Record]
+    solution: Record
+    smoothed: Record | None
+    notes: list[str]
+
+class Evaluation(Record):
+    """A tournament: the keys of ``thermonav evaluate``'s ``evaluation.json`` (without
+    ``report_file``): ``operating_temperature_c``, ``gauss_markov_source``, ``filters``,
+    ``outages``, ``models`` (per model and filter: ``label``, ``kind``, ``filter``, the metrics
+    ``rms_north_m``, ``rms_east_m``, ``rms_horizontal_m``, ``rms_heading_deg``,
+    ``max_drift_horizontal_m``, ..., ``per_outage``, ``errors_csv`` (None) and ``errors``: NumPy
+    arrays ``outage``, ``t_s``, ``since_outage_start_s``, ``north_m``, ``east_m``,
+    ``horizontal_m``, ``heading_deg`` as the CLI's per-model error CSVs, None for a failed run),
+    ``excluded``, ``best``, ``best_by_filter``, ``significance``, ``oracle_gaps``.
+    """
+    operating_temperature_c: float
+    gauss_markov_source: str
+    filters: list[str]
+    models: list[Record]
+    excluded: list[Record]
+    significance: Record
 
 class ImuRecord(Record):
     """``source`` (file name), ``path``, ``kind`` ("rates" or "increments"), ``t_ns`` (int64
@@ -250,6 +332,97 @@ def read_imu(path: Path, strict: bool = True) -> ImuRecord:
 
 def read_gnss(path: Path, strict: bool = True) -> GnssRecord:
     """A canonical GNSS CSV; errors name the file and the line."""
+
+def gmwm(
+    x: Floats,
+    rate_hz: float,
+    model: str = "auto",
+    sensor: str = "gyro",
+    replicates: int = 100,
+    seed: int = 2009,
+) -> GmwmFit:
+    """The GMWM fit of rate samples ``x`` (SI: rad/s or m/s^2) at ``rate_hz`` (Hz): the model
+    whose Haar wavelet variance matches the data's, weighted by its inverse variance.
+
+    ``model``: "auto" (every automatic candidate, the lowest WIC chosen) or one model such as
+    "wn+gm", "wn+rw", "qn+wn+rw+2gm". ``sensor``: "gyro", "accelerometer" or a channel name
+    (names the parameters' units). ``replicates`` (at least 10) and ``seed``: the parametric
+    bootstrap of the intervals, on the CLI's named random streams. As one channel of
+    ``thermonav gmwm FILE --json``.
+    """
+
+def integrate(
+    imu: Path,
+    gnss: Path,
+    bank: Path | None = None,
+    profile: Path | None = None,
+    *,
+    model_temperature_c: float | None = None,
+    operating_temperature_c: float | None = None,
+    select: Literal["nearest", "linear"] = "nearest",
+    model: GaussMarkovSource = "irregular_ml",
+    filter: Literal["ekf", "ukf"] = "ekf",
+    outages: str = "none",
+    lever_arm_m: Triple | None = None,
+    baseline: Triple | None = None,
+    initial_from: Path | None = None,
+    covariance_rate_hz: float | None = None,
+    output_rate_hz: float | None = None,
+    velocity_sd_m_s: float | Sequence[float] | None = None,
+    gate_probability: float | None = None,
+    max_imu_gap_s: float | None = None,
+    process_noise_scale: float = 1.0,
+    velocity: bool = True,
+    heading: bool = True,
+    schedule: bool = True,
+    compensation: bool = True,
+    smooth: bool = False,
+) -> Integration:
+    """The 21-state GNSS/INS filter on an IMU CSV and a GNSS CSV with the noise model of a
+    ``bank`` (``bank.json``) or a sensor ``profile`` (TOML), as ``thermonav integrate`` (its
+    ``--json`` and its solution files, to the last bit; the keywords are its options).
+
+    The model: at ``model_temperature_c`` (degrees Celsius, nearest entry, one model for the
+    run), or at the operating temperature (``operating_temperature_c``, or the IMU file's mean
+    temp_c) by ``select``, scheduled by the IMU's temp_c unless ``schedule=False``; the bank's
+    bias(T) subtracted unless ``compensation=False``. ``outages``: "none", "START+DURATION,..."
+    (s), "spread:N,DURATION" or "every:PERIOD,DURATION". ``lever_arm_m`` (m) and ``baseline``:
+    body forward/right/down. ``initial_from``: start from this reference trajectory CSV
+    instead of aligning. Rates in Hz, ``velocity_sd_m_s`` one value or north/east/down (m/s),
+    ``max_imu_gap_s`` (s); ``gate_probability`` 1 turns the gate off. ``smooth``: also the RTS
+    smoothed solution (EKF only). Errors name the file and line, or the keyword.
+    """
+
+def evaluate(
+    imu: Path,
+    gnss: Path,
+    reference: Path,
+    bank: Path | None = None,
+    profile: Path | None = None,
+    *,
+    operating_temperature_c: float | None = None,
+    model: GaussMarkovSource = "irregular_ml",
+    filter: Literal["ekf", "ukf", "both"] = "both",
+    outages: str = "spread:8,100",
+    monte_carlo: int = 1,
+    seed: int = 2009,
+    lever_arm_m: Triple | None = None,
+    baseline: Triple | None = None,
+    max_imu_gap_s: float | None = None,
+    heading: bool = True,
+    schedule: bool = True,
+    compensation: bool = True,
+    datasheet: Path | None = None,
+    truth: Path | None = None,
+) -> Evaluation:
+    """The temperature-model tournament (the paper's Steps 2-3) on one data set, as
+    ``thermonav evaluate`` (its ``evaluation.json`` and per-model error CSVs, to the last bit):
+    every candidate of the ``bank`` or ``profile`` through the same filter(s), INS-only errors
+    against the ``reference`` trajectory inside the GNSS ``outages``, the ranking, and with
+    ``monte_carlo`` > 1 its significance over outage starts shifted by the ``seed``'s named
+    stream. ``datasheet``: a profile for the data-sheet candidate (default the ADIS16364 data
+    sheet); ``truth``: a simulated survey's truth.json for the oracle candidates.
+    """
 
 class Bank:
     """A temperature model bank: what ``thermonav characterize`` writes to ``bank.json``."""

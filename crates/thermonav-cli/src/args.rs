@@ -1184,7 +1184,7 @@ impl FiltersArg {
         match self {
             FiltersArg::Ekf => vec![FilterKind::Ekf],
             FiltersArg::Ukf => vec![FilterKind::Ukf],
-            FiltersArg::Both => vec![FilterKind::Ukf, FilterKind::Ekf],
+            FiltersArg::Both => FilterKind::BOTH.to_vec(),
         }
     }
 }

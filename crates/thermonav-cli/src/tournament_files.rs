@@ -4,25 +4,25 @@
 //! `evaluate` and `demo`.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::{nav_failure, operating_temperature, outages_in};
+use crate::integration::operating_temperature;
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
-use thermonav::evaluation::metrics::{EpochError, Metric, check_reference_covers};
-use thermonav::evaluation::oracle::TrueModel;
+use thermonav::evaluation::metrics::{EpochError, Metric};
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
+pub use thermonav::evaluation::scenario::RecordPlan;
+use thermonav::evaluation::scenario::{
+    ScenarioError, scenario_imu as library_scenario_imu, scenario_of as library_scenario_of,
+    scenario_of_records,
+};
 use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
-use thermonav::ins::state::Increment;
-use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
-use thermonav::nav::engine::{EngineSettings, check_inputs};
+use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::OutageSpec;
-use thermonav::nav::schedule::Compensation;
-use thermonav::stoch::thermal::ThermalCalibration;
-use thermonav::time::Timestamp;
+use thermonav::nav::run::RunInput;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
     Strictness, WriteError, read_gnss_file, read_imu_file, read_trajectory_file, write_atomically,
@@ -39,33 +39,10 @@ pub struct EvaluationFile {
     pub report_file: PathBuf,
 }
 
-/// How a scenario's records are made: the bank's calibration (if any) under the switch, and
-/// the simulator's truth for the oracle's record (if any).
-#[derive(Debug, Clone, Copy)]
-pub struct RecordPlan<'a> {
-    /// The bank's thermal calibration.
-    pub thermal: Option<&'a ThermalCalibration>,
-    /// Whether it is applied.
-    pub compensation: Compensation,
-    /// The truth of a simulated survey.
-    pub oracle: Option<&'a TrueModel>,
-}
-
-impl<'a> RecordPlan<'a> {
-    /// The plan without an oracle.
-    pub fn calibrated(thermal: Option<&'a ThermalCalibration>, compensation: Compensation) -> Self {
-        Self {
-            thermal,
-            compensation,
-            oracle: None,
-        }
-    }
-}
-
 /// The scenario of the files (start from the reference at the first fix, default initial
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
-/// under `records` beside the raw one, and with the truth's bias subtracted for the oracle) and the operating temperature (given, or the
-/// IMU's mean temp_c).
+/// under `records` beside the raw one, and with the truth's bias subtracted for the oracle)
+/// and the operating temperature (given, or the IMU's mean temp_c).
 pub fn scenario_from_files(
     files: &ScenarioFiles,
     engine: EngineSettings,
@@ -77,50 +54,38 @@ pub fn scenario_from_files(
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
-    let imu = scenario_imu(&series, records, &files.imu)?;
-    let (first, last) = span_of(&imu.increments, &files.imu)?;
-    let engine = EngineSettings {
-        outages: outages_in(outages, first, last)?,
-        ..engine
-    };
-    check_reference_covers(&reference, engine.outages.windows())
-        .map_err(|e| anyhow!("{}: {e}", files.reference.display()))
-        .data()?;
-    check_inputs(&imu.increments, &gnss, &engine)
-        .map_err(|e| nav_failure(e, &files.imu, &files.gnss))?;
-    let scenario = scenario_of(imu, gnss, reference, engine, &files.reference)?;
+    let scenario = scenario_of_records(&series, gnss, reference, (&engine, outages), records)
+        .map_err(|e| scenario_failure(e, files))?;
     Ok((scenario, operating_c))
 }
 
-/// The IMU side of a scenario from its record (the oracle's record only when it has
-/// temperatures: without, the oracle is left out with its reason).
+/// A refused scenario, naming the file (or the option) it is about.
+pub fn scenario_failure(error: ScenarioError, files: &ScenarioFiles) -> Failure {
+    let file = match error.input() {
+        RunInput::Settings => return Failure::Usage(anyhow!("--outages: {error}")),
+        RunInput::Imu => Some(&files.imu),
+        RunInput::Gnss => Some(&files.gnss),
+        RunInput::Reference => Some(&files.reference),
+        RunInput::Noise | RunInput::Filter => None,
+    };
+    let named = file.map(|f| format!("{}: ", f.display()));
+    Failure::Data(anyhow!("{}{error}", named.unwrap_or_default()))
+}
+
+/// The IMU side of a scenario from its record (see the library's
+/// [`thermonav::evaluation::scenario::scenario_imu`]), errors naming `path`.
 pub fn scenario_imu(
     series: &ImuSeries,
     plan: RecordPlan,
     path: &Path,
 ) -> Result<ScenarioImu, Failure> {
-    let named = |e: &dyn std::fmt::Display| Failure::Data(anyhow!("{}: {e}", path.display()));
-    let imu = ScenarioImu::of(series, plan.thermal, plan.compensation).map_err(|e| named(&e))?;
-    match plan.oracle {
-        Some(truth) if imu.temperature.is_some() => {
-            imu.with_oracle(series, truth).map_err(|e| named(&e))
-        }
-        _ => Ok(imu),
-    }
+    library_scenario_imu(series, plan)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))
+        .data()
 }
 
-/// The first and last increment times, refusing a record too short to have one.
-fn span_of(increments: &[Increment], path: &Path) -> Result<(Timestamp, Timestamp), Failure> {
-    match (increments.first(), increments.last()) {
-        (Some(first), Some(last)) => Ok((first.time, last.time)),
-        _ => Err(Failure::Data(anyhow!(
-            "{}: at least two IMU samples are needed",
-            path.display()
-        ))),
-    }
-}
-
-/// A scenario from in-memory data, started from the reference at the first fix.
+/// A scenario from in-memory data, started from the reference at the first fix (see the
+/// library's [`thermonav::evaluation::scenario::scenario_of`]), errors naming the reference.
 pub fn scenario_of(
     imu: ScenarioImu,
     gnss: Vec<GnssFix>,
@@ -128,42 +93,10 @@ pub fn scenario_of(
     settings: EngineSettings,
     reference_name: &Path,
 ) -> Result<Scenario, Failure> {
-    let initial = initial_from_reference(&reference, &gnss, reference_name)?;
-    Ok(Scenario {
-        increments: imu.increments,
-        compensated_increments: imu.compensated_increments,
-        oracle_increments: imu.oracle_increments,
-        temperature: imu.temperature,
-        gnss,
-        reference,
-        initial: uncorrected(initial.nav_state()),
-        initial_covariance: InitialUncertainty::default().covariance(),
-        settings,
+    library_scenario_of(imu, gnss, reference, settings).map_err(|e| match e {
+        ScenarioError::NoFix => Failure::Data(anyhow!("{e}")),
+        _ => Failure::Data(anyhow!("{}: {e}", reference_name.display())),
     })
-}
-
-/// The reference point at (or last before) the first GNSS fix: the common starting state.
-fn initial_from_reference(
-    reference: &[TrajectoryPoint],
-    gnss: &[GnssFix],
-    path: &Path,
-) -> Result<TrajectoryPoint, Failure> {
-    let start = gnss
-        .first()
-        .map(|f| f.time)
-        .ok_or_else(|| Failure::Data(anyhow!("the GNSS file has no fix")))?;
-    reference
-        .iter()
-        .rev()
-        .find(|p| p.time <= start)
-        .copied()
-        .ok_or_else(|| {
-            Failure::Data(anyhow!(
-                "{}: the reference starts after the first GNSS fix ({:.3} s)",
-                path.display(),
-                start.as_seconds()
-            ))
-        })
 }
 
 /// Runs the tournament (with a progress bar), writes the per-model error CSVs under
@@ -245,10 +178,7 @@ fn write_error_rows(
     out: &mut impl std::io::Write,
     errors: &[Vec<EpochError>],
 ) -> Result<(), WriteError> {
-    writeln!(
-        out,
-        "outage,t_s,since_outage_start_s,north_m,east_m,horizontal_m,heading_deg"
-    )?;
+    writeln!(out, "outage,{}", EpochError::COLUMNS.join(","))?;
     for (k, outage) in errors.iter().enumerate() {
         for e in outage {
             write!(out, "{}", k + 1)?;
@@ -260,8 +190,7 @@ fn write_error_rows(
 
 /// One epoch's values after its outage number, each through the finite gate.
 fn error_values(out: &mut impl std::io::Write, e: &EpochError) -> std::io::Result<()> {
-    let values = [e.time_s, e.since_outage_start_s, e.north_m, e.east_m];
-    for value in values.into_iter().chain([e.horizontal_m, e.heading_deg]) {
+    for value in e.values() {
         out.write_all(b",")?;
         thermonav_io::write_finite(out, value)?;
     }

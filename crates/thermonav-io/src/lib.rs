@@ -67,6 +67,7 @@ pub mod bank;
 pub mod error;
 pub mod finite;
 mod fixed;
+pub mod gmwm;
 pub mod gnss;
 pub mod gpst;
 pub mod imu;
@@ -102,8 +103,8 @@ pub use imu::{
     write_imu_file,
 };
 pub use trajectory::{
-    TrajectoryReader, read_trajectory, read_trajectory_file, write_trajectory,
-    write_trajectory_file,
+    TrajectoryReader, read_trajectory, read_trajectory_file, trajectory_column_names,
+    trajectory_values, write_trajectory, write_trajectory_file,
 };
 
 use std::fs::File;

@@ -72,6 +72,27 @@ fn file_unit_factor(i: usize) -> f64 {
     }
 }
 
+/// The names of the state file's number columns between `t_s` and `in_outage`, in file
+/// order: nine navigation sds, twelve sensor estimates, twelve sensor sds.
+pub fn state_column_names() -> impl Iterator<Item = &'static str> {
+    (SD_NAMES[..9].iter().copied())
+        .chain(SENSOR_NAMES)
+        .chain(SD_NAMES[9..].iter().copied())
+}
+
+/// An epoch's values in the columns of [`state_column_names`], in their file units.
+pub fn state_values(epoch: &SolutionEpoch) -> impl Iterator<Item = f64> + '_ {
+    let s = &epoch.estimate.sensors;
+    let sensors = (s.gyro_bias_rad_s.iter())
+        .chain(&s.accel_bias_m_s2)
+        .chain(&s.gyro_scale)
+        .chain(&s.accel_scale)
+        .enumerate()
+        .map(|(k, v)| v * file_unit_factor(9 + k));
+    let sd = |range: std::ops::Range<usize>| range.map(|i| epoch.sd[i] * file_unit_factor(i));
+    sd(0..9).chain(sensors).chain(sd(9..STATES))
+}
+
 /// Writes the state file of `epochs`.
 ///
 /// # Errors
@@ -86,25 +107,13 @@ pub fn write_solution_states(
         });
     }
     let header: Vec<&str> = std::iter::once("t_s")
-        .chain(SD_NAMES[..9].iter().copied())
-        .chain(SENSOR_NAMES)
-        .chain(SD_NAMES[9..].iter().copied())
+        .chain(state_column_names())
         .chain(std::iter::once("in_outage"))
         .collect();
     writeln!(out, "{}", header.join(","))?;
     for epoch in epochs {
         write_time(&mut out, epoch.estimate.nav.time)?;
-        let s = &epoch.estimate.sensors;
-        let sensors = s
-            .gyro_bias_rad_s
-            .iter()
-            .chain(&s.accel_bias_m_s2)
-            .chain(&s.gyro_scale)
-            .chain(&s.accel_scale)
-            .enumerate()
-            .map(|(k, v)| v * file_unit_factor(9 + k));
-        let sd = |range: std::ops::Range<usize>| range.map(|i| epoch.sd[i] * file_unit_factor(i));
-        for value in sd(0..9).chain(sensors).chain(sd(9..STATES)) {
+        for value in state_values(epoch) {
             out.write_all(b",")?;
             write_finite(&mut out, value)?;
         }

@@ -171,7 +171,23 @@ pub fn write_trajectory_file(
 
 fn write_point(out: &mut impl Write, p: &TrajectoryPoint) -> Result<(), WriteError> {
     write_time(out, p.time)?;
-    let values = [
+    for value in trajectory_values(p) {
+        out.write_all(b",")?;
+        write_finite(out, value)?;
+    }
+    out.write_all(b"\n")?;
+    Ok(())
+}
+
+/// The names of the columns after `t_s`, in file order (`lat_deg` .. `yaw_deg`).
+pub fn trajectory_column_names() -> [&'static str; 9] {
+    COLUMNS.map(|c| c.name)
+}
+
+/// A point's values in the columns of [`trajectory_column_names`] and their units, as
+/// written (angles in the degrees that read back to the same radians).
+pub fn trajectory_values(p: &TrajectoryPoint) -> [f64; 9] {
+    [
         degrees_reading_back_exactly(p.latitude_rad),
         degrees_reading_back_exactly(p.longitude_rad),
         p.height_m,
@@ -181,11 +197,5 @@ fn write_point(out: &mut impl Write, p: &TrajectoryPoint) -> Result<(), WriteErr
         degrees_reading_back_exactly(p.roll_rad),
         degrees_reading_back_exactly(p.pitch_rad),
         degrees_reading_back_exactly(p.yaw_rad),
-    ];
-    for value in values {
-        out.write_all(b",")?;
-        write_finite(out, value)?;
-    }
-    out.write_all(b"\n")?;
-    Ok(())
+    ]
 }

@@ -39,6 +39,7 @@ use thermonav::imu::Channel;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::run::RunSettings;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
@@ -425,21 +426,23 @@ fn solution_settings(
         imu: files.imu.clone(),
         gnss: files.gnss.clone(),
         noise: NoiseSource::Bank(out.join("bank.json")),
-        temperature: ModelTemperature::Operating {
-            given_c: Some(vessel.survey.temperature_c),
-            selection: Selection::Linear,
+        run: RunSettings {
+            temperature: ModelTemperature::Operating {
+                given_c: Some(vessel.survey.temperature_c),
+                selection: Selection::Linear,
+            },
+            scheduling: Scheduling::Fixed,
+            compensation: Compensation::default(),
+            gauss_markov: GaussMarkovSource::IrregularMl,
+            engine: EngineSettings {
+                filter: FilterKind::Ukf,
+                geometry: survey_geometry(),
+                ..EngineSettings::default()
+            },
+            outages: p.outages.clone(),
+            process_noise_scale: 1.0,
         },
-        scheduling: Scheduling::Fixed,
-        compensation: Compensation::default(),
-        gauss_markov: GaussMarkovSource::IrregularMl,
-        engine: EngineSettings {
-            filter: FilterKind::Ukf,
-            geometry: survey_geometry(),
-            ..EngineSettings::default()
-        },
-        outages: p.outages.clone(),
         initial_from: Some(files.reference.clone()),
-        process_noise_scale: 1.0,
         outputs: SolutionFiles::beside(&out.join("solution/solution.csv")),
     }
 }

@@ -6,17 +6,14 @@ use crate::args::EvaluateArgs;
 use crate::failure::{Classify, Failure};
 use crate::integration::load_noise;
 use crate::report::print_json;
-use crate::settings::navigation::EvaluateSettings;
 use crate::tournament_files::{
     RecordPlan, check_some_model_ran, print_tournament_table, run_and_write, scenario_from_files,
 };
 use anyhow::anyhow;
 use std::path::Path;
-use thermonav::evaluation::candidates::DatasheetValues;
-use thermonav::evaluation::candidates::ThermalOptions;
+use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datasheet_model_of};
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::oracle::TrueModel;
-use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav_io::profile::read_profile;
@@ -47,7 +44,7 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     )?;
     let plan = TournamentPlan {
         noise: noise.source(),
-        thermal: thermal_options(&s, &main),
+        thermal: ThermalOptions::of_scenario(&main, s.scheduling, s.compensation),
         operating_temperature_c: operating_c,
         source: s.source,
         filters: s.filters.clone(),
@@ -74,25 +71,11 @@ fn read_truth(path: Option<&Path>, scale: &ScaleFactorPrior) -> Result<Option<Tr
     path.map(|p| read_truth_file(p, scale)).transpose().data()
 }
 
-/// The record's temperature range and the settings' switches.
-fn thermal_options(s: &EvaluateSettings, main: &Scenario) -> ThermalOptions {
-    ThermalOptions {
-        imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
-        scheduling: s.scheduling,
-        compensation: s.compensation,
-    }
-}
-
 /// The data-sheet candidate: a profile's model at its reference temperature, or the ADIS16364
 /// data sheet.
 fn datasheet_model(profile: Option<&Path>) -> Result<ImuStochasticModel, Failure> {
-    let scale = ScaleFactorPrior::default();
-    let Some(path) = profile else {
-        return Ok(DatasheetValues::adis16364().model(&scale));
-    };
-    let profile = read_profile(path).data()?;
-    profile
-        .stochastic_model(profile.reference_temperature_c, &scale)
-        .map_err(|e| anyhow!("{}: {e}", path.display()))
-        .data()
+    let read = profile.map(read_profile).transpose().data()?;
+    let model = datasheet_model_of(read.as_ref(), &ScaleFactorPrior::default());
+    let named = |e| anyhow!("{}: {e}", profile.unwrap_or(Path::new("")).display());
+    model.map_err(named).data()
 }

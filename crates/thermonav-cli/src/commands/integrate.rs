@@ -4,8 +4,9 @@
 
 use crate::args::IntegrateArgs;
 use crate::failure::Failure;
-use crate::integration::{FinalJson, InnovationJson, Summary, integrate};
+use crate::integration::{Summary, integrate};
 use crate::report::{print_json, print_rows};
+use thermonav::nav::report::{FinalJson, InnovationJson, RunReport};
 
 /// Runs `integrate`.
 pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
@@ -21,9 +22,9 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
 type Row = (&'static str, String);
 
 fn summary_rows(s: &Summary) -> Vec<Row> {
-    let mut rows = run_rows(s);
-    rows.extend(s.innovations.iter().map(innovation_row));
-    rows.extend(s.last.as_ref().map(final_rows).unwrap_or_default());
+    let mut rows = run_rows(&s.run);
+    rows.extend(s.run.innovations.iter().map(innovation_row));
+    rows.extend(s.run.last.as_ref().map(final_rows).unwrap_or_default());
     rows.push(("solution", s.files.solution.display().to_string()));
     rows.push(("states", s.files.states.display().to_string()));
     rows.push(("innovations", s.files.innovations.display().to_string()));
@@ -33,7 +34,7 @@ fn summary_rows(s: &Summary) -> Vec<Row> {
     rows
 }
 
-fn run_rows(s: &Summary) -> Vec<Row> {
+fn run_rows(s: &RunReport) -> Vec<Row> {
     let m = &s.model;
     vec![
         ("filter", s.filter.name().to_string()),

@@ -11,32 +11,10 @@ use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
-use thermonav::stoch::bank::{GaussMarkovSource, Selection};
+use thermonav::stoch::bank::GaussMarkovSource;
 
-/// Which temperature's model the filter uses.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ModelTemperature {
-    /// The model of this temperature, °C (the nearest bank entry: the paper's "model of T").
-    Fixed(f64),
-    /// The model for the sensor's operating temperature, °C (given, or the mean of the IMU
-    /// file's temp_c), selected by the rule.
-    Operating {
-        /// Given on the command line.
-        given_c: Option<f64>,
-        /// Nearest entry or interpolation.
-        selection: Selection,
-    },
-}
-
-impl ModelTemperature {
-    /// The bank selection rule (nearest for a fixed model).
-    pub fn selection(&self) -> Selection {
-        match self {
-            ModelTemperature::Fixed(_) => Selection::Nearest,
-            ModelTemperature::Operating { selection, .. } => *selection,
-        }
-    }
-}
+pub use thermonav::nav::run::ModelTemperature;
+use thermonav::nav::run::RunSettings;
 
 /// Where the noise model comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -123,22 +101,11 @@ pub struct IntegrateSettings {
     pub gnss: PathBuf,
     /// The noise model's source.
     pub noise: NoiseSource,
-    /// Which temperature's model (the fixed model, and the reported one when scheduled).
-    pub temperature: ModelTemperature,
-    /// Whether the model follows the IMU's temp_c.
-    pub scheduling: Scheduling,
-    /// Whether the bank's bias(T) is subtracted from the samples.
-    pub compensation: Compensation,
-    /// Gauss-Markov family of a bank.
-    pub gauss_markov: GaussMarkovSource,
-    /// The filter's settings (the outages are laid over the data once it is read).
-    pub engine: EngineSettings,
-    /// The outages as given.
-    pub outages: OutageSpec,
+    /// The run's settings: model temperature, schedule, compensation, family, filter,
+    /// outages as given, white-noise scale.
+    pub run: RunSettings,
     /// Start from this reference trajectory instead of aligning.
     pub initial_from: Option<PathBuf>,
-    /// Multiplier of the white-noise densities.
-    pub process_noise_scale: f64,
     /// What is written.
     pub outputs: SolutionFiles,
 }
@@ -173,14 +140,16 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         imu: args.imu.clone(),
         gnss: args.gnss.clone(),
         noise,
-        scheduling: scheduling_of(args.no_schedule, &temperature),
-        compensation: compensation_of(args.no_compensation),
-        temperature,
-        gauss_markov: args.model.into(),
-        engine: engine_settings(args)?,
-        outages: args.outages.clone(),
+        run: RunSettings {
+            scheduling: scheduling_of(args.no_schedule, &temperature),
+            compensation: compensation_of(args.no_compensation),
+            temperature,
+            gauss_markov: args.model.into(),
+            engine: engine_settings(args)?,
+            outages: args.outages.clone(),
+            process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
+        },
         initial_from: args.initial_from.clone(),
-        process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
         outputs,
     })
 }
@@ -216,13 +185,9 @@ fn noise_path(noise: &NoiseSource) -> &Path {
 
 /// Scheduling by default; fixed when turned off or when a temperature names one model.
 fn scheduling_of(no_schedule: bool, temperature: &ModelTemperature) -> Scheduling {
-    let named = !matches!(
-        temperature,
-        ModelTemperature::Operating { given_c: None, .. }
-    );
-    match no_schedule || named {
+    match no_schedule {
         true => Scheduling::Fixed,
-        false => Scheduling::default(),
+        false => temperature.scheduling(Scheduling::default()),
     }
 }
 

@@ -26,6 +26,7 @@ use super::oracle::TrueModel;
 use crate::nav::schedule::{Compensation, ModelGrid, Scheduling, TemperatureRule};
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
+    SensorModelError,
 };
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
@@ -237,6 +238,21 @@ pub fn tournament_candidates(
     (candidates, excluded)
 }
 
+/// The data-sheet candidate's model: a profile's model at its reference temperature, or the
+/// ADIS16364 data sheet.
+///
+/// # Errors
+/// A profile whose model cannot be built at its reference temperature.
+pub fn datasheet_model(
+    profile: Option<&SensorProfile>,
+    scale: &ScaleFactorPrior,
+) -> Result<ImuStochasticModel, SensorModelError> {
+    match profile {
+        Some(p) => p.stochastic_model(p.reference_temperature_c, scale),
+        None => Ok(DatasheetValues::adis16364().model(scale)),
+    }
+}
+
 /// What the thermal and profile candidates need to know of the record, and the switches.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThermalOptions {
@@ -250,6 +266,19 @@ pub struct ThermalOptions {
 }
 
 impl ThermalOptions {
+    /// The options for a scenario: its record's temperature range, and the switches.
+    pub fn of_scenario(
+        scenario: &super::tournament::Scenario,
+        scheduling: Scheduling,
+        compensation: Compensation,
+    ) -> Self {
+        Self {
+            imu_temperature_range_c: scenario.temperature.as_ref().map(|t| t.range_c()),
+            scheduling,
+            compensation,
+        }
+    }
+
     /// The record's range when `scheduling` lets the scheduled candidates in.
     fn scheduled_range_c(&self) -> Option<[f64; 2]> {
         self.imu_temperature_range_c

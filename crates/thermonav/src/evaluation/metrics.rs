@@ -30,6 +30,30 @@ pub struct EpochError {
     pub heading_deg: f64,
 }
 
+impl EpochError {
+    /// The names of [`EpochError::values`], as the columns of the per-model error tables.
+    pub const COLUMNS: [&'static str; 6] = [
+        "t_s",
+        "since_outage_start_s",
+        "north_m",
+        "east_m",
+        "horizontal_m",
+        "heading_deg",
+    ];
+
+    /// The values in the order of [`EpochError::COLUMNS`].
+    pub fn values(&self) -> [f64; 6] {
+        [
+            self.time_s,
+            self.since_outage_start_s,
+            self.north_m,
+            self.east_m,
+            self.horizontal_m,
+            self.heading_deg,
+        ]
+    }
+}
+
 /// Figures of one outage.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct OutageMetrics {

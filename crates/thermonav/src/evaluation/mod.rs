@@ -7,6 +7,7 @@
 //! - [`candidates`]: the models that compete: every bank entry, the bank interpolated at the
 //!   operating temperature, the temperature-blind mean of the bank, and data-sheet values.
 //! - [`oracle`]: the simulator's true model as a candidate, the best any model could do.
+//! - [`scenario`]: a tournament's scenario from records already read.
 //! - [`tournament`]: every candidate through the same filter on the same data, in parallel,
 //!   and the ranking.
 //! - [`experiment`]: a tournament with its replicates (shifted outages, or scenarios the
@@ -21,5 +22,6 @@ pub mod experiment;
 pub mod metrics;
 pub mod oracle;
 pub mod report;
+pub mod scenario;
 pub mod significance;
 pub mod tournament;

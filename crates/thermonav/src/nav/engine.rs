@@ -55,6 +55,9 @@ pub enum FilterKind {
 }
 
 impl FilterKind {
+    /// Both filters in the order a tournament reports them (`evaluate --filter both`).
+    pub const BOTH: [FilterKind; 2] = [FilterKind::Ukf, FilterKind::Ekf];
+
     /// Name used in outputs.
     pub fn name(self) -> &'static str {
         match self {

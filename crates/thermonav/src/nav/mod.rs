@@ -14,6 +14,8 @@
 //! - [`engine`]: the run loop: mechanization at the IMU rate, covariance propagation at a
 //!   chosen rate, updates at GNSS epochs, closed-loop feedback.
 //! - [`solution`]: what a run returns: solution epochs, innovations and their statistics.
+//! - [`run`]: one run on records already read (model chosen, record compensated, outages
+//!   laid, start aligned, filter run), and [`report`]: what it reports.
 //!
 //! Error conventions (as in [`crate::ins::error_model`]): δr = r̂ − r (NED, m), δv = v̂ − v,
 //! Ĉ_b^n = (I − [φ×]) C_b^n, and the sensor states are the error left in the corrected
@@ -25,6 +27,8 @@ pub mod engine;
 pub mod error_state;
 pub mod measurement;
 pub mod outage;
+pub mod report;
+pub mod run;
 pub mod schedule;
 pub mod sensor_model;
 pub mod smoother;

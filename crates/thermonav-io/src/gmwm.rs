@@ -1,0 +1,190 @@
+//! A GMWM fit as JSON documents give it (`thermonav gmwm --json`'s channels, the Python
+//! package's `gmwm`): the Haar wavelet variance with its limits and the selected model's
+//! value, the parameters with their bootstrap intervals (units in their names), and the
+//! candidates ranked by WIC.
+
+use serde::Serialize;
+use std::collections::BTreeMap;
+use thermonav::imu::Sensor;
+use thermonav::stoch::gmwm::{
+    BootstrapSettings, GmwmError, GmwmEstimate, ModelSpec, ModelSpecError, ParameterEstimate,
+    auto_candidates, select_model,
+};
+use thermonav::stoch::wavelet_variance::{
+    WaveletVariance, WaveletVarianceError, haar_wavelet_variance,
+};
+
+/// How the parameter intervals are made, in words.
+pub const INTERVAL_METHOD: &str =
+    "95 % parametric bootstrap: Wald on the log scale, spread from the interquartile range";
+
+/// One channel's fit.
+#[derive(Debug, Serialize)]
+pub struct GmwmChannelJson {
+    /// The selected model.
+    #[serde(flatten)]
+    pub selected: SelectedJson,
+    /// The wavelet variance and the model's.
+    pub wavelet_variance: WaveletVarianceJson,
+    /// Parameter name (unit in it) → value and interval.
+    pub parameters: BTreeMap<String, ParameterJson>,
+    /// Every candidate, best (lowest WIC) first.
+    pub candidates: Vec<CandidateJson>,
+}
+
+/// The selected model.
+#[derive(Debug, Serialize)]
+pub struct SelectedJson {
+    /// The data's SI unit.
+    pub unit: &'static str,
+    /// Its name (e.g. `wn+gm`).
+    pub selected_model: String,
+    /// Its wavelet information criterion.
+    pub wic: f64,
+}
+
+/// The Haar wavelet variance per scale, in the data's unit squared.
+#[derive(Debug, Serialize)]
+pub struct WaveletVarianceJson {
+    /// Scales τ_j = 2^j / rate, s.
+    pub scale_s: Vec<f64>,
+    /// Estimated wavelet variance.
+    pub variance_unit2: Vec<f64>,
+    /// Lower limit.
+    pub ci_low_unit2: Vec<f64>,
+    /// Upper limit.
+    pub ci_high_unit2: Vec<f64>,
+    /// The selected model's wavelet variance.
+    pub implied_unit2: Vec<f64>,
+}
+
+impl WaveletVarianceJson {
+    /// Estimate, limits and the model's value at scale j.
+    pub fn row(&self, j: usize) -> [f64; 4] {
+        [
+            self.variance_unit2[j],
+            self.ci_low_unit2[j],
+            self.ci_high_unit2[j],
+            self.implied_unit2[j],
+        ]
+    }
+}
+
+/// A parameter with its interval.
+#[derive(Debug, Serialize)]
+pub struct ParameterJson {
+    /// Estimate.
+    pub value: f64,
+    /// Lower limit.
+    pub ci_low: f64,
+    /// Upper limit.
+    pub ci_high: f64,
+}
+
+/// A candidate's figures.
+#[derive(Debug, Serialize)]
+pub struct CandidateJson {
+    /// Its name.
+    pub model: String,
+    /// Wavelet information criterion.
+    pub wic: f64,
+    /// Weighted least-squares objective at the fit.
+    pub objective: f64,
+}
+
+/// Why a channel cannot be fitted.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ChannelFitError {
+    /// No wavelet variance (too short a record, a bad rate).
+    #[error(transparent)]
+    WaveletVariance(#[from] WaveletVarianceError),
+    /// No fit.
+    #[error(transparent)]
+    Fit(#[from] GmwmError),
+}
+
+/// The candidates of a model name: the automatic list for `auto` (any case), else the one
+/// model named (`wn+gm`, `qn+wn+rw`, ...).
+///
+/// # Errors
+/// A name that is not a model.
+pub fn candidates_of(model: &str) -> Result<Vec<ModelSpec>, ModelSpecError> {
+    if model.eq_ignore_ascii_case("auto") {
+        return Ok(auto_candidates());
+    }
+    model.parse::<ModelSpec>().map(|spec| vec![spec])
+}
+
+/// The fit of rate samples `y` at `rate_hz` from `sensor`: the wavelet variance, the
+/// candidates ranked by WIC, the selected fit.
+///
+/// # Errors
+/// Those of [`haar_wavelet_variance`] and [`select_model`].
+pub fn gmwm_channel_json(
+    y: &[f64],
+    rate_hz: f64,
+    sensor: Sensor,
+    (candidates, settings): (&[ModelSpec], BootstrapSettings),
+) -> Result<GmwmChannelJson, ChannelFitError> {
+    let wv = haar_wavelet_variance(y, rate_hz, None, settings.confidence)?;
+    let ranked = select_model(&wv, candidates, settings)?;
+    Ok(ranked_json(&wv, &ranked, sensor))
+}
+
+fn ranked_json(wv: &WaveletVariance, ranked: &[GmwmEstimate], sensor: Sensor) -> GmwmChannelJson {
+    let best = &ranked[0];
+    GmwmChannelJson {
+        selected: SelectedJson {
+            unit: sensor_unit(sensor),
+            selected_model: best.fit.model.to_string(),
+            wic: best.wic,
+        },
+        wavelet_variance: wavelet_variance_json(wv, best),
+        parameters: parameters_json(best, sensor),
+        candidates: ranked.iter().map(candidate_json).collect(),
+    }
+}
+
+/// The SI unit of a sensor's rate samples.
+fn sensor_unit(sensor: Sensor) -> &'static str {
+    match sensor {
+        Sensor::Gyro => "rad/s",
+        Sensor::Accelerometer => "m/s^2",
+    }
+}
+
+fn wavelet_variance_json(wv: &WaveletVariance, best: &GmwmEstimate) -> WaveletVarianceJson {
+    WaveletVarianceJson {
+        scale_s: wv.scale_s.clone(),
+        variance_unit2: wv.variance.clone(),
+        ci_low_unit2: wv.ci_low.clone(),
+        ci_high_unit2: wv.ci_high.clone(),
+        implied_unit2: best.fit.implied_variance.clone(),
+    }
+}
+
+/// The parameters keyed by name, the library's `unit` replaced by the sensor's unit.
+fn parameters_json(best: &GmwmEstimate, sensor: Sensor) -> BTreeMap<String, ParameterJson> {
+    let unit = match sensor {
+        Sensor::Gyro => "rad_per_s",
+        Sensor::Accelerometer => "m_per_s2",
+    };
+    let entry = |p: &ParameterEstimate| (p.kind.name().replace("unit", unit), parameter_json(p));
+    best.parameters.iter().map(entry).collect()
+}
+
+fn parameter_json(p: &ParameterEstimate) -> ParameterJson {
+    ParameterJson {
+        value: p.value,
+        ci_low: p.ci_low,
+        ci_high: p.ci_high,
+    }
+}
+
+fn candidate_json(e: &GmwmEstimate) -> CandidateJson {
+    CandidateJson {
+        model: e.fit.model.to_string(),
+        wic: e.wic,
+        objective: e.fit.objective,
+    }
+}

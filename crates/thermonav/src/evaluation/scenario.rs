@@ -1,0 +1,161 @@
+//! A tournament's [`Scenario`] from records already read: the IMU record compensated under a
+//! plan beside the raw one (and with the truth's bias subtracted for the oracle), the outages
+//! laid over the data, the reference checked to cover them, the inputs checked, and the start
+//! taken from the reference at the first fix. What `thermonav evaluate` and the Python
+//! package's `evaluate` both do between reading their files and running the tournament.
+
+use super::metrics::{MetricsError, check_reference_covers};
+use super::oracle::{OracleError, TrueModel};
+use super::tournament::{Scenario, ScenarioImu};
+use crate::gnss::GnssFix;
+use crate::imu::ImuSeries;
+use crate::nav::alignment::{InitialUncertainty, uncorrected};
+use crate::nav::engine::{EngineSettings, NavError, check_inputs};
+use crate::nav::outage::OutageSpec;
+use crate::nav::run::{RunError, RunInput, with_outages};
+use crate::nav::schedule::{Compensation, ScheduleError};
+use crate::stoch::thermal::ThermalCalibration;
+use crate::trajectory::TrajectoryPoint;
+
+/// How a scenario's records are made: the bank's calibration (if any) under the switch, and
+/// the simulator's truth for the oracle's record (if any).
+#[derive(Debug, Clone, Copy)]
+pub struct RecordPlan<'a> {
+    /// The bank's thermal calibration.
+    pub thermal: Option<&'a ThermalCalibration>,
+    /// Whether it is applied.
+    pub compensation: Compensation,
+    /// The truth of a simulated survey.
+    pub oracle: Option<&'a TrueModel>,
+}
+
+impl<'a> RecordPlan<'a> {
+    /// The plan without an oracle.
+    pub fn calibrated(thermal: Option<&'a ThermalCalibration>, compensation: Compensation) -> Self {
+        Self {
+            thermal,
+            compensation,
+            oracle: None,
+        }
+    }
+}
+
+/// Why a scenario cannot be made; [`ScenarioError::input`] tells which input it is about.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ScenarioError {
+    /// The record's temperatures are unusable.
+    #[error(transparent)]
+    Temperature(ScheduleError),
+    /// The truth cannot compensate the record.
+    #[error(transparent)]
+    Oracle(OracleError),
+    /// Too short a record, outages outside the data.
+    #[error(transparent)]
+    Run(RunError),
+    /// The reference does not cover an outage.
+    #[error(transparent)]
+    Reference(MetricsError),
+    /// The filter refuses the inputs.
+    #[error(transparent)]
+    Nav(NavError),
+    /// No GNSS fix.
+    #[error("the GNSS file has no fix")]
+    NoFix,
+    /// The reference starts after the first fix.
+    #[error("the reference starts after the first GNSS fix ({start_s:.3} s)")]
+    ReferenceStartsLate {
+        /// Time of the first fix, s.
+        start_s: f64,
+    },
+}
+
+impl ScenarioError {
+    /// The input the error is about ([`RunInput::Filter`] for the GNSS file's lack of fixes,
+    /// whose message names it).
+    pub fn input(&self) -> RunInput {
+        match self {
+            ScenarioError::Temperature(_) | ScenarioError::Oracle(_) => RunInput::Imu,
+            ScenarioError::Run(e) => e.input(),
+            ScenarioError::Reference(_) | ScenarioError::ReferenceStartsLate { .. } => {
+                RunInput::Reference
+            }
+            ScenarioError::Nav(e) => RunError::Nav(e.clone()).input(),
+            ScenarioError::NoFix => RunInput::Filter,
+        }
+    }
+}
+
+/// The IMU side of a scenario from its record (the oracle's record only when it has
+/// temperatures: without, the oracle is left out with its reason).
+///
+/// # Errors
+/// [`ScenarioError::Temperature`], [`ScenarioError::Oracle`].
+pub fn scenario_imu(series: &ImuSeries, plan: RecordPlan) -> Result<ScenarioImu, ScenarioError> {
+    let imu = ScenarioImu::of(series, plan.thermal, plan.compensation)
+        .map_err(ScenarioError::Temperature)?;
+    match plan.oracle {
+        Some(truth) if imu.temperature.is_some() => imu
+            .with_oracle(series, truth)
+            .map_err(ScenarioError::Oracle),
+        _ => Ok(imu),
+    }
+}
+
+/// A scenario from in-memory data, started from the reference at the first fix with the
+/// default initial covariance.
+///
+/// # Errors
+/// [`ScenarioError::NoFix`], [`ScenarioError::ReferenceStartsLate`].
+pub fn scenario_of(
+    imu: ScenarioImu,
+    gnss: Vec<GnssFix>,
+    reference: Vec<TrajectoryPoint>,
+    settings: EngineSettings,
+) -> Result<Scenario, ScenarioError> {
+    let initial = initial_from_reference(&reference, &gnss)?;
+    Ok(Scenario {
+        increments: imu.increments,
+        compensated_increments: imu.compensated_increments,
+        oracle_increments: imu.oracle_increments,
+        temperature: imu.temperature,
+        gnss,
+        reference,
+        initial: uncorrected(initial.nav_state()),
+        initial_covariance: InitialUncertainty::default().covariance(),
+        settings,
+    })
+}
+
+/// The reference point at (or last before) the first GNSS fix: the common starting state.
+fn initial_from_reference(
+    reference: &[TrajectoryPoint],
+    gnss: &[GnssFix],
+) -> Result<TrajectoryPoint, ScenarioError> {
+    let start = gnss.first().map(|f| f.time).ok_or(ScenarioError::NoFix)?;
+    (reference.iter().rev())
+        .find(|p| p.time <= start)
+        .copied()
+        .ok_or(ScenarioError::ReferenceStartsLate {
+            start_s: start.as_seconds(),
+        })
+}
+
+/// The scenario of the records: the IMU side under `records`, `engine` with the outages of
+/// `outages` over the data, the reference checked to cover them and the inputs checked.
+///
+/// # Errors
+/// Every [`ScenarioError`].
+pub fn scenario_of_records(
+    series: &ImuSeries,
+    gnss: Vec<GnssFix>,
+    reference: Vec<TrajectoryPoint>,
+    (engine, outages): (&EngineSettings, &OutageSpec),
+    records: RecordPlan,
+) -> Result<Scenario, ScenarioError> {
+    let imu = scenario_imu(series, records)?;
+    let engine = with_outages(engine, outages, &imu.increments).map_err(ScenarioError::Run)?;
+    check_reference_covers(&reference, engine.outages.windows())
+        .map_err(ScenarioError::Reference)?;
+    check_inputs(&imu.increments, &gnss, &engine).map_err(ScenarioError::Nav)?;
+    scenario_of(imu, gnss, reference, engine)
+}

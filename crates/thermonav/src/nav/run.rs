@@ -1,0 +1,537 @@
+//! One navigation run on records already read: the noise model chosen from a bank or a
+//! profile at a temperature (or scheduled by the IMU's temp_c), the record thermally
+//! compensated, the outages laid over the data, the start aligned from GNSS (or taken from a
+//! reference trajectory), and the filter run. What `thermonav integrate` and the Python
+//! package's `integrate` both do between reading their inputs and writing their outputs.
+//!
+//! ```no_run
+//! # use thermonav::nav::run::*;
+//! # fn demo(series: thermonav::imu::ImuSeries, gnss: Vec<thermonav::gnss::GnssFix>,
+//! #         bank: &thermonav::stoch::bank::ModelBank) -> Result<(), RunError> {
+//! let settings = RunSettings::default();
+//! let prepared = prepare(series, gnss, NoiseModel::Bank(bank), Start::Align, &settings)?;
+//! let outcome = prepared.run(&mut |_| {})?;
+//! let report = RunReport::of(&outcome);
+//! # Ok(()) }
+//! ```
+
+use super::alignment::{
+    AlignmentError, HeadingSource, InitialUncertainty, align_from_gnss, uncorrected,
+};
+use super::engine::{EngineSettings, NavError, increments_from_series, run_scheduled};
+use super::error_state::Estimate;
+use super::outage::{OutageError, OutageSpec};
+use super::schedule::{
+    Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,
+    Scheduling, TemperatureTrack, compensate_record,
+};
+use super::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError};
+use super::solution::Solution;
+use crate::gnss::GnssFix;
+use crate::imu::ImuSeries;
+use crate::ins::state::Increment;
+use crate::sensor::SensorProfile;
+use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
+use crate::stoch::thermal::ThermalCalibration;
+use crate::trajectory::TrajectoryPoint;
+use serde::Serialize;
+use std::time::Instant;
+
+pub use super::report::RunReport;
+
+/// Which temperature's model the filter uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModelTemperature {
+    /// The model of this temperature, °C (the nearest bank entry: the paper's "model of T").
+    Fixed(f64),
+    /// The model for the sensor's operating temperature, °C (given, or the mean of the IMU
+    /// record's temp_c), selected by the rule.
+    Operating {
+        /// Given by the caller.
+        given_c: Option<f64>,
+        /// Nearest entry or interpolation.
+        selection: Selection,
+    },
+}
+
+impl Default for ModelTemperature {
+    /// The operating temperature from the record, nearest entry.
+    fn default() -> Self {
+        Self::Operating {
+            given_c: None,
+            selection: Selection::Nearest,
+        }
+    }
+}
+
+impl ModelTemperature {
+    /// The bank selection rule (nearest for a fixed model).
+    pub fn selection(&self) -> Selection {
+        match self {
+            ModelTemperature::Fixed(_) => Selection::Nearest,
+            ModelTemperature::Operating { selection, .. } => *selection,
+        }
+    }
+
+    /// Scheduling as `requested` while the temperature follows the record; fixed when a
+    /// temperature names one model.
+    pub fn scheduling(&self, requested: Scheduling) -> Scheduling {
+        match self {
+            ModelTemperature::Operating { given_c: None, .. } => requested,
+            _ => Scheduling::Fixed,
+        }
+    }
+}
+
+/// Where the noise model comes from.
+#[derive(Debug, Clone, Copy)]
+pub enum NoiseModel<'a> {
+    /// A bank from `characterize`.
+    Bank(&'a ModelBank),
+    /// A sensor profile.
+    Profile(&'a SensorProfile),
+}
+
+impl<'a> NoiseModel<'a> {
+    /// The bank's thermal calibration, if any.
+    pub fn thermal(self) -> Option<&'a ThermalCalibration> {
+        match self {
+            NoiseModel::Bank(bank) => bank.thermal.as_ref(),
+            NoiseModel::Profile(_) => None,
+        }
+    }
+}
+
+/// Everything a run is told besides its data (defaults: the CLI's).
+#[derive(Debug, Clone)]
+pub struct RunSettings {
+    /// Which temperature's model (the fixed model, and the reported one when scheduled).
+    pub temperature: ModelTemperature,
+    /// Whether the model follows the IMU's temp_c.
+    pub scheduling: Scheduling,
+    /// Whether the bank's bias(T) is subtracted from the samples.
+    pub compensation: Compensation,
+    /// Gauss-Markov family of a bank.
+    pub gauss_markov: GaussMarkovSource,
+    /// The filter's settings (the outages are laid over the data by [`prepare`]).
+    pub engine: EngineSettings,
+    /// The outages as given.
+    pub outages: OutageSpec,
+    /// Multiplier of the white-noise densities.
+    pub process_noise_scale: f64,
+}
+
+impl Default for RunSettings {
+    fn default() -> Self {
+        Self {
+            temperature: ModelTemperature::default(),
+            scheduling: Scheduling::default(),
+            compensation: Compensation::default(),
+            gauss_markov: GaussMarkovSource::IrregularMl,
+            engine: EngineSettings::default(),
+            outages: OutageSpec::None,
+            process_noise_scale: 1.0,
+        }
+    }
+}
+
+/// How the run starts.
+#[derive(Debug, Clone, Copy)]
+pub enum Start<'a> {
+    /// Aligned from GNSS (dual-antenna heading, or course over ground).
+    Align,
+    /// From the reference point at (or last before) the first fix, or its first point.
+    Reference(&'a [TrajectoryPoint]),
+}
+
+/// Where the initial state came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialSource {
+    /// The reference trajectory.
+    Reference,
+    /// Alignment with a dual-antenna heading.
+    DualAntennaHeading,
+    /// Alignment with the course over ground.
+    CourseOverGround,
+}
+
+/// Which input a [`RunError`] is about, for the caller to name its file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunInput {
+    /// The IMU record.
+    Imu,
+    /// The GNSS fixes.
+    Gnss,
+    /// The bank or the profile.
+    Noise,
+    /// The reference trajectory of [`Start::Reference`].
+    Reference,
+    /// The settings (the outages).
+    Settings,
+    /// None in particular (the filter itself).
+    Filter,
+}
+
+/// Why a run cannot be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RunError {
+    /// The noise model cannot be built.
+    #[error(transparent)]
+    NoiseModel(SensorModelError),
+    /// The models over the record's temperature range cannot be built.
+    #[error(transparent)]
+    ModelGrid(ScheduleError),
+    /// The record's temperature track is unusable.
+    #[error(transparent)]
+    TemperatureTrack(ScheduleError),
+    /// No operating temperature given and none in the record.
+    #[error("no temp_c column; give the temperature")]
+    NoTemperature,
+    /// Fewer than two IMU samples.
+    #[error("at least two IMU samples are needed")]
+    TooShort,
+    /// The outages do not fit the data.
+    #[error(transparent)]
+    Outages(OutageError),
+    /// The GNSS fixes give no alignment.
+    #[error(transparent)]
+    Alignment(AlignmentError),
+    /// The reference trajectory is empty.
+    #[error("no trajectory point")]
+    NoReferencePoint,
+    /// The filter refused the data or diverged.
+    #[error(transparent)]
+    Nav(NavError),
+}
+
+impl RunError {
+    /// The input the error is about.
+    pub fn input(&self) -> RunInput {
+        match self {
+            RunError::NoiseModel(_) | RunError::ModelGrid(_) => RunInput::Noise,
+            RunError::TemperatureTrack(_) | RunError::NoTemperature | RunError::TooShort => {
+                RunInput::Imu
+            }
+            RunError::Outages(_) => RunInput::Settings,
+            RunError::Alignment(_) => RunInput::Gnss,
+            RunError::NoReferencePoint => RunInput::Reference,
+            RunError::Nav(NavError::ImuGap { .. }) => RunInput::Imu,
+            RunError::Nav(NavError::PolarFix { .. }) => RunInput::Gnss,
+            RunError::Nav(_) => RunInput::Filter,
+        }
+    }
+}
+
+/// The models of a run: the fixed one (reported; used unless scheduled) and, when
+/// scheduled, the temperature track with the models by temperature.
+#[derive(Debug, Clone)]
+pub struct RunModels {
+    /// The fixed model (white noise scaled).
+    pub model: ImuStochasticModel,
+    /// Its temperature, rule and family.
+    pub choice: BankChoice,
+    /// The track and the models by temperature, when scheduled.
+    pub scheduled: Option<(TemperatureTrack, ModelGrid)>,
+}
+
+impl RunModels {
+    /// The models of `settings` from `noise` for `series`.
+    ///
+    /// # Errors
+    /// [`RunError::NoiseModel`], [`RunError::NoTemperature`], [`RunError::TemperatureTrack`],
+    /// [`RunError::ModelGrid`].
+    pub fn of(
+        settings: &RunSettings,
+        noise: NoiseModel,
+        series: &ImuSeries,
+    ) -> Result<Self, RunError> {
+        let (model, choice) = fixed_model(settings, noise, series)?;
+        let mut model = model.map_err(RunError::NoiseModel)?;
+        model.scale_white_noise(settings.process_noise_scale);
+        let scheduled = match schedule_track(settings, series)? {
+            Some(track) => Some(scheduled_models(settings, noise, track)?),
+            None => None,
+        };
+        Ok(Self {
+            model,
+            choice,
+            scheduled,
+        })
+    }
+
+    /// The schedule the filter runs with.
+    pub fn schedule(&self) -> ModelSchedule<'_> {
+        match &self.scheduled {
+            Some((track, grid)) => ModelSchedule::ByTemperature { track, grid },
+            None => ModelSchedule::Fixed(&self.model),
+        }
+    }
+
+    /// What the schedule was, for a report.
+    pub fn summary(&self) -> ScheduleSummary {
+        match &self.scheduled {
+            Some((track, grid)) => ScheduleSummary::scheduled(track, grid),
+            None => ScheduleSummary::Fixed {
+                temperature_c: self.choice.temperature_c,
+            },
+        }
+    }
+}
+
+/// The IMU's temperature track when the run is scheduled and the record has temp_c.
+fn schedule_track(
+    settings: &RunSettings,
+    series: &ImuSeries,
+) -> Result<Option<TemperatureTrack>, RunError> {
+    if settings.scheduling == Scheduling::Fixed {
+        return Ok(None);
+    }
+    TemperatureTrack::of_series(series).map_err(RunError::TemperatureTrack)
+}
+
+/// The track with the models by temperature over its range (white noise scaled).
+fn scheduled_models(
+    settings: &RunSettings,
+    noise: NoiseModel,
+    track: TemperatureTrack,
+) -> Result<(TemperatureTrack, ModelGrid), RunError> {
+    let (scale, range_c) = (ScaleFactorPrior::default(), track.range_c());
+    let grid = match noise {
+        NoiseModel::Bank(bank) => {
+            let selection = settings.temperature.selection();
+            ModelGrid::from_bank(bank, selection, settings.gauss_markov, &scale, range_c)
+        }
+        NoiseModel::Profile(profile) => ModelGrid::from_profile(profile, &scale, range_c),
+    };
+    let mut grid = grid.map_err(RunError::ModelGrid)?;
+    grid.scale_white_noise(settings.process_noise_scale);
+    Ok((track, grid))
+}
+
+type ModelResult = Result<ImuStochasticModel, SensorModelError>;
+
+/// The filter's fixed noise model: from the bank at the chosen temperature, or from the
+/// profile.
+fn fixed_model(
+    settings: &RunSettings,
+    noise: NoiseModel,
+    series: &ImuSeries,
+) -> Result<(ModelResult, BankChoice), RunError> {
+    match noise {
+        NoiseModel::Profile(profile) => Ok(profile_model(settings, profile, series)),
+        NoiseModel::Bank(bank) => {
+            let choice = bank_choice(settings, series)?;
+            let model = ImuStochasticModel::from_bank(bank, &choice, &ScaleFactorPrior::default());
+            Ok((model, choice))
+        }
+    }
+}
+
+/// The profile's model at the given temperature, the record's mean, or its reference.
+fn profile_model(
+    settings: &RunSettings,
+    profile: &SensorProfile,
+    series: &ImuSeries,
+) -> (ModelResult, BankChoice) {
+    let temperature_c = match settings.temperature {
+        ModelTemperature::Fixed(t) => Some(t),
+        ModelTemperature::Operating { given_c, .. } => given_c,
+    }
+    .or_else(|| series.mean_temperature_c())
+    .unwrap_or(profile.reference_temperature_c);
+    let model = profile.stochastic_model(temperature_c, &ScaleFactorPrior::default());
+    let choice = BankChoice {
+        temperature_c,
+        selection: Selection::Nearest,
+        source: settings.gauss_markov,
+    };
+    (model, choice)
+}
+
+/// The temperature and rule of the settings, with the record's mean temp_c for an
+/// operating temperature not given.
+fn bank_choice(settings: &RunSettings, series: &ImuSeries) -> Result<BankChoice, RunError> {
+    let (temperature_c, selection) = match settings.temperature {
+        ModelTemperature::Fixed(t) => (t, Selection::Nearest),
+        ModelTemperature::Operating { given_c, selection } => {
+            (operating_temperature_c(given_c, series)?, selection)
+        }
+    };
+    Ok(BankChoice {
+        temperature_c,
+        selection,
+        source: settings.gauss_markov,
+    })
+}
+
+/// The operating temperature, °C: given, or the mean of the record's temp_c column.
+///
+/// # Errors
+/// [`RunError::NoTemperature`] when neither is there.
+pub fn operating_temperature_c(given: Option<f64>, series: &ImuSeries) -> Result<f64, RunError> {
+    given
+        .or_else(|| series.mean_temperature_c())
+        .ok_or(RunError::NoTemperature)
+}
+
+/// The IMU increments of a series, refusing a series too short to have one.
+///
+/// # Errors
+/// [`RunError::TooShort`].
+pub fn increments_of(series: &ImuSeries) -> Result<Vec<Increment>, RunError> {
+    let increments = increments_from_series(series);
+    match increments.is_empty() {
+        true => Err(RunError::TooShort),
+        false => Ok(increments),
+    }
+}
+
+/// `engine` with the outages of `spec` over the span of `increments` (not empty).
+///
+/// # Errors
+/// [`RunError::Outages`] for windows outside the data.
+pub fn with_outages(
+    engine: &EngineSettings,
+    spec: &OutageSpec,
+    increments: &[Increment],
+) -> Result<EngineSettings, RunError> {
+    let span = match (increments.first(), increments.last()) {
+        (Some(first), Some(last)) => (first.time, last.time),
+        _ => return Err(RunError::TooShort),
+    };
+    let outages = spec.resolve(span).map_err(RunError::Outages)?;
+    Ok(EngineSettings {
+        outages,
+        ..engine.clone()
+    })
+}
+
+/// The note of a scheduled run on a record without temp_c (after the record's name).
+pub const NO_TEMPERATURE_NOTE: &str = "has no temp_c column: one model for the whole run";
+
+/// A run ready to go: models chosen, record compensated, outages laid, start found.
+#[derive(Debug)]
+pub struct PreparedRun {
+    models: RunModels,
+    compensation: CompensationOutcome,
+    increments: Vec<Increment>,
+    gnss: Vec<GnssFix>,
+    engine: EngineSettings,
+    initial: Estimate,
+    initial_source: InitialSource,
+    /// What the caller may want to tell the user (e.g. no temp_c: one model for the run).
+    pub notes: Vec<String>,
+}
+
+/// Prepares a run of `series` with `gnss` and the noise model of `noise`.
+///
+/// # Errors
+/// Every [`RunError`] but [`RunError::Nav`]; [`RunError::input`] tells which input.
+pub fn prepare(
+    mut series: ImuSeries,
+    gnss: Vec<GnssFix>,
+    noise: NoiseModel,
+    start: Start,
+    settings: &RunSettings,
+) -> Result<PreparedRun, RunError> {
+    let models = RunModels::of(settings, noise, &series)?;
+    let mut notes = Vec::new();
+    if settings.scheduling != Scheduling::Fixed && models.scheduled.is_none() {
+        notes.push(NO_TEMPERATURE_NOTE.to_string());
+    }
+    let compensation = compensate_record(&mut series, noise.thermal(), settings.compensation);
+    let increments = increments_of(&series)?;
+    let engine = with_outages(&settings.engine, &settings.outages, &increments)?;
+    let (initial, initial_source) = initial_estimate(start, &increments, &gnss, &engine)?;
+    Ok(PreparedRun {
+        models,
+        compensation,
+        increments,
+        gnss,
+        engine,
+        initial,
+        initial_source,
+        notes,
+    })
+}
+
+/// The start: aligned from GNSS, or the reference point at the first fix.
+fn initial_estimate(
+    start: Start,
+    increments: &[Increment],
+    gnss: &[GnssFix],
+    engine: &EngineSettings,
+) -> Result<(Estimate, InitialSource), RunError> {
+    let Start::Reference(points) = start else {
+        let alignment = align_from_gnss(increments, gnss, &engine.geometry, 1.0)
+            .map_err(RunError::Alignment)?;
+        let source = match alignment.heading_source {
+            HeadingSource::DualAntenna => InitialSource::DualAntennaHeading,
+            HeadingSource::Course => InitialSource::CourseOverGround,
+        };
+        return Ok((uncorrected(alignment.nav), source));
+    };
+    let first = increments.first().map(|i| i.time);
+    let at = gnss.first().map(|f| f.time).or(first);
+    let point = (points.iter().rev())
+        .find(|p| at.is_some_and(|t| p.time <= t))
+        .or(points.first())
+        .ok_or(RunError::NoReferencePoint)?;
+    Ok((uncorrected(point.nav_state()), InitialSource::Reference))
+}
+
+impl PreparedRun {
+    /// IMU increments to process (for a progress bar's length).
+    pub fn imu_samples(&self) -> usize {
+        self.increments.len()
+    }
+
+    /// The filter's settings, outages laid.
+    pub fn engine(&self) -> &EngineSettings {
+        &self.engine
+    }
+
+    /// Runs the filter; `progress` is told the increments processed.
+    ///
+    /// # Errors
+    /// [`RunError::Nav`].
+    pub fn run(self, progress: &mut dyn FnMut(usize)) -> Result<RunOutcome, RunError> {
+        let started = Instant::now();
+        let solution = run_scheduled(
+            &self.increments,
+            &self.gnss,
+            self.initial,
+            InitialUncertainty::default().covariance(),
+            self.models.schedule(),
+            &self.engine,
+            progress,
+        )
+        .map_err(RunError::Nav)?;
+        Ok(RunOutcome {
+            processing_s: started.elapsed().as_secs_f64(),
+            models: self.models,
+            compensation: self.compensation,
+            engine: self.engine,
+            solution,
+            initial: self.initial_source,
+        })
+    }
+}
+
+/// What one run gave.
+#[derive(Debug)]
+pub struct RunOutcome {
+    /// The models used.
+    pub models: RunModels,
+    /// What the thermal compensation did.
+    pub compensation: CompensationOutcome,
+    /// The filter's settings, outages laid.
+    pub engine: EngineSettings,
+    /// The solution.
+    pub solution: Solution,
+    /// Where the initial state came from.
+    pub initial: InitialSource,
+    /// Wall time of the filter, s.
+    pub processing_s: f64,
+}

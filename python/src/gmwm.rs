@@ -1,0 +1,58 @@
+//! `gmwm`: a composite noise model fitted to the Haar wavelet variance, as one channel of
+//! `thermonav gmwm --json` (the same library calls and JSON types).
+
+use crate::allan::sensor_of;
+use crate::arrays::{check_finite, samples};
+use crate::{error, to_python};
+use numpy::PyReadonlyArray1;
+use pyo3::prelude::*;
+use serde::Serialize;
+use thermonav::rng::DEFAULT_SEED;
+use thermonav::stoch::gmwm::BootstrapSettings;
+use thermonav_io::gmwm::{GmwmChannelJson, INTERVAL_METHOD, candidates_of, gmwm_channel_json};
+
+/// The fit with the run's settings, keys as `gmwm --json`'s run and channel.
+#[derive(Serialize)]
+struct Fit<'a> {
+    sample_rate_hz: f64,
+    model: &'a str,
+    interval_method: &'static str,
+    bootstrap_replicates: usize,
+    #[serde(flatten)]
+    channel: GmwmChannelJson,
+}
+
+/// The GMWM fit of rate samples `x` at `rate_hz` (module docs of the Python package:
+/// `thermonav.gmwm`).
+#[pyfunction]
+#[pyo3(signature = (x, rate_hz, model="auto", sensor="gyro", replicates=100, seed=DEFAULT_SEED))]
+pub fn gmwm<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    rate_hz: f64,
+    model: &str,
+    sensor: &str,
+    replicates: usize,
+    seed: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let sensor = sensor_of(sensor)?;
+    let candidates = candidates_of(model).map_err(|e| error(format!("model {model}: {e}")))?;
+    let settings = BootstrapSettings {
+        replicates,
+        seed,
+        ..BootstrapSettings::default()
+    };
+    let y = samples(&x);
+    check_finite("x", &y)?;
+    let channel = py
+        .detach(|| gmwm_channel_json(&y, rate_hz, sensor, (&candidates, settings)))
+        .map_err(error)?;
+    let fit = Fit {
+        sample_rate_hz: rate_hz,
+        model,
+        interval_method: INTERVAL_METHOD,
+        bootstrap_replicates: replicates,
+        channel,
+    };
+    to_python(py, &fit)
+}

@@ -1,0 +1,630 @@
+//! `integrate` and `evaluate` from files: the library's run ([`thermonav::nav::run`]) and
+//! tournament ([`thermonav::evaluation::scenario`], [`thermonav::evaluation::experiment`]),
+//! the calls `thermonav integrate` and `thermonav evaluate` make, with the same defaults and
+//! seeded streams. The solution leaves as NumPy arrays named like the CLI's solution and state
+//! CSV columns; the reports as the CLI's `--json` documents.
+
+use crate::arrays::array;
+use crate::{error, to_python};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::{Path, PathBuf};
+use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model};
+use thermonav::evaluation::experiment::{
+    CandidateSource, Replicates, Tournament, TournamentOutcome, TournamentPlan,
+};
+use thermonav::evaluation::metrics::EpochError;
+use thermonav::evaluation::oracle::TrueModel;
+use thermonav::evaluation::scenario::{RecordPlan, ScenarioError, scenario_of_records};
+use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
+use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::run::{
+    ModelTemperature, NoiseModel, RunError, RunInput, RunReport, RunSettings, Start,
+    operating_temperature_c, prepare,
+};
+use thermonav::nav::schedule::{Compensation, Scheduling};
+use thermonav::nav::sensor_model::ScaleFactorPrior;
+use thermonav::nav::solution::SolutionEpoch;
+use thermonav::rng::DEFAULT_SEED;
+use thermonav::sensor::SensorProfile;
+use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
+use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::solution::{state_column_names, state_values};
+use thermonav_io::{
+    Strictness, read_gnss_file, read_imu_file, read_trajectory_file, trajectory_column_names,
+    trajectory_values,
+};
+
+/// A bank or a profile, read.
+enum Noise {
+    Bank(ModelBank),
+    Profile(SensorProfile),
+}
+
+impl Noise {
+    /// Reads `bank` or `profile` (exactly one).
+    fn read(bank: Option<PathBuf>, profile: Option<PathBuf>) -> PyResult<(Self, PathBuf)> {
+        match (bank, profile) {
+            (Some(p), None) => Ok((Noise::Bank(read_bank(&p)?), p)),
+            (None, Some(p)) => Ok((Noise::Profile(read_profile(&p)?), p)),
+            _ => Err(error("give bank or profile (one of them)")),
+        }
+    }
+
+    fn model(&self) -> NoiseModel<'_> {
+        match self {
+            Noise::Bank(bank) => NoiseModel::Bank(bank),
+            Noise::Profile(profile) => NoiseModel::Profile(profile),
+        }
+    }
+
+    fn source(&self) -> CandidateSource<'_> {
+        match self {
+            Noise::Bank(bank) => CandidateSource::Bank(bank),
+            Noise::Profile(profile) => CandidateSource::Profile(profile),
+        }
+    }
+}
+
+fn read_bank(path: &Path) -> PyResult<ModelBank> {
+    thermonav_io::bank::read_bank_file(path).map_err(error)
+}
+
+fn read_profile(path: &Path) -> PyResult<SensorProfile> {
+    thermonav_io::profile::read_profile(path).map_err(error)
+}
+
+/// The records every run reads: IMU, GNSS, noise model.
+struct Records {
+    series: thermonav::imu::ImuSeries,
+    gnss: Vec<thermonav::gnss::GnssFix>,
+    noise: Noise,
+    noise_path: PathBuf,
+}
+
+/// The input files (`noise` = (bank, profile)).
+struct Files {
+    imu: PathBuf,
+    gnss: PathBuf,
+    noise: (Option<PathBuf>, Option<PathBuf>),
+}
+
+impl Files {
+    fn read(&self) -> PyResult<Records> {
+        let series = read_imu_file(&self.imu, Strictness::Strict).map_err(error)?;
+        let gnss = read_gnss_file(&self.gnss, Strictness::Strict).map_err(error)?;
+        let (noise, noise_path) = Noise::read(self.noise.0.clone(), self.noise.1.clone())?;
+        Ok(Records {
+            series,
+            gnss,
+            noise,
+            noise_path,
+        })
+    }
+
+    /// `PATH: ` of the input an error is about.
+    fn prefix(&self, input: RunInput, records: &Records, reference: Option<&Path>) -> String {
+        let path = match input {
+            RunInput::Imu => Some(self.imu.as_path()),
+            RunInput::Gnss => Some(self.gnss.as_path()),
+            RunInput::Noise => Some(records.noise_path.as_path()),
+            RunInput::Reference => reference,
+            RunInput::Settings | RunInput::Filter => None,
+        };
+        path.map(|p| format!("{}: ", p.display()))
+            .unwrap_or_default()
+    }
+}
+
+/// A run's or a scenario's refusal, naming the file or the keyword it is about.
+fn refusal(message: String, input: RunInput, prefix: String) -> PyErr {
+    match input {
+        RunInput::Settings => error(format!("outages: {message}")),
+        _ => error(format!("{prefix}{message}")),
+    }
+}
+
+/// A record without temp_c and no temperature given.
+fn no_temperature(imu: &Path) -> PyErr {
+    error(format!(
+        "{}: no temp_c column; give the temperature (model_temperature_c or operating_temperature_c)",
+        imu.display()
+    ))
+}
+
+/// One of `names` (the CLI's value names), else an error naming `what`.
+fn choice<T: Copy>(what: &str, value: &str, names: &[(&str, T)]) -> PyResult<T> {
+    (names.iter().find(|(name, _)| *name == value))
+        .map(|(_, v)| *v)
+        .ok_or_else(|| {
+            let known: Vec<&str> = names.iter().map(|(n, _)| *n).collect();
+            error(format!(
+                "{what} {value:?}: expected one of {}",
+                known.join(", ")
+            ))
+        })
+}
+
+fn gauss_markov_of(model: &str) -> PyResult<GaussMarkovSource> {
+    let names = [
+        ("irregular_ml", GaussMarkovSource::IrregularMl),
+        ("ar_based", GaussMarkovSource::ArBased),
+        ("acf_fit", GaussMarkovSource::AcfFit),
+    ];
+    choice("model", model, &names)
+}
+
+fn filters_of(filter: &str) -> PyResult<Vec<FilterKind>> {
+    let names: [(&str, &[FilterKind]); 3] = [
+        ("ekf", &[FilterKind::Ekf]),
+        ("ukf", &[FilterKind::Ukf]),
+        ("both", &FilterKind::BOTH),
+    ];
+    choice("filter", filter, &names).map(<[FilterKind]>::to_vec)
+}
+
+fn outages_of(outages: &str) -> PyResult<OutageSpec> {
+    outages
+        .parse()
+        .map_err(|e| error(format!("outages {outages:?}: {e}")))
+}
+
+/// The antenna geometry: lever arm (m, body forward/right/down) and baseline direction.
+fn geometry_of(
+    lever_arm_m: Option<[f64; 3]>,
+    baseline: Option<[f64; 3]>,
+) -> PyResult<AntennaGeometry> {
+    let defaults = AntennaGeometry::default();
+    let geometry = AntennaGeometry {
+        lever_arm_body_m: lever_arm_m.unwrap_or(defaults.lever_arm_body_m),
+        baseline_body: baseline.unwrap_or(defaults.baseline_body),
+    };
+    let all = geometry
+        .lever_arm_body_m
+        .iter()
+        .chain(&geometry.baseline_body);
+    if !all.into_iter().all(|v| v.is_finite()) {
+        return Err(error("lever_arm_m and baseline must be finite"));
+    }
+    if geometry.baseline_body[0].hypot(geometry.baseline_body[1]) == 0.0 {
+        return Err(error(
+            "baseline must have a horizontal component to define a heading",
+        ));
+    }
+    Ok(geometry)
+}
+
+/// Which temperature's model: fixed, or the operating temperature (given or the record's).
+fn temperature_of(
+    model_temperature_c: Option<f64>,
+    operating_temperature_c: Option<f64>,
+    select: &str,
+) -> PyResult<ModelTemperature> {
+    let selection = choice(
+        "select",
+        select,
+        &[
+            ("nearest", Selection::Nearest),
+            ("linear", Selection::Linear),
+        ],
+    )?;
+    match (model_temperature_c, operating_temperature_c) {
+        (Some(_), Some(_)) => Err(error(
+            "give model_temperature_c or operating_temperature_c, not both",
+        )),
+        (Some(t), None) => Ok(ModelTemperature::Fixed(finite("model_temperature_c", t)?)),
+        (None, given) => Ok(ModelTemperature::Operating {
+            given_c: given
+                .map(|t| finite("operating_temperature_c", t))
+                .transpose()?,
+            selection,
+        }),
+    }
+}
+
+fn finite(name: &str, value: f64) -> PyResult<f64> {
+    match value.is_finite() {
+        true => Ok(value),
+        false => Err(error(format!("{name} {value}: expected a finite number"))),
+    }
+}
+
+fn scheduling_of(schedule: bool) -> Scheduling {
+    match schedule {
+        true => Scheduling::default(),
+        false => Scheduling::Fixed,
+    }
+}
+
+fn compensation_of(compensation: bool) -> Compensation {
+    match compensation {
+        true => Compensation::default(),
+        false => Compensation::Off,
+    }
+}
+
+/// The filter's settings of `integrate`'s keywords (rates in Hz, sd in m/s).
+struct EngineKeywords {
+    filter: FilterKind,
+    covariance_rate_hz: Option<f64>,
+    output_rate_hz: Option<f64>,
+    velocity_sd_m_s: Option<Vec<f64>>,
+    gate_probability: Option<f64>,
+    max_imu_gap_s: Option<f64>,
+    aiding: Aiding,
+    smooth: bool,
+}
+
+impl EngineKeywords {
+    fn settings(&self, geometry: AntennaGeometry) -> PyResult<EngineSettings> {
+        let d = EngineSettings::default();
+        if self.smooth && self.filter != FilterKind::Ekf {
+            return Err(error(
+                "smooth: the RTS smoother runs on the EKF's covariance; use filter=\"ekf\"",
+            ));
+        }
+        Ok(EngineSettings {
+            filter: self.filter,
+            covariance_interval_s: (self.covariance_rate_hz.map(|r| 1.0 / r))
+                .unwrap_or(d.covariance_interval_s),
+            output_interval_s: (self.output_rate_hz.map(|r| 1.0 / r))
+                .unwrap_or(d.output_interval_s),
+            velocity_sd_m_s: velocity_sd(self.velocity_sd_m_s.as_deref(), d.velocity_sd_m_s)?,
+            gate_probability: gate_of(self.gate_probability, d.gate_probability)?,
+            max_imu_gap_s: self.max_imu_gap_s.unwrap_or(d.max_imu_gap_s),
+            geometry,
+            aiding: self.aiding,
+            smooth: self.smooth,
+            ..d
+        })
+    }
+}
+
+/// One value for every axis, or north, east, down (m/s).
+fn velocity_sd(values: Option<&[f64]>, default: [f64; 3]) -> PyResult<[f64; 3]> {
+    match values {
+        None => Ok(default),
+        Some([v]) => Ok([*v; 3]),
+        Some([n, e, d]) => Ok([*n, *e, *d]),
+        Some(_) => Err(error(
+            "velocity_sd_m_s takes one value or three (north, east, down)",
+        )),
+    }
+}
+
+/// The gate: `None` (accept all) at 1.
+fn gate_of(probability: Option<f64>, default: Option<f64>) -> PyResult<Option<f64>> {
+    match probability {
+        None => Ok(default),
+        Some(1.0) => Ok(None),
+        Some(p) if p > 0.0 && p < 1.0 => Ok(Some(p)),
+        Some(p) => Err(error(format!(
+            "gate_probability {p} must be in (0, 1], 1 meaning no gate"
+        ))),
+    }
+}
+
+/// Solution epochs as columns: `t_ns`, `t_s`, the trajectory CSV's (lat_deg .. yaw_deg), the
+/// state file's (sd_n_m .. sd_saz_ppm) and `in_outage` (bool).
+fn epoch_columns<'py>(py: Python<'py>, epochs: &[SolutionEpoch]) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    let times = || epochs.iter().map(|e| e.estimate.nav.time);
+    out.set_item("t_ns", array(py, times().map(|t| t.as_nanos()).collect()))?;
+    out.set_item("t_s", array(py, times().map(|t| t.as_seconds()).collect()))?;
+    let points: Vec<[f64; 9]> = (epochs.iter())
+        .map(|e| trajectory_values(&TrajectoryPoint::from_nav_state(&e.estimate.nav)))
+        .collect();
+    for (k, name) in trajectory_column_names().into_iter().enumerate() {
+        out.set_item(name, array(py, points.iter().map(|p| p[k]).collect()))?;
+    }
+    let states: Vec<Vec<f64>> = epochs.iter().map(|e| state_values(e).collect()).collect();
+    for (k, name) in state_column_names().enumerate() {
+        out.set_item(name, array(py, states.iter().map(|s| s[k]).collect()))?;
+    }
+    let in_outage: Vec<bool> = epochs.iter().map(|e| e.in_outage).collect();
+    out.set_item("in_outage", array(py, in_outage))?;
+    Ok(out)
+}
+
+/// The run's report (keys of `integrate --json`), the solution columns and, when smoothed,
+/// the smoothed solution's.
+fn integrate_result<'py>(
+    py: Python<'py>,
+    report: &RunReport,
+    solution: &thermonav::nav::solution::Solution,
+    notes: Vec<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let out = to_python(py, report)?;
+    out.set_item("solution", epoch_columns(py, &solution.epochs)?)?;
+    let smoothed = match solution.smoothed.is_empty() {
+        true => None,
+        false => Some(epoch_columns(py, &solution.smoothed)?),
+    };
+    out.set_item("smoothed", smoothed)?;
+    out.set_item("notes", notes)?;
+    Ok(out)
+}
+
+/// The GNSS/INS filter on an IMU and a GNSS file (module docs of the Python package:
+/// `thermonav.integrate`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
+#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select="nearest", model="irregular_ml", filter="ekf", outages="none", lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, max_imu_gap_s=None, process_noise_scale=1.0, velocity=true, heading=true, schedule=true, compensation=true, smooth=false))]
+pub fn integrate<'py>(
+    py: Python<'py>,
+    imu: PathBuf,
+    gnss: PathBuf,
+    bank: Option<PathBuf>,
+    profile: Option<PathBuf>,
+    model_temperature_c: Option<f64>,
+    operating_temperature_c: Option<f64>,
+    select: &str,
+    model: &str,
+    filter: &str,
+    outages: &str,
+    lever_arm_m: Option<[f64; 3]>,
+    baseline: Option<[f64; 3]>,
+    initial_from: Option<PathBuf>,
+    covariance_rate_hz: Option<f64>,
+    output_rate_hz: Option<f64>,
+    velocity_sd_m_s: Option<Vec<f64>>,
+    gate_probability: Option<f64>,
+    max_imu_gap_s: Option<f64>,
+    process_noise_scale: f64,
+    velocity: bool,
+    heading: bool,
+    schedule: bool,
+    compensation: bool,
+    smooth: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let [filter] = filters_of(filter)?[..] else {
+        return Err(error("filter: expected \"ekf\" or \"ukf\""));
+    };
+    let keywords = EngineKeywords {
+        filter,
+        covariance_rate_hz,
+        output_rate_hz,
+        velocity_sd_m_s,
+        gate_probability,
+        max_imu_gap_s,
+        aiding: Aiding {
+            position: true,
+            velocity,
+            heading,
+        },
+        smooth,
+    };
+    let temperature = temperature_of(model_temperature_c, operating_temperature_c, select)?;
+    let settings = RunSettings {
+        temperature,
+        scheduling: temperature.scheduling(scheduling_of(schedule)),
+        compensation: compensation_of(compensation),
+        gauss_markov: gauss_markov_of(model)?,
+        engine: keywords.settings(geometry_of(lever_arm_m, baseline)?)?,
+        outages: outages_of(outages)?,
+        process_noise_scale: positive("process_noise_scale", process_noise_scale)?,
+    };
+    let files = Files {
+        imu,
+        gnss,
+        noise: (bank, profile),
+    };
+    let (report, solution, notes) =
+        py.detach(|| run_files(&files, initial_from.as_deref(), &settings))?;
+    integrate_result(py, &report, &solution, notes)
+}
+
+fn positive(name: &str, value: f64) -> PyResult<f64> {
+    match value.is_finite() && value > 0.0 {
+        true => Ok(value),
+        false => Err(error(format!("{name} {value}: expected a positive number"))),
+    }
+}
+
+type RunResult = (RunReport, thermonav::nav::solution::Solution, Vec<String>);
+
+/// Reads the files and runs the filter (without the GIL).
+fn run_files(
+    files: &Files,
+    initial_from: Option<&Path>,
+    settings: &RunSettings,
+) -> PyResult<RunResult> {
+    let records = files.read()?;
+    let reference = (initial_from.map(|p| read_trajectory_file(p, Strictness::Strict)))
+        .transpose()
+        .map_err(error)?;
+    let start = reference.as_deref().map_or(Start::Align, Start::Reference);
+    let refused = |e: RunError| match e {
+        RunError::NoTemperature => no_temperature(&files.imu),
+        e => refusal(
+            e.to_string(),
+            e.input(),
+            files.prefix(e.input(), &records, initial_from),
+        ),
+    };
+    let noise = records.noise.model();
+    let prepared = prepare(
+        records.series.clone(),
+        records.gnss.clone(),
+        noise,
+        start,
+        settings,
+    )
+    .map_err(refused)?;
+    let imu_name = files.imu.display();
+    let notes = prepared
+        .notes
+        .iter()
+        .map(|n| format!("{imu_name} {n}"))
+        .collect();
+    let outcome = prepared.run(&mut |_| {}).map_err(refused)?;
+    Ok((RunReport::of(&outcome), outcome.solution, notes))
+}
+
+/// A model's per-epoch errors inside the outages as columns: `outage` (1, 2, ...) and those
+/// of the CLI's error CSVs (t_s, since_outage_start_s, north_m, east_m, horizontal_m,
+/// heading_deg).
+fn error_columns<'py>(py: Python<'py>, errors: &[Vec<EpochError>]) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    let outage: Vec<u32> = (errors.iter().enumerate())
+        .flat_map(|(k, e)| std::iter::repeat_n(k as u32 + 1, e.len()))
+        .collect();
+    out.set_item("outage", array(py, outage))?;
+    let rows: Vec<[f64; 6]> = errors.iter().flatten().map(EpochError::values).collect();
+    for (k, name) in EpochError::COLUMNS.into_iter().enumerate() {
+        out.set_item(name, array(py, rows.iter().map(|r| r[k]).collect()))?;
+    }
+    Ok(out)
+}
+
+/// The report (keys of `evaluation.json`), every model with its error columns (None for a
+/// failed run).
+fn evaluate_result<'py>(
+    py: Python<'py>,
+    outcome: &TournamentOutcome,
+) -> PyResult<Bound<'py, PyAny>> {
+    let out = to_python(py, &outcome.report)?;
+    let models = out.get_item("models")?;
+    for (k, result) in outcome.main.iter().enumerate() {
+        let errors = match &result.outcome {
+            Ok(evaluated) => Some(error_columns(py, &evaluated.errors)?),
+            Err(_) => None,
+        };
+        models.get_item(k)?.set_item("errors", errors)?;
+    }
+    Ok(out)
+}
+
+/// The tournament's options besides the files.
+struct TournamentKeywords {
+    operating_temperature_c: Option<f64>,
+    source: GaussMarkovSource,
+    filters: Vec<FilterKind>,
+    outages: OutageSpec,
+    extra_replicates: usize,
+    seed: u64,
+    engine: EngineSettings,
+    scheduling: Scheduling,
+    compensation: Compensation,
+}
+
+/// The temperature-model tournament on one data set (module docs of the Python package:
+/// `thermonav.evaluate`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
+#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, operating_temperature_c=None, model="irregular_ml", filter="both", outages="spread:8,100", monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, max_imu_gap_s=None, heading=true, schedule=true, compensation=true, datasheet=None, truth=None))]
+pub fn evaluate<'py>(
+    py: Python<'py>,
+    imu: PathBuf,
+    gnss: PathBuf,
+    reference: PathBuf,
+    bank: Option<PathBuf>,
+    profile: Option<PathBuf>,
+    operating_temperature_c: Option<f64>,
+    model: &str,
+    filter: &str,
+    outages: &str,
+    monte_carlo: usize,
+    seed: u64,
+    lever_arm_m: Option<[f64; 3]>,
+    baseline: Option<[f64; 3]>,
+    max_imu_gap_s: Option<f64>,
+    heading: bool,
+    schedule: bool,
+    compensation: bool,
+    datasheet: Option<PathBuf>,
+    truth: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if monte_carlo == 0 {
+        return Err(error("monte_carlo must be at least 1"));
+    }
+    let defaults = EngineSettings::default();
+    let keywords = TournamentKeywords {
+        operating_temperature_c: operating_temperature_c
+            .map(|t| finite("operating_temperature_c", t))
+            .transpose()?,
+        source: gauss_markov_of(model)?,
+        filters: filters_of(filter)?,
+        outages: outages_of(outages)?,
+        extra_replicates: monte_carlo - 1,
+        seed,
+        engine: EngineSettings {
+            geometry: geometry_of(lever_arm_m, baseline)?,
+            aiding: Aiding {
+                heading,
+                ..Aiding::default()
+            },
+            max_imu_gap_s: positive(
+                "max_imu_gap_s",
+                max_imu_gap_s.unwrap_or(defaults.max_imu_gap_s),
+            )?,
+            ..defaults
+        },
+        scheduling: scheduling_of(schedule),
+        compensation: compensation_of(compensation),
+    };
+    let files = Files {
+        imu,
+        gnss,
+        noise: (bank, profile),
+    };
+    let extra = (reference, datasheet, truth);
+    let outcome = py.detach(|| tournament_of_files(&files, extra, &keywords))?;
+    evaluate_result(py, &outcome)
+}
+
+/// Reads the files, makes the scenario and runs the tournament (without the GIL).
+fn tournament_of_files(
+    files: &Files,
+    (reference, datasheet, truth): (PathBuf, Option<PathBuf>, Option<PathBuf>),
+    k: &TournamentKeywords,
+) -> PyResult<TournamentOutcome> {
+    let scale = ScaleFactorPrior::default();
+    let truth: Option<TrueModel> = (truth.map(|p| thermonav_io::truth::read_truth_file(p, &scale)))
+        .transpose()
+        .map_err(error)?;
+    let records = files.read()?;
+    let points = read_trajectory_file(&reference, Strictness::Strict).map_err(error)?;
+    let operating_c = operating_temperature_c(k.operating_temperature_c, &records.series)
+        .map_err(|_| no_temperature(&files.imu))?;
+    let plan = RecordPlan {
+        oracle: truth.as_ref(),
+        ..RecordPlan::calibrated(records.noise.model().thermal(), k.compensation)
+    };
+    let refused = |e: ScenarioError| {
+        let prefix = files.prefix(e.input(), &records, Some(&reference));
+        refusal(e.to_string(), e.input(), prefix)
+    };
+    let main = scenario_of_records(
+        &records.series,
+        records.gnss.clone(),
+        points,
+        (&k.engine, &k.outages),
+        plan,
+    )
+    .map_err(refused)?;
+    let profile = datasheet.as_deref().map(read_profile).transpose()?;
+    let named = |e| {
+        error(format!(
+            "{}: {e}",
+            datasheet.as_deref().unwrap_or(Path::new("")).display()
+        ))
+    };
+    let plan = TournamentPlan {
+        noise: records.noise.source(),
+        thermal: ThermalOptions::of_scenario(&main, k.scheduling, k.compensation),
+        operating_temperature_c: operating_c,
+        source: k.source,
+        filters: k.filters.clone(),
+        datasheet: Some(datasheet_model(profile.as_ref(), &scale).map_err(named)?),
+        scale,
+        oracle: truth.as_ref(),
+    };
+    let tournament = Tournament::new(&plan).map_err(error)?;
+    let replicates = Replicates::ShiftedOutages {
+        extra: k.extra_replicates,
+        seed: k.seed,
+    };
+    tournament.run(&main, &replicates, &|| {}).map_err(error)
+}
