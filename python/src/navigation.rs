@@ -151,6 +151,7 @@ fn gauss_markov_of(model: &str) -> PyResult<GaussMarkovSource> {
         ("irregular_ml", GaussMarkovSource::IrregularMl),
         ("ar_based", GaussMarkovSource::ArBased),
         ("acf_fit", GaussMarkovSource::AcfFit),
+        ("gmwm", GaussMarkovSource::Gmwm),
     ];
     choice("model", model, &names)
 }

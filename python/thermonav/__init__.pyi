@@ -16,7 +16,7 @@ DeviationKind = Literal["adev", "mdev", "hdev", "ohdev", "tdev", "totdev"]
 ArMethod = Literal["yule-walker", "burg", "covariance", "modified-covariance"]
 Family = Literal["irregular_ml", "ar_based", "acf_fit"]
 Mode = Literal["zero-phase", "filtfilt"]
-GaussMarkovSource = Literal["irregular_ml", "ar_based", "acf_fit"]
+GaussMarkovSource = Literal["irregular_ml", "ar_based", "acf_fit", "gmwm"]
 Triple = Sequence[float]
 
 class ThermonavError(ValueError):
