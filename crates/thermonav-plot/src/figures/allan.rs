@@ -40,6 +40,8 @@ pub struct ImpliedCurve {
     pub components: Vec<(String, Vec<f64>)>,
     /// The sum's deviation at each τ.
     pub total: Vec<f64>,
+    /// The shortest τ the model was fitted at, s (it is drawn from there on).
+    pub from_tau_s: f64,
 }
 
 impl ImpliedCurve {
@@ -80,6 +82,7 @@ impl ImpliedCurve {
             name: name.to_owned(),
             components,
             total,
+            from_tau_s: tau_s.first().copied().unwrap_or(0.0),
         }
     }
 }
@@ -278,7 +281,7 @@ fn model_layers(curve: &AllanCurve, shown: &impl Fn(f64) -> f64) -> Vec<Layer> {
             .tau_s
             .iter()
             .zip(values)
-            .filter(|(_, v)| v.is_finite() && **v >= floor)
+            .filter(|(t, v)| **t >= model.from_tau_s && v.is_finite() && **v >= floor)
             .map(|(&t, &v)| (t, shown(v)))
             .collect(),
         stroke,
@@ -378,12 +381,17 @@ pub fn allan_curves_of_entry(entry: &TemperatureEntry) -> Vec<AllanCurve> {
         .collect()
 }
 
-/// The implied curve of a channel's GMWM composite in the bank, at `tau_s`.
+/// The implied curve of a channel's GMWM composite in the bank, at `tau_s`, drawn from the
+/// first fitted scale on (Allan τ = m dt at wavelet scale 2m).
 fn implied_of_model(model: &ChannelModel, rate_hz: f64, tau_s: &[f64]) -> Option<ImpliedCurve> {
     let gmwm = model.gmwm.as_ref()?;
     let dt_s = 1.0 / rate_hz;
     let terms = terms_from_parameters(&gmwm.parameters, dt_s)?;
-    Some(ImpliedCurve::of(&gmwm.model, &terms, dt_s, tau_s))
+    let from_tau_s = gmwm.first_scale_s / 2.0;
+    Some(ImpliedCurve {
+        from_tau_s,
+        ..ImpliedCurve::of(&gmwm.model, &terms, dt_s, tau_s)
+    })
 }
 
 #[cfg(test)]

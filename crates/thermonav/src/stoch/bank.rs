@@ -135,6 +135,9 @@ pub struct GmwmSummary {
     pub objective: f64,
     /// Wavelet scales fitted.
     pub scales: usize,
+    /// The first scale fitted, s: later than the record's first when the shortest scales
+    /// follow a sensor's internal filter ([`crate::stoch::gmwm::fit_from_first_adequate_scale`]).
+    pub first_scale_s: f64,
     /// The averaging times the mapping onto the filter's states is made for, s.
     pub band_tau_s: [f64; 2],
     /// The filter's white-noise density from the composite (channel unit·√s): the white

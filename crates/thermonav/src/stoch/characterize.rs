@@ -33,8 +33,8 @@ use super::gauss_markov::{
     Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
 };
 use super::gmwm::{
-    ModelSpec, TauBand, auto_candidates, fit_gmwm, map_to_filter_states, physical_parameters,
-    rank_by_asymptotic_wic,
+    ModelSpec, TauBand, auto_candidates, fit_from_first_adequate_scale, map_to_filter_states,
+    physical_parameters,
 };
 use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
 use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
@@ -87,7 +87,7 @@ pub enum GmwmChoice {
     /// This one.
     Model(ModelSpec),
     /// The candidate of [`crate::stoch::gmwm::AUTO_CANDIDATES`] with the least asymptotic
-    /// WIC ([`rank_by_asymptotic_wic`]; no bootstrap).
+    /// WIC ([`crate::stoch::gmwm::rank_by_asymptotic_wic`]; no bootstrap).
     Auto,
 }
 
@@ -425,15 +425,11 @@ fn gmwm_summary(
     band: TauBand,
 ) -> Option<(GmwmSummary, GaussMarkovEstimate)> {
     let wv = from_allan_curve(allan, DEFAULT_CONFIDENCE)?;
-    let fit = match choice {
-        GmwmChoice::Model(spec) => fit_gmwm(&wv, spec).ok()?,
-        GmwmChoice::Auto => {
-            rank_by_asymptotic_wic(&wv, &auto_candidates())
-                .ok()?
-                .swap_remove(0)
-                .0
-        }
+    let candidates = match choice {
+        GmwmChoice::Model(spec) => vec![spec],
+        GmwmChoice::Auto => auto_candidates(),
     };
+    let (fit, skipped) = fit_from_first_adequate_scale(&wv, &candidates).ok()?;
     let spec = fit.model;
     let record_s = allan.n_samples as f64 * allan.tau0_s;
     let mapped = map_to_filter_states(&fit.terms, fit.dt_s, record_s, band);
@@ -446,6 +442,7 @@ fn gmwm_summary(
         parameters,
         objective: fit.objective,
         scales: fit.scale_samples.len(),
+        first_scale_s: wv.scale_s[skipped],
         band_tau_s: [band.shortest_s, band.longest_s],
         white_noise_density: mapped.white_noise_density,
         folds: mapped.folds,

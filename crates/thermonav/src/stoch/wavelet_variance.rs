@@ -67,6 +67,22 @@ pub struct WaveletVariance {
 }
 
 impl WaveletVariance {
+    /// The same wavelet variance without its first `skipped` scales (for a fit that leaves out
+    /// the scales a sensor's internal filter shapes).
+    pub fn without_first_scales(&self, skipped: usize) -> WaveletVariance {
+        let k = skipped.min(self.variance.len());
+        WaveletVariance {
+            scale_samples: self.scale_samples[k..].to_vec(),
+            scale_s: self.scale_s[k..].to_vec(),
+            variance: self.variance[k..].to_vec(),
+            n_coefficients: self.n_coefficients[k..].to_vec(),
+            edf: self.edf[k..].to_vec(),
+            ci_low: self.ci_low[k..].to_vec(),
+            ci_high: self.ci_high[k..].to_vec(),
+            ..self.clone()
+        }
+    }
+
     /// var(ν̂²_j) ≈ 2 ν̂⁴_j / η_j, unit of the data to the fourth power.
     pub fn estimate_variance(&self) -> Vec<f64> {
         self.variance

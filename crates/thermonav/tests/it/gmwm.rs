@@ -233,7 +233,7 @@ fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_
     use thermonav::sensor::adis16364_like;
     use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
     use thermonav::stoch::gmwm::{
-        TauBand, auto_candidates, map_to_filter_states, rank_by_asymptotic_wic,
+        TauBand, auto_candidates, fit_from_first_adequate_scale, map_to_filter_states,
     };
     let series = crate::streaming::chamber_record(3600.0);
     let (entry, _) = characterize(&series, 10.0, "sim", &CharacterizeSettings::default()).unwrap();
@@ -242,10 +242,9 @@ fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_
         let model = &entry.channels[&channel];
         let summary = model.gmwm.as_ref().expect("a GMWM summary");
         let wv = haar_wavelet_variance(series.channel(channel), 50.0, None, 0.95).unwrap();
-        let direct = rank_by_asymptotic_wic(&wv, &auto_candidates())
-            .unwrap()
-            .swap_remove(0)
-            .0;
+        let (direct, skipped) = fit_from_first_adequate_scale(&wv, &auto_candidates()).unwrap();
+        assert_eq!(skipped, 0, "no internal filter in the simulation");
+        assert_eq!(summary.first_scale_s, wv.scale_s[0]);
         assert_eq!(summary.model, direct.model.to_string());
         let record_s = series.len() as f64 / 50.0;
         let mapped = map_to_filter_states(&direct.terms, direct.dt_s, record_s, TauBand::default());
@@ -263,4 +262,45 @@ fn characterize_carries_the_composite_and_its_white_noise_matches_the_simulated_
         );
         assert!((ratio - 1.0).abs() < 0.05, "{}: {ratio}", channel.name());
     }
+}
+
+// A sensor's internal averaging: white noise (σ = 1 per sample) through a 4-sample moving
+// average, plus a Gauss-Markov process (Tc = 300 samples, s² = 0.01). The average has unit
+// gain at zero frequency, so the white-noise density beyond its memory is unchanged: N² = σ²
+// per sample (closed form). The first scales are below white noise in a shape no composite
+// has; the fit leaves them out, describes the rest, and the mapped density is within 3 % of
+// the truth (its sampling error on 2^20 samples is under 1 %), while a fit from the first
+// scale is rejected by its own objective.
+#[test]
+fn an_internal_moving_average_is_left_out_and_the_density_kept() {
+    use thermonav::stoch::gmwm::{
+        TauBand, auto_candidates, fit_from_first_adequate_scale, map_to_filter_states,
+    };
+    let n = 1 << 20;
+    let mut rng = named_rng(7, "gmwm-test/moving-average");
+    let white = simulate(&[Term::White { variance: 1.0 }], n + 3, &mut rng);
+    let slow = simulate(&[gm(300.0, 0.01)], n, &mut rng);
+    let y: Vec<f64> = (0..n)
+        .map(|t| white[t..t + 4].iter().sum::<f64>() / 4.0 + slow[t])
+        .collect();
+    let wv = haar_wavelet_variance(&y, 1.0, None, 0.95).unwrap();
+    let (fit, skipped) = fit_from_first_adequate_scale(&wv, &auto_candidates()).unwrap();
+    assert!(skipped >= 1, "the averaged scales are left out");
+    let mapped = map_to_filter_states(
+        &fit.terms,
+        1.0,
+        n as f64,
+        TauBand {
+            shortest_s: 16.0,
+            longest_s: 2000.0,
+        },
+    );
+    eprintln!(
+        "skipped {skipped} scales, {} objective {:.1} over {} scales, N {:.4}",
+        fit.model,
+        fit.objective,
+        fit.scale_samples.len(),
+        mapped.white_noise_density
+    );
+    assert!((mapped.white_noise_density - 1.0).abs() < 0.03);
 }

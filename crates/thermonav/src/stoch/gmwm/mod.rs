@@ -28,8 +28,9 @@ mod simulate;
 pub mod theory;
 
 pub use bootstrap::{
-    AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, ParameterEstimate, auto_candidates,
-    estimate_gmwm, rank_by_asymptotic_wic, select_model,
+    ADEQUACY_LEVEL, AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, MAX_SKIPPED_SCALES,
+    ParameterEstimate, auto_candidates, estimate_gmwm, fit_from_first_adequate_scale,
+    rank_by_asymptotic_wic, select_model,
 };
 pub use fit::{GmwmFit, fit_gmwm};
 pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
