@@ -89,6 +89,35 @@ fn sinh_minus_identity(a: f64) -> f64 {
 mod tests {
     use super::*;
 
+    // τ·ν²(τ) is non-decreasing in τ for white noise (constant), a random walk, a drift and a
+    // Gauss-Markov process of any Tc (a positively correlated process's block means
+    // decorrelate more slowly than white noise's), while quantisation noise's falls as 1/τ.
+    // This is what makes a rise-then-fall of τ·ν² faster than 1/τ impossible for any composite
+    // (`tests/it/gmwm.rs`, on the ADIS16405 accelerometers).
+    #[test]
+    fn tau_times_wavelet_variance_never_falls_except_for_quantisation() {
+        let scales: Vec<f64> = (1..40).map(|j| 2f64.powi(j)).collect();
+        for tc in [0.3, 1.0, 3.0, 100.0, 1e5, 1e12] {
+            let f: Vec<f64> = scales
+                .iter()
+                .map(|&t| t * gauss_markov(tc, 1.0, t))
+                .collect();
+            for k in 1..f.len() {
+                assert!(
+                    f[k] >= f[k - 1] * (1.0 - 1e-12),
+                    "Tc {tc}: at scale {}",
+                    scales[k]
+                );
+            }
+        }
+        for t in &scales[1..] {
+            assert!(t * random_walk(1.0, *t) >= (t / 2.0) * random_walk(1.0, t / 2.0));
+            assert!(t * drift(1.0, *t) >= (t / 2.0) * drift(1.0, t / 2.0));
+            let q = t * quantisation(1.0, *t) / ((t / 2.0) * quantisation(1.0, t / 2.0));
+            assert!((q - 0.5).abs() < 1e-15);
+        }
+    }
+
     /// The Haar MODWT filter of width `tau`: −1/τ on the older half, +1/τ on the recent half
     /// (index l = 0 is the most recent sample).
     fn haar(tau: usize) -> Vec<f64> {
