@@ -18,7 +18,7 @@ use thermonav::stoch::thermal::{
 };
 use thermonav::time::Timestamp;
 use thermonav_io::imu::channel_column_names;
-use thermonav_io::{SENSOR_TEMPERATURE_RANGE_C, Strictness, finite_json_pretty, read_imu_file};
+use thermonav_io::{Strictness, finite_json_pretty, read_imu_file};
 
 /// A static record to characterise: a canonical IMU CSV, or arrays already in memory.
 enum Record {
@@ -63,19 +63,6 @@ impl Record {
     }
 }
 
-/// `t` when it lies in the range a sensor is characterised in, else an error naming `source`
-/// (the CLI's wording).
-fn check_temperature(source: &str, t: f64) -> Result<f64, String> {
-    let [lo, hi] = SENSOR_TEMPERATURE_RANGE_C;
-    if (lo..=hi).contains(&t) {
-        Ok(t)
-    } else {
-        Err(format!(
-            "{source}: {t} °C is outside {lo}..{hi} °C, the range a MEMS sensor is characterised in"
-        ))
-    }
-}
-
 /// The temperature of a record: given, or the mean of its temp_c column.
 fn temperature_of(label: &str, series: &ImuSeries, given: Option<f64>) -> Result<f64, String> {
     if let Some(t) = given {
@@ -84,7 +71,7 @@ fn temperature_of(label: &str, series: &ImuSeries, given: Option<f64>) -> Result
     let mean = series.mean_temperature_c().ok_or_else(|| {
         format!("{label}: no temp_c column; give the temperature with temperatures_c")
     })?;
-    check_temperature(&format!("{label}: the mean of temp_c"), mean)
+    thermonav_io::check_characterization_temperature(&format!("{label}: the mean of temp_c"), mean)
 }
 
 /// A float64 column of a record's mapping.
@@ -172,7 +159,7 @@ fn given_temperatures(given: Option<Vec<f64>>, records: usize) -> Result<Vec<Opt
         ));
     }
     (given.iter())
-        .map(|&t| check_temperature("temperatures_c", t).map(Some))
+        .map(|&t| thermonav_io::check_characterization_temperature("temperatures_c", t).map(Some))
         .collect()
 }
 

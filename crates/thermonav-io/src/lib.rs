@@ -217,6 +217,19 @@ fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
 /// unit mistake (kelvin, tenths of a degree) or corrupt.
 pub const SENSOR_TEMPERATURE_RANGE_C: [f64; 2] = [-80.0, 150.0];
 
+/// `t` when it lies in [`SENSOR_TEMPERATURE_RANGE_C`], else the message naming where it came
+/// from (`source`): what `characterize` and the Python package say of a record's temperature.
+pub fn check_characterization_temperature(source: &str, t: f64) -> Result<f64, String> {
+    let [lo, hi] = SENSOR_TEMPERATURE_RANGE_C;
+    if (lo..=hi).contains(&t) {
+        Ok(t)
+    } else {
+        Err(format!(
+            "{source}: {t} °C is outside {lo}..{hi} °C, the range a MEMS sensor is characterised in"
+        ))
+    }
+}
+
 /// True for a temperature inside [`SENSOR_TEMPERATURE_RANGE_C`].
 pub(crate) fn is_sensor_temperature(temperature_c: f64) -> bool {
     let [low, high] = SENSOR_TEMPERATURE_RANGE_C;

@@ -11,10 +11,6 @@ use thermonav::sim::chamber::Site;
 use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser, GmwmChoice};
 use thermonav::stoch::gmwm::ModelSpec;
 
-/// Temperatures a record may be characterised at, °C: beyond the widest chamber ranges of
-/// MEMS data sheets (-55..+125 °C) with a margin; anything else is a typo or a unit mix-up.
-pub const TEMPERATURE_RANGE_C: (f64, f64) = (-80.0, 150.0);
-
 /// Which units of a lot a run characterises.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum UnitChoice {
@@ -139,16 +135,11 @@ fn chamber_site(args: &CharacterizeArgs) -> Result<Site, Failure> {
     })
 }
 
-/// `t` when it lies in [`TEMPERATURE_RANGE_C`], else an error naming where it came from.
+/// `t` when it lies in the sensor temperature range, else a usage error naming where it came
+/// from.
 pub fn check_temperature(source: &str, t: f64) -> Result<f64, Failure> {
-    let (lo, hi) = TEMPERATURE_RANGE_C;
-    if (lo..=hi).contains(&t) {
-        Ok(t)
-    } else {
-        Err(Failure::Usage(anyhow!(
-            "{source}: {t} °C is outside {lo}..{hi} °C, the range a MEMS sensor is characterised in"
-        )))
-    }
+    thermonav_io::check_characterization_temperature(source, t)
+        .map_err(|message| Failure::Usage(anyhow!(message)))
 }
 
 fn unit_choice(args: &CharacterizeArgs) -> UnitChoice {

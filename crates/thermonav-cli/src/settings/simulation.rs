@@ -82,7 +82,7 @@ fn ramp(text: &str) -> Result<Ramp, Failure> {
 }
 
 fn ramp_within_range(start_c: f64, end_c: f64, rate_c_per_min: f64) -> Result<Ramp, String> {
-    let (low, high) = super::characterization::TEMPERATURE_RANGE_C;
+    let [low, high] = thermonav_io::SENSOR_TEMPERATURE_RANGE_C;
     if [start_c, end_c].iter().any(|t| !(low..=high).contains(t)) {
         return Err(format!("the ends must lie within {low}..{high} °C"));
     }
