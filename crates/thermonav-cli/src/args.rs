@@ -249,8 +249,8 @@ pub struct IntegrateArgs {
     /// The filter.
     #[arg(long, value_enum, default_value_t = FilterArg::Ekf)]
     pub filter: FilterArg,
-    /// GNSS outages: START+DURATION[,START+DURATION...] or every:FIRST,DURATION,PERIOD,COUNT
-    /// (seconds on the files' t_s scale).
+    /// GNSS outages: START+DURATION[,START+DURATION...], every:FIRST,DURATION,PERIOD,COUNT or
+    /// spread:COUNT,DURATION (seconds on the files' t_s scale).
     #[arg(long, default_value = "none")]
     pub outages: OutageSpec,
     /// Primary antenna relative to the IMU in body axes (forward,right,down), m.

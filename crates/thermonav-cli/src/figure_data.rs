@@ -122,18 +122,35 @@ fn is_innovation_row(fields: &[&str]) -> bool {
 }
 
 /// The first outage's errors of every model of `filter`, from their CSVs.
-pub fn outage_errors(models: &[Value], filter: &str) -> Result<Vec<ModelErrors>, Failure> {
+pub fn outage_errors(
+    models: &[Value],
+    filter: &str,
+    evaluation_dir: &Path,
+) -> Result<Vec<ModelErrors>, Failure> {
     let mut out = Vec::new();
     for m in models.iter().filter(|m| text(m, "filter") == filter) {
-        let Some(path) = m.get("errors_csv").and_then(Value::as_str) else {
+        let Some(stored) = m.get("errors_csv").and_then(Value::as_str) else {
             continue;
         };
-        let csv = std::fs::read_to_string(path)
-            .map_err(|e| anyhow!("{path}: cannot read: {e}"))
+        let path = errors_csv_path(evaluation_dir, Path::new(stored));
+        let csv = std::fs::read_to_string(&path)
+            .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))
             .data()?;
         out.push(model_errors(text(m, "label"), &first_outage_rows(&csv)));
     }
     Ok(out)
+}
+
+/// Where a model's errors CSV is: in `errors/` next to the evaluation.json that names it
+/// (the stored path is relative to the folder `evaluate` ran in), else the stored path.
+pub fn errors_csv_path(evaluation_dir: &Path, stored: &Path) -> std::path::PathBuf {
+    let beside = stored
+        .file_name()
+        .map(|name| evaluation_dir.join("errors").join(name));
+    match beside {
+        Some(path) if path.is_file() => path,
+        _ => stored.to_path_buf(),
+    }
 }
 
 /// The rows of an errors CSV in the first outage, as numbers (complete rows only).

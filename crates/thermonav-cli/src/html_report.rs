@@ -207,7 +207,11 @@ fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
     let mut blocks = Vec::new();
     blocks.extend(survey_figure(dir, &outages_of(e))?);
     if let Some(filter) = filters.first() {
-        blocks.extend(first_outage_figure(models, filter)?);
+        blocks.extend(first_outage_figure(
+            models,
+            filter,
+            &dir.join("evaluation"),
+        )?);
     }
     blocks.extend(rms_figures(models, &filters));
     blocks.extend(innovations_block(dir)?);
@@ -262,8 +266,12 @@ fn survey_figure(dir: &Path, outages: &[(f64, f64)]) -> Result<Option<Block>, Fa
 }
 
 /// The INS-only errors of every model in the first outage with `filter`, when there are any.
-fn first_outage_figure(models: &[Value], filter: &str) -> Result<Option<Block>, Failure> {
-    let errors = outage_errors(models, filter)?;
+fn first_outage_figure(
+    models: &[Value],
+    filter: &str,
+    evaluation_dir: &Path,
+) -> Result<Option<Block>, Failure> {
+    let errors = outage_errors(models, filter, evaluation_dir)?;
     if errors.is_empty() {
         return Ok(None);
     }

@@ -14,7 +14,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::Channel;
-use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, SelectedModel, Selection};
+use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection};
 use thermonav::stoch::thermal::SensorDevices;
 use thermonav_io::noise_export::{
     ExportOptions, ImuNoise, NoiseExportError, NoiseExportSummary, NoiseFormat, noise_config_text,
@@ -251,12 +251,49 @@ fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
     if args.json {
         return print_json(&doc);
     }
-    println!("model for {t} °C ({selection:?}, {source:?}):");
-    for (name, m) in &doc.channels {
-        println!(
-            "{name:<4} Tc {:>10.2} s  sigma {:>12.4e}  from {:?}",
-            m.correlation_time_s, m.sigma, m.placement
-        );
-    }
+    print_selection(&doc);
     Ok(())
+}
+
+/// The selected models as a table: one row per channel, Tc in s, sigma in the channel's unit
+/// and the bank entries each came from.
+fn print_selection(doc: &SelectionJson) {
+    let (selection, model) = (serde_name(&doc.selection), serde_name(&doc.model));
+    let t = doc.operating_temperature_c;
+    println!("model for {t} °C (selection {selection}, model {model}):");
+    let rows: Vec<(&str, String)> = doc.channels.iter().map(selected_row).collect();
+    print_rows(&rows);
+}
+
+fn selected_row((name, m): (&&'static str, &SelectedModel)) -> (&'static str, String) {
+    let tc_s = m.correlation_time_s;
+    let text = format!(
+        "tc_s {tc_s:>10.2}  sigma {:>12.4e}  {}",
+        m.sigma,
+        placement_text(&m.placement)
+    );
+    (name, text)
+}
+
+/// Where a selected model came from, in words with its temperatures in °C.
+fn placement_text(placement: &Placement) -> String {
+    match *placement {
+        Placement::Entry { temperature_c } => format!("entry at {temperature_c} °C"),
+        Placement::Between {
+            lower_c,
+            upper_c,
+            weight,
+        } => {
+            format!("between {lower_c} and {upper_c} °C (weight {weight:.3} on {upper_c} °C)")
+        }
+        Placement::Clamped { temperature_c } => format!("held at the end entry {temperature_c} °C"),
+    }
+}
+
+/// The name a value has in the JSON output (its serde name).
+fn serde_name(value: &impl Serialize) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(name)) => name,
+        _ => String::new(),
+    }
 }

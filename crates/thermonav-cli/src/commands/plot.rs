@@ -8,7 +8,7 @@ use anyhow::anyhow;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::io::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
 use thermonav::nav::outage::Outages;
@@ -504,12 +504,20 @@ fn models_of(json: &serde_json::Value) -> Vec<serde_json::Value> {
 fn outage_errors_svg(args: &PlotArgs) -> Result<String, Failure> {
     let (json, filters) = evaluation(args)?;
     let filter = chosen_filter(args.filter.as_ref(), &filters)?;
-    let errors = outage_errors(&models_of(&json), &filter)?;
+    let errors = outage_errors(&models_of(&json), &filter, &folder_of(&args.input))?;
     let title = format!(
         "INS-only errors in the first outage ({})",
         filter.to_uppercase()
     );
     Ok(outage_errors_figure(&title_or(args, title), &errors, None))
+}
+
+/// The folder a file is in (`.` for a bare file name).
+fn folder_of(file: &Path) -> PathBuf {
+    match file.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
 }
 
 /// `--filter`, which must be one of the report's, or the report's primary filter.

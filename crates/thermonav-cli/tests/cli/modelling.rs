@@ -124,6 +124,30 @@ fn characterize_then_select_by_linear_interpolation() {
         tc(1)
     );
     assert_eq!(full["version"], 2);
+    // Issue 16: the same selection as text is a table, not Rust debug text: each channel's
+    // row names its Tc in s and the two entries it lies between, with the weight ½.
+    let mid_text = mid.to_string();
+    let text_args = ["bank", "show", arg(&bank), "--at-temperature-c", &mid_text];
+    let (status, stdout, stderr) = outcome(&thermonav(
+        &[
+            &text_args[..],
+            &["--method", "linear", "--model", "ar-based"],
+        ]
+        .concat(),
+    ));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(
+        stdout.contains("selection linear, model ar_based"),
+        "{stdout}"
+    );
+    for debug_text in ["Between {", "ArBased", "Linear", "lower_c"] {
+        assert!(!stdout.contains(debug_text), "{debug_text} in {stdout}");
+    }
+    let gx = stdout.lines().find(|l| l.starts_with("gx ")).unwrap();
+    assert!(
+        gx.contains("tc_s") && gx.contains("between") && gx.contains("(weight 0.500 on"),
+        "{gx}"
+    );
 }
 
 #[test]

@@ -719,3 +719,46 @@ fn integrate_smooth_writes_a_smoothed_solution_closer_to_the_truth() {
     );
     assert!(!ukf.exists());
 }
+
+// Issue 16: `plot outage-errors` on an evaluation.json in another folder finds the errors
+// CSVs beside the JSON, not relative to the folder it runs in: evaluate runs in `dir` with a
+// relative `--out ev` (so the report names `ev/errors/...`), plot runs in `dir/elsewhere`.
+#[test]
+fn plot_outage_errors_finds_the_errors_beside_the_evaluation() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let extra = ["--no-heading", "--outages", "60+30"];
+    let args = evaluate_args(&vessel, &bank, Path::new("ev"), &extra);
+    let run_in = |cwd: &Path, args: &[String]| {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_thermonav"))
+            .args(args)
+            .current_dir(cwd)
+            .output()
+            .unwrap();
+        outcome(&output)
+    };
+    let (status, stdout, stderr) = run_in(dir.path(), &args);
+    assert_eq!(status, 0, "{stdout}{stderr}");
+    let elsewhere = dir.path().join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let report = dir.path().join("ev/evaluation.json");
+    let plot = ["plot", "outage-errors", arg(&report), "--out", "errors.svg"].map(String::from);
+    let (status, stdout, stderr) = run_in(&elsewhere, &plot);
+    assert_eq!(status, 0, "{stdout}{stderr}");
+    let svg = std::fs::read_to_string(elsewhere.join("errors.svg")).unwrap();
+    assert!(svg.contains("<polyline") || svg.contains("<path"), "{svg}");
+}
+
+// Issue 16: `integrate --help` names every outage form `integrate` accepts, spread: too.
+#[test]
+fn integrate_help_names_the_spread_outages() {
+    let (status, stdout, _) = outcome(&thermonav(&["integrate", "--help"]));
+    assert_eq!(status, 0);
+    for form in [
+        "START+DURATION",
+        "every:FIRST,DURATION,PERIOD,COUNT",
+        "spread:COUNT,DURATION",
+    ] {
+        assert!(stdout.contains(form), "{form} in {stdout}");
+    }
+}
