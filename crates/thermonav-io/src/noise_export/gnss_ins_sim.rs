@@ -12,10 +12,11 @@
 //! calibration, not the noise model, holds a unit's bias).
 
 use super::{
-    ExportOptions, GaussMarkov, ImuNoise, NoiseExportError, NoiseFormat, Term, commented,
-    finite_axes, provenance, vector_text,
+    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, commented, finite_axes,
+    provenance, vector_text,
 };
 use thermonav::imu::Sensor;
+use thermonav::nav::sensor_model::GaussMarkovParameters;
 use thermonav::units::{
     arw_rad_per_sqrt_s_to_deg_per_sqrt_h, rad_per_s_to_deg_per_h,
     vrw_m_per_s_per_sqrt_s_to_m_per_s_per_sqrt_h,
@@ -28,8 +29,8 @@ use thermonav::units::{
 pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseExportError> {
     let gyro = noise.gauss_markov_axes(Sensor::Gyro)?;
     let accel = noise.gauss_markov_axes(Sensor::Accelerometer)?;
-    let sigma = |gm: [GaussMarkov; 3]| gm.map(|m| m.sigma);
-    let tc = |gm: [GaussMarkov; 3]| gm.map(|m| m.correlation_time_s);
+    let sigma = |gm: [GaussMarkovParameters; 3]| gm.map(|m| m.sigma);
+    let tc = |gm: [GaussMarkovParameters; 3]| gm.map(|m| m.correlation_time_s);
     let entries = [
         (
             "gyro_b",

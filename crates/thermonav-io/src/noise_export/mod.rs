@@ -43,7 +43,7 @@ pub mod px4_ekf2;
 pub mod ros_imu;
 mod selection;
 
-pub use selection::{ChannelNoise, GaussMarkov, ImuNoise, Term, sensor_channels};
+pub use selection::{ChannelNoise, ImuNoise, Term, sensor_channels};
 
 use crate::atomic::write_atomically;
 use crate::error::WriteError;

@@ -11,6 +11,7 @@
 use super::NoiseExportError;
 use std::collections::BTreeMap;
 use thermonav::imu::{Channel, Sensor};
+use thermonav::nav::sensor_model::GaussMarkovParameters;
 use thermonav::stoch::bank::{
     BankError, GaussMarkovSource, ModelBank, Placement, Selection, TemperatureEntry,
 };
@@ -55,15 +56,6 @@ impl Term {
     }
 }
 
-/// A first-order Gauss-Markov bias: x_k = exp(−dt/Tc) x_{k−1} + w_k, stationary σ.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GaussMarkov {
-    /// Correlation time Tc, s.
-    pub correlation_time_s: f64,
-    /// Stationary standard deviation σ, channel unit (rad/s or m/s²).
-    pub sigma: f64,
-}
-
 /// One channel's quantities at the operating temperature, SI; absent ones with the reason.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ChannelNoise {
@@ -76,7 +68,7 @@ pub struct ChannelNoise {
     /// The largest K the curve allows ([`Term::RateRandomWalkAtMost`]), same unit.
     pub rate_random_walk_at_most: Option<f64>,
     /// The Gauss-Markov model of the chosen family.
-    pub gauss_markov: Option<GaussMarkov>,
+    pub gauss_markov: Option<GaussMarkovParameters>,
     /// Why a quantity is absent.
     pub absent: BTreeMap<Term, String>,
 }
@@ -151,7 +143,10 @@ impl ImuNoise {
     ///
     /// # Errors
     /// [`NoiseExportError::MissingTerm`].
-    pub fn gauss_markov(&self, channel: Channel) -> Result<GaussMarkov, NoiseExportError> {
+    pub fn gauss_markov(
+        &self,
+        channel: Channel,
+    ) -> Result<GaussMarkovParameters, NoiseExportError> {
         self.channels[&channel]
             .gauss_markov
             .ok_or_else(|| self.missing(channel, Term::GaussMarkov))
@@ -174,7 +169,10 @@ impl ImuNoise {
     ///
     /// # Errors
     /// As [`ImuNoise::gauss_markov`].
-    pub fn gauss_markov_axes(&self, sensor: Sensor) -> Result<[GaussMarkov; 3], NoiseExportError> {
+    pub fn gauss_markov_axes(
+        &self,
+        sensor: Sensor,
+    ) -> Result<[GaussMarkovParameters; 3], NoiseExportError> {
         let [x, y, z] = sensor_channels(sensor);
         Ok([
             self.gauss_markov(x)?,
@@ -260,7 +258,7 @@ fn channel_noise(
     };
     match bank.select(temperature_c, channel, source, selection) {
         Ok(m) => {
-            noise.gauss_markov = Some(GaussMarkov {
+            noise.gauss_markov = Some(GaussMarkovParameters {
                 correlation_time_s: m.correlation_time_s,
                 sigma: m.sigma,
             });
