@@ -54,7 +54,7 @@ impl ImpliedCurve {
                 .collect::<Vec<f64>>()
         };
         let mut gm = 0;
-        let components = terms
+        let components: Vec<(String, Vec<f64>)> = terms
             .iter()
             .map(|term| {
                 let label = match term {
@@ -67,13 +67,11 @@ impl ImpliedCurve {
                 (label, deviation(term))
             })
             .collect();
-        let total = tau_s
-            .iter()
-            .map(|&t| {
-                let m = t / dt_s;
-                terms
+        let total = (0..tau_s.len())
+            .map(|i| {
+                components
                     .iter()
-                    .map(|k| k.allan_variance(m))
+                    .map(|(_, d)| d[i] * d[i])
                     .sum::<f64>()
                     .sqrt()
             })
