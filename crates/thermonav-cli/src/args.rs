@@ -277,6 +277,11 @@ pub struct IntegrateArgs {
     /// update.
     #[arg(long, default_value_t = engine().gate_probability.unwrap_or(1.0))]
     pub gate_probability: f64,
+    /// The gate's quantile is widened by the median NIS of this many recent updates of the same
+    /// kind over its expected median (at most 100x), so that a run of fixes whose stated noise
+    /// is too small is not thrown away while isolated outliers still are; 0 keeps the plain gate.
+    #[arg(long, default_value_t = engine().gate_window)]
+    pub gate_window: usize,
     /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none): one
     /// value for all three axes, or north,east,down.
     #[arg(long, value_delimiter = ',', default_values_t = engine().velocity_sd_m_s)]

@@ -80,8 +80,7 @@ fn component(rows: &[Vec<&str>], t0: f64, kind: &str, k: usize, name: &str) -> I
 }
 
 /// Header of the innovations CSV that `integrate` writes.
-const INNOVATIONS_HEADER: &str =
-    "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
+const INNOVATIONS_HEADER: &str = "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,gate_scale,accepted,forced";
 
 /// The rows of an innovations CSV split into fields, each checked: the header, then `t_s`,
 /// kind, unit, finite numbers, and 0 or 1 for `accepted` and `forced`; the error names the line.

@@ -135,9 +135,10 @@ pub fn write_solution_states_file(
 }
 
 /// Writes every measurement update of a run:
-/// `t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced`,
+/// `t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,gate_scale,accepted,forced`,
 /// components north/east/down for position (m) and velocity (m/s), the first alone for
-/// heading (deg); `sd_k` are square roots of the innovation covariance's diagonal.
+/// heading (deg); `sd_k` are square roots of the innovation covariance's diagonal;
+/// `gate_scale` the factor the gate's quantile was widened by (1 = the plain gate).
 ///
 /// # Errors
 /// [`WriteError::Io`].
@@ -148,7 +149,7 @@ pub fn write_innovations(
     use thermonav::nav::measurement::MeasurementKind;
     writeln!(
         out,
-        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced"
+        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,gate_scale,accepted,forced"
     )?;
     for r in records {
         let (unit, factor) = match r.kind {
@@ -163,7 +164,7 @@ pub fn write_innovations(
             .iter()
             .chain(&r.sd)
             .map(|v| v * factor)
-            .chain([r.nis])
+            .chain([r.nis, r.gate_scale])
         {
             out.write_all(b",")?;
             write_finite(&mut out, value)?;

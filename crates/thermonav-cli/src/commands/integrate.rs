@@ -34,6 +34,34 @@ fn summary_rows(s: &Summary) -> Vec<Row> {
     rows
 }
 
+/// Where the initial state came from, in words, with the course baseline when there is one.
+fn initial_state_text(s: &RunReport) -> String {
+    let source = serde_json::to_value(s.initial).map_or_else(|_| String::new(), |v| v.to_string());
+    let source = source.trim_matches('"').replace('_', " ");
+    match &s.course_baseline {
+        Some(c) => format!(
+            "{source} along {:.2} m in {:.2} s ({} fixes, course sd {:.2} deg)",
+            c.distance_m,
+            c.duration_s,
+            c.fixes,
+            c.course_sd_rad.to_degrees()
+        ),
+        None => source,
+    }
+}
+
+/// The initial bias sds and their source, in words.
+fn initial_bias_text(s: &RunReport) -> String {
+    let b = &s.initial_bias_sd;
+    let source = serde_json::to_value(b.source).map_or_else(|_| String::new(), |v| v.to_string());
+    let [g, a] =
+        [b.gyro_deg_h, b.accel_mg].map(|v| format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2]));
+    format!(
+        "gyro {g} deg/h, accel {a} mg ({})",
+        source.trim_matches('"').replace('_', " ")
+    )
+}
+
 fn run_rows(s: &RunReport) -> Vec<Row> {
     let m = &s.model;
     vec![
@@ -45,7 +73,8 @@ fn run_rows(s: &RunReport) -> Vec<Row> {
                 m.gauss_markov_source, m.temperature_c, m.selection
             ),
         ),
-        ("initial state", format!("{:?}", s.initial)),
+        ("initial state", initial_state_text(s)),
+        ("initial bias sd", initial_bias_text(s)),
         ("outages", s.outages.len().to_string()),
         ("IMU samples", s.imu_samples.to_string()),
         ("duration", format!("{:.1} s", s.duration_s)),

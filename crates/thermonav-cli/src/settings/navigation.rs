@@ -218,6 +218,7 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         filter: args.filter.into(),
         covariance_interval_s: 1.0 / rate("--covariance-rate-hz", args.covariance_rate_hz)?,
         gate_probability: gate_of(args.gate_probability)?,
+        gate_window: args.gate_window,
         velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
         output_interval_s: 1.0 / rate("--output-rate-hz", args.output_rate_hz)?,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,

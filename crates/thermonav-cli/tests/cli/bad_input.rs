@@ -662,9 +662,8 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
         }
     }
     let innovations = "plot innovations @ --out @out.svg";
-    let header =
-        "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,accepted,forced";
-    let row = "1.000000000,position,m,0.1,0.2,0.3,1,1,1,0.14,1,0";
+    let header = "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,gate_scale,accepted,forced";
+    let row = "1.000000000,position,m,0.1,0.2,0.3,1,1,1,0.14,1,1,0";
     for spoiled in [
         Spoiled::new(
             "empty",
@@ -684,7 +683,7 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
         ),
         Spoiled::new(
             "no accepted update",
-            format!("{header}\n{}\n", row.replace(",1,0", ",0,0")),
+            format!("{header}\n{}\n", row.replace(",0.14,1,1,0", ",0.14,1,0,0")),
             &["in.csv".into(), "no accepted update".into()],
         ),
     ] {

@@ -11,15 +11,47 @@ use super::error_state::{Estimate, SensorCorrection};
 use super::measurement::AntennaGeometry;
 use crate::frames::{Body, Rotation, Vector};
 use crate::geo::position::Geodetic;
-use crate::gnss::GnssFix;
+use crate::gnss::{GnssFix, HeadingObservation};
 use crate::ins::error_model::{STATES, SystemMatrix, block};
 use crate::ins::state::{Increment, NavState};
 use crate::time::Duration;
 use serde::Serialize;
 
-/// Slowest course over ground trusted for the initial heading, m/s (at 1 m/s and 1 Hz a 1 cm
-/// position noise is already 0.6° of course).
-pub const MIN_COURSE_SPEED_M_S: f64 = 1.0;
+/// Shortest course baseline, m: the distance the vehicle must cover in a straight line before
+/// its course is taken for the initial heading.
+pub const MIN_COURSE_BASELINE_M: f64 = 2.0;
+
+/// A course baseline is also at least this many horizontal position standard deviations long:
+/// the course of two fixes σ apart in each axis and d apart errs by about √2·σ/d rad, so 16 σ
+/// keeps it near 5°, the initial heading uncertainty of [`InitialUncertainty::default`].
+pub const COURSE_BASELINE_IN_SD: f64 = 16.0;
+
+/// Longest time a course baseline may span, s: slower than that, the vehicle is waited for.
+pub const MAX_COURSE_BASELINE_S: f64 = 20.0;
+
+/// Fewest fixes on a course baseline: with three or more, a fix that is off (a multipath jump, a
+/// wrong RTK fix) stands out as a residual from the straight line through the others.
+pub const MIN_COURSE_FIXES: usize = 3;
+
+/// Horizontal position standard deviation assumed for a fix that states none, m (code GNSS).
+pub const UNSTATED_POSITION_SD_M: f64 = 1.0;
+
+/// The straight, evenly driven stretch of fixes the initial course was taken from.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CourseBaseline {
+    /// Distance from the first fix to the last, horizontal, m.
+    pub distance_m: f64,
+    /// Time from the first fix to the last, s.
+    pub duration_s: f64,
+    /// Fixes on it.
+    pub fixes: usize,
+    /// Standard deviation of the fitted course, rad (from the stated position noise).
+    pub course_sd_rad: f64,
+    /// Largest horizontal distance of a fix from the fitted constant-velocity line, m.
+    pub largest_residual_m: f64,
+    /// Mean velocity over it, north/east/down, m/s.
+    pub velocity_ned_m_s: [f64; 3],
+}
 
 /// Roll and pitch (rad) from a mean specific force in body axes (m/s²).
 pub fn level(mean_specific_force_b: [f64; 3]) -> (f64, f64) {
@@ -28,13 +60,13 @@ pub fn level(mean_specific_force_b: [f64; 3]) -> (f64, f64) {
 }
 
 /// Where the initial heading came from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum HeadingSource {
     /// The first fix's dual-antenna heading.
     DualAntenna,
-    /// The course over ground between the first two fixes.
-    Course,
+    /// The course over ground along a straight baseline of fixes.
+    Course(CourseBaseline),
 }
 
 /// Why the alignment failed.
@@ -60,9 +92,9 @@ pub enum AlignmentError {
     /// No IMU data in the levelling span.
     #[error("no IMU sample in the {0} s after the first GNSS fix to level with")]
     NoImu(f64),
-    /// Neither a dual-antenna heading nor enough speed for a course.
+    /// Neither a dual-antenna heading nor a straight baseline for a course.
     #[error(
-        "no initial heading: no fix during the IMU record has a dual-antenna heading, and the vehicle never reaches 1 m/s between fixes (fastest {speed_m_s:.2} m/s)"
+        "no initial heading: no fix during the IMU record has a dual-antenna heading, and the fixes never cover a straight baseline for the course ({MIN_COURSE_BASELINE_M} m and {COURSE_BASELINE_IN_SD} position sds or more, within {MAX_COURSE_BASELINE_S} s, {MIN_COURSE_FIXES} fixes or more, each close to the line through them); fastest speed between fixes {speed_m_s:.2} m/s"
     )]
     NoHeading {
         /// Largest speed between consecutive fixes.
@@ -97,11 +129,11 @@ fn geodetic(fix: &GnssFix) -> Geodetic {
     }
 }
 
-/// Aligns at the first GNSS fix during the IMU record that has a dual-antenna heading or is
-/// followed by a move of at least [`MIN_COURSE_SPEED_M_S`] (a vehicle parked at the start is
+/// Aligns at the first GNSS fix during the IMU record that has a dual-antenna heading or that
+/// starts a straight course baseline ([`course_baseline`]; a vehicle parked at the start is
 /// waited for): attitude levelled from the IMU samples in `levelling_s` after it, heading
-/// from its dual-antenna heading or the course to the next fix, velocity from its velocity or
-/// that course, position at the IMU (the antenna position less the lever arm).
+/// from its dual-antenna heading or the baseline's course, velocity from its velocity or the
+/// baseline's mean velocity, position at the IMU (the antenna position less the lever arm).
 ///
 /// # Errors
 /// [`AlignmentError`] when the data cannot give one of these.
@@ -137,13 +169,16 @@ pub fn align_from_gnss(
         let c = course_of(w);
         c.x().hypot(c.y())
     };
-    let Some(pair) = usable
-        .iter()
-        .find(|w| w[0].heading.is_some() || speed(w) >= MIN_COURSE_SPEED_M_S)
-    else {
+    let starts = gnss.len() - usable.len() - 1;
+    let found = (starts..gnss.len()).find_map(|i| match gnss[i].heading {
+        Some(h) => Some((i, HeadingFrom::Antenna(h))),
+        None => course_baseline(&gnss[i..]).map(|c| (i, HeadingFrom::Course(c))),
+    });
+    let Some((index, heading_from)) = found else {
         let fastest = usable.iter().map(|w| speed(w)).fold(0.0, f64::max);
         return Err(AlignmentError::NoHeading { speed_m_s: fastest });
     };
+    let pair = &gnss[index..(index + 2).min(gnss.len())];
     let first = &pair[0];
     let span: Vec<_> = imu
         .iter()
@@ -159,13 +194,24 @@ pub fn align_from_gnss(
         .scale(1.0 / total_dt.as_seconds());
     let (roll, pitch) = level(mean_force.to_array());
     let p0 = geodetic(first);
-    let course = course_of(pair);
-    let (yaw, heading_source) = match first.heading {
-        Some(h) => {
+    let (yaw, heading_source, course) = match heading_from {
+        HeadingFrom::Antenna(h) => {
             let b = geometry.baseline_body;
-            (h.heading_rad - b[1].atan2(b[0]), HeadingSource::DualAntenna)
+            let course = match pair.len() {
+                2 => course_of(pair),
+                _ => Vector::zeros(),
+            };
+            (
+                h.heading_rad - b[1].atan2(b[0]),
+                HeadingSource::DualAntenna,
+                course,
+            )
         }
-        None => (course.y().atan2(course.x()), HeadingSource::Course),
+        HeadingFrom::Course(c) => {
+            let [vn, ve, _] = c.velocity_ned_m_s;
+            let velocity = Vector::from_array(c.velocity_ned_m_s);
+            (ve.atan2(vn), HeadingSource::Course(c), velocity)
+        }
     };
     let attitude = Rotation::from_euler_zyx(roll, pitch, yaw);
     let lever = attitude * Vector::<Body>::from_array(geometry.lever_arm_body_m);
@@ -184,6 +230,96 @@ pub fn align_from_gnss(
     })
 }
 
+/// What the initial heading is taken from at the alignment fix.
+enum HeadingFrom {
+    Antenna(HeadingObservation),
+    Course(CourseBaseline),
+}
+
+/// The course baseline that starts at `fixes[0]`, if there is one: the first fixes up to the
+/// first one at least [`MIN_COURSE_BASELINE_M`] and [`COURSE_BASELINE_IN_SD`] horizontal
+/// position sds away (at least [`MIN_COURSE_FIXES`] fixes, within [`MAX_COURSE_BASELINE_S`]),
+/// fitted by least squares with a constant velocity; `None` when the stretch is too slow, too
+/// short in fixes, or bent or broken: a fix farther from the fitted line than 4 sds or 5 % of
+/// the baseline (a turn of radius R bows a chord d by d²/8R: 5 % is a radius of 2.5 d).
+pub fn course_baseline(fixes: &[GnssFix]) -> Option<CourseBaseline> {
+    let first = fixes.first()?;
+    let sd = horizontal_sd_m(first);
+    let needed = MIN_COURSE_BASELINE_M.max(COURSE_BASELINE_IN_SD * sd);
+    let origin = geodetic(first);
+    let mut points = Vec::new();
+    for fix in fixes {
+        let t = fix.time.since(first.time).as_seconds();
+        if t > MAX_COURSE_BASELINE_S {
+            return None;
+        }
+        let offset = geodetic(fix).ned_from(&origin).to_array();
+        points.push((t, offset));
+        let distance = offset[0].hypot(offset[1]);
+        if distance >= needed {
+            if points.len() < MIN_COURSE_FIXES {
+                return None;
+            }
+            return straight_line_course(&points, distance, sd);
+        }
+    }
+    None
+}
+
+/// The larger of a fix's stated north and east sds, or [`UNSTATED_POSITION_SD_M`].
+fn horizontal_sd_m(fix: &GnssFix) -> f64 {
+    fix.position_sd_ned_m
+        .map(|[n, e, _]| n.max(e))
+        .filter(|sd| sd.is_finite() && *sd > 0.0)
+        .unwrap_or(UNSTATED_POSITION_SD_M)
+}
+
+/// The constant-velocity least-squares line through `(t, NED offset)` points, as a
+/// baseline, or `None` when a point is off it (see [`course_baseline`]).
+fn straight_line_course(
+    points: &[(f64, [f64; 3])],
+    distance_m: f64,
+    sd_m: f64,
+) -> Option<CourseBaseline> {
+    let n = points.len() as f64;
+    let t_mean = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let spread: f64 = points.iter().map(|p| (p.0 - t_mean).powi(2)).sum();
+    let fit = |axis: usize| {
+        let mean = points.iter().map(|p| p.1[axis]).sum::<f64>() / n;
+        let slope = points
+            .iter()
+            .map(|p| (p.0 - t_mean) * (p.1[axis] - mean))
+            .sum::<f64>()
+            / spread;
+        (mean - slope * t_mean, slope)
+    };
+    let lines = [fit(0), fit(1), fit(2)];
+    let largest_residual_m = points
+        .iter()
+        .map(|(t, p)| {
+            let off = |axis: usize| p[axis] - (lines[axis].0 + lines[axis].1 * t);
+            off(0).hypot(off(1))
+        })
+        .fold(0.0, f64::max);
+    if largest_residual_m > (4.0 * sd_m).max(0.05 * distance_m) {
+        return None;
+    }
+    let velocity_ned_m_s = [lines[0].1, lines[1].1, lines[2].1];
+    let speed = velocity_ned_m_s[0].hypot(velocity_ned_m_s[1]);
+    let course_sd_rad = sd_m / spread.sqrt() / speed;
+    if !course_sd_rad.is_finite() {
+        return None;
+    }
+    Some(CourseBaseline {
+        distance_m,
+        duration_s: points.last()?.0,
+        fixes: points.len(),
+        course_sd_rad,
+        largest_residual_m,
+        velocity_ned_m_s,
+    })
+}
+
 /// Initial standard deviations of the 21 error states.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct InitialUncertainty {
@@ -193,10 +329,10 @@ pub struct InitialUncertainty {
     pub velocity_sd_m_s: [f64; 3],
     /// Attitude error about north/east/down (≈ roll, pitch, heading when level), rad.
     pub attitude_sd_rad: [f64; 3],
-    /// Gyro bias, rad/s (turn-on bias: not in a static model bank).
-    pub gyro_bias_sd_rad_s: f64,
-    /// Accelerometer bias, m/s².
-    pub accel_bias_sd_m_s2: f64,
+    /// Gyro bias x, y, z, rad/s (the turn-on bias: see [`InitialBiasSource`]).
+    pub gyro_bias_sd_rad_s: [f64; 3],
+    /// Accelerometer bias x, y, z, m/s².
+    pub accel_bias_sd_m_s2: [f64; 3],
     /// Gyro scale-factor error (dimensionless).
     pub gyro_scale_sd: f64,
     /// Accelerometer scale-factor error (dimensionless).
@@ -212,8 +348,8 @@ impl Default for InitialUncertainty {
             position_sd_m: [2.0, 2.0, 3.0],
             velocity_sd_m_s: [0.5; 3],
             attitude_sd_rad: [2f64.to_radians(), 2f64.to_radians(), 5f64.to_radians()],
-            gyro_bias_sd_rad_s: 1f64.to_radians(),
-            accel_bias_sd_m_s2: 0.01 * crate::units::STANDARD_GRAVITY_M_S2,
+            gyro_bias_sd_rad_s: [1f64.to_radians(); 3],
+            accel_bias_sd_m_s2: [0.01 * crate::units::STANDARD_GRAVITY_M_S2; 3],
             gyro_scale_sd: 1e-3,
             accel_scale_sd: 1e-3,
         }
@@ -228,12 +364,33 @@ impl InitialUncertainty {
         put(block::POSITION, self.position_sd_m);
         put(block::VELOCITY, self.velocity_sd_m_s);
         put(block::ATTITUDE, self.attitude_sd_rad);
-        put(block::GYRO_BIAS, [self.gyro_bias_sd_rad_s; 3]);
-        put(block::ACCEL_BIAS, [self.accel_bias_sd_m_s2; 3]);
+        put(block::GYRO_BIAS, self.gyro_bias_sd_rad_s);
+        put(block::ACCEL_BIAS, self.accel_bias_sd_m_s2);
         put(block::GYRO_SCALE, [self.gyro_scale_sd; 3]);
         put(block::ACCEL_SCALE, [self.accel_scale_sd; 3]);
         SystemMatrix::from_diagonal(&nalgebra::SVector::from(sd.map(|s| s * s)))
     }
+}
+
+/// Where the initial bias uncertainty came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialBiasSource {
+    /// [`InitialUncertainty::default`]'s 1 °/s and 10 mg: nothing better is known (a bank
+    /// without a thermal calibration, or a record not compensated with it).
+    Default,
+    /// A sensor profile: its unit-to-unit (turn-on) bias and power-on offset sds, with the
+    /// Gauss-Markov bias σ at the run's temperature, added in quadrature.
+    ProfileTurnOn,
+    /// A bank whose thermal calibration was subtracted: that calibration's spread between
+    /// power-ons (the unit's own bias curve is known) with the Gauss-Markov bias σ, added in
+    /// quadrature; channels whose calibration separated no power-ons keep the default.
+    BankPowerOnSpread,
+}
+
+/// The initial bias sd of one axis: √(Σ parts²), the parts independent.
+pub fn bias_sd_in_quadrature(parts: &[f64]) -> f64 {
+    parts.iter().map(|p| p * p).sum::<f64>().sqrt()
 }
 
 /// An estimate with no sensor correction at a navigation state.
@@ -263,5 +420,108 @@ mod tests {
             let (r, p) = level(f);
             assert!((r - roll).abs() < 1e-12 && (p - pitch).abs() < 1e-12);
         }
+    }
+
+    /// Fixes every `dt_s` from t = 0 along `offsets` (NED from a point at 40° N), each with
+    /// a stated horizontal sd of `sd_m`.
+    fn fixes_along(offsets: &[[f64; 3]], dt_s: f64, sd_m: f64) -> Vec<GnssFix> {
+        let origin = Geodetic {
+            latitude_rad: 40f64.to_radians(),
+            longitude_rad: -105f64.to_radians(),
+            height_m: 1600.0,
+        };
+        offsets
+            .iter()
+            .enumerate()
+            .map(|(k, o)| {
+                let p = origin.displaced(&Vector::from_array(*o));
+                GnssFix {
+                    time: crate::time::Timestamp::from_nanos((k as f64 * dt_s * 1e9) as i64),
+                    latitude_rad: p.latitude_rad,
+                    longitude_rad: p.longitude_rad,
+                    height_m: p.height_m,
+                    position_sd_ned_m: Some([sd_m, sd_m, 2.0 * sd_m]),
+                    velocity_ned_m_s: None,
+                    heading: None,
+                }
+            })
+            .collect()
+    }
+
+    // Closed form: fixes every 0.25 s along a straight line at 1.2 m/s on a course of 30°,
+    // stated at 1 cm: the baseline ends at the first fix 2 m or more away (2 m = max(2 m,
+    // 16 x 1 cm)), i.e. the 7th step (2.1 m, 1.75 s, 8 fixes), with the exact course and velocity (noise-free
+    // fixes; the 1e-6 rad allows for the NED offsets of the displaced/ned_from round trip),
+    // and a course sd of σ/(speed √Σ(t − t̄)²).
+    #[test]
+    fn a_straight_baseline_gives_the_course_and_its_sd() {
+        let course = 30f64.to_radians();
+        let offsets: Vec<_> = (0..40)
+            .map(|k| {
+                let d = 1.2 * 0.25 * k as f64;
+                [d * course.cos(), d * course.sin(), 0.0]
+            })
+            .collect();
+        let fixes = fixes_along(&offsets, 0.25, 0.01);
+        let c = course_baseline(&fixes).unwrap();
+        assert_eq!(c.fixes, 8);
+        assert!((c.duration_s - 1.75).abs() < 1e-9 && (c.distance_m - 2.1).abs() < 1e-6);
+        let [vn, ve, vd] = c.velocity_ned_m_s;
+        assert!((ve.atan2(vn) - course).abs() < 1e-6 && (vn.hypot(ve) - 1.2).abs() < 1e-6);
+        assert!(vd.abs() < 1e-6 && c.largest_residual_m < 1e-6);
+        let spread: f64 = (0..8).map(|k| (0.25 * k as f64 - 0.875).powi(2)).sum();
+        assert!((c.course_sd_rad - 0.01 / 1.2 / spread.sqrt()).abs() < 1e-9);
+    }
+
+    // A fix 5 m off the line breaks the baseline through it; a vehicle at 5 cm/s never covers
+    // 2 m within 20 s; a turn of radius 1 m bows the 2 m chord by far more than 5 %.
+    #[test]
+    fn a_broken_slow_or_bent_stretch_gives_no_baseline() {
+        let straight: Vec<_> = (0..20).map(|k| [0.3 * k as f64, 0.0, 0.0]).collect();
+        let mut broken = straight.clone();
+        broken[3][1] += 5.0;
+        assert!(course_baseline(&fixes_along(&straight, 0.25, 0.01)).is_some());
+        assert!(course_baseline(&fixes_along(&broken, 0.25, 0.01)).is_none());
+        let slow: Vec<_> = (0..200).map(|k| [0.0125 * k as f64, 0.0, 0.0]).collect();
+        assert!(course_baseline(&fixes_along(&slow, 0.25, 0.01)).is_none());
+        let turn: Vec<_> = (0..40)
+            .map(|k| {
+                let a = 0.25 * k as f64;
+                [a.sin(), 1.0 - a.cos(), 0.0]
+            })
+            .collect();
+        assert!(course_baseline(&fixes_along(&turn, 0.25, 0.01)).is_none());
+    }
+
+    // A car parked for 10 s at 4 Hz with one fix thrown 20 m away (the pair through it looks
+    // like 80 m/s), then driving north-east at 2 m/s: the alignment waits for the drive and
+    // takes its course, not the jump's.
+    #[test]
+    fn the_alignment_waits_past_a_displaced_fix_for_the_drive() {
+        let mut offsets: Vec<[f64; 3]> = (0..40).map(|_| [0.0; 3]).collect();
+        offsets[20] = [0.0, 20.0, 0.0];
+        let step = 2.0 * 0.25 / 2f64.sqrt();
+        offsets.extend((1..40).map(|k| [step * k as f64, step * k as f64, 0.0]));
+        let fixes = fixes_along(&offsets, 0.25, 0.01);
+        let end = fixes.last().unwrap().time;
+        let imu: Vec<Increment> = (0..=2000)
+            .map(|k| {
+                let time = crate::time::Timestamp::from_nanos(k * 10_000_000);
+                let dt = Duration::from_nanos(10_000_000);
+                Increment::from_rates(time, dt, [0.0; 3], [0.0, 0.0, -9.8])
+            })
+            .filter(|i| i.time <= end)
+            .collect();
+        let a = align_from_gnss(&imu, &fixes, &AntennaGeometry::default(), 1.0).unwrap();
+        assert_eq!(
+            a.nav.time, fixes[39].time,
+            "the last parked fix starts the drive"
+        );
+        let HeadingSource::Course(c) = a.heading_source else {
+            panic!("a course was expected");
+        };
+        let yaw = a.nav.attitude.euler_zyx().2;
+        assert!((yaw - 45f64.to_radians()).abs() < 0.02, "yaw {yaw}");
+        assert!(c.distance_m >= MIN_COURSE_BASELINE_M && c.fixes >= MIN_COURSE_FIXES);
     }
 }

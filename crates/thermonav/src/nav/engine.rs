@@ -29,7 +29,7 @@ use super::smoother::{ForwardHistory, MAX_SMOOTHED_STEPS};
 use super::solution::{InnovationRecord, Solution, SolutionEpoch};
 use crate::filter::FilterError;
 use crate::filter::ekf::{joseph_update, propagate_covariance};
-use crate::filter::gating::ChiSquareGate;
+use crate::filter::gating::ScaledGate;
 use crate::filter::sigma_points::SigmaPointScheme;
 use crate::filter::ukf::Ukf;
 use crate::frames::Vector;
@@ -102,6 +102,9 @@ pub struct EngineSettings {
     /// lets its covariance become too small would otherwise reject every later fix and run
     /// free.
     pub gate_recovery_after: usize,
+    /// The gate's quantile is widened by the median NIS of this many recent updates of the
+    /// same kind over its expected median ([`ScaledGate`]); 0 keeps the plain chi-square gate.
+    pub gate_window: usize,
     /// Antennas.
     pub geometry: AntennaGeometry,
     /// Measurements used.
@@ -126,7 +129,7 @@ pub struct EngineSettings {
 }
 
 impl Default for EngineSettings {
-    /// EKF, covariance at 10 Hz, gate at 0.9999, all aiding, solution at 10 Hz, Merwe points
+    /// EKF, covariance at 10 Hz, gate at 0.9999 scaled by the last 5 NIS, all aiding, solution at 10 Hz, Merwe points
     /// with α = 1, β = 2, κ = 0 (all covariance weights non-negative, so the predicted
     /// covariance is positive semi-definite by construction).
     fn default() -> Self {
@@ -135,6 +138,7 @@ impl Default for EngineSettings {
             covariance_interval_s: 0.1,
             gate_probability: Some(0.9999),
             gate_recovery_after: 5,
+            gate_window: 5,
             geometry: AntennaGeometry::default(),
             aiding: Aiding::default(),
             outages: Outages::none(),
@@ -387,7 +391,7 @@ struct Run<'a> {
     last_raw_rate: Vector3<f64>,
     schedule: ModelSchedule<'a>,
     settings: &'a EngineSettings,
-    gates: [Option<ChiSquareGate>; 2],
+    gates: [Option<ScaledGate>; 3],
     consecutive_rejections: [usize; 3],
     solution: Solution,
     history: Option<ForwardHistory>,
@@ -494,10 +498,10 @@ impl<'a> Run<'a> {
                 settings.sigma_points,
             ))),
         };
-        let gate = |dof| {
+        let gate = |kind: MeasurementKind| {
             settings
                 .gate_probability
-                .and_then(|p| ChiSquareGate::new(dof, p))
+                .and_then(|p| ScaledGate::new(kind.dimension(), p, settings.gate_window))
         };
         let exact = |what, value| {
             Duration::from_seconds(value).map_err(|_| NavError::Setting { what, value })
@@ -519,7 +523,7 @@ impl<'a> Run<'a> {
             last_raw_rate: Vector3::zeros(),
             schedule,
             settings,
-            gates: [gate(3), gate(1)],
+            gates: MeasurementKind::ALL.map(gate),
             consecutive_rejections: [0; 3],
             solution: Solution {
                 epochs: Vec::new(),
@@ -774,7 +778,6 @@ impl<'a> Run<'a> {
         z: SVector<f64, M>,
         h: impl Fn(&ErrorVector) -> SVector<f64, M>,
     ) -> Result<(), NavError> {
-        let gate = self.gates[usize::from(M == 1)];
         let outcome = match &self.core {
             Core::Ekf(p) => {
                 let (mut x, mut p) = (ErrorVector::zeros(), **p);
@@ -796,7 +799,8 @@ impl<'a> Run<'a> {
             }
         };
         let (x, core, (innovation, s, nis)) = outcome.map_err(|e: FilterError| self.diverged(e))?;
-        let passed = gate.is_none_or(|g| g.accepts(nis));
+        let verdict = self.gates[kind as usize].as_mut().map(|g| g.judge(nis));
+        let passed = verdict.is_none_or(|v| v.passed);
         let streak = &mut self.consecutive_rejections[kind as usize];
         let forced = !passed && *streak >= self.settings.gate_recovery_after;
         *streak = if passed || forced { 0 } else { *streak + 1 };
@@ -813,6 +817,7 @@ impl<'a> Run<'a> {
                 }
             }),
             nis,
+            gate_scale: verdict.map_or(1.0, |v| v.scale),
             accepted,
             forced,
         });

@@ -52,6 +52,13 @@ pub enum MeasurementKind {
 }
 
 impl MeasurementKind {
+    /// Every kind, in the order of its discriminant.
+    pub const ALL: [MeasurementKind; 3] = [
+        MeasurementKind::Position,
+        MeasurementKind::Velocity,
+        MeasurementKind::Heading,
+    ];
+
     /// Dimension of the measurement.
     pub fn dimension(self) -> usize {
         match self {

@@ -3,6 +3,7 @@
 //! uncertainty and sensor estimates. The keys are `thermonav integrate --json`'s (which adds
 //! the file names) and the Python package's `integrate` result's.
 
+use super::alignment::{CourseBaseline, InitialBiasSource};
 use super::engine::FilterKind;
 use super::measurement::MeasurementKind;
 use super::outage::Outage;
@@ -38,6 +39,17 @@ pub struct ModelJson {
     channels: Vec<ChannelModelJson>,
 }
 
+/// The initial bias standard deviations of a run.
+#[derive(Debug, Clone, Serialize)]
+pub struct InitialBiasJson {
+    /// Where they came from.
+    pub source: InitialBiasSource,
+    /// Gyro x, y, z, deg/h.
+    pub gyro_deg_h: [f64; 3],
+    /// Accelerometer x, y, z, mg.
+    pub accel_mg: [f64; 3],
+}
+
 /// Innovation statistics of one measurement kind.
 #[derive(Debug, Clone, Serialize)]
 pub struct InnovationJson {
@@ -55,6 +67,8 @@ pub struct InnovationJson {
     pub mean_nis: f64,
     /// Share of NIS inside the 95 % band.
     pub fraction_nis_in_95: f64,
+    /// Mean factor the gate's quantile was widened by from the recent NIS level.
+    pub mean_gate_scale: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     rms_innovation_ned_m: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -74,6 +88,7 @@ impl From<&InnovationStatistics> for InnovationJson {
             forced: s.forced,
             mean_nis: s.mean_nis,
             fraction_nis_in_95: s.fraction_nis_in_95,
+            mean_gate_scale: s.mean_gate_scale,
             rms_innovation_ned_m: (s.kind == MeasurementKind::Position).then_some(rms),
             rms_innovation_ned_m_s: (s.kind == MeasurementKind::Velocity).then_some(rms),
             rms_innovation_deg: (s.kind == MeasurementKind::Heading).then_some(rms[0].to_degrees()),
@@ -128,6 +143,12 @@ pub struct RunReport {
     pub compensation: CompensationOutcome,
     /// Where the initial state came from.
     pub initial: InitialSource,
+    /// The straight stretch of fixes the initial course came from (distance, time, fixes,
+    /// course sd), when the heading was a course over ground.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub course_baseline: Option<CourseBaseline>,
+    /// The initial bias standard deviations and where they came from.
+    pub initial_bias_sd: InitialBiasJson,
     /// Covariance steps per second, Hz.
     pub covariance_rate_hz: f64,
     /// Solution epochs per second, Hz.
@@ -160,6 +181,18 @@ impl RunReport {
             schedule: run.models.summary(),
             compensation: run.compensation.clone(),
             initial: run.initial,
+            course_baseline: run.course_baseline,
+            initial_bias_sd: InitialBiasJson {
+                source: run.bias_source,
+                gyro_deg_h: run
+                    .uncertainty
+                    .gyro_bias_sd_rad_s
+                    .map(rad_per_s_to_deg_per_h),
+                accel_mg: run
+                    .uncertainty
+                    .accel_bias_sd_m_s2
+                    .map(|a| 1e3 * a / STANDARD_GRAVITY_M_S2),
+            },
             covariance_rate_hz: 1.0 / run.engine.covariance_interval_s,
             output_rate_hz: 1.0 / run.engine.output_interval_s,
             outages: windows.iter().map(OutageJson::from).collect(),

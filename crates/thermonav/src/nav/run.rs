@@ -16,7 +16,8 @@
 //! ```
 
 use super::alignment::{
-    AlignmentError, HeadingSource, InitialUncertainty, align_from_gnss, uncorrected,
+    AlignmentError, CourseBaseline, HeadingSource, InitialBiasSource, InitialUncertainty,
+    align_from_gnss, bias_sd_in_quadrature, uncorrected,
 };
 use super::engine::{EngineSettings, NavError, increments_from_series, run_scheduled};
 use super::error_state::Estimate;
@@ -28,7 +29,7 @@ use super::schedule::{
 use super::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError};
 use super::solution::Solution;
 use crate::gnss::GnssFix;
-use crate::imu::ImuSeries;
+use crate::imu::{Channel, ImuSeries};
 use crate::ins::state::Increment;
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
@@ -420,6 +421,9 @@ pub struct PreparedRun {
     engine: EngineSettings,
     initial: Estimate,
     initial_source: InitialSource,
+    course_baseline: Option<CourseBaseline>,
+    uncertainty: InitialUncertainty,
+    bias_source: InitialBiasSource,
     /// What the caller may want to tell the user (e.g. no temp_c: one model for the run).
     pub notes: Vec<String>,
 }
@@ -441,9 +445,11 @@ pub fn prepare(
         notes.push(NO_TEMPERATURE_NOTE.to_string());
     }
     let compensation = compensate_record(&mut series, noise.thermal(), settings.compensation);
+    let (uncertainty, bias_source) = initial_uncertainty(noise, &compensation, &models.model);
     let increments = increments_of(&series)?;
     let engine = with_outages(&settings.engine, &settings.outages, &increments)?;
-    let (initial, initial_source) = initial_estimate(start, &increments, &gnss, &engine)?;
+    let (initial, initial_source, course_baseline) =
+        initial_estimate(start, &increments, &gnss, &engine)?;
     Ok(PreparedRun {
         models,
         compensation,
@@ -452,25 +458,91 @@ pub fn prepare(
         engine,
         initial,
         initial_source,
+        course_baseline,
+        uncertainty,
+        bias_source,
         notes,
     })
 }
 
-/// The start: aligned from GNSS, or the reference point at the first fix.
+/// The initial uncertainty of a run: [`InitialUncertainty::default`] with the bias sds the
+/// noise model states ([`InitialBiasSource`]), axis by axis; an axis it says nothing about
+/// keeps the default.
+fn initial_uncertainty(
+    noise: NoiseModel,
+    compensation: &CompensationOutcome,
+    model: &ImuStochasticModel,
+) -> (InitialUncertainty, InitialBiasSource) {
+    let mut uncertainty = InitialUncertainty::default();
+    let gauss_markov_sd = |c: Channel| match c.index() {
+        i @ 0..3 => model.gyro[i].bias.sigma,
+        i => model.accel[i - 3].bias.sigma,
+    };
+    let (stated, source): (Vec<_>, _) = match (noise, compensation) {
+        (NoiseModel::Profile(p), _) => {
+            let sd = |c: Channel| {
+                let ch = p.channel(c)?;
+                let parts = [
+                    ch.turn_on_bias_sigma,
+                    ch.power_on_offset_sigma,
+                    gauss_markov_sd(c),
+                ];
+                Some(bias_sd_in_quadrature(&parts))
+            };
+            (
+                Channel::ALL.map(sd).to_vec(),
+                InitialBiasSource::ProfileTurnOn,
+            )
+        }
+        (NoiseModel::Bank(bank), CompensationOutcome::Applied { .. }) => {
+            let sd = |c: Channel| {
+                let spread = bank
+                    .thermal
+                    .as_ref()?
+                    .channels
+                    .get(&c)?
+                    .between_power_on_sd?;
+                Some(bias_sd_in_quadrature(&[spread, gauss_markov_sd(c)]))
+            };
+            (
+                Channel::ALL.map(sd).to_vec(),
+                InitialBiasSource::BankPowerOnSpread,
+            )
+        }
+        (NoiseModel::Bank(_), _) => (vec![None; 6], InitialBiasSource::Default),
+    };
+    for (c, sd) in Channel::ALL.iter().zip(&stated) {
+        let Some(sd) = sd.filter(|sd| sd.is_finite() && *sd > 0.0) else {
+            continue;
+        };
+        match c.index() {
+            i @ 0..3 => uncertainty.gyro_bias_sd_rad_s[i] = sd,
+            i => uncertainty.accel_bias_sd_m_s2[i - 3] = sd,
+        }
+    }
+    let source = match stated.iter().any(Option::is_some) {
+        true => source,
+        false => InitialBiasSource::Default,
+    };
+    (uncertainty, source)
+}
+
+/// The start: aligned from GNSS (with the course baseline when the heading came from one), or
+/// the reference point at the first fix.
 fn initial_estimate(
     start: Start,
     increments: &[Increment],
     gnss: &[GnssFix],
     engine: &EngineSettings,
-) -> Result<(Estimate, InitialSource), RunError> {
+) -> Result<(Estimate, InitialSource, Option<CourseBaseline>), RunError> {
     let Start::Reference(points) = start else {
         let alignment = align_from_gnss(increments, gnss, &engine.geometry, 1.0)
             .map_err(RunError::Alignment)?;
-        let source = match alignment.heading_source {
-            HeadingSource::DualAntenna => InitialSource::DualAntennaHeading,
-            HeadingSource::Course => InitialSource::CourseOverGround,
+        let (source, baseline) = match alignment.heading_source {
+            HeadingSource::DualAntenna => (InitialSource::DualAntennaHeading, None),
+            HeadingSource::Course(c) => (InitialSource::CourseOverGround, Some(c)),
         };
-        return Ok((uncorrected(alignment.nav), source));
+        return Ok((uncorrected(alignment.nav), source, baseline));
     };
     let first = increments.first().map(|i| i.time);
     let at = gnss.first().map(|f| f.time).or(first);
@@ -478,7 +550,11 @@ fn initial_estimate(
         .find(|p| at.is_some_and(|t| p.time <= t))
         .or(points.first())
         .ok_or(RunError::NoReferencePoint)?;
-    Ok((uncorrected(point.nav_state()), InitialSource::Reference))
+    Ok((
+        uncorrected(point.nav_state()),
+        InitialSource::Reference,
+        None,
+    ))
 }
 
 impl PreparedRun {
@@ -502,7 +578,7 @@ impl PreparedRun {
             &self.increments,
             &self.gnss,
             self.initial,
-            InitialUncertainty::default().covariance(),
+            self.uncertainty.covariance(),
             self.models.schedule(),
             &self.engine,
             progress,
@@ -515,6 +591,9 @@ impl PreparedRun {
             engine: self.engine,
             solution,
             initial: self.initial_source,
+            course_baseline: self.course_baseline,
+            uncertainty: self.uncertainty,
+            bias_source: self.bias_source,
         })
     }
 }
@@ -532,6 +611,12 @@ pub struct RunOutcome {
     pub solution: Solution,
     /// Where the initial state came from.
     pub initial: InitialSource,
+    /// The straight stretch of fixes the initial heading came from, when it was a course.
+    pub course_baseline: Option<CourseBaseline>,
+    /// The initial standard deviations of the error states.
+    pub uncertainty: InitialUncertainty,
+    /// Where the initial bias sds came from.
+    pub bias_source: InitialBiasSource,
     /// Wall time of the filter, s.
     pub processing_s: f64,
 }

@@ -33,6 +33,9 @@ pub struct InnovationRecord {
     pub sd: [f64; 3],
     /// Normalised innovation squared νᵀ S⁻¹ ν.
     pub nis: f64,
+    /// The factor the gate's chi-square quantile was widened by for this update, from the
+    /// recent NIS level (1 = the plain gate; see [`crate::filter::gating::ScaledGate`]).
+    pub gate_scale: f64,
     /// False when the chi-square gate rejected it.
     pub accepted: bool,
     /// True when it failed the gate but was applied after too many rejections in a row.
@@ -58,6 +61,8 @@ pub struct InnovationStatistics {
     pub fraction_nis_in_95: f64,
     /// RMS of each innovation component over accepted updates, m, m/s or rad.
     pub rms_innovation: [f64; 3],
+    /// Mean factor the gate's quantile was widened by, over offered updates (1 = never).
+    pub mean_gate_scale: f64,
 }
 
 /// Everything a run produces.
@@ -77,14 +82,10 @@ pub struct Solution {
 impl Solution {
     /// Statistics per measurement kind present in the run.
     pub fn innovation_statistics(&self) -> Vec<InnovationStatistics> {
-        [
-            MeasurementKind::Position,
-            MeasurementKind::Velocity,
-            MeasurementKind::Heading,
-        ]
-        .into_iter()
-        .filter_map(|kind| statistics_of(kind, &self.innovations))
-        .collect()
+        MeasurementKind::ALL
+            .into_iter()
+            .filter_map(|kind| statistics_of(kind, &self.innovations))
+            .collect()
     }
 }
 
@@ -124,5 +125,6 @@ fn statistics_of(
         mean_nis,
         fraction_nis_in_95: inside,
         rms_innovation: rms,
+        mean_gate_scale: of_kind.iter().map(|r| r.gate_scale).sum::<f64>() / of_kind.len() as f64,
     })
 }
