@@ -55,7 +55,7 @@ pub fn characterize_streaming(
 /// Pushes every piece the reader thread parses into the characterisation and the gravity check.
 fn feed(
     path: &Path,
-    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    reader: ImuReader<thermonav_io::FileReader>,
     stream: &mut StreamingCharacterizer,
     gravity: &mut GravityCheck,
 ) -> Result<(), Failure> {
@@ -102,7 +102,7 @@ fn temperature_of(given: Option<f64>, mean: Option<f64>, path: &Path) -> Result<
 /// Parses the file into pieces of [`PIECE_ROWS`] samples and hands each to `deliver`
 /// (stopping when it returns false); a read error is delivered as the last item.
 fn read_pieces(
-    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    reader: ImuReader<thermonav_io::FileReader>,
     kind: SampleKind,
     mut deliver: impl FnMut(Result<ImuSeries, ReadError>) -> bool,
 ) {

@@ -133,7 +133,7 @@ fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
 fn is_ulog(path: &Path) -> bool {
     use std::io::Read;
     let mut head = [0u8; 7];
-    let read = std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head));
+    let read = thermonav_io::open_input(path).and_then(|mut f| f.read_exact(&mut head));
     read.is_ok() && head.starts_with(&thermonav_io::ulog::MAGIC)
 }
 

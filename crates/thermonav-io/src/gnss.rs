@@ -14,8 +14,7 @@ use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Presence, Schema, TIME_COLUMN, Unit};
 use crate::rows::Rows;
 use crate::text::{degrees_reading_back_exactly, write_time};
-use std::fs::File;
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, Write};
 use std::path::Path;
 use thermonav::gnss::{GnssFix, HeadingObservation};
 
@@ -80,7 +79,7 @@ pub struct GnssReader<R> {
     groups: Groups,
 }
 
-impl GnssReader<BufReader<File>> {
+impl GnssReader<crate::FileReader> {
     /// Opens `path` and reads its header.
     ///
     /// # Errors

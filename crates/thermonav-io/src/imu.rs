@@ -109,8 +109,9 @@ pub struct ImuReader<R> {
     temperature: bool,
 }
 
-impl ImuReader<BufReader<File>> {
-    /// Opens `path` and reads its header.
+impl ImuReader<crate::FileReader> {
+    /// Opens `path` (decompressing it when it is gzip, see [`crate::open_input`]) and reads
+    /// its header.
     ///
     /// # Errors
     /// As [`ImuReader::new`], plus [`ReadErrorKind::Open`].
@@ -225,8 +226,9 @@ pub fn read_imu_file(
 ) -> Result<ImuSeries, ReadError> {
     let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
+    // A compressed file cannot be entered in the middle: it is read in one pass.
     let split = file_bytes
-        .filter(|&b| b >= PARALLEL_MIN_BYTES)
+        .filter(|&b| b >= PARALLEL_MIN_BYTES && !crate::is_compressed(path))
         .and_then(|b| split_point(path, b));
     let halves = split.and_then(|(header, boundary, bytes)| {
         read_halves(path, strictness, &header, boundary, bytes)

@@ -14,8 +14,7 @@ use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, TIME_COLUMN, Unit};
 use crate::rows::Rows;
 use crate::text::{degrees_reading_back_exactly, write_time};
-use std::fs::File;
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, Write};
 use std::path::Path;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
@@ -49,7 +48,7 @@ pub struct TrajectoryReader<R> {
     rows: Rows<R>,
 }
 
-impl TrajectoryReader<BufReader<File>> {
+impl TrajectoryReader<crate::FileReader> {
     /// Opens `path` and reads its header.
     ///
     /// # Errors

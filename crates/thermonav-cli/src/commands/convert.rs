@@ -239,7 +239,7 @@ fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> 
 /// The first [`SNIFF_BYTES`] of `input`.
 fn read_head(input: &Path) -> Result<Vec<u8>, Failure> {
     let mut head = Vec::new();
-    std::fs::File::open(input)
+    thermonav_io::open_input(input)
         .and_then(|file| file.take(SNIFF_BYTES).read_to_end(&mut head))
         .map_err(|e| anyhow!("{}: cannot open: {e}", input.display()))
         .data()?;
