@@ -11,7 +11,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::{GravityCheck, ImuReader, ReadError, Strictness};
+use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
 /// a full-precision 6-channel CSV, whose in-memory characterisation peaks near 2 GB).
@@ -29,14 +29,15 @@ pub fn streams(path: &Path, reading: ReadingArg) -> bool {
     }
 }
 
-/// Characterises the record in `path` in pieces; `name` is its source label.
+/// Characterises the record in `path`, read as `imu` says, in pieces; `name` is its source
+/// label.
 pub fn characterize_streaming(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    name: &str,
+    (name, imu): (&str, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
-    let reader = ImuReader::open(path, Strictness::Strict).data()?;
+    let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
     feed(path, reader, &mut stream, &mut gravity)?;

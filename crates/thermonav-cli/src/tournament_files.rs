@@ -25,8 +25,8 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::run::RunInput;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
-    Strictness, WriteError, read_gnss_file, read_imu_file, read_trajectory_file, write_atomically,
-    write_json_atomically,
+    Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
+    write_atomically, write_json_atomically,
 };
 
 /// `evaluation.json`: the report and where it was written.
@@ -50,7 +50,7 @@ pub fn scenario_from_files(
     operating_temperature_c: Option<f64>,
     records: RecordPlan,
 ) -> Result<(Scenario, f64), Failure> {
-    let series = read_imu_file(&files.imu, Strictness::Strict).data()?;
+    let series = read_imu_file_with(&files.imu, Strictness::Strict, &files.imu_options).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;

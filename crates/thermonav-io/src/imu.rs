@@ -15,12 +15,13 @@ use crate::atomic::write_atomically;
 use crate::error::{ReadError, ReadErrorKind, WriteError};
 use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, Unit};
-use crate::rows::Rows;
+use crate::rows::{RowTimes, Rows};
 use crate::text::write_time;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSample, ImuSeries, SampleKind};
+use thermonav::mounting::Mounting;
 use thermonav::time::Timestamp;
 
 /// First slot of the rate columns (gx..az), then of the increment columns (dthx..dvz).
@@ -89,6 +90,29 @@ const INCREMENT_NAMES: [(&str, &str); 6] = [
 ];
 const TEMPERATURE_NAME: &str = "temp_c";
 
+/// How the canonical IMU reader takes a file beyond what its header says: the IMU's mounting
+/// and where the times come from. The default reads the file as it stands (IMU axes are body
+/// axes, times from `t_s`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ImuOptions {
+    /// The IMU's mounting in the body: every sample's gyro and accelerometer vectors (rates or
+    /// increments) are turned into body axes, v^b = C_s^b v^s, as they are read. `None`: the
+    /// file's axes are the body axes.
+    pub mounting: Option<Mounting>,
+    /// The sample rate of a file without a `t_s` column, Hz: sample k (0-based) is at k / rate
+    /// s. `None`: the file must have `t_s`; given, the file must not have it.
+    pub rate_hz: Option<f64>,
+}
+
+impl ImuOptions {
+    fn row_times(&self) -> RowTimes {
+        match self.rate_hz {
+            Some(rate_hz) => RowTimes::Rate { rate_hz },
+            None => RowTimes::Column,
+        }
+    }
+}
+
 /// Streaming reader of the canonical IMU CSV: an iterator of SI samples.
 ///
 /// Holds one line buffer whatever the file size. After an error the iterator ends.
@@ -107,6 +131,7 @@ pub struct ImuReader<R> {
     rows: Rows<R>,
     kind: SampleKind,
     temperature: bool,
+    mounting: Option<Mounting>,
 }
 
 impl ImuReader<crate::FileReader> {
@@ -116,8 +141,20 @@ impl ImuReader<crate::FileReader> {
     /// # Errors
     /// As [`ImuReader::new`], plus [`ReadErrorKind::Open`].
     pub fn open(path: impl AsRef<Path>, strictness: Strictness) -> Result<Self, ReadError> {
+        Self::open_with(path, strictness, &ImuOptions::default())
+    }
+
+    /// [`ImuReader::open`] with `options`.
+    ///
+    /// # Errors
+    /// As [`ImuReader::with_options`], plus [`ReadErrorKind::Open`].
+    pub fn open_with(
+        path: impl AsRef<Path>,
+        strictness: Strictness,
+        options: &ImuOptions,
+    ) -> Result<Self, ReadError> {
         let (file, input) = crate::open_file(path.as_ref())?;
-        Self::new(file, input, strictness)
+        Self::with_options(file, input, strictness, options)
     }
 }
 
@@ -132,13 +169,30 @@ impl<R: BufRead> ImuReader<R> {
         input: impl Into<String>,
         strictness: Strictness,
     ) -> Result<Self, ReadError> {
-        let rows = Rows::open(reader, input.into(), &SCHEMA, strictness)?;
+        Self::with_options(reader, input, strictness, &ImuOptions::default())
+    }
+
+    /// [`ImuReader::new`] with `options`: the mounting applied to every sample, the times
+    /// from a rate for a file without `t_s`.
+    ///
+    /// # Errors
+    /// As [`ImuReader::new`]; a `t_s` column together with a rate
+    /// ([`ReadErrorKind::TimeColumnWithRate`]); no `t_s` column and no rate.
+    pub fn with_options(
+        reader: R,
+        input: impl Into<String>,
+        strictness: Strictness,
+        options: &ImuOptions,
+    ) -> Result<Self, ReadError> {
+        let times = options.row_times();
+        let rows = Rows::open_timed(reader, input.into(), &SCHEMA, strictness, times)?;
         let kind = sample_kind(rows.layout()).map_err(|kind| rows.header_error(kind))?;
         let temperature = rows.layout().has(TEMPERATURE_SLOT);
         Ok(Self {
             rows,
             kind,
             temperature,
+            mounting: options.mounting,
         })
     }
 
@@ -161,12 +215,15 @@ impl<R: BufRead> Iterator for ImuReader<R> {
             SampleKind::Rates => RATE_SLOT,
             SampleKind::Increments => INCREMENT_SLOT,
         };
-        let temperature = self.temperature;
-        let sample = self.rows.next_row()?.map(|(time, values)| ImuSample {
-            time,
-            gyro: [values[first], values[first + 1], values[first + 2]],
-            accel: [values[first + 3], values[first + 4], values[first + 5]],
-            temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
+        let (temperature, mounting) = (self.temperature, self.mounting);
+        let sample = self.rows.next_row()?.map(|(time, values)| {
+            let sample = ImuSample {
+                time,
+                gyro: [values[first], values[first + 1], values[first + 2]],
+                accel: [values[first + 3], values[first + 4], values[first + 5]],
+                temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
+            };
+            mounting.map_or(sample, |m| m.sample_to_body(sample))
         });
         let strict = self.rows.strictness() == Strictness::Strict;
         Some(match sample {
@@ -224,20 +281,36 @@ pub fn read_imu_file(
     path: impl AsRef<Path>,
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
+    read_imu_file_with(path, strictness, &ImuOptions::default())
+}
+
+/// [`read_imu_file`] with `options` (see [`ImuReader::with_options`]).
+///
+/// # Errors
+/// As [`read_imu_file`] and [`ImuReader::with_options`].
+pub fn read_imu_file_with(
+    path: impl AsRef<Path>,
+    strictness: Strictness,
+    options: &ImuOptions,
+) -> Result<ImuSeries, ReadError> {
     let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
-    // A compressed file cannot be entered in the middle: it is read in one pass.
-    let split = file_bytes
-        .filter(|&b| b >= PARALLEL_MIN_BYTES && !crate::is_compressed(path))
-        .and_then(|b| split_point(path, b));
-    let halves = split.and_then(|(header, boundary, bytes)| {
-        read_halves(path, strictness, &header, boundary, bytes)
-    });
+    // A compressed file cannot be entered in the middle, nor can rows timed by their index
+    // be counted from it: those are read in one pass.
+    let halves = match crate::is_compressed(path) || options.rate_hz.is_some() {
+        true => None,
+        false => file_bytes
+            .filter(|&b| b >= PARALLEL_MIN_BYTES)
+            .and_then(|b| split_point(path, b))
+            .and_then(|(header, boundary, bytes)| {
+                read_halves(path, strictness, options, &header, (boundary, bytes))
+            }),
+    };
     let series = match halves {
         Some(series) => series,
         // Small files, and any file on which a half failed: one pass, which also gives the
         // exact error (line numbers counted from the top).
-        None => collect_series(ImuReader::open(path, strictness)?, file_bytes)?,
+        None => collect_series(ImuReader::open_with(path, strictness, options)?, file_bytes)?,
     };
     check_gravity_magnitude(series, &path.display().to_string(), strictness)
 }
@@ -359,19 +432,20 @@ fn split_point(path: &Path, bytes: u64) -> Option<(Vec<u8>, u64, u64)> {
 fn read_halves(
     path: &Path,
     strictness: Strictness,
+    options: &ImuOptions,
     header: &[u8],
-    boundary: u64,
-    bytes: u64,
+    (boundary, bytes): (u64, u64),
 ) -> Option<ImuSeries> {
     use std::io::{Read, Seek, SeekFrom};
     let input = path.display().to_string();
     let (first, second) = std::thread::scope(|scope| {
         let first = scope.spawn(|| {
             let file = File::open(path).ok()?.take(boundary);
-            let reader = ImuReader::new(
+            let reader = ImuReader::with_options(
                 BufReader::with_capacity(crate::FILE_BUFFER_BYTES, file),
                 input.clone(),
                 strictness,
+                options,
             )
             .ok()?;
             collect_series(reader, Some(boundary)).ok()
@@ -380,10 +454,11 @@ fn read_halves(
             let mut file = File::open(path).ok()?;
             file.seek(SeekFrom::Start(boundary)).ok()?;
             let joined = std::io::Cursor::new(header.to_vec()).chain(file);
-            let reader = ImuReader::new(
+            let reader = ImuReader::with_options(
                 BufReader::with_capacity(crate::FILE_BUFFER_BYTES, joined),
                 input.clone(),
                 strictness,
+                options,
             )
             .ok()?;
             collect_series(reader, Some(bytes - boundary)).ok()

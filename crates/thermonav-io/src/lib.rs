@@ -104,8 +104,8 @@ pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
 };
 pub use imu::{
-    GravityCheck, ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu,
-    write_imu_file,
+    GravityCheck, ImuOptions, ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file,
+    read_imu_file_with, write_imu, write_imu_file,
 };
 pub use trajectory::{
     TrajectoryReader, read_trajectory, read_trajectory_file, trajectory_column_names,
@@ -190,7 +190,9 @@ pub fn open_input(path: &Path) -> std::io::Result<InputFile> {
         .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
     // A failure to read the first bytes (a directory) is left to the first read, which
     // reports it as a read error of the file.
-    let magic = file.fill_buf().is_ok_and(|head| head.starts_with(&GZIP_MAGIC));
+    let magic = file
+        .fill_buf()
+        .is_ok_and(|head| head.starts_with(&GZIP_MAGIC));
     let compressed = named_gz || magic;
     Ok(InputFile(match compressed {
         true => Source::Gzip(Box::new(flate2::bufread::MultiGzDecoder::new(file))),

@@ -19,7 +19,7 @@
 //! ```
 
 use crate::frames::{Body, Rotation, SensorAxes};
-use crate::imu::ImuSample;
+use crate::imu::{ImuSample, ImuSeries};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 use std::fmt;
 use std::str::FromStr;
@@ -57,7 +57,9 @@ pub enum Mounting {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MountingError {
     /// Not three comma-separated parts.
-    #[error("expected three comma-separated parts (an axis mapping such as -y,x,z, or rpy:ROLL,PITCH,YAW in degrees), found {found}")]
+    #[error(
+        "expected three comma-separated parts (an axis mapping such as -y,x,z, or rpy:ROLL,PITCH,YAW in degrees), found {found}"
+    )]
     PartCount {
         /// Number of parts found.
         found: usize,
@@ -69,13 +71,17 @@ pub enum MountingError {
         found: String,
     },
     /// An IMU axis used twice: the mapping is no permutation.
-    #[error("IMU axis {axis} appears twice: each body axis must be a different IMU axis (a signed permutation of x, y, z)")]
+    #[error(
+        "IMU axis {axis} appears twice: each body axis must be a different IMU axis (a signed permutation of x, y, z)"
+    )]
     RepeatedAxis {
         /// The axis name.
         axis: char,
     },
     /// A signed permutation with determinant −1.
-    #[error("{mapping} is a reflection, not a rotation (it turns right-handed axes into left-handed ones): negate one more axis, or swap two")]
+    #[error(
+        "{mapping} is a reflection, not a rotation (it turns right-handed axes into left-handed ones): negate one more axis, or swap two"
+    )]
     Reflection {
         /// The mapping as given.
         mapping: String,
@@ -142,6 +148,19 @@ impl Mounting {
         }
     }
 
+    /// Turns every sample of `series` into body axes: the gyro columns and the accelerometer
+    /// columns each by C_s^b, as [`Mounting::sample_to_body`] does sample by sample.
+    pub fn series_to_body(&self, series: &mut ImuSeries) {
+        for first in [0, 3] {
+            for k in 0..series.len() {
+                let v = std::array::from_fn(|i| series.channels[first + i][k]);
+                for (i, value) in self.to_body(v).into_iter().enumerate() {
+                    series.channels[first + i][k] = value;
+                }
+            }
+        }
+    }
+
     /// For an axis mapping, where each IMU axis goes: `Some(body axis)` of IMU axis i (the
     /// channel a present IMU column fills); `None` for angles, which mix the axes.
     pub fn body_axis_of(&self, imu_axis: usize) -> Option<usize> {
@@ -170,9 +189,8 @@ impl FromStr for Mounting {
 
 fn parts(text: &str) -> Result<[&str; 3], MountingError> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    <[&str; 3]>::try_from(parts.as_slice()).map_err(|_| MountingError::PartCount {
-        found: parts.len(),
-    })
+    <[&str; 3]>::try_from(parts.as_slice())
+        .map_err(|_| MountingError::PartCount { found: parts.len() })
 }
 
 fn parse_angles(text: &str) -> Result<Mounting, MountingError> {
@@ -268,16 +286,29 @@ mod tests {
 
     #[test]
     fn an_axis_mapping_takes_each_body_component_from_its_signed_imu_axis() {
-        assert_eq!(mounting("-y,x,z").to_body([1.0, 2.0, 3.0]), [-2.0, 1.0, 3.0]);
-        assert_eq!(mounting("x,-y,-z").to_body([1.0, 2.0, 3.0]), [1.0, -2.0, -3.0]);
-        assert_eq!(mounting(" +Z , x , y ").to_body([1.0, 2.0, 3.0]), [3.0, 1.0, 2.0]);
+        assert_eq!(
+            mounting("-y,x,z").to_body([1.0, 2.0, 3.0]),
+            [-2.0, 1.0, 3.0]
+        );
+        assert_eq!(
+            mounting("x,-y,-z").to_body([1.0, 2.0, 3.0]),
+            [1.0, -2.0, -3.0]
+        );
+        assert_eq!(
+            mounting(" +Z , x , y ").to_body([1.0, 2.0, 3.0]),
+            [3.0, 1.0, 2.0]
+        );
     }
 
     /// Elementary rotations written out (C_s^b = R_z(ψ) R_y(θ) R_x(φ)), against which the
     /// angle form is checked on known vectors.
     #[test]
     fn angles_rotate_known_vectors_as_the_closed_forms_say() {
-        let (phi, theta, psi) = (30_f64.to_radians(), (-20_f64).to_radians(), 70_f64.to_radians());
+        let (phi, theta, psi) = (
+            30_f64.to_radians(),
+            (-20_f64).to_radians(),
+            70_f64.to_radians(),
+        );
         let roll = mounting("rpy:30,0,0").to_body([0.0, 1.0, 0.0]);
         assert!(close(roll, [0.0, phi.cos(), phi.sin()]), "{roll:?}");
         let pitch = mounting("rpy:0,-20,0").to_body([1.0, 0.0, 0.0]);
@@ -306,7 +337,9 @@ mod tests {
             for (ra, rb) in a.iter().zip(&b) {
                 assert!(close(*ra, *rb), "{axes} against {angles}: {a:?} {b:?}");
             }
-            let angle = mounting(axes).rotation().angle_to(&mounting(angles).rotation());
+            let angle = mounting(axes)
+                .rotation()
+                .angle_to(&mounting(angles).rotation());
             assert!(angle < 1e-12, "{axes} against {angles}: {angle}");
         }
     }
@@ -319,7 +352,10 @@ mod tests {
         assert!(matches!(error("y,x,z"), MountingError::Reflection { .. }));
         assert_eq!(error("x,y"), MountingError::PartCount { found: 2 });
         assert!(matches!(error("x,w,z"), MountingError::NotAnAxis { .. }));
-        assert!(matches!(error("rpy:0,nan,0"), MountingError::NotAnAngle { .. }));
+        assert!(matches!(
+            error("rpy:0,nan,0"),
+            MountingError::NotAnAngle { .. }
+        ));
         assert!(error("x,y,-z").to_string().contains("reflection"));
     }
 
@@ -334,11 +370,24 @@ mod tests {
     #[test]
     fn every_proper_signed_permutation_is_a_rotation() {
         let mut proper = 0;
-        for p in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+        for p in [
+            [0, 1, 2],
+            [0, 2, 1],
+            [1, 0, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [2, 1, 0],
+        ] {
             for signs in 0..8 {
                 let axes = p.map(|axis| axis);
                 let text: Vec<String> = (0..3)
-                    .map(|i| format!("{}{}", if signs >> i & 1 == 1 { "-" } else { "" }, AXIS_NAMES[axes[i]]))
+                    .map(|i| {
+                        format!(
+                            "{}{}",
+                            if signs >> i & 1 == 1 { "-" } else { "" },
+                            AXIS_NAMES[axes[i]]
+                        )
+                    })
                     .collect();
                 if let Ok(m) = text.join(",").parse::<Mounting>() {
                     proper += 1;

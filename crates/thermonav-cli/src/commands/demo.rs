@@ -345,6 +345,7 @@ const PAPER_SETUP_THERMAL: (Scheduling, Compensation) = (Scheduling::Fixed, Comp
 fn scenario_files(files: &VesselFiles) -> ScenarioFiles {
     ScenarioFiles {
         imu: files.imu.clone(),
+        imu_options: Default::default(),
         gnss: files.gnss.clone(),
         reference: files.reference.clone(),
     }
@@ -424,6 +425,7 @@ fn solution_settings(
 ) -> IntegrateSettings {
     IntegrateSettings {
         imu: files.imu.clone(),
+        imu_options: Default::default(),
         gnss: files.gnss.clone(),
         noise: NoiseSource::Bank(out.join("bank.json")),
         run: RunSettings {

@@ -62,7 +62,14 @@ fn a_gzip_record_gives_the_plain_files_bank_and_allan_deviation() {
     let mut banks = Vec::new();
     for (input, name) in [(&plain, "plain.json"), (&compressed, "gz.json")] {
         let bank = dir.path().join(name);
-        json_of(&["characterize", arg(input), "--quiet", "--out", arg(&bank), "--json"]);
+        json_of(&[
+            "characterize",
+            arg(input),
+            "--quiet",
+            "--out",
+            arg(&bank),
+            "--json",
+        ]);
         banks.push(bank_without_sources(&bank));
     }
     assert_eq!(banks[0], banks[1]);

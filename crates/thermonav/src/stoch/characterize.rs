@@ -355,6 +355,7 @@ impl Conditioning {
             },
             channels: reports.iter().map(|(c, r)| (*c, r.model.clone())).collect(),
             record_mean: None,
+            imu_rotation: None,
         }
     }
 }

@@ -1,0 +1,33 @@
+//! How a command takes its IMU record: the mounting (`--imu-rotation`, every command that
+//! reads an IMU) and the rate of a file without times (`--rate-hz`, the static analyses),
+//! resolved once into the reader's [`ImuOptions`].
+
+use crate::args::{ImuRotationArgs, SampleRateArgs};
+use crate::failure::Failure;
+use thermonav_io::ImuOptions;
+
+/// The reader's options from `--imu-rotation` alone (times from the file's `t_s`).
+pub fn rotation_only(rotation: &ImuRotationArgs) -> ImuOptions {
+    ImuOptions {
+        mounting: rotation.imu_rotation,
+        rate_hz: None,
+    }
+}
+
+/// The reader's options from `--imu-rotation` and `--rate-hz` (a positive rate).
+pub fn options(rotation: &ImuRotationArgs, rate: &SampleRateArgs) -> Result<ImuOptions, Failure> {
+    let rate_hz = match rate.rate_hz {
+        Some(hz) => Some(super::positive("--rate-hz", hz)?),
+        None => None,
+    };
+    Ok(ImuOptions {
+        rate_hz,
+        ..rotation_only(rotation)
+    })
+}
+
+/// The mounting as recorded in JSON outputs and sidecars: its text (`-y,x,z`,
+/// `rpy:0,0,90`), which `--imu-rotation` reads back; `None` without one.
+pub fn rotation_text(options: &ImuOptions) -> Option<String> {
+    options.mounting.map(|m| m.to_string())
+}
