@@ -38,6 +38,7 @@ pub fn characterize_streaming(
     (name, imu): (&str, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
     let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
+    check_all_six(&reader, path)?;
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
     feed(path, reader, &mut stream, &mut gravity)?;
@@ -74,6 +75,17 @@ fn feed(
         }
         Ok(())
     })
+}
+
+/// The refusal of a record of a subset of the channels: streaming characterises all six.
+fn check_all_six(reader: &ImuReader<thermonav_io::FileReader>, path: &Path) -> Result<(), Failure> {
+    match reader.present_channels().len() {
+        6 => Ok(()),
+        n => Err(Failure::Usage(anyhow!(
+            "{}: {n} of the six channels: --reading streaming characterises all six; read a subset in memory (--reading in-memory)",
+            path.display()
+        ))),
+    }
 }
 
 /// The error for a file with a header and no data rows.

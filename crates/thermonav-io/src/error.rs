@@ -103,10 +103,18 @@ pub enum ReadErrorKind {
         rate_hz: f64,
     },
     /// Some of the six IMU channels are absent where all six are needed.
-    #[error("missing {}: all six channels gx..az are needed here (only the static analyses, characterize and allan, take a subset)", missing.join(", "))]
+    #[error("missing column{} {}: all six channels gx..az are needed here (only the static analyses, characterize and allan, take a subset)", if missing.len() == 1 { "" } else { "s" }, missing.join(", "))]
     MissingChannels {
-        /// Canonical names of the absent channel columns.
-        missing: Vec<&'static str>,
+        /// Canonical names of the absent channel columns, each with its other accepted names.
+        missing: Vec<String>,
+    },
+    /// Roll, pitch and yaw asked of a sensor with only some of its three axes.
+    #[error(
+        "channel {channel}: an rpy rotation mixes a sensor's three axes, and the file has only some of them: give an axis mapping (such as -y,x,z), or all three axes"
+    )]
+    RotationOfPartialTriad {
+        /// A channel of the incomplete sensor.
+        channel: &'static str,
     },
     /// An IMU header mixes rate and increment columns.
     #[error(

@@ -49,6 +49,7 @@ const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, lat_deg, lon_deg, h_m, sd_n_m, sd_e_m, sd_u_m, vn_m_s, ve_m_s, vd_m_s, \
                heading_deg, sd_heading_deg",
+    time_alternatives: "",
 };
 
 /// The optional groups: name as told to the user, and member columns.

@@ -69,6 +69,7 @@ const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, g{x,y,z}_{rad_s,deg_s,deg_h}, a{x,y,z}_{m_s2,g,mg}, \
                dth{x,y,z}_{rad,deg}, dv{x,y,z}_m_s, temp_c",
+    time_alternatives: " (or, for a file without times, a sample rate: --rate-hz)",
 };
 
 /// Canonical names of the six channels, with the other accepted names, per kind.
@@ -102,6 +103,19 @@ pub struct ImuOptions {
     /// The sample rate of a file without a `t_s` column, Hz: sample k (0-based) is at k / rate
     /// s. `None`: the file must have `t_s`; given, the file must not have it.
     pub rate_hz: Option<f64>,
+    /// Which of the six channel columns the file must have.
+    pub channels: ChannelRule,
+}
+
+/// Which of the six channel columns (gx..az, or their increments) an IMU file must have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ChannelRule {
+    /// All six, for navigation; the error names every absent one.
+    #[default]
+    AllSix,
+    /// Any one or more (a single-gyro file), for the static analyses: the series' absent
+    /// channels have empty columns ([`ImuSeries::present_channels`]).
+    AnySubset,
 }
 
 impl ImuOptions {
@@ -132,6 +146,8 @@ pub struct ImuReader<R> {
     kind: SampleKind,
     temperature: bool,
     mounting: Option<Mounting>,
+    /// The channels present, in body axes (after the mounting).
+    present: Vec<Channel>,
 }
 
 impl ImuReader<crate::FileReader> {
@@ -186,13 +202,16 @@ impl<R: BufRead> ImuReader<R> {
     ) -> Result<Self, ReadError> {
         let times = options.row_times();
         let rows = Rows::open_timed(reader, input.into(), &SCHEMA, strictness, times)?;
-        let kind = sample_kind(rows.layout()).map_err(|kind| rows.header_error(kind))?;
+        let (kind, present) = sample_kind(rows.layout(), options.channels)
+            .and_then(|(kind, present)| Ok((kind, body_channels(&present, options.mounting)?)))
+            .map_err(|kind| rows.header_error(kind))?;
         let temperature = rows.layout().has(TEMPERATURE_SLOT);
         Ok(Self {
             rows,
             kind,
             temperature,
             mounting: options.mounting,
+            present,
         })
     }
 
@@ -204,6 +223,13 @@ impl<R: BufRead> ImuReader<R> {
     /// Whether the file has a `temp_c` column.
     pub fn has_temperature(&self) -> bool {
         self.temperature
+    }
+
+    /// The channels the file holds, in body axes (after the mounting), in [`Channel::ALL`]
+    /// order: all six unless read under [`ChannelRule::AnySubset`]. The samples carry 0 for
+    /// the others.
+    pub fn present_channels(&self) -> &[Channel] {
+        &self.present
     }
 }
 
@@ -238,8 +264,12 @@ impl<R: BufRead> Iterator for ImuReader<R> {
     }
 }
 
-/// The kind of the header's channel columns, which must be all six of one kind.
-fn sample_kind(layout: &Layout) -> Result<SampleKind, ReadErrorKind> {
+/// The kind of the header's channel columns, which must be of one kind and, under
+/// [`ChannelRule::AllSix`], all six; and which of the six (in IMU axes) are there.
+fn sample_kind(
+    layout: &Layout,
+    rule: ChannelRule,
+) -> Result<(SampleKind, Vec<Channel>), ReadErrorKind> {
     let rate = (RATE_SLOT..RATE_SLOT + 6).find_map(|slot| layout.name_of(slot));
     let increment = (INCREMENT_SLOT..INCREMENT_SLOT + 6).find_map(|slot| layout.name_of(slot));
     let (kind, first, names) = match (rate, increment) {
@@ -252,10 +282,53 @@ fn sample_kind(layout: &Layout) -> Result<SampleKind, ReadErrorKind> {
         (None, Some(_)) => (SampleKind::Increments, INCREMENT_SLOT, INCREMENT_NAMES),
         _ => (SampleKind::Rates, RATE_SLOT, RATE_NAMES),
     };
-    for (offset, (name, alternatives)) in names.into_iter().enumerate() {
-        layout.require(first + offset, name, alternatives)?;
+    let present: Vec<Channel> = Channel::ALL
+        .into_iter()
+        .filter(|c| layout.has(first + c.index()))
+        .collect();
+    let missing: Vec<String> = Channel::ALL
+        .into_iter()
+        .filter(|c| !present.contains(c))
+        .map(|c| format!("{}{}", names[c.index()].0, names[c.index()].1))
+        .collect();
+    match (rule, present.len()) {
+        (_, 0) => {
+            let (name, alternatives) = names[0];
+            layout.require(first, name, alternatives)?;
+        }
+        (ChannelRule::AllSix, 6) | (ChannelRule::AnySubset, _) => {}
+        (ChannelRule::AllSix, _) => return Err(ReadErrorKind::MissingChannels { missing }),
     }
-    Ok(kind)
+    Ok((kind, present))
+}
+
+/// The channels present in body axes: those of `present` (IMU axes) moved by an axis
+/// mapping; angles mix a sensor's three axes, so they need all three of each sensor that is
+/// present.
+fn body_channels(
+    present: &[Channel],
+    mounting: Option<Mounting>,
+) -> Result<Vec<Channel>, ReadErrorKind> {
+    let Some(mounting) = mounting else {
+        return Ok(present.to_vec());
+    };
+    let mut body = Vec::new();
+    for &channel in present {
+        let (triad, axis) = (channel.index() / 3 * 3, channel.index() % 3);
+        let Some(body_axis) = mounting.body_axis_of(axis) else {
+            let partial = (triad..triad + 3).any(|i| !present.contains(&Channel::ALL[i]));
+            if partial {
+                return Err(ReadErrorKind::RotationOfPartialTriad {
+                    channel: channel.name(),
+                });
+            }
+            body.push(channel);
+            continue;
+        };
+        body.push(Channel::ALL[triad + body_axis]);
+    }
+    body.sort();
+    Ok(body)
 }
 
 /// Reads a whole IMU CSV from `reader` (named `input` in errors) into a series.
@@ -496,6 +569,7 @@ fn collect_series<R: BufRead>(
     input_bytes: Option<u64>,
 ) -> Result<ImuSeries, ReadError> {
     let mut series = ImuSeries::new(reader.kind());
+    let present = reader.present_channels().to_vec();
     let Some(first) = reader.next() else {
         return Ok(series);
     };
@@ -506,6 +580,7 @@ fn collect_series<R: BufRead>(
     for sample in reader {
         series.push(&sample?);
     }
+    series.keep_channels(&present);
     Ok(series)
 }
 

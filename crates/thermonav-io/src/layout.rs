@@ -59,6 +59,8 @@ pub(crate) struct Schema {
     pub(crate) columns: &'static [ColumnSpec],
     /// The accepted names as told to the user.
     pub(crate) expected: &'static str,
+    /// What may stand in for a missing `t_s`, as ` (or …)`, or empty.
+    pub(crate) time_alternatives: &'static str,
 }
 
 /// What one column of a file holds.
@@ -121,10 +123,7 @@ impl Layout {
             layout.targets.push(target);
         }
         match (time_column, rate_hz) {
-            (None, None) => Err(missing(
-                TIME_COLUMN,
-                " (or, for a file without times, a sample rate: --rate-hz)",
-            )),
+            (None, None) => Err(missing(TIME_COLUMN, schema.time_alternatives)),
             (Some(_), Some(rate_hz)) => Err(ReadErrorKind::TimeColumnWithRate { rate_hz }),
             _ => Ok(layout),
         }

@@ -39,6 +39,7 @@ const COLUMNS: [ColumnSpec; 9] = [
 const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, lat_deg, lon_deg, h_m, vn_m_s, ve_m_s, vd_m_s, roll_deg, pitch_deg, yaw_deg",
+    time_alternatives: "",
 };
 
 /// Streaming reader of the canonical trajectory CSV: an iterator of points (SI, radians).

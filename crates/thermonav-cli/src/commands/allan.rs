@@ -71,7 +71,7 @@ fn adev_channels(
 ) -> Result<BTreeMap<&'static str, ChannelJson>, Failure> {
     let grid: TauGrid = args.taus.into();
     let mut channels = BTreeMap::new();
-    for channel in Channel::ALL {
+    for channel in series.present_channels() {
         let y = series.channel(channel);
         let curve = overlapping_adev(y, rate_hz, &grid)
             .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))

@@ -69,7 +69,8 @@ pub enum CharacterizeJob {
 pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure> {
     let conditioning = conditioning(args)?;
     let imu = super::imu::options(&args.rotation, &args.rate)?;
-    if args.manifest.is_some() && imu != ImuOptions::default() {
+    let given = imu.mounting.is_some() || imu.rate_hz.is_some();
+    if args.manifest.is_some() && given {
         return Err(Failure::Usage(anyhow!(
             "--imu-rotation and --rate-hz are for records given on the command line; a lot's records are read as its manifest says"
         )));

@@ -1,20 +1,24 @@
 //! How a command takes its IMU record: the mounting (`--imu-rotation`, every command that
-//! reads an IMU) and the rate of a file without times (`--rate-hz`, the static analyses),
-//! resolved once into the reader's [`ImuOptions`].
+//! reads an IMU), the rate of a file without times (`--rate-hz`) and any subset of the six
+//! channels (the static analyses, `characterize` and `allan`), resolved once into the
+//! reader's [`ImuOptions`]. Navigation needs all six channels: its reader refuses a subset,
+//! naming every absent column.
 
 use crate::args::{ImuRotationArgs, SampleRateArgs};
 use crate::failure::Failure;
-use thermonav_io::ImuOptions;
+use thermonav_io::{ChannelRule, ImuOptions};
 
-/// The reader's options from `--imu-rotation` alone (times from the file's `t_s`).
+/// The reader's options from `--imu-rotation` alone (times from the file's `t_s`, all six
+/// channels).
 pub fn rotation_only(rotation: &ImuRotationArgs) -> ImuOptions {
     ImuOptions {
         mounting: rotation.imu_rotation,
-        rate_hz: None,
+        ..ImuOptions::default()
     }
 }
 
-/// The reader's options from `--imu-rotation` and `--rate-hz` (a positive rate).
+/// The options of a static analysis: `--imu-rotation`, `--rate-hz` (a positive rate) and
+/// any subset of the channels.
 pub fn options(rotation: &ImuRotationArgs, rate: &SampleRateArgs) -> Result<ImuOptions, Failure> {
     let rate_hz = match rate.rate_hz {
         Some(hz) => Some(super::positive("--rate-hz", hz)?),
@@ -22,6 +26,7 @@ pub fn options(rotation: &ImuRotationArgs, rate: &SampleRateArgs) -> Result<ImuO
     };
     Ok(ImuOptions {
         rate_hz,
+        channels: ChannelRule::AnySubset,
         ..rotation_only(rotation)
     })
 }

@@ -794,3 +794,40 @@ fn bad_rotations_and_rates_are_refused_with_the_reason() {
         "--imu-rotation and --rate-hz are for records given on the command line",
     );
 }
+
+/// A subset of the channels: an rpy rotation (which would mix absent axes in) and streaming
+/// (which characterises all six) are refused with the reason.
+#[test]
+fn a_subset_of_channels_refuses_angles_and_streaming() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::from("t_s,gz_rad_s\n");
+    for k in 0..200 {
+        text.push_str(&format!("{},{}\n", k as f64 / 100.0, (k as f64).sin()));
+    }
+    let gyro = write_file(dir.path(), "gz.csv", &text);
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "allan",
+        arg(&gyro),
+        "--imu-rotation",
+        "rpy:0,0,90",
+    ]));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("gz.csv:1: channel gz: an rpy rotation mixes"),
+        "{stderr}"
+    );
+    let bank = dir.path().join("bank.json");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "characterize",
+        arg(&gyro),
+        "--temperature-c",
+        "20",
+        "--reading",
+        "streaming",
+        "--out",
+        arg(&bank),
+    ]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("1 of the six channels"), "{stderr}");
+    assert!(!bank.exists());
+}

@@ -314,3 +314,77 @@ fn a_rate_times_a_file_without_a_time_column() {
         .collect();
     assert_eq!(banks[0], banks[1]);
 }
+
+/// `wiggly_record`'s t_s, gz and temp_c columns alone: a single-gyro file.
+fn single_gyro(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            let f: Vec<&str> = line.split(',').collect();
+            format!("{},{},{}\n", f[0], f[3], f[7])
+        })
+        .collect()
+}
+
+/// A single-gyro file gives exactly the full file's gz curve and gz model, alone; navigation
+/// refuses it, naming the five absent columns.
+#[test]
+fn a_single_gyro_file_is_analysed_alone_and_refused_by_navigation() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = wiggly_record(6000);
+    let full = write_file(dir.path(), "full.csv", &text);
+    let gyro = write_file(dir.path(), "gz.csv", &single_gyro(&text));
+    let (all, one) = (allan(&full, &[]), allan(&gyro, &[]));
+    let names: Vec<&String> = one["channels"].as_object().unwrap().keys().collect();
+    assert_eq!(names, ["gz"]);
+    assert_eq!(one["channels"]["gz"], all["channels"]["gz"]);
+    let family = json_of(&["allan", arg(&gyro), "--kind", "mdev", "--json"]);
+    assert_eq!(family["channels"].as_object().unwrap().len(), 1);
+    let entry = |input: &Path, name: &str| {
+        let bank = dir.path().join(name);
+        let args = [
+            "characterize",
+            arg(input),
+            "--gmwm",
+            "off",
+            "--quiet",
+            "--out",
+            arg(&bank),
+        ];
+        let (status, _, stderr) = outcome(&thermonav(&args));
+        assert_eq!(status, 0, "stderr: {stderr}");
+        bank_without_sources(&bank)["entries"][0].clone()
+    };
+    let (all, one) = (entry(&full, "full.json"), entry(&gyro, "gz.json"));
+    let names: Vec<&String> = one["channels"].as_object().unwrap().keys().collect();
+    assert_eq!(names, ["gz"], "the bank records the channels present");
+    assert_eq!(one["channels"]["gz"], all["channels"]["gz"]);
+    assert_eq!(
+        one["record_mean"]["values"]["gz"],
+        all["record_mean"]["values"]["gz"]
+    );
+    assert_eq!(one["record_mean"]["values"].as_object().unwrap().len(), 1);
+    let gnss = write_file(
+        dir.path(),
+        "gnss.csv",
+        "t_s,lat_deg,lon_deg,h_m\n0,44,-63,0\n",
+    );
+    let out = dir.path().join("solution.csv");
+    let bank = dir.path().join("full.json");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "integrate",
+        "--imu",
+        arg(&gyro),
+        "--gnss",
+        arg(&gnss),
+        "--bank",
+        arg(&bank),
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(status, 1, "{stderr}");
+    for name in ["gx_rad_s", "gy_rad_s", "ax_m_s2", "ay_m_s2", "az_m_s2"] {
+        assert!(stderr.contains(name), "{name}: {stderr}");
+    }
+    assert!(stderr.contains("all six channels"), "{stderr}");
+    assert!(!out.exists());
+}
