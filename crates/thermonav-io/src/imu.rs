@@ -9,6 +9,10 @@
 //! `dth?_deg` (angle) and `dv?_m_s` (velocity). Every value is converted to SI as it is read;
 //! a file holds rates or increments, never both. `temp_c` is optional. The writer always uses
 //! the SI names.
+//!
+//! [`ImuOptions`] take a file beyond its header: the IMU's mounting (every sample turned into
+//! body axes as it is read), a sample rate for a file without `t_s`, and whether a subset of
+//! the six channels is accepted ([`ChannelRule`]).
 
 use crate::Strictness;
 use crate::atomic::write_atomically;
