@@ -373,16 +373,15 @@ pub fn read_imu_file_with(
     let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
     // A compressed file cannot be entered in the middle, nor can rows timed by their index
-    // be counted from it: those are read in one pass.
-    let halves = match crate::is_compressed(path) || options.rate_hz.is_some() {
-        true => None,
-        false => file_bytes
-            .filter(|&b| b >= PARALLEL_MIN_BYTES)
-            .and_then(|b| split_point(path, b))
-            .and_then(|(header, boundary, bytes)| {
-                read_halves(path, strictness, options, &header, (boundary, bytes))
-            }),
-    };
+    // be counted from it: those are read in one pass. The compression is looked at only for
+    // a large file, never for a pipe (of length 0), whose first bytes a look would consume.
+    let halves = file_bytes
+        .filter(|&b| b >= PARALLEL_MIN_BYTES)
+        .filter(|_| options.rate_hz.is_none() && !crate::is_compressed(path))
+        .and_then(|b| split_point(path, b))
+        .and_then(|(header, boundary, bytes)| {
+            read_halves(path, strictness, options, &header, (boundary, bytes))
+        });
     let series = match halves {
         Some(series) => series,
         // Small files, and any file on which a half failed: one pass, which also gives the

@@ -201,7 +201,7 @@ pub fn open_input(path: &Path) -> std::io::Result<InputFile> {
 }
 
 /// Whether [`open_input`] reads `path` through the decompressor (false when it cannot be
-/// opened).
+/// opened). It opens the file and reads its first bytes: not for a pipe, which would lose them.
 pub fn is_compressed(path: &Path) -> bool {
     open_input(path).is_ok_and(|f| f.is_compressed())
 }
