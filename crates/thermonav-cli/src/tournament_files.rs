@@ -25,7 +25,7 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::run::RunInput;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
-    Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
+    ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
     write_atomically, write_json_atomically,
 };
 
@@ -35,6 +35,9 @@ pub struct EvaluationFile {
     /// The report.
     #[serde(flatten)]
     pub report: TournamentReport,
+    /// The `--imu-rotation` the IMU record was turned by, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub imu_rotation: Option<String>,
     /// This file.
     pub report_file: PathBuf,
 }
@@ -105,7 +108,7 @@ pub fn run_and_write(
     tournament: &Tournament,
     main: &Scenario,
     replicates: &Replicates,
-    out: &Path,
+    (out, imu): (&Path, &ImuOptions),
 ) -> Result<EvaluationFile, Failure> {
     let bar = crate::progress::bar(tournament.runs(replicates), "tournament runs");
     let outcome = tournament
@@ -120,6 +123,7 @@ pub fn run_and_write(
     }
     let file = EvaluationFile {
         report,
+        imu_rotation: crate::settings::imu::rotation_text(imu),
         report_file: out.join("evaluation.json"),
     };
     // The folder exists already when an error CSV was written, not when every run failed.

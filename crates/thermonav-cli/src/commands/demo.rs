@@ -334,7 +334,8 @@ fn tournament(
         differ_by: "simulation seeds (new IMU errors and GNSS noise per replicate)",
         make: &make,
     };
-    run_and_write(&tournament, &main, &replicates, &out.join("evaluation"))
+    let out = out.join("evaluation");
+    run_and_write(&tournament, &main, &replicates, (&out, &Default::default()))
 }
 
 /// (a) is the paper's set-up at one temperature: no scheduled or compensated candidate (they

@@ -804,4 +804,30 @@ fn integrate_turns_a_rotated_imu_back_into_body_axes() {
         std::fs::read(&plain_out).unwrap(),
         std::fs::read(&turned_out).unwrap()
     );
+    // evaluate: the same models and errors, and the rotation in evaluation.json.
+    let evaluate = |out: &str, extra: &[&str], imu: Option<&Path>| {
+        let out = dir.path().join(out);
+        let mut args = evaluate_args(
+            &vessel,
+            &bank,
+            &out,
+            &[&["--outages", "60+30"], extra].concat(),
+        );
+        if let Some(imu) = imu {
+            args[2] = arg(imu).to_string();
+        }
+        let mut json = json_of(&args);
+        for model in json["models"].as_array_mut().unwrap() {
+            model.as_object_mut().unwrap().remove("errors_csv");
+        }
+        json
+    };
+    let plain = evaluate("plain-evaluation", &[], None);
+    let turned = evaluate(
+        "turned-evaluation",
+        &["--imu-rotation", "-y,x,z"],
+        Some(&turned),
+    );
+    assert_eq!(turned["imu_rotation"], "-y,x,z");
+    assert_eq!(plain["models"], turned["models"]);
 }
