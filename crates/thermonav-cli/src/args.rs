@@ -5,6 +5,7 @@ use crate::thermal_calibration::{
 };
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use thermonav::mounting::Mounting;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
@@ -134,6 +135,8 @@ pub struct EvaluateArgs {
     /// The IMU CSV.
     #[arg(long)]
     pub imu: PathBuf,
+    #[command(flatten)]
+    pub rotation: ImuRotationArgs,
     /// The GNSS CSV.
     #[arg(long)]
     pub gnss: PathBuf,
@@ -218,6 +221,8 @@ pub struct IntegrateArgs {
     /// The IMU CSV (rates or increments).
     #[arg(long)]
     pub imu: PathBuf,
+    #[command(flatten)]
+    pub rotation: ImuRotationArgs,
     /// The GNSS CSV (position; optional velocity, heading and standard deviations).
     #[arg(long)]
     pub gnss: PathBuf,
@@ -332,6 +337,10 @@ pub enum TausArg {
 pub struct AllanArgs {
     /// The IMU CSV (rates).
     pub file: PathBuf,
+    #[command(flatten)]
+    pub rotation: ImuRotationArgs,
+    #[command(flatten)]
+    pub rate: SampleRateArgs,
     /// τ grid.
     #[arg(long, value_enum, default_value_t = TausArg::Octave)]
     pub taus: TausArg,
@@ -408,6 +417,10 @@ pub struct CharacterizeArgs {
     /// Static IMU CSVs, one per temperature point.
     #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
+    #[command(flatten)]
+    pub rotation: ImuRotationArgs,
+    #[command(flatten)]
+    pub rate: SampleRateArgs,
     /// Temperatures of the files, °C, comma-separated (default: the mean of each file's temp_c).
     #[arg(
         long,
@@ -1003,6 +1016,28 @@ pub enum ForeignFormatArg {
     Px4Ulog,
 }
 
+/// `--imu-rotation`, shared by every command that reads an IMU record.
+#[derive(Debug, Clone, Args)]
+pub struct ImuRotationArgs {
+    /// The IMU's mounting in the body (forward-right-down), applied to the gyro and
+    /// accelerometer vectors (rates or increments) as the file is read: an axis mapping such
+    /// as -y,x,z (body axis i is the signed IMU axis: body x = IMU -y, body y = IMU x; a
+    /// rotation, never a reflection) or rpy:ROLL,PITCH,YAW, the IMU's roll, pitch and yaw
+    /// relative to the body in degrees (ZYX, C_s^b = Rz(yaw) Ry(pitch) Rx(roll)). Default: the
+    /// file's axes are the body's.
+    #[arg(long, allow_hyphen_values = true, value_name = "MAPPING|rpy:R,P,Y")]
+    pub imu_rotation: Option<Mounting>,
+}
+
+/// `--rate-hz` of the static analyses: the sample rate of a record without times.
+#[derive(Debug, Clone, Args)]
+pub struct SampleRateArgs {
+    /// The sample rate of an IMU file without a t_s column, Hz: sample k is at k/RATE s from
+    /// 0. A file with t_s is refused with it (its own times are used, never replaced).
+    #[arg(long)]
+    pub rate_hz: Option<f64>,
+}
+
 /// Axes of a raw IMU file's output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ImuFrameArg {
@@ -1029,6 +1064,8 @@ pub struct ConvertArgs {
     /// raw-imu-tag: the time-tag file (default: INPUT.tag).
     #[arg(long)]
     pub tag: Option<PathBuf>,
+    #[command(flatten)]
+    pub rotation: ImuRotationArgs,
     /// raw-imu-tag: axes of the output.
     #[arg(long, value_enum, default_value_t = ImuFrameArg::Sensor)]
     pub imu_frame: ImuFrameArg,

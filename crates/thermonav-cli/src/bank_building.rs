@@ -11,7 +11,7 @@ use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
-use thermonav_io::{Strictness, read_imu_file, write_json_atomically};
+use thermonav_io::{ImuOptions, Strictness, read_imu_file_with, write_json_atomically};
 
 /// The temperature of a record: given, or the mean of its temp_c column.
 fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
@@ -35,23 +35,36 @@ pub fn recorded_temperature(path: &Path, mean_c: f64) -> Result<f64, Failure> {
         .map_err(|e| Failure::Data(anyhow!("{e}")))
 }
 
-/// Characterises one file, whole in memory or streamed as `reading` says.
+/// Characterises one file, read as `imu` says, whole in memory or streamed as `reading` says;
+/// the entry records the mounting.
 pub fn characterize_file(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    reading: ReadingArg,
+    (reading, imu): (ReadingArg, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    if streams(path, reading) {
-        return characterize_streaming(path, given, settings, &name);
-    }
-    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let mut entry = match streams(path, reading) {
+        true => characterize_streaming(path, given, settings, (&name, imu))?,
+        false => characterize_in_memory(path, given, settings, (&name, imu))?,
+    };
+    entry.imu_rotation = crate::settings::imu::rotation_text(imu);
+    Ok(entry)
+}
+
+/// Characterises one file read whole; `name` is its source label.
+fn characterize_in_memory(
+    path: &Path,
+    given: Option<f64>,
+    settings: &CharacterizeSettings,
+    (name, imu): (&str, &ImuOptions),
+) -> Result<TemperatureEntry, Failure> {
+    let series = read_imu_file_with(path, Strictness::Strict, imu).data()?;
     let temperature_c = temperature_of(path, &series, given)?;
-    let (entry, _) = characterize(&series, temperature_c, &name, settings)
+    let (entry, _) = characterize(&series, temperature_c, name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()?;
     Ok(entry)
@@ -107,7 +120,8 @@ pub fn build_bank_reading(
         .par_iter()
         .enumerate()
         .map(|(k, path)| {
-            let entry = characterize_file(path, temperatures.get(k).copied(), settings, reading);
+            let given = temperatures.get(k).copied();
+            let entry = characterize_file(path, given, settings, (reading, &inputs.thermal.imu));
             progress.inc(1);
             entry
         })

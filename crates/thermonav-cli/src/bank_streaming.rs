@@ -11,7 +11,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::{GravityCheck, ImuReader, ReadError, Strictness};
+use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
 /// a full-precision 6-channel CSV, whose in-memory characterisation peaks near 2 GB).
@@ -29,14 +29,16 @@ pub fn streams(path: &Path, reading: ReadingArg) -> bool {
     }
 }
 
-/// Characterises the record in `path` in pieces; `name` is its source label.
+/// Characterises the record in `path`, read as `imu` says, in pieces; `name` is its source
+/// label.
 pub fn characterize_streaming(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    name: &str,
+    (name, imu): (&str, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
-    let reader = ImuReader::open(path, Strictness::Strict).data()?;
+    let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
+    check_all_six(&reader, path)?;
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
     feed(path, reader, &mut stream, &mut gravity)?;
@@ -55,7 +57,7 @@ pub fn characterize_streaming(
 /// Pushes every piece the reader thread parses into the characterisation and the gravity check.
 fn feed(
     path: &Path,
-    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    reader: ImuReader<thermonav_io::FileReader>,
     stream: &mut StreamingCharacterizer,
     gravity: &mut GravityCheck,
 ) -> Result<(), Failure> {
@@ -73,6 +75,17 @@ fn feed(
         }
         Ok(())
     })
+}
+
+/// The refusal of a record of a subset of the channels: streaming characterises all six.
+fn check_all_six(reader: &ImuReader<thermonav_io::FileReader>, path: &Path) -> Result<(), Failure> {
+    match reader.present_channels().len() {
+        6 => Ok(()),
+        n => Err(Failure::Usage(anyhow!(
+            "{}: {n} of the six channels: --reading streaming characterises all six; read a subset in memory (--reading in-memory)",
+            path.display()
+        ))),
+    }
 }
 
 /// The error for a file with a header and no data rows.
@@ -102,7 +115,7 @@ fn temperature_of(given: Option<f64>, mean: Option<f64>, path: &Path) -> Result<
 /// Parses the file into pieces of [`PIECE_ROWS`] samples and hands each to `deliver`
 /// (stopping when it returns false); a read error is delivered as the last item.
 fn read_pieces(
-    reader: ImuReader<std::io::BufReader<std::fs::File>>,
+    reader: ImuReader<thermonav_io::FileReader>,
     kind: SampleKind,
     mut deliver: impl FnMut(Result<ImuSeries, ReadError>) -> bool,
 ) {

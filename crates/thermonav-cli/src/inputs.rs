@@ -8,7 +8,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
-use thermonav_io::{Strictness, read_imu_file};
+use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
 
 /// Reads and validates a bank file.
 pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
@@ -31,10 +31,14 @@ fn no_thermal(path: &Path) -> Failure {
     ))
 }
 
-/// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
-/// rates in the error for a file of increments.
-pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
+/// Reads an IMU CSV of rates as `options` say, and its nominal sample rate, Hz; `purpose`
+/// names what needs rates in the error for a file of increments.
+pub fn read_rates(
+    path: &Path,
+    purpose: &str,
+    options: &ImuOptions,
+) -> Result<(ImuSeries, f64), Failure> {
+    let series = read_imu_file_with(path, Strictness::Strict, options).data()?;
     if series.kind == Some(SampleKind::Increments) {
         return Err(Failure::Data(anyhow!(
             "{}: {purpose} needs rates; the file holds increments",
@@ -43,6 +47,16 @@ pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failur
     }
     let rate_hz = nominal_rate_hz(&series, path)?;
     Ok((series, rate_hz))
+}
+
+/// `series` in body axes by the mounting of `options`: for the IMU records of readers other
+/// than the canonical CSV's (ULog, raw IMU, KF-GINS), which the canonical reader's options do
+/// not reach.
+pub fn to_body(mut series: ImuSeries, options: &ImuOptions) -> ImuSeries {
+    if let Some(mounting) = options.mounting {
+        mounting.series_to_body(&mut series);
+    }
+    series
 }
 
 /// The nominal sample rate of a series (its median interval), Hz.

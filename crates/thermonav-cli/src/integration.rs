@@ -23,12 +23,13 @@ use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::solution::{write_innovations_file, write_solution_states_file};
 use thermonav_io::{
-    Strictness, read_gnss_file, read_imu_file, read_trajectory_file, write_trajectory_file,
+    Strictness, read_gnss_file, read_imu_file_with, read_trajectory_file, write_trajectory_file,
 };
 
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
-    let series = read_imu_file(&settings.imu, Strictness::Strict).data()?;
+    let series =
+        read_imu_file_with(&settings.imu, Strictness::Strict, &settings.imu_options).data()?;
     let gnss = read_gnss_file(&settings.gnss, Strictness::Strict).data()?;
     let noise = load_noise(&settings.noise)?;
     let reference = match &settings.initial_from {
@@ -151,6 +152,9 @@ fn write_epochs(trajectory: &Path, states: &Path, epochs: &[SolutionEpoch]) -> R
 #[derive(Debug, Serialize)]
 pub struct Summary {
     imu: PathBuf,
+    /// The `--imu-rotation` the IMU record was turned by, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    imu_rotation: Option<String>,
     gnss: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
@@ -168,6 +172,7 @@ fn summarize(settings: &IntegrateSettings, outcome: &RunOutcome) -> Summary {
     };
     Summary {
         imu: settings.imu.clone(),
+        imu_rotation: crate::settings::imu::rotation_text(&settings.imu_options),
         gnss: settings.gnss.clone(),
         bank,
         profile,

@@ -16,7 +16,7 @@ use thermonav::stoch::thermal::{
 };
 use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
 use thermonav_io::ulog::read_ulog_file;
-use thermonav_io::{Strictness, read_imu_file};
+use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
 
 /// Block length of a sweep's block means, s: five minutes, longer than most of a MEMS bias's
 /// correlation times, so that neighbouring blocks are nearly independent.
@@ -45,6 +45,8 @@ pub struct ThermalInputs {
     /// Where the chamber stands: latitude (rad) and height (m), for the gravity a level unit's
     /// az reads.
     pub site: Site,
+    /// How the records are read (the bank's records' mounting and rate).
+    pub imu: ImuOptions,
 }
 
 impl Default for ThermalInputs {
@@ -55,6 +57,7 @@ impl Default for ThermalInputs {
             sweep_block_s: DEFAULT_SWEEP_BLOCK_S,
             sweep_instance: 0,
             site: default_site(),
+            imu: ImuOptions::default(),
         }
     }
 }
@@ -77,12 +80,15 @@ pub fn calibrate_bank(
 ) -> Result<Option<ThermalCalibration>, Failure> {
     let mut parts = vec![bank_power_on(bank)];
     for (k, files) in inputs.power_ons.iter().enumerate() {
-        parts.push(power_on_records(k as u32 + 2, &means_of(files)?));
+        parts.push(power_on_records(
+            k as u32 + 2,
+            &means_of(files, &inputs.imu)?,
+        ));
     }
     let first_sweep = inputs.power_ons.len() as u32 + 2;
     let mut devices = Vec::new();
     for (k, file) in inputs.sweeps.iter().enumerate() {
-        let sweep = sweep_series(file, inputs.sweep_instance)?;
+        let sweep = sweep_series(file, inputs.sweep_instance, &inputs.imu)?;
         devices.extend(sweep.devices);
         parts.push(sweep_of(
             &sweep.series,
@@ -106,10 +112,10 @@ struct Sweep {
 }
 
 /// The sweep in `path`: an IMU CSV, or a PX4 ULog's raw sensors of `instance`.
-fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
+fn sweep_series(path: &Path, instance: u8, imu: &ImuOptions) -> Result<Sweep, Failure> {
     crate::inputs::readable_twice(path, "characterize --sweep")?;
     if !is_ulog(path) {
-        let series = read_imu_file(path, Strictness::Strict).data()?;
+        let series = read_imu_file_with(path, Strictness::Strict, imu).data()?;
         return Ok(Sweep {
             series,
             devices: None,
@@ -124,7 +130,7 @@ fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
         accel_device_id: raw.accel_device_id,
     };
     Ok(Sweep {
-        series: raw.series,
+        series: crate::inputs::to_body(raw.series, imu),
         devices: Some(devices),
     })
 }
@@ -133,7 +139,7 @@ fn sweep_series(path: &Path, instance: u8) -> Result<Sweep, Failure> {
 fn is_ulog(path: &Path) -> bool {
     use std::io::Read;
     let mut head = [0u8; 7];
-    let read = std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head));
+    let read = thermonav_io::open_input(path).and_then(|mut f| f.read_exact(&mut head));
     read.is_ok() && head.starts_with(&thermonav_io::ulog::MAGIC)
 }
 
@@ -201,12 +207,12 @@ fn fit(
 }
 
 /// The means of static records of one power-on, each at its temp_c mean.
-fn means_of(files: &[PathBuf]) -> Result<Vec<RecordMean>, Failure> {
-    files.iter().map(|f| mean_of(f)).collect()
+fn means_of(files: &[PathBuf], imu: &ImuOptions) -> Result<Vec<RecordMean>, Failure> {
+    files.iter().map(|f| mean_of(f, imu)).collect()
 }
 
-fn mean_of(path: &Path) -> Result<RecordMean, Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
+fn mean_of(path: &Path, imu: &ImuOptions) -> Result<RecordMean, Failure> {
+    let series = read_imu_file_with(path, Strictness::Strict, imu).data()?;
     let temperature_c = series.mean_temperature_c().ok_or_else(|| {
         Failure::Data(anyhow!(
             "{}: a power-on record needs a temp_c column",

@@ -25,8 +25,8 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::run::RunInput;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
-    Strictness, WriteError, read_gnss_file, read_imu_file, read_trajectory_file, write_atomically,
-    write_json_atomically,
+    ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
+    write_atomically, write_json_atomically,
 };
 
 /// `evaluation.json`: the report and where it was written.
@@ -35,6 +35,9 @@ pub struct EvaluationFile {
     /// The report.
     #[serde(flatten)]
     pub report: TournamentReport,
+    /// The `--imu-rotation` the IMU record was turned by, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub imu_rotation: Option<String>,
     /// This file.
     pub report_file: PathBuf,
 }
@@ -50,7 +53,7 @@ pub fn scenario_from_files(
     operating_temperature_c: Option<f64>,
     records: RecordPlan,
 ) -> Result<(Scenario, f64), Failure> {
-    let series = read_imu_file(&files.imu, Strictness::Strict).data()?;
+    let series = read_imu_file_with(&files.imu, Strictness::Strict, &files.imu_options).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
@@ -105,7 +108,7 @@ pub fn run_and_write(
     tournament: &Tournament,
     main: &Scenario,
     replicates: &Replicates,
-    out: &Path,
+    (out, imu): (&Path, &ImuOptions),
 ) -> Result<EvaluationFile, Failure> {
     let bar = crate::progress::bar(tournament.runs(replicates), "tournament runs");
     let outcome = tournament
@@ -120,6 +123,7 @@ pub fn run_and_write(
     }
     let file = EvaluationFile {
         report,
+        imu_rotation: crate::settings::imu::rotation_text(imu),
         report_file: out.join("evaluation.json"),
     };
     // The folder exists already when an error CSV was written, not when every run failed.

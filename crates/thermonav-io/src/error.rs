@@ -94,6 +94,28 @@ pub enum ReadErrorKind {
         /// Other accepted names, as ` (or …)`, or empty.
         alternatives: &'static str,
     },
+    /// A sample rate was given for a file that has a time column.
+    #[error(
+        "the file has a t_s column and a sample rate of {rate_hz} Hz was given: times come from one source (the column, or the rate for a file without times)"
+    )]
+    TimeColumnWithRate {
+        /// The rate given, Hz.
+        rate_hz: f64,
+    },
+    /// Some of the six IMU channels are absent where all six are needed.
+    #[error("missing column{} {}: all six channels gx..az are needed here (only the static analyses, characterize and allan, take a subset)", if missing.len() == 1 { "" } else { "s" }, missing.join(", "))]
+    MissingChannels {
+        /// Canonical names of the absent channel columns, each with its other accepted names.
+        missing: Vec<String>,
+    },
+    /// Roll, pitch and yaw asked of a sensor with only some of its three axes.
+    #[error(
+        "channel {channel}: an rpy rotation mixes a sensor's three axes, and the file has only some of them: give an axis mapping (such as -y,x,z), or all three axes"
+    )]
+    RotationOfPartialTriad {
+        /// A channel of the incomplete sensor.
+        channel: &'static str,
+    },
     /// An IMU header mixes rate and increment columns.
     #[error(
         "column {rate_column} is a rate but {increment_column} is an increment (one file holds one kind)"

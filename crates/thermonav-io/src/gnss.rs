@@ -14,8 +14,7 @@ use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Presence, Schema, TIME_COLUMN, Unit};
 use crate::rows::Rows;
 use crate::text::{degrees_reading_back_exactly, write_time};
-use std::fs::File;
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, Write};
 use std::path::Path;
 use thermonav::gnss::{GnssFix, HeadingObservation};
 
@@ -50,6 +49,7 @@ const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, lat_deg, lon_deg, h_m, sd_n_m, sd_e_m, sd_u_m, vn_m_s, ve_m_s, vd_m_s, \
                heading_deg, sd_heading_deg",
+    time_alternatives: "",
 };
 
 /// The optional groups: name as told to the user, and member columns.
@@ -80,7 +80,7 @@ pub struct GnssReader<R> {
     groups: Groups,
 }
 
-impl GnssReader<BufReader<File>> {
+impl GnssReader<crate::FileReader> {
     /// Opens `path` and reads its header.
     ///
     /// # Errors

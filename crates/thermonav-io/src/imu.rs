@@ -9,18 +9,23 @@
 //! `dth?_deg` (angle) and `dv?_m_s` (velocity). Every value is converted to SI as it is read;
 //! a file holds rates or increments, never both. `temp_c` is optional. The writer always uses
 //! the SI names.
+//!
+//! [`ImuOptions`] take a file beyond its header: the IMU's mounting (every sample turned into
+//! body axes as it is read), a sample rate for a file without `t_s`, and whether a subset of
+//! the six channels is accepted ([`ChannelRule`]).
 
 use crate::Strictness;
 use crate::atomic::write_atomically;
 use crate::error::{ReadError, ReadErrorKind, WriteError};
 use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, Unit};
-use crate::rows::Rows;
+use crate::rows::{RowTimes, Rows};
 use crate::text::write_time;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSample, ImuSeries, SampleKind};
+use thermonav::mounting::Mounting;
 use thermonav::time::Timestamp;
 
 /// First slot of the rate columns (gx..az), then of the increment columns (dthx..dvz).
@@ -68,6 +73,7 @@ const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, g{x,y,z}_{rad_s,deg_s,deg_h}, a{x,y,z}_{m_s2,g,mg}, \
                dth{x,y,z}_{rad,deg}, dv{x,y,z}_m_s, temp_c",
+    time_alternatives: " (or, for a file without times, a sample rate: --rate-hz)",
 };
 
 /// Canonical names of the six channels, with the other accepted names, per kind.
@@ -89,6 +95,42 @@ const INCREMENT_NAMES: [(&str, &str); 6] = [
 ];
 const TEMPERATURE_NAME: &str = "temp_c";
 
+/// How the canonical IMU reader takes a file beyond what its header says: the IMU's mounting
+/// and where the times come from. The default reads the file as it stands (IMU axes are body
+/// axes, times from `t_s`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ImuOptions {
+    /// The IMU's mounting in the body: every sample's gyro and accelerometer vectors (rates or
+    /// increments) are turned into body axes, v^b = C_s^b v^s, as they are read. `None`: the
+    /// file's axes are the body axes.
+    pub mounting: Option<Mounting>,
+    /// The sample rate of a file without a `t_s` column, Hz: sample k (0-based) is at k / rate
+    /// s. `None`: the file must have `t_s`; given, the file must not have it.
+    pub rate_hz: Option<f64>,
+    /// Which of the six channel columns the file must have.
+    pub channels: ChannelRule,
+}
+
+/// Which of the six channel columns (gx..az, or their increments) an IMU file must have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ChannelRule {
+    /// All six, for navigation; the error names every absent one.
+    #[default]
+    AllSix,
+    /// Any one or more (a single-gyro file), for the static analyses: the series' absent
+    /// channels have empty columns ([`ImuSeries::present_channels`]).
+    AnySubset,
+}
+
+impl ImuOptions {
+    fn row_times(&self) -> RowTimes {
+        match self.rate_hz {
+            Some(rate_hz) => RowTimes::Rate { rate_hz },
+            None => RowTimes::Column,
+        }
+    }
+}
+
 /// Streaming reader of the canonical IMU CSV: an iterator of SI samples.
 ///
 /// Holds one line buffer whatever the file size. After an error the iterator ends.
@@ -107,16 +149,32 @@ pub struct ImuReader<R> {
     rows: Rows<R>,
     kind: SampleKind,
     temperature: bool,
+    mounting: Option<Mounting>,
+    /// The channels present, in body axes (after the mounting).
+    present: Vec<Channel>,
 }
 
-impl ImuReader<BufReader<File>> {
-    /// Opens `path` and reads its header.
+impl ImuReader<crate::FileReader> {
+    /// Opens `path` (decompressing it when it is gzip, see [`crate::open_input`]) and reads
+    /// its header.
     ///
     /// # Errors
     /// As [`ImuReader::new`], plus [`ReadErrorKind::Open`].
     pub fn open(path: impl AsRef<Path>, strictness: Strictness) -> Result<Self, ReadError> {
+        Self::open_with(path, strictness, &ImuOptions::default())
+    }
+
+    /// [`ImuReader::open`] with `options`.
+    ///
+    /// # Errors
+    /// As [`ImuReader::with_options`], plus [`ReadErrorKind::Open`].
+    pub fn open_with(
+        path: impl AsRef<Path>,
+        strictness: Strictness,
+        options: &ImuOptions,
+    ) -> Result<Self, ReadError> {
         let (file, input) = crate::open_file(path.as_ref())?;
-        Self::new(file, input, strictness)
+        Self::with_options(file, input, strictness, options)
     }
 }
 
@@ -131,13 +189,33 @@ impl<R: BufRead> ImuReader<R> {
         input: impl Into<String>,
         strictness: Strictness,
     ) -> Result<Self, ReadError> {
-        let rows = Rows::open(reader, input.into(), &SCHEMA, strictness)?;
-        let kind = sample_kind(rows.layout()).map_err(|kind| rows.header_error(kind))?;
+        Self::with_options(reader, input, strictness, &ImuOptions::default())
+    }
+
+    /// [`ImuReader::new`] with `options`: the mounting applied to every sample, the times
+    /// from a rate for a file without `t_s`.
+    ///
+    /// # Errors
+    /// As [`ImuReader::new`]; a `t_s` column together with a rate
+    /// ([`ReadErrorKind::TimeColumnWithRate`]); no `t_s` column and no rate.
+    pub fn with_options(
+        reader: R,
+        input: impl Into<String>,
+        strictness: Strictness,
+        options: &ImuOptions,
+    ) -> Result<Self, ReadError> {
+        let times = options.row_times();
+        let rows = Rows::open_timed(reader, input.into(), &SCHEMA, strictness, times)?;
+        let (kind, present) = sample_kind(rows.layout(), options.channels)
+            .and_then(|(kind, present)| Ok((kind, body_channels(&present, options.mounting)?)))
+            .map_err(|kind| rows.header_error(kind))?;
         let temperature = rows.layout().has(TEMPERATURE_SLOT);
         Ok(Self {
             rows,
             kind,
             temperature,
+            mounting: options.mounting,
+            present,
         })
     }
 
@@ -150,6 +228,13 @@ impl<R: BufRead> ImuReader<R> {
     pub fn has_temperature(&self) -> bool {
         self.temperature
     }
+
+    /// The channels the file holds, in body axes (after the mounting), in [`Channel::ALL`]
+    /// order: all six unless read under [`ChannelRule::AnySubset`]. The samples carry 0 for
+    /// the others.
+    pub fn present_channels(&self) -> &[Channel] {
+        &self.present
+    }
 }
 
 impl<R: BufRead> Iterator for ImuReader<R> {
@@ -160,12 +245,15 @@ impl<R: BufRead> Iterator for ImuReader<R> {
             SampleKind::Rates => RATE_SLOT,
             SampleKind::Increments => INCREMENT_SLOT,
         };
-        let temperature = self.temperature;
-        let sample = self.rows.next_row()?.map(|(time, values)| ImuSample {
-            time,
-            gyro: [values[first], values[first + 1], values[first + 2]],
-            accel: [values[first + 3], values[first + 4], values[first + 5]],
-            temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
+        let (temperature, mounting) = (self.temperature, self.mounting);
+        let sample = self.rows.next_row()?.map(|(time, values)| {
+            let sample = ImuSample {
+                time,
+                gyro: [values[first], values[first + 1], values[first + 2]],
+                accel: [values[first + 3], values[first + 4], values[first + 5]],
+                temperature_c: temperature.then_some(values[TEMPERATURE_SLOT]),
+            };
+            mounting.map_or(sample, |m| m.sample_to_body(sample))
         });
         let strict = self.rows.strictness() == Strictness::Strict;
         Some(match sample {
@@ -180,8 +268,12 @@ impl<R: BufRead> Iterator for ImuReader<R> {
     }
 }
 
-/// The kind of the header's channel columns, which must be all six of one kind.
-fn sample_kind(layout: &Layout) -> Result<SampleKind, ReadErrorKind> {
+/// The kind of the header's channel columns, which must be of one kind and, under
+/// [`ChannelRule::AllSix`], all six; and which of the six (in IMU axes) are there.
+fn sample_kind(
+    layout: &Layout,
+    rule: ChannelRule,
+) -> Result<(SampleKind, Vec<Channel>), ReadErrorKind> {
     let rate = (RATE_SLOT..RATE_SLOT + 6).find_map(|slot| layout.name_of(slot));
     let increment = (INCREMENT_SLOT..INCREMENT_SLOT + 6).find_map(|slot| layout.name_of(slot));
     let (kind, first, names) = match (rate, increment) {
@@ -194,10 +286,53 @@ fn sample_kind(layout: &Layout) -> Result<SampleKind, ReadErrorKind> {
         (None, Some(_)) => (SampleKind::Increments, INCREMENT_SLOT, INCREMENT_NAMES),
         _ => (SampleKind::Rates, RATE_SLOT, RATE_NAMES),
     };
-    for (offset, (name, alternatives)) in names.into_iter().enumerate() {
-        layout.require(first + offset, name, alternatives)?;
+    let present: Vec<Channel> = Channel::ALL
+        .into_iter()
+        .filter(|c| layout.has(first + c.index()))
+        .collect();
+    let missing: Vec<String> = Channel::ALL
+        .into_iter()
+        .filter(|c| !present.contains(c))
+        .map(|c| format!("{}{}", names[c.index()].0, names[c.index()].1))
+        .collect();
+    match (rule, present.len()) {
+        (_, 0) => {
+            let (name, alternatives) = names[0];
+            layout.require(first, name, alternatives)?;
+        }
+        (ChannelRule::AllSix, 6) | (ChannelRule::AnySubset, _) => {}
+        (ChannelRule::AllSix, _) => return Err(ReadErrorKind::MissingChannels { missing }),
     }
-    Ok(kind)
+    Ok((kind, present))
+}
+
+/// The channels present in body axes: those of `present` (IMU axes) moved by an axis
+/// mapping; angles mix a sensor's three axes, so they need all three of each sensor that is
+/// present.
+fn body_channels(
+    present: &[Channel],
+    mounting: Option<Mounting>,
+) -> Result<Vec<Channel>, ReadErrorKind> {
+    let Some(mounting) = mounting else {
+        return Ok(present.to_vec());
+    };
+    let mut body = Vec::new();
+    for &channel in present {
+        let (triad, axis) = (channel.index() / 3 * 3, channel.index() % 3);
+        let Some(body_axis) = mounting.body_axis_of(axis) else {
+            let partial = (triad..triad + 3).any(|i| !present.contains(&Channel::ALL[i]));
+            if partial {
+                return Err(ReadErrorKind::RotationOfPartialTriad {
+                    channel: channel.name(),
+                });
+            }
+            body.push(channel);
+            continue;
+        };
+        body.push(Channel::ALL[triad + body_axis]);
+    }
+    body.sort();
+    Ok(body)
 }
 
 /// Reads a whole IMU CSV from `reader` (named `input` in errors) into a series.
@@ -223,19 +358,35 @@ pub fn read_imu_file(
     path: impl AsRef<Path>,
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
+    read_imu_file_with(path, strictness, &ImuOptions::default())
+}
+
+/// [`read_imu_file`] with `options` (see [`ImuReader::with_options`]).
+///
+/// # Errors
+/// As [`read_imu_file`] and [`ImuReader::with_options`].
+pub fn read_imu_file_with(
+    path: impl AsRef<Path>,
+    strictness: Strictness,
+    options: &ImuOptions,
+) -> Result<ImuSeries, ReadError> {
     let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
-    let split = file_bytes
+    // A compressed file cannot be entered in the middle, nor can rows timed by their index
+    // be counted from it: those are read in one pass. The compression is looked at only for
+    // a large file, never for a pipe (of length 0), whose first bytes a look would consume.
+    let halves = file_bytes
         .filter(|&b| b >= PARALLEL_MIN_BYTES)
-        .and_then(|b| split_point(path, b));
-    let halves = split.and_then(|(header, boundary, bytes)| {
-        read_halves(path, strictness, &header, boundary, bytes)
-    });
+        .filter(|_| options.rate_hz.is_none() && !crate::is_compressed(path))
+        .and_then(|b| split_point(path, b))
+        .and_then(|(header, boundary, bytes)| {
+            read_halves(path, strictness, options, &header, (boundary, bytes))
+        });
     let series = match halves {
         Some(series) => series,
         // Small files, and any file on which a half failed: one pass, which also gives the
         // exact error (line numbers counted from the top).
-        None => collect_series(ImuReader::open(path, strictness)?, file_bytes)?,
+        None => collect_series(ImuReader::open_with(path, strictness, options)?, file_bytes)?,
     };
     check_gravity_magnitude(series, &path.display().to_string(), strictness)
 }
@@ -357,19 +508,20 @@ fn split_point(path: &Path, bytes: u64) -> Option<(Vec<u8>, u64, u64)> {
 fn read_halves(
     path: &Path,
     strictness: Strictness,
+    options: &ImuOptions,
     header: &[u8],
-    boundary: u64,
-    bytes: u64,
+    (boundary, bytes): (u64, u64),
 ) -> Option<ImuSeries> {
     use std::io::{Read, Seek, SeekFrom};
     let input = path.display().to_string();
     let (first, second) = std::thread::scope(|scope| {
         let first = scope.spawn(|| {
             let file = File::open(path).ok()?.take(boundary);
-            let reader = ImuReader::new(
+            let reader = ImuReader::with_options(
                 BufReader::with_capacity(crate::FILE_BUFFER_BYTES, file),
                 input.clone(),
                 strictness,
+                options,
             )
             .ok()?;
             collect_series(reader, Some(boundary)).ok()
@@ -378,10 +530,11 @@ fn read_halves(
             let mut file = File::open(path).ok()?;
             file.seek(SeekFrom::Start(boundary)).ok()?;
             let joined = std::io::Cursor::new(header.to_vec()).chain(file);
-            let reader = ImuReader::new(
+            let reader = ImuReader::with_options(
                 BufReader::with_capacity(crate::FILE_BUFFER_BYTES, joined),
                 input.clone(),
                 strictness,
+                options,
             )
             .ok()?;
             collect_series(reader, Some(bytes - boundary)).ok()
@@ -419,6 +572,7 @@ fn collect_series<R: BufRead>(
     input_bytes: Option<u64>,
 ) -> Result<ImuSeries, ReadError> {
     let mut series = ImuSeries::new(reader.kind());
+    let present = reader.present_channels().to_vec();
     let Some(first) = reader.next() else {
         return Ok(series);
     };
@@ -429,6 +583,7 @@ fn collect_series<R: BufRead>(
     for sample in reader {
         series.push(&sample?);
     }
+    series.keep_channels(&present);
     Ok(series)
 }
 

@@ -59,6 +59,8 @@ pub(crate) struct Schema {
     pub(crate) columns: &'static [ColumnSpec],
     /// The accepted names as told to the user.
     pub(crate) expected: &'static str,
+    /// What may stand in for a missing `t_s`, as ` (or …)`, or empty.
+    pub(crate) time_alternatives: &'static str,
 }
 
 /// What one column of a file holds.
@@ -90,8 +92,13 @@ pub(crate) struct Layout {
 
 impl Layout {
     /// Maps each header name to its target; unknown and repeated names are errors, and so is a
-    /// missing `t_s`. Names are trimmed of surrounding spaces.
-    pub(crate) fn from_header(header: &str, schema: &Schema) -> Result<Self, ReadErrorKind> {
+    /// missing `t_s` (or, with `rate_hz`, a present one: the times come from one source).
+    /// Names are trimmed of surrounding spaces.
+    pub(crate) fn from_header(
+        header: &str,
+        schema: &Schema,
+        rate_hz: Option<f64>,
+    ) -> Result<Self, ReadErrorKind> {
         let mut layout = Layout {
             header: header.to_owned(),
             names: Vec::new(),
@@ -115,10 +122,11 @@ impl Layout {
             layout.names.push(name.to_owned());
             layout.targets.push(target);
         }
-        if time_column.is_none() {
-            return Err(missing(TIME_COLUMN, ""));
+        match (time_column, rate_hz) {
+            (None, None) => Err(missing(TIME_COLUMN, schema.time_alternatives)),
+            (Some(_), Some(rate_hz)) => Err(ReadErrorKind::TimeColumnWithRate { rate_hz }),
+            _ => Ok(layout),
         }
-        Ok(layout)
     }
 
     /// Header name of the column filling `slot`, if any.

@@ -58,6 +58,11 @@
 //! [`ImuReader`], [`GnssReader`] and [`TrajectoryReader`] are iterators over any `BufRead`,
 //! holding a single line buffer; `read_*` functions collect whole files.
 //!
+//! ## Compressed input
+//! Every reader that takes a path opens it through [`open_input`]: a file whose name ends in
+//! `.gz` or that starts with the gzip magic bytes is decompressed as it is read (pure Rust,
+//! `flate2` on `miniz_oxide`), so errors name the file and the line as for a plain file.
+//!
 //! ## Atomic output
 //! [`write_atomically`], [`AtomicFile`] and [`write_json_atomically`] write through a temporary
 //! file renamed into place on success.
@@ -99,8 +104,8 @@ pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
 };
 pub use imu::{
-    GravityCheck, ImuReader, ImuWriter, TemperatureColumn, read_imu, read_imu_file, write_imu,
-    write_imu_file,
+    ChannelRule, GravityCheck, ImuOptions, ImuReader, ImuWriter, TemperatureColumn, read_imu,
+    read_imu_file, read_imu_file_with, write_imu, write_imu_file,
 };
 pub use trajectory::{
     TrajectoryReader, read_trajectory, read_trajectory_file, trajectory_column_names,
@@ -128,13 +133,77 @@ pub enum Strictness {
 /// Read buffer of file readers, bytes.
 const FILE_BUFFER_BYTES: usize = 1 << 18;
 
+/// A file reader's input: the file's bytes, decompressed when it is gzip (see [`open_input`]).
+pub type FileReader = BufReader<InputFile>;
+
 /// Opens `path` for reading, with the path as the input's name.
-fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
+fn open_file(path: &Path) -> Result<(FileReader, String), ReadError> {
     let input = path.display().to_string();
-    match File::open(path) {
+    match open_input(path) {
         Ok(file) => Ok((BufReader::with_capacity(FILE_BUFFER_BYTES, file), input)),
         Err(error) => Err(ReadError::new(input, None, ReadErrorKind::Open(error))),
     }
+}
+
+/// The two bytes every gzip member starts with (RFC 1952).
+pub const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// The bytes of an input file: as stored, or through a gzip decompressor.
+///
+/// A decompression failure (a truncated or corrupt stream) is a read error of kind
+/// `InvalidInput` or `InvalidData`, which readers report with the file's name like any other.
+pub struct InputFile(Source);
+
+enum Source {
+    Plain(BufReader<File>),
+    Gzip(Box<flate2::bufread::MultiGzDecoder<BufReader<File>>>),
+}
+
+impl InputFile {
+    /// Whether the file is read through the decompressor.
+    pub fn is_compressed(&self) -> bool {
+        matches!(self.0, Source::Gzip(_))
+    }
+}
+
+impl std::io::Read for InputFile {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        match &mut self.0 {
+            Source::Plain(file) => file.read(buf),
+            Source::Gzip(decoder) => decoder.read(buf),
+        }
+    }
+}
+
+/// Opens `path`, through a gzip decompressor when its name ends in `.gz` or its first bytes
+/// are [`GZIP_MAGIC`]: the one open point of every reader that takes a path, so that
+/// `imu.csv.gz`, `run.ulg.gz` or `bank.json.gz` read like the plain files. Concatenated gzip
+/// members read as one stream (as `zcat` does).
+///
+/// # Errors
+/// The error of opening the file.
+pub fn open_input(path: &Path) -> std::io::Result<InputFile> {
+    use std::io::BufRead;
+    let mut file = BufReader::new(File::open(path)?);
+    let named_gz = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    // A failure to read the first bytes (a directory) is left to the first read, which
+    // reports it as a read error of the file.
+    let magic = file
+        .fill_buf()
+        .is_ok_and(|head| head.starts_with(&GZIP_MAGIC));
+    let compressed = named_gz || magic;
+    Ok(InputFile(match compressed {
+        true => Source::Gzip(Box::new(flate2::bufread::MultiGzDecoder::new(file))),
+        false => Source::Plain(file),
+    }))
+}
+
+/// Whether [`open_input`] reads `path` through the decompressor (false when it cannot be
+/// opened). It opens the file and reads its first bytes: not for a pipe, which would lose them.
+pub fn is_compressed(path: &Path) -> bool {
+    open_input(path).is_ok_and(|f| f.is_compressed())
 }
 
 /// The largest document read whole (a bank, a sensor profile, a motion file, a lot manifest):
@@ -142,7 +211,8 @@ fn open_file(path: &Path) -> Result<(BufReader<File>, String), ReadError> {
 /// one such as `/dev/zero`, is refused after reading that much instead of exhausting memory.
 pub const DOCUMENT_LIMIT_BYTES: u64 = 64 << 20;
 
-/// The bytes of the document at `path`, at most [`DOCUMENT_LIMIT_BYTES`] of them.
+/// The bytes of the document at `path`, at most [`DOCUMENT_LIMIT_BYTES`] of them (after
+/// decompression, see [`open_input`]: a gzip bomb is cut off like an endless input).
 ///
 /// # Errors
 /// The error of opening or reading the file, or one of kind `InvalidData` saying that it is
@@ -150,7 +220,7 @@ pub const DOCUMENT_LIMIT_BYTES: u64 = 64 << 20;
 pub fn read_document(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();
-    File::open(path)?
+    open_input(path)?
         .take(DOCUMENT_LIMIT_BYTES + 1)
         .read_to_end(&mut bytes)?;
     if bytes.len() as u64 > DOCUMENT_LIMIT_BYTES {
@@ -194,11 +264,16 @@ pub fn read_document_text(path: &Path) -> std::io::Result<String> {
     })
 }
 
-/// The bytes of the file at `path`, with the path as the input's name; a missing or
+/// The bytes of the file at `path` (decompressed, see [`open_input`]), with the path as the
+/// input's name; a missing or
 /// forbidden file is [`ReadErrorKind::Open`], a failure part-way [`ReadErrorKind::Read`].
 fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
     let input = path.display().to_string();
-    match std::fs::read(path) {
+    let read = open_input(path).and_then(|mut file| {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut file, &mut bytes).map(|_| bytes)
+    });
+    match read {
         Ok(bytes) => Ok((bytes, input)),
         Err(e) => {
             let kind = match e.kind() {

@@ -20,6 +20,40 @@ pub(crate) struct Rows<R> {
     values: [f64; MAX_SLOTS],
     order: TimeOrder,
     state: State,
+    times: RowTimes,
+    /// Data rows decoded so far.
+    rows: u64,
+}
+
+/// Where the rows' times come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum RowTimes {
+    /// The `t_s` column.
+    Column,
+    /// No time column: row k (0-based) is at k / rate_hz s, rounded to the nanosecond.
+    Rate {
+        /// The sample rate, Hz (finite and positive).
+        rate_hz: f64,
+    },
+}
+
+impl RowTimes {
+    fn rate_hz(self) -> Option<f64> {
+        match self {
+            RowTimes::Column => None,
+            RowTimes::Rate { rate_hz } => Some(rate_hz),
+        }
+    }
+}
+
+/// Time of row `index` at `rate_hz`: index / rate_hz seconds, to the nearest nanosecond.
+/// Computed from the index, never summed, so no error accumulates; exact whenever the
+/// period is a whole number of nanoseconds (1e9 / rate_hz integral, as for 100 Hz or 2 kHz)
+/// and the index below 2^53 / 1e9 · rate_hz.
+pub(crate) fn time_at_rate(index: u64, rate_hz: f64) -> Timestamp {
+    let nanos = (index as f64 * (1e9 / rate_hz)).round();
+    // Saturates beyond ±9.2e9 s, which no file reaches (2^63 ns at 1 kHz is 9e15 rows).
+    Timestamp::from_nanos(nanos as i64)
 }
 
 /// Where a row reader is in its input.
@@ -44,6 +78,20 @@ impl<R: BufRead> Rows<R> {
         schema: &Schema,
         strictness: Strictness,
     ) -> Result<Self, ReadError> {
+        Self::open_timed(reader, input, schema, strictness, RowTimes::Column)
+    }
+
+    /// [`Rows::open`] with the rows' times from `times`.
+    ///
+    /// # Errors
+    /// As [`Rows::open`]; with [`RowTimes::Rate`], a header with a `t_s` column.
+    pub(crate) fn open_timed(
+        reader: R,
+        input: String,
+        schema: &Schema,
+        strictness: Strictness,
+        times: RowTimes,
+    ) -> Result<Self, ReadError> {
         let mut lines = Lines::new(reader, input);
         if !lines.advance()? {
             return Err(lines.error_in_input(ReadErrorKind::Empty));
@@ -52,7 +100,8 @@ impl<R: BufRead> Rows<R> {
         let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
         let header = std::str::from_utf8(bytes)
             .map_err(|_| lines.error_here(ReadErrorKind::HeaderNotUtf8))?;
-        let layout = Layout::from_header(header, schema).map_err(|kind| lines.error_here(kind))?;
+        let layout = Layout::from_header(header, schema, times.rate_hz())
+            .map_err(|kind| lines.error_here(kind))?;
         Ok(Self {
             lines,
             layout,
@@ -60,6 +109,8 @@ impl<R: BufRead> Rows<R> {
             values: [0.0; MAX_SLOTS],
             order: TimeOrder::default(),
             state: State::BeforeFirstRow,
+            times,
+            rows: 0,
         })
     }
 
@@ -122,6 +173,11 @@ impl<R: BufRead> Rows<R> {
             &mut self.values,
         )
         .map_err(|kind| self.lines.error_here(kind))?;
+        let time = match self.times {
+            RowTimes::Column => time,
+            RowTimes::Rate { rate_hz } => time_at_rate(self.rows, rate_hz),
+        };
+        self.rows += 1;
         self.check_time_order(time)?;
         Ok(Some(time))
     }

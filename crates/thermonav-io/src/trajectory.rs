@@ -14,8 +14,7 @@ use crate::finite::write_finite;
 use crate::layout::{ColumnSpec, Layout, Schema, TIME_COLUMN, Unit};
 use crate::rows::Rows;
 use crate::text::{degrees_reading_back_exactly, write_time};
-use std::fs::File;
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, Write};
 use std::path::Path;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
@@ -40,6 +39,7 @@ const COLUMNS: [ColumnSpec; 9] = [
 const SCHEMA: Schema = Schema {
     columns: &COLUMNS,
     expected: "t_s, lat_deg, lon_deg, h_m, vn_m_s, ve_m_s, vd_m_s, roll_deg, pitch_deg, yaw_deg",
+    time_alternatives: "",
 };
 
 /// Streaming reader of the canonical trajectory CSV: an iterator of points (SI, radians).
@@ -49,7 +49,7 @@ pub struct TrajectoryReader<R> {
     rows: Rows<R>,
 }
 
-impl TrajectoryReader<BufReader<File>> {
+impl TrajectoryReader<crate::FileReader> {
     /// Opens `path` and reads its header.
     ///
     /// # Errors

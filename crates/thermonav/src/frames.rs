@@ -130,6 +130,10 @@ use std::ops::{Add, Mul, Neg, Sub};
 /// The body frame: forward, right, down, fixed to the IMU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Body;
+/// The IMU's own measurement axes (the sensor frame `s`, as printed on its case), which the
+/// mounting ([`crate::mounting::Mounting`]) turns into body axes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SensorAxes;
 /// The local-level navigation frame: north, east, down.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Ned;

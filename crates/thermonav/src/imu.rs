@@ -206,6 +206,26 @@ impl ImuSeries {
         Ok(())
     }
 
+    /// The channels the series holds, in [`Channel::ALL`] order: all six, except for a record
+    /// of a subset of them (a single-gyro file, read for the static analyses), whose absent
+    /// channels have empty columns while the series has samples.
+    pub fn present_channels(&self) -> Vec<Channel> {
+        Channel::ALL
+            .into_iter()
+            .filter(|&c| self.is_empty() || !self.channel(c).is_empty())
+            .collect()
+    }
+
+    /// Empties the columns of the channels not in `present` (see
+    /// [`ImuSeries::present_channels`]).
+    pub fn keep_channels(&mut self, present: &[Channel]) {
+        for channel in Channel::ALL {
+            if !present.contains(&channel) {
+                self.channels[channel.index()] = Vec::new();
+            }
+        }
+    }
+
     /// The column of one channel.
     pub fn channel(&self, channel: Channel) -> &[f64] {
         &self.channels[channel.index()]

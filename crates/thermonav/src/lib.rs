@@ -170,6 +170,7 @@
 //! - [`nav`]: the 21-state GNSS/INS filters (EKF, UKF) driven by the model bank.
 //! - [`gnss`]: GNSS fixes: position, optional velocity, precision and dual-antenna heading.
 //! - [`trajectory`]: reference trajectory points: position, velocity, attitude.
+//! - [`mounting`]: the IMU's mounting in the body (an axis mapping or roll, pitch, yaw).
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
@@ -185,6 +186,7 @@ pub mod geo;
 pub mod gnss;
 pub mod imu;
 pub mod ins;
+pub mod mounting;
 pub mod nav;
 pub mod rng;
 pub mod sensor;

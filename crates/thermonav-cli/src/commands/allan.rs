@@ -14,11 +14,15 @@ use thermonav::stoch::allan::{
     overlapping_adev,
 };
 use thermonav::stoch::noise_terms::fit_noise_terms;
+use thermonav_io::ImuOptions;
 
 /// The JSON document of `allan --json`.
 #[derive(Debug, Serialize)]
 struct AllanJson {
     file: String,
+    /// The `--imu-rotation` the record was turned by into body axes, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    imu_rotation: Option<String>,
     sample_rate_hz: f64,
     confidence: f64,
     channels: BTreeMap<&'static str, ChannelJson>,
@@ -40,33 +44,42 @@ struct ChannelJson {
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     check_confidence(args.confidence)?;
+    let options = crate::settings::imu::options(&args.rotation, &args.rate)?;
     if args.kind != DeviationKind::Adev {
-        return run_family(args);
+        return run_family(args, &options);
     }
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
-    let grid: TauGrid = args.taus.into();
-    let mut channels = BTreeMap::new();
-    for channel in Channel::ALL {
-        let y = series.channel(channel);
-        let curve = overlapping_adev(y, rate_hz, &grid)
-            .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))
-            .data()?;
-        channels.insert(
-            channel.name(),
-            channel_json(y, curve, channel, args.confidence),
-        );
-    }
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", &options)?;
     let doc = AllanJson {
         file: args.file.display().to_string(),
+        imu_rotation: crate::settings::imu::rotation_text(&options),
         sample_rate_hz: rate_hz,
         confidence: args.confidence,
-        channels,
+        channels: adev_channels(args, &series, rate_hz)?,
     };
     if args.json {
         return print_json(&doc);
     }
     print_text(&doc);
     Ok(())
+}
+
+/// Every channel's overlapping Allan deviation, limits and terms.
+fn adev_channels(
+    args: &AllanArgs,
+    series: &ImuSeries,
+    rate_hz: f64,
+) -> Result<BTreeMap<&'static str, ChannelJson>, Failure> {
+    let grid: TauGrid = args.taus.into();
+    let mut channels = BTreeMap::new();
+    for channel in series.present_channels() {
+        let y = series.channel(channel);
+        let curve = overlapping_adev(y, rate_hz, &grid)
+            .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))
+            .data()?;
+        let json = channel_json(y, curve, channel, args.confidence);
+        channels.insert(channel.name(), json);
+    }
+    Ok(channels)
 }
 
 /// `--confidence` must lie strictly between 0 and 1.
@@ -127,6 +140,8 @@ fn print_channel(name: &str, c: &ChannelJson) {
 #[derive(Debug, Serialize)]
 struct FamilyJson {
     file: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    imu_rotation: Option<String>,
     sample_rate_hz: f64,
     kind: DeviationKind,
     channels: BTreeMap<&'static str, FamilyChannelJson>,
@@ -144,8 +159,8 @@ struct FamilyChannelJson {
 
 /// `allan --kind K` for a kind other than adev: each channel's curve, without confidence limits
 /// or noise terms (those are the overlapping Allan deviation's).
-fn run_family(args: &AllanArgs) -> Result<(), Failure> {
-    let doc = family_doc(args)?;
+fn run_family(args: &AllanArgs, options: &ImuOptions) -> Result<(), Failure> {
+    let doc = family_doc(args, options)?;
     if args.json {
         return print_json(&doc);
     }
@@ -154,11 +169,12 @@ fn run_family(args: &AllanArgs) -> Result<(), Failure> {
 }
 
 /// Every channel's curve of `args.kind`.
-fn family_doc(args: &AllanArgs) -> Result<FamilyJson, Failure> {
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation")?;
+fn family_doc(args: &AllanArgs, options: &ImuOptions) -> Result<FamilyJson, Failure> {
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", options)?;
     let curves = family_curves(args, &series, rate_hz)?;
     Ok(FamilyJson {
         file: args.file.display().to_string(),
+        imu_rotation: crate::settings::imu::rotation_text(options),
         sample_rate_hz: rate_hz,
         kind: args.kind,
         channels: curves.into_iter().map(family_channel).collect(),

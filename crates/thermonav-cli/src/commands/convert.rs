@@ -10,6 +10,7 @@ use anyhow::anyhow;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use thermonav::gnss::GnssFix;
+use thermonav::imu::ImuSeries;
 use thermonav::time::Duration;
 use thermonav_io::kf_gins::{read_kf_gins_gnss_file, read_kf_gins_imu_file, read_kf_gins_nav_file};
 use thermonav_io::nmea::{NmeaSettings, read_nmea_file};
@@ -29,6 +30,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
     if format != ForeignFormatArg::Px4Ulog {
         ulog::reject_gnss_out(args)?;
     }
+    reject_rotation_without_imu(format, args)?;
     let (count, what) = convert(format, args, strictness_of(args))?;
     println!(
         "{}: {count} {what} written to {}",
@@ -36,6 +38,24 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
         args.out.display()
     );
     Ok(())
+}
+
+/// The error for `--imu-rotation` on a format without an IMU.
+fn reject_rotation_without_imu(
+    format: ForeignFormatArg,
+    args: &ConvertArgs,
+) -> Result<(), Failure> {
+    let imu = matches!(
+        format,
+        ForeignFormatArg::KfGinsImu | ForeignFormatArg::RawImuTag | ForeignFormatArg::Px4Ulog
+    );
+    match (imu, args.rotation.imu_rotation) {
+        (false, Some(_)) => Err(anyhow!(
+            "--imu-rotation goes with an IMU input (kf-gins-imu, raw-imu-tag, px4-ulog); this input holds no IMU samples"
+        ))
+        .usage(),
+        _ => Ok(()),
+    }
 }
 
 /// `--lenient` as the readers' strictness.
@@ -108,6 +128,7 @@ fn convert_kf_gins_imu(
     strictness: Strictness,
 ) -> Result<(usize, &'static str), Failure> {
     let series = read_kf_gins_imu_file(&args.input, args.gps_week, strictness).data()?;
+    let series = to_body(series, args);
     write_imu_file(&args.out, &series).data()?;
     Ok((series.len(), "IMU samples (increments)"))
 }
@@ -119,8 +140,14 @@ fn convert_raw_imu(
 ) -> Result<(usize, &'static str), Failure> {
     let settings = raw_imu_settings(args, strictness)?;
     let series = read_raw_imu_files(&args.input, tag_path(args), settings).data()?;
+    let series = to_body(series, args);
     write_imu_file(&args.out, &series).data()?;
     Ok((series.len(), "IMU samples (rates)"))
+}
+
+/// `series` turned by `--imu-rotation` (after the raw reader's `--imu-frame`).
+fn to_body(series: ImuSeries, args: &ConvertArgs) -> ImuSeries {
+    crate::inputs::to_body(series, &crate::settings::imu::rotation_only(&args.rotation))
 }
 
 /// A KF-GINS navigation result to a trajectory CSV.
@@ -239,7 +266,7 @@ fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> 
 /// The first [`SNIFF_BYTES`] of `input`.
 fn read_head(input: &Path) -> Result<Vec<u8>, Failure> {
     let mut head = Vec::new();
-    std::fs::File::open(input)
+    thermonav_io::open_input(input)
         .and_then(|file| file.take(SNIFF_BYTES).read_to_end(&mut head))
         .map_err(|e| anyhow!("{}: cannot open: {e}", input.display()))
         .data()?;

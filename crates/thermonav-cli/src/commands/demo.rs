@@ -334,7 +334,8 @@ fn tournament(
         differ_by: "simulation seeds (new IMU errors and GNSS noise per replicate)",
         make: &make,
     };
-    run_and_write(&tournament, &main, &replicates, &out.join("evaluation"))
+    let out = out.join("evaluation");
+    run_and_write(&tournament, &main, &replicates, (&out, &Default::default()))
 }
 
 /// (a) is the paper's set-up at one temperature: no scheduled or compensated candidate (they
@@ -345,6 +346,7 @@ const PAPER_SETUP_THERMAL: (Scheduling, Compensation) = (Scheduling::Fixed, Comp
 fn scenario_files(files: &VesselFiles) -> ScenarioFiles {
     ScenarioFiles {
         imu: files.imu.clone(),
+        imu_options: Default::default(),
         gnss: files.gnss.clone(),
         reference: files.reference.clone(),
     }
@@ -424,6 +426,7 @@ fn solution_settings(
 ) -> IntegrateSettings {
     IntegrateSettings {
         imu: files.imu.clone(),
+        imu_options: Default::default(),
         gnss: files.gnss.clone(),
         noise: NoiseSource::Bank(out.join("bank.json")),
         run: RunSettings {

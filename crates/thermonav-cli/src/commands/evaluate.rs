@@ -57,7 +57,12 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         extra: s.extra_replicates,
         seed: s.seed,
     };
-    let file = run_and_write(&tournament, &main, &replicates, &s.out)?;
+    let file = run_and_write(
+        &tournament,
+        &main,
+        &replicates,
+        (&s.out, &s.files.imu_options),
+    )?;
     if args.json {
         print_json(&file)?;
     } else {

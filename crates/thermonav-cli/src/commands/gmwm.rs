@@ -37,7 +37,7 @@ struct Job(f64, Vec<ModelSpec>, BootstrapSettings);
 /// Runs `gmwm`.
 pub fn run(args: &GmwmArgs) -> Result<(), Failure> {
     let candidates = candidates(&args.model)?;
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM")?;
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM", &Default::default())?;
     let doc = document(args, &series, Job(rate_hz, candidates, settings(args)))?;
     if args.json {
         return print_json(&doc);

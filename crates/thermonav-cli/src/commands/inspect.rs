@@ -153,7 +153,7 @@ fn read_columns(path: &Path) -> Result<Columns, Failure> {
     use std::io::{BufRead, Read};
     crate::inputs::readable_twice(path, "inspect")?;
     let mut header = String::new();
-    if let Ok(file) = std::fs::File::open(path) {
+    if let Ok(file) = thermonav_io::open_input(path) {
         // A failure here is reported by the reader below, with the file name; the sniff reads
         // at most a line's worth (1 MiB), so an endless input cannot fill memory here.
         let _ = std::io::BufReader::new(file.take(1 << 20)).read_line(&mut header);

@@ -339,7 +339,7 @@ fn not_calibrated(path: &Path) -> Failure {
 fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
     let channel = channel_of(args.channel.as_deref().unwrap_or("gx"))?;
     check_max_lag(args.max_lag_s)?;
-    let (series, rate_hz) = read_rates(&args.input, "the autocovariance")?;
+    let (series, rate_hz) = read_rates(&args.input, "the autocovariance", &Default::default())?;
     let y = series.channel(channel);
     let max_lag = ((args.max_lag_s * rate_hz).round() as usize)
         .min(y.len().saturating_sub(1))

@@ -10,6 +10,7 @@ use thermonav::signal::wavelet::denoise::WaveletDenoise;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser, GmwmChoice};
 use thermonav::stoch::gmwm::ModelSpec;
+use thermonav_io::ImuOptions;
 
 /// Which units of a lot a run characterises.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -35,7 +36,8 @@ pub struct BankJob {
     pub reading: ReadingArg,
     /// The bank written.
     pub out: PathBuf,
-    /// Further inputs of the thermal calibration.
+    /// Further inputs of the thermal calibration (with how every record is read: its
+    /// mounting and rate, `thermal.imu`).
     pub thermal: ThermalInputs,
 }
 
@@ -66,6 +68,13 @@ pub enum CharacterizeJob {
 /// Resolves `characterize`.
 pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure> {
     let conditioning = conditioning(args)?;
+    let imu = super::imu::options(&args.rotation, &args.rate)?;
+    let given = imu.mounting.is_some() || imu.rate_hz.is_some();
+    if args.manifest.is_some() && given {
+        return Err(Failure::Usage(anyhow!(
+            "--imu-rotation and --rate-hz are for records given on the command line; a lot's records are read as its manifest says"
+        )));
+    }
     match &args.manifest {
         Some(manifest) => Ok(CharacterizeJob::Lot(LotJob {
             manifest: manifest.clone(),
@@ -74,13 +83,14 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure>
             reading: reading(args)?,
             out: args.out.clone(),
         })),
-        None => bank_job(args, conditioning).map(CharacterizeJob::Bank),
+        None => bank_job(args, conditioning, imu).map(CharacterizeJob::Bank),
     }
 }
 
 fn bank_job(
     args: &CharacterizeArgs,
     conditioning: CharacterizeSettings,
+    imu: ImuOptions,
 ) -> Result<BankJob, Failure> {
     if !args.temperature_c.is_empty() && args.temperature_c.len() != args.files.len() {
         return Err(Failure::Usage(anyhow!(
@@ -92,7 +102,10 @@ fn bank_job(
     for &t in &args.temperature_c {
         check_temperature("--temperature-c", t)?;
     }
-    let thermal = thermal_inputs(args)?;
+    let thermal = ThermalInputs {
+        imu,
+        ..thermal_inputs(args)?
+    };
     let further: Vec<PathBuf> = thermal.power_ons.iter().flatten().cloned().collect();
     Io::new()
         .inputs("a record", &args.files)
@@ -118,6 +131,7 @@ fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
         sweep_block_s: super::positive("--sweep-block-s", args.sweep_block_s)?,
         sweep_instance: args.sweep_instance,
         site: chamber_site(args)?,
+        imu: ImuOptions::default(),
     })
 }
 

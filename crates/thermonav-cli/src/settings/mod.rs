@@ -6,6 +6,7 @@
 
 pub mod analysis;
 pub mod characterization;
+pub mod imu;
 pub mod navigation;
 pub mod paths;
 pub mod simulation;

@@ -12,6 +12,7 @@ use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::stoch::bank::GaussMarkovSource;
+use thermonav_io::ImuOptions;
 
 pub use thermonav::nav::run::ModelTemperature;
 use thermonav::nav::run::RunSettings;
@@ -97,6 +98,8 @@ fn sidecar(out: &Path, suffix: &str) -> PathBuf {
 pub struct IntegrateSettings {
     /// The IMU CSV.
     pub imu: PathBuf,
+    /// How it is read (`--imu-rotation`).
+    pub imu_options: ImuOptions,
     /// The GNSS CSV.
     pub gnss: PathBuf,
     /// The noise model's source.
@@ -138,6 +141,7 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     io.check()?;
     Ok(IntegrateSettings {
         imu: args.imu.clone(),
+        imu_options: super::imu::rotation_only(&args.rotation),
         gnss: args.gnss.clone(),
         noise,
         run: RunSettings {
@@ -283,6 +287,8 @@ fn gate_of(probability: f64) -> Result<Option<f64>, Failure> {
 pub struct ScenarioFiles {
     /// IMU CSV.
     pub imu: PathBuf,
+    /// How it is read (`--imu-rotation`).
+    pub imu_options: ImuOptions,
     /// GNSS CSV.
     pub gnss: PathBuf,
     /// Reference trajectory CSV.
@@ -331,6 +337,7 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
     let settings = EvaluateSettings {
         files: ScenarioFiles {
             imu: args.imu.clone(),
+            imu_options: super::imu::rotation_only(&args.rotation),
             gnss: args.gnss.clone(),
             reference: args.reference.clone(),
         },

@@ -701,3 +701,132 @@ fn plot_inputs_and_motion_files_refuse_spoiled_files() {
         refuses(fixtures.path(), motion, "motion.toml", &spoiled);
     }
 }
+
+/// `--imu-rotation` and `--rate-hz` refused with the reason: a mapping that is no rotation
+/// (usage), a rate for a file that has times (data, naming the file), a rotation for a
+/// converted file without an IMU (usage), a rate that is not positive (usage).
+#[test]
+fn bad_rotations_and_rates_are_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let imu = write_file(dir.path(), "imu.csv", &good_rows());
+    let refused = |args: &[&str], code: i32, needle: &str| {
+        let (status, stdout, stderr) = outcome(&thermonav(args));
+        assert_eq!(status, code, "{args:?}: {stderr}");
+        assert!(stdout.is_empty(), "{stdout}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    };
+    refused(
+        &["allan", arg(&imu), "--imu-rotation", "x,y,-z"],
+        2,
+        "reflection",
+    );
+    refused(
+        &["allan", arg(&imu), "--imu-rotation", "x,x,z"],
+        2,
+        "appears twice",
+    );
+    refused(
+        &["allan", arg(&imu), "--imu-rotation", "x,y"],
+        2,
+        "three comma-separated",
+    );
+    refused(
+        &["allan", arg(&imu), "--imu-rotation", "rpy:0,inf,0"],
+        2,
+        "finite angle",
+    );
+    refused(
+        &["allan", arg(&imu), "--rate-hz", "100"],
+        1,
+        "imu.csv:1: the file has a t_s column",
+    );
+    refused(
+        &["allan", arg(&imu), "--rate-hz", "0"],
+        2,
+        "--rate-hz 0 must be a positive number",
+    );
+    let untimed = write_file(
+        dir.path(),
+        "untimed.csv",
+        "gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2\n0,0,0,0,0,-9.8\n",
+    );
+    refused(
+        &["allan", arg(&untimed)],
+        1,
+        "missing column t_s (or, for a file without times, a sample rate: --rate-hz)",
+    );
+    let nmea = write_file(
+        dir.path(),
+        "log.nmea",
+        "$GPGGA,000000.00,4436.0000,N,06336.0000,W,1,08,1.0,10.0,M,0.0,M,,*7A\n",
+    );
+    let out = dir.path().join("out.csv");
+    refused(
+        &[
+            "convert",
+            arg(&nmea),
+            "--format",
+            "nmea",
+            "--imu-rotation",
+            "-y,x,z",
+            "--out",
+            arg(&out),
+        ],
+        2,
+        "--imu-rotation goes with an IMU input",
+    );
+    assert!(!out.exists());
+    let bank = dir.path().join("bank.json");
+    let manifest = write_file(dir.path(), "lot.toml", "");
+    refused(
+        &[
+            "characterize",
+            "--manifest",
+            arg(&manifest),
+            "--imu-rotation",
+            "-y,x,z",
+            "--out",
+            arg(&bank),
+        ],
+        2,
+        "--imu-rotation and --rate-hz are for records given on the command line",
+    );
+}
+
+/// A subset of the channels: an rpy rotation (which would mix absent axes in) and streaming
+/// (which characterises all six) are refused with the reason.
+#[test]
+fn a_subset_of_channels_refuses_angles_and_streaming() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::from("t_s,gz_rad_s\n");
+    for k in 0..200 {
+        text.push_str(&format!("{},{}\n", k as f64 / 100.0, (k as f64).sin()));
+    }
+    let gyro = write_file(dir.path(), "gz.csv", &text);
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "allan",
+        arg(&gyro),
+        "--imu-rotation",
+        "rpy:0,0,90",
+    ]));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("gz.csv:1: channel gz: an rpy rotation mixes"),
+        "{stderr}"
+    );
+    let bank = dir.path().join("bank.json");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "characterize",
+        arg(&gyro),
+        "--temperature-c",
+        "20",
+        "--reading",
+        "streaming",
+        "--out",
+        arg(&bank),
+    ]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("1 of the six channels"), "{stderr}");
+    assert!(!bank.exists());
+}

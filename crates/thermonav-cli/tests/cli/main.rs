@@ -14,6 +14,7 @@ mod oracle;
 mod plots;
 mod real_data;
 mod reliability;
+mod shapes;
 mod streaming;
 mod thermal;
 mod thermal_ulog;

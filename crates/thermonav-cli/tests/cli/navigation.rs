@@ -762,3 +762,72 @@ fn integrate_help_names_the_spread_outages() {
         assert!(stdout.contains(form), "{form} in {stdout}");
     }
 }
+
+/// `text` negated as a number's text (`-0.5` ↔ `0.5`): exact.
+fn negated(text: &str) -> String {
+    match text.strip_prefix('-') {
+        Some(rest) => rest.to_string(),
+        None => format!("-{text}"),
+    }
+}
+
+/// The vessel's IMU written in the axes of an IMU mounted as `-y,x,z` (its x is body y, its y
+/// body −x): `integrate --imu-rotation -y,x,z` turns it back and gives, to the bit, the
+/// solution of the body-axes file, and the JSON records the rotation.
+#[test]
+fn integrate_turns_a_rotated_imu_back_into_body_axes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let text = std::fs::read_to_string(vessel.join("imu.csv")).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    assert!(header.starts_with("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2"));
+    let mut rotated = format!("{header}\n");
+    for line in lines {
+        let mut f: Vec<String> = line.split(',').map(str::to_string).collect();
+        for x in [1, 4] {
+            let (body_x, body_y) = (f[x].clone(), f[x + 1].clone());
+            f[x] = body_y;
+            f[x + 1] = negated(&body_x);
+        }
+        rotated.push_str(&(f.join(",") + "\n"));
+    }
+    let turned = crate::write_file(dir.path(), "turned.csv", &rotated);
+    let plain_out = dir.path().join("plain.csv");
+    json_of(&integrate_args(&vessel, &bank, &plain_out, &[]));
+    let turned_out = dir.path().join("turned_solution.csv");
+    let mut args = integrate_args(&vessel, &bank, &turned_out, &["--imu-rotation", "-y,x,z"]);
+    args[2] = arg(&turned).to_string();
+    let json = json_of(&args);
+    assert_eq!(json["imu_rotation"], "-y,x,z");
+    assert_eq!(
+        std::fs::read(&plain_out).unwrap(),
+        std::fs::read(&turned_out).unwrap()
+    );
+    // evaluate: the same models and errors, and the rotation in evaluation.json.
+    let evaluate = |out: &str, extra: &[&str], imu: Option<&Path>| {
+        let out = dir.path().join(out);
+        let mut args = evaluate_args(
+            &vessel,
+            &bank,
+            &out,
+            &[&["--outages", "60+30"], extra].concat(),
+        );
+        if let Some(imu) = imu {
+            args[2] = arg(imu).to_string();
+        }
+        let mut json = json_of(&args);
+        for model in json["models"].as_array_mut().unwrap() {
+            model.as_object_mut().unwrap().remove("errors_csv");
+        }
+        json
+    };
+    let plain = evaluate("plain-evaluation", &[], None);
+    let turned = evaluate(
+        "turned-evaluation",
+        &["--imu-rotation", "-y,x,z"],
+        Some(&turned),
+    );
+    assert_eq!(turned["imu_rotation"], "-y,x,z");
+    assert_eq!(plain["models"], turned["models"]);
+}

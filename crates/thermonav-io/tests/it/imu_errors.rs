@@ -69,19 +69,31 @@ fn missing_columns_are_named_with_their_alternatives() {
     let no_ax = "t_s,gx_rad_s,gy_rad_s,gz_rad_s,ay_m_s2,az_m_s2\n0,0,0,0,0,0\n";
     assert_eq!(
         strict_error(no_ax),
-        format!("{NAME}:1: missing column ax_m_s2 (or ax_g, ax_mg)")
+        format!("{NAME}:1: missing column ax_m_s2 (or ax_g, ax_mg){ALL_SIX}")
     );
     let no_time = "gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2\n0,0,0,0,0,0\n";
     assert_eq!(
         strict_error(no_time),
-        format!("{NAME}:1: missing column t_s")
+        format!(
+            "{NAME}:1: missing column t_s (or, for a file without times, a sample rate: --rate-hz)"
+        )
     );
     let no_dvz = "t_s,dthx_rad,dthy_rad,dthz_rad,dvx_m_s,dvy_m_s\n0,0,0,0,0,0\n";
     assert_eq!(
         strict_error(no_dvz),
-        format!("{NAME}:1: missing column dvz_m_s")
+        format!("{NAME}:1: missing column dvz_m_s{ALL_SIX}")
+    );
+    let gyros_only = "t_s,gx_rad_s,gy_rad_s,gz_rad_s\n0,0,0,0\n";
+    assert_eq!(
+        strict_error(gyros_only),
+        format!(
+            "{NAME}:1: missing columns ax_m_s2 (or ax_g, ax_mg), ay_m_s2 (or ay_g, ay_mg), az_m_s2 (or az_g, az_mg){ALL_SIX}"
+        )
     );
 }
+
+/// The end of the message for absent channels where all six are needed.
+const ALL_SIX: &str = ": all six channels gx..az are needed here (only the static analyses, characterize and allan, take a subset)";
 
 #[test]
 fn repeated_quantity_and_mixed_kinds_are_rejected() {

@@ -51,6 +51,11 @@ pub struct TemperatureEntry {
     /// The record's means (the thermal calibration's observation of this record).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub record_mean: Option<RecordMean>,
+    /// The IMU mounting the record was turned by into body axes as it was read (its text,
+    /// `-y,x,z` or `rpy:0,0,90`, see [`crate::mounting::Mounting`]); absent when the record's
+    /// axes were taken as the body's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu_rotation: Option<String>,
 }
 
 /// Conditioning applied before AR and Gauss-Markov modelling (Allan uses the raw data).
@@ -612,6 +617,7 @@ mod tests {
             },
             channels: BTreeMap::from([(Channel::Gx, model)]),
             record_mean: None,
+            imu_rotation: None,
         }
     }
 

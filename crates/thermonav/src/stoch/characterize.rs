@@ -200,7 +200,7 @@ pub struct ChannelReport {
 
 /// [`CharacterizeError::ConstantChannel`] for the first channel whose samples are all equal.
 pub fn check_no_constant_channel(series: &ImuSeries) -> Result<(), CharacterizeError> {
-    for channel in Channel::ALL {
+    for channel in series.present_channels() {
         let column = series.channel(channel);
         if let Some(&first) = column.first()
             && column.len() > 1
@@ -215,7 +215,9 @@ pub fn check_no_constant_channel(series: &ImuSeries) -> Result<(), CharacterizeE
     Ok(())
 }
 
-/// Characterises a static record measured at `temperature_c`.
+/// Characterises a static record measured at `temperature_c`: each of its present channels
+/// ([`ImuSeries::present_channels`]; all six but for a record of a subset), which are the
+/// entry's channels.
 ///
 /// # Errors
 /// [`CharacterizeError`] for increments, a record too short for the conditioning, invalid
@@ -241,7 +243,8 @@ pub fn characterize(
         times_s: &times_s,
         settings,
     };
-    let results: Vec<Result<(Channel, ChannelReport), CharacterizeError>> = Channel::ALL
+    let results: Vec<Result<(Channel, ChannelReport), CharacterizeError>> = series
+        .present_channels()
         .par_iter()
         .map(|&channel| {
             context
@@ -355,6 +358,7 @@ impl Conditioning {
             },
             channels: reports.iter().map(|(c, r)| (*c, r.model.clone())).collect(),
             record_mean: None,
+            imu_rotation: None,
         }
     }
 }

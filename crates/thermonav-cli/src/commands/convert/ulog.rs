@@ -21,6 +21,9 @@ struct UlogRecord<'a> {
     time_scale: TimeScale,
     time_scale_note: &'static str,
     imu: &'a ImuExtract,
+    /// The `--imu-rotation` the IMU series was turned by into body axes, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    imu_rotation: Option<String>,
     imu_samples: usize,
     gnss: Option<&'a GnssExtract>,
     gnss_fixes: Option<usize>,
@@ -62,7 +65,9 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
     let leap = super::gpst_minus_utc(args)?;
     let log = read_ulog_file(&args.input).data()?;
     let scale = time_scale(&log, leap);
-    let imu = imu_series(&log, &input, scale).data()?;
+    let mut imu = imu_series(&log, &input, scale).data()?;
+    let options = crate::settings::imu::rotation_only(&args.rotation);
+    imu.series = crate::inputs::to_body(imu.series, &options);
     let gnss = match &args.gnss_out {
         Some(_) => Some(gnss_fixes(&log, &input, scale).data()?),
         None => None,
@@ -72,6 +77,7 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
         time_scale: scale,
         time_scale_note: time_scale_note(scale),
         imu: &imu,
+        imu_rotation: crate::settings::imu::rotation_text(&options),
         imu_samples: imu.series.len(),
         gnss: gnss.as_ref(),
         gnss_fixes: gnss.as_ref().map(|g| g.fixes.len()),

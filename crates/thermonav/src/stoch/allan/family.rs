@@ -48,7 +48,8 @@ pub fn deviation(
 }
 
 /// The deviation `kind` ([`deviation`]) of every channel of `series` (rates sampled at
-/// `sample_rate_hz`), in [`Channel::ALL`] order.
+/// `sample_rate_hz`), in [`Channel::ALL`] order; only those present for a record of a subset
+/// ([`ImuSeries::present_channels`]).
 ///
 /// # Errors
 /// The first channel whose curve cannot be computed, with its [`AllanError`].
@@ -58,7 +59,8 @@ pub fn channel_deviations(
     sample_rate_hz: f64,
     grid: &TauGrid,
 ) -> Result<Vec<(Channel, DeviationCurve)>, (Channel, AllanError)> {
-    Channel::ALL
+    series
+        .present_channels()
         .into_iter()
         .map(|c| {
             deviation(kind, series.channel(c), sample_rate_hz, grid)

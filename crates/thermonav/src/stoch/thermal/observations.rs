@@ -50,7 +50,11 @@ impl RecordSums {
 pub fn record_mean(series: &ImuSeries, temperature_c: f64) -> Option<RecordMean> {
     let mut sums = RecordSums::default();
     sums.add(series);
-    sums.mean(temperature_c)
+    let present = series.present_channels();
+    sums.mean(temperature_c).map(|mut mean| {
+        mean.values.retain(|c, _| present.contains(c));
+        mean
+    })
 }
 
 /// The observations of records that belong to power-on `power_on`, per channel.

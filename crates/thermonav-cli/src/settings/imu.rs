@@ -1,0 +1,38 @@
+//! How a command takes its IMU record: the mounting (`--imu-rotation`, every command that
+//! reads an IMU), the rate of a file without times (`--rate-hz`) and any subset of the six
+//! channels (the static analyses, `characterize` and `allan`), resolved once into the
+//! reader's [`ImuOptions`]. Navigation needs all six channels: its reader refuses a subset,
+//! naming every absent column.
+
+use crate::args::{ImuRotationArgs, SampleRateArgs};
+use crate::failure::Failure;
+use thermonav_io::{ChannelRule, ImuOptions};
+
+/// The reader's options from `--imu-rotation` alone (times from the file's `t_s`, all six
+/// channels).
+pub fn rotation_only(rotation: &ImuRotationArgs) -> ImuOptions {
+    ImuOptions {
+        mounting: rotation.imu_rotation,
+        ..ImuOptions::default()
+    }
+}
+
+/// The options of a static analysis: `--imu-rotation`, `--rate-hz` (a positive rate) and
+/// any subset of the channels.
+pub fn options(rotation: &ImuRotationArgs, rate: &SampleRateArgs) -> Result<ImuOptions, Failure> {
+    let rate_hz = match rate.rate_hz {
+        Some(hz) => Some(super::positive("--rate-hz", hz)?),
+        None => None,
+    };
+    Ok(ImuOptions {
+        rate_hz,
+        channels: ChannelRule::AnySubset,
+        ..rotation_only(rotation)
+    })
+}
+
+/// The mounting as recorded in JSON outputs and sidecars: its text (`-y,x,z`,
+/// `rpy:0,0,90`), which `--imu-rotation` reads back; `None` without one.
+pub fn rotation_text(options: &ImuOptions) -> Option<String> {
+    options.mounting.map(|m| m.to_string())
+}
