@@ -1198,7 +1198,11 @@ pub struct PlotArgs {
 /// Arguments of `report`.
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// The folder demo (or characterize + evaluate) wrote: bank.json, evaluation/, vessel/.
+    /// The folder demo (or characterize + evaluate) wrote: DIR/bank.json (required:
+    /// characterize --out DIR/bank.json); optional: DIR/demo.json,
+    /// DIR/evaluation/evaluation.json with its errors/ (evaluate --out DIR/evaluation),
+    /// DIR/vessel/reference.csv (the survey figure), DIR/solution/solution.innovations.csv
+    /// (integrate --out DIR/solution/solution.csv; the innovations figure).
     pub dir: PathBuf,
 }
 

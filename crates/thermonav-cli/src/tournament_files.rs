@@ -306,14 +306,23 @@ fn print_filter_table(r: &TournamentReport, filter: Option<FilterKind>) {
     );
     let best = filter.and_then(|f| r.best_by_filter.get(f.name()));
     let shown = r.models.iter().filter(|m| m.filter == filter);
-    for m in shown.chain(r.models.iter().filter(|m| filter.is_some() && m.filter.is_none())) {
+    for m in shown.chain(
+        r.models
+            .iter()
+            .filter(|m| filter.is_some() && m.filter.is_none()),
+    ) {
         let cells = Metric::ALL.map(|metric| {
             let best_here = best.and_then(|b| b.get(metric.key())) == Some(&m.label);
             table_cell(m, metric, if best_here { "*" } else { " " })
         });
         println!(
             "{:<28} {:>15} {:>15} {:>15} {:>13} {:>16}",
-            row_label(m), cells[0], cells[1], cells[2], cells[3], cells[4]
+            row_label(m),
+            cells[0],
+            cells[1],
+            cells[2],
+            cells[3],
+            cells[4]
         );
     }
 }

@@ -81,10 +81,18 @@ fn check_week(mode: WeekTime, index: usize, t: Timestamp) -> Result<(), WriteErr
     let nanos = seconds_of_week_nanos(mode, t);
     match (0..NANOS_PER_WEEK).contains(&nanos) {
         true => Ok(()),
-        false => Err(week_error(index, t, match mode {
-            WeekTime::Week(_) => "the first record's GPS week (KF-GINS's IMU and GNSS files carry seconds of week only: split the file at the week boundary)",
-            WeekTime::SecondsOfWeek => "seconds of week, 0 to 604800 s (or a GPST time on the scale of thermonav_io::gpst)",
-        })),
+        false => Err(week_error(
+            index,
+            t,
+            match mode {
+                WeekTime::Week(_) => {
+                    "the first record's GPS week (KF-GINS's IMU and GNSS files carry seconds of week only: split the file at the week boundary)"
+                }
+                WeekTime::SecondsOfWeek => {
+                    "seconds of week, 0 to 604800 s (or a GPST time on the scale of thermonav_io::gpst)"
+                }
+            },
+        )),
     }
 }
 
@@ -105,7 +113,11 @@ fn seconds_of_week_nanos(mode: WeekTime, t: Timestamp) -> i64 {
 }
 
 /// Writes `t`'s seconds of week with nine decimals.
-fn write_seconds_of_week(out: &mut impl Write, mode: WeekTime, t: Timestamp) -> std::io::Result<()> {
+fn write_seconds_of_week(
+    out: &mut impl Write,
+    mode: WeekTime,
+    t: Timestamp,
+) -> std::io::Result<()> {
     let sow = Timestamp::from_nanos(seconds_of_week_nanos(mode, t));
     write!(out, "{}", SecondsText(sow))
 }
@@ -139,7 +151,12 @@ pub fn write_kf_gins_imu(mut out: impl Write, series: &ImuSeries) -> Result<Week
 fn imu_rows(series: &ImuSeries) -> Result<Vec<(Timestamp, [f64; 6])>, WriteError> {
     match series.kind.ok_or(WriteError::UnknownKind)? {
         SampleKind::Increments => Ok((0..series.len())
-            .map(|k| (series.time[k], std::array::from_fn(|c| series.channels[c][k])))
+            .map(|k| {
+                (
+                    series.time[k],
+                    std::array::from_fn(|c| series.channels[c][k]),
+                )
+            })
             .collect()),
         SampleKind::Rates => Ok(increments_from_series(series)
             .iter()
@@ -188,8 +205,18 @@ pub fn write_kf_gins_nav(
         let yaw = deg(p.yaw_rad);
         let yaw = if yaw < 0.0 { yaw + 360.0 } else { yaw };
         let [vn, ve, vd] = p.velocity_ned_m_s;
-        let values = [deg(p.latitude_rad), deg(p.longitude_rad), p.height_m, vn, ve, vd];
-        write_values(&mut out, &[&values[..], &[deg(p.roll_rad), deg(p.pitch_rad), yaw]].concat())?;
+        let values = [
+            deg(p.latitude_rad),
+            deg(p.longitude_rad),
+            p.height_m,
+            vn,
+            ve,
+            vd,
+        ];
+        write_values(
+            &mut out,
+            &[&values[..], &[deg(p.roll_rad), deg(p.pitch_rad), yaw]].concat(),
+        )?;
     }
     out.flush()?;
     Ok(mode)
@@ -241,4 +268,160 @@ pub fn write_kf_gins_nav_file(
         Ok(())
     })?;
     Ok(mode)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kf_gins::{read_kf_gins_gnss, read_kf_gins_imu, read_kf_gins_nav};
+    use thermonav::imu::ImuSample;
+
+    /// GPS week 2300 plus `sow_nanos`, on the GPST scale.
+    fn gpst(sow_nanos: i64) -> Timestamp {
+        crate::gpst::from_week_and_nanos(2300, sow_nanos).unwrap()
+    }
+
+    fn increments(times: &[Timestamp]) -> ImuSeries {
+        let mut series = ImuSeries::new(SampleKind::Increments);
+        for (k, &time) in times.iter().enumerate() {
+            let x = k as f64;
+            series.push(&ImuSample {
+                time,
+                gyro: [1e-4 + x, -2.5e-6, 3.0e-3],
+                accel: [0.098, -0.0123, -0.0980665 - x],
+                temperature_c: None,
+            });
+        }
+        series
+    }
+
+    // The IMU line has the README's 7 columns: seconds of week, dθx dθy dθz (rad), dvx dvy dvz
+    // (m/s); GPST times give their week, and the reader given that week gives back the same
+    // series bit for bit.
+    #[test]
+    fn imu_increments_follow_the_readme_and_read_back() {
+        let times = [gpst(357_906_005_000_000), gpst(357_906_010_000_000)];
+        let series = increments(&times);
+        let mut out = Vec::new();
+        assert_eq!(
+            write_kf_gins_imu(&mut out, &series).unwrap(),
+            WeekTime::Week(2300)
+        );
+        let text = String::from_utf8(out.clone()).unwrap();
+        let first = text.lines().next().unwrap();
+        assert_eq!(
+            first,
+            "357906.005000000 0.0001 -2.5e-6 0.003 0.098 -0.0123 -0.0980665"
+        );
+        let back = read_kf_gins_imu(&out[..], "imu.txt", Some(2300), Strictness::Strict).unwrap();
+        assert_eq!(back.time, series.time);
+        assert_eq!(back.channels, series.channels);
+        assert_eq!(back.kind, Some(SampleKind::Increments));
+    }
+
+    // Rates become increments over each interval (rate × dt, the first sample left out):
+    // 0.5 rad/s held for 0.01 s is 0.005 rad.
+    #[test]
+    fn rates_become_increments_over_each_interval() {
+        let mut series = ImuSeries::new(SampleKind::Rates);
+        for k in 0..3 {
+            series.push(&ImuSample {
+                time: Timestamp::from_nanos(10_000_000 * k),
+                gyro: [0.5, 0.0, 0.0],
+                accel: [0.0, 0.0, -9.8],
+                temperature_c: None,
+            });
+        }
+        let mut out = Vec::new();
+        assert_eq!(
+            write_kf_gins_imu(&mut out, &series).unwrap(),
+            WeekTime::SecondsOfWeek
+        );
+        let back = read_kf_gins_imu(&out[..], "imu.txt", None, Strictness::Strict).unwrap();
+        assert_eq!(back.len(), 2);
+        assert_eq!(back.time[0], Timestamp::from_nanos(10_000_000));
+        assert!((back.channels[0][0] - 0.005).abs() < 1e-15);
+        assert!((back.channels[5][1] - -0.098).abs() < 1e-15);
+    }
+
+    // A file that crosses a week boundary, a time before 0 s of week, a fix without STD: each
+    // refused, naming the record.
+    #[test]
+    fn times_outside_one_week_and_fixes_without_std_are_refused() {
+        let times = [gpst(604_799_000_000_000), gpst(604_800_000_000_000)];
+        let error = write_kf_gins_imu(&mut Vec::new(), &increments(&times)).unwrap_err();
+        assert!(error.to_string().contains("record 1 at"), "{error}");
+        assert!(error.to_string().contains("GPS week"), "{error}");
+        let negative = [Timestamp::from_nanos(-1)];
+        let error = write_kf_gins_imu(&mut Vec::new(), &increments(&negative)).unwrap_err();
+        assert!(error.to_string().contains("0 to 604800 s"), "{error}");
+        let fix = GnssFix {
+            time: gpst(1_000_000_000),
+            latitude_rad: 0.5,
+            longitude_rad: 2.0,
+            height_m: 20.0,
+            position_sd_ned_m: None,
+            velocity_ned_m_s: None,
+            heading: None,
+        };
+        let error = write_kf_gins_gnss(&mut Vec::new(), &[fix]).unwrap_err();
+        assert!(
+            matches!(error, WriteError::MissingPositionSd { index: 0 }),
+            "{error}"
+        );
+    }
+
+    // GNSS: seconds of week, lat, lon (deg), h (m), STD n e d (m), as the README's 7 columns;
+    // read back to the same fix.
+    #[test]
+    fn gnss_fixes_follow_the_readme_and_read_back() {
+        let fix = GnssFix {
+            time: gpst(1_500_000_000),
+            latitude_rad: 30.5_f64.to_radians(),
+            longitude_rad: 114.25_f64.to_radians(),
+            height_m: 20.125,
+            position_sd_ned_m: Some([0.5, 0.25, 1.0]),
+            velocity_ned_m_s: None,
+            heading: None,
+        };
+        let mut out = Vec::new();
+        write_kf_gins_gnss(&mut out, &[fix]).unwrap();
+        let text = String::from_utf8(out.clone()).unwrap();
+        let fields: Vec<&str> = text.trim_end().split(' ').collect();
+        assert_eq!(fields.len(), 7, "{text}");
+        assert_eq!(fields[0], "1.500000000");
+        assert_eq!(fields[3..], ["20.125", "0.5", "0.25", "1"]);
+        let back = read_kf_gins_gnss(&out[..], "gnss.txt", Some(2300), Strictness::Strict).unwrap();
+        assert_eq!(back, vec![fix]);
+    }
+
+    // .nav: week, seconds of week, lat, lon, h, vn, ve, vd, roll, pitch, yaw (deg); a yaw of
+    // −90° is written as 270° (KF-GINS's 0..360), and read back it is the same heading.
+    #[test]
+    fn nav_epochs_carry_their_week_and_a_yaw_in_0_360() {
+        let point = TrajectoryPoint {
+            time: gpst(2_250_000_000),
+            latitude_rad: 30.5_f64.to_radians(),
+            longitude_rad: 114.25_f64.to_radians(),
+            height_m: 20.125,
+            velocity_ned_m_s: [1.5, -0.25, 0.0],
+            roll_rad: 1.0_f64.to_radians(),
+            pitch_rad: -2.0_f64.to_radians(),
+            yaw_rad: -90.0_f64.to_radians(),
+        };
+        let mut out = Vec::new();
+        write_kf_gins_nav(&mut out, &[point]).unwrap();
+        let text = String::from_utf8(out.clone()).unwrap();
+        let fields: Vec<&str> = text.trim_end().split(' ').collect();
+        assert_eq!(fields.len(), 11, "{text}");
+        assert_eq!(fields[..2], ["2300", "2.250000000"]);
+        assert_eq!(fields[4..8], ["20.125", "1.5", "-0.25", "0"]);
+        let yaw: f64 = fields[10].parse().unwrap();
+        assert!((yaw - 270.0).abs() < 1e-12, "{text}");
+        let back = read_kf_gins_nav(&out[..], "x.nav", Strictness::Strict).unwrap();
+        assert_eq!(back[0].time, point.time);
+        assert_eq!(back[0].latitude_rad, point.latitude_rad);
+        let d = thermonav::units::wrap_pi(back[0].yaw_rad - point.yaw_rad);
+        assert!(d.abs() < 1e-12, "{d}");
+    }
 }

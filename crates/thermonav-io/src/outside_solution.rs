@@ -70,10 +70,7 @@ pub fn read_solution_file(
                 ..PosSettings::default()
             };
             let solutions = read_rtklib_pos_file(path, settings)?;
-            solutions
-                .iter()
-                .map(|s| point_of_pos(s, path))
-                .collect()
+            solutions.iter().map(|s| point_of_pos(s, path)).collect()
         }
     }
 }

@@ -25,7 +25,11 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
     crate::settings::analysis::check_convert(args, &tag_path(args))?;
     if args.to.is_some() {
         let (count, what) = to_kf_gins::convert(args, strictness_of(args))?;
-        println!("{}: {count} {what} written to {}", args.input.display(), args.out.display());
+        println!(
+            "{}: {count} {what} written to {}",
+            args.input.display(),
+            args.out.display()
+        );
         return Ok(());
     }
     let format = match args.format {

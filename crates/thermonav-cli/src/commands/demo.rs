@@ -334,7 +334,13 @@ fn tournament(
         differ_by: "simulation seeds (new IMU errors and GNSS noise per replicate)",
         make: &make,
     };
-    run_and_write(&tournament, &main, &replicates, &[], &out.join("evaluation"))
+    run_and_write(
+        &tournament,
+        &main,
+        &replicates,
+        &[],
+        &out.join("evaluation"),
+    )
 }
 
 /// (a) is the paper's set-up at one temperature: no scheduled or compensated candidate (they

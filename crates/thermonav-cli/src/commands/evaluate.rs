@@ -62,8 +62,13 @@ fn run_filters(
         ..RecordPlan::calibrated(noise.thermal(), s.compensation)
     };
     let engine = engine_settings(s);
-    let (main, operating_c) =
-        scenario_from_files(&run.files, engine, &s.outages, s.operating_temperature_c, records)?;
+    let (main, operating_c) = scenario_from_files(
+        &run.files,
+        engine,
+        &s.outages,
+        s.operating_temperature_c,
+        records,
+    )?;
     let plan = TournamentPlan {
         noise: noise.source(),
         thermal: ThermalOptions::of_scenario(&main, s.scheduling, s.compensation),
@@ -108,7 +113,12 @@ fn score_alone(s: &EvaluateSettings, solutions: &[Solution]) -> Result<Evaluatio
     let outages = s
         .outages
         .resolve(span)
-        .map_err(|e| anyhow!("--outages over the reference {}: {e}", s.reference.display()))
+        .map_err(|e| {
+            anyhow!(
+                "--outages over the reference {}: {e}",
+                s.reference.display()
+            )
+        })
         .usage()?;
     let outside = score_all(solutions, &reference, outages.windows())?;
     write_outside_only(outages.windows(), &outside, &s.out)

@@ -397,7 +397,9 @@ fn outside_inputs(args: &EvaluateArgs) -> Result<Vec<OutsideInput>, Failure> {
         let label = args.solution_label.get(k).cloned().unwrap_or_else(|| file_label(path));
         Ok(OutsideInput { path: path.clone(), format, label })
     });
-    inputs.collect::<anyhow::Result<Vec<_>>>().map_err(Failure::Usage)
+    inputs
+        .collect::<anyhow::Result<Vec<_>>>()
+        .map_err(Failure::Usage)
 }
 
 /// A file's name, as a label.

@@ -4,11 +4,11 @@
 use super::candidates::{CandidateKind, Excluded};
 use super::experiment::{Replicates, Tournament};
 use super::metrics::{Metric, OutageMetrics, RunMetrics};
-use super::outside::{OutsideResult, outside_model_report, outage_spans};
-use crate::nav::outage::Outage;
+use super::outside::{OutsideResult, outage_spans, outside_model_report};
 use super::significance::MeanInterval;
 use super::tournament::{Contrast, ModelResult, ModelSummary, Scenario, Significance};
 use crate::nav::engine::FilterKind;
+use crate::nav::outage::Outage;
 use crate::nav::solution::InnovationStatistics;
 use crate::stoch::bank::GaussMarkovSource;
 use serde::Serialize;

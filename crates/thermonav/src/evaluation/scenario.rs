@@ -73,9 +73,7 @@ impl ScenarioError {
         match self {
             ScenarioError::Temperature(_) | ScenarioError::Oracle(_) => RunInput::Imu,
             ScenarioError::Run(e) => e.input(),
-            ScenarioError::Reference(_) | ScenarioError::EmptyReference => {
-                RunInput::Reference
-            }
+            ScenarioError::Reference(_) | ScenarioError::EmptyReference => RunInput::Reference,
             ScenarioError::Nav(e) => RunError::Nav(e.clone()).input(),
             ScenarioError::NoFix => RunInput::Filter,
         }

@@ -478,16 +478,39 @@ mod tests {
         let data = (first, first + Duration::from_nanos(240 * NANOS_PER_SECOND));
         let o = Outages::from_spec("rel:60+30,150+30", data).unwrap();
         let after = |s: i64| first + Duration::from_nanos(s * NANOS_PER_SECOND);
-        assert_eq!(o.windows()[0], Outage { start: after(60), end: after(90) });
-        assert_eq!(o.windows()[1], Outage { start: after(150), end: after(180) });
+        assert_eq!(
+            o.windows()[0],
+            Outage {
+                start: after(60),
+                end: after(90)
+            }
+        );
+        assert_eq!(
+            o.windows()[1],
+            Outage {
+                start: after(150),
+                end: after(180)
+            }
+        );
         let every = Outages::from_spec("rel:every:60,30,90,2", data).unwrap();
         assert_eq!(every, o);
         let spec: OutageSpec = "rel:60+30".parse().unwrap();
         assert_eq!(spec.to_string(), "rel:60+30");
         let error = Outages::from_spec("rel:230+30", data).unwrap_err();
-        assert!(error.to_string().contains("outage 230-260 s is not inside the data (0-240 s)"), "{error}");
-        assert!(matches!("rel:rel:1+2".parse::<OutageSpec>(), Err(OutageError::Spec { .. })));
-        assert!(matches!("rel:5+0".parse::<OutageSpec>(), Err(OutageError::Empty { .. })));
+        assert!(
+            error
+                .to_string()
+                .contains("outage 230-260 s is not inside the data (0-240 s)"),
+            "{error}"
+        );
+        assert!(matches!(
+            "rel:rel:1+2".parse::<OutageSpec>(),
+            Err(OutageError::Spec { .. })
+        ));
+        assert!(matches!(
+            "rel:5+0".parse::<OutageSpec>(),
+            Err(OutageError::Empty { .. })
+        ));
     }
 
     #[test]

@@ -33,11 +33,19 @@ pub fn convert(args: &ConvertArgs, strictness: Strictness) -> Result<(usize, Str
         }
         Canonical::Gnss => {
             let fixes = read_gnss_file(input, strictness).data()?;
-            (fixes.len(), "KF-GINS GNSS fixes", write_kf_gins_gnss_file(out, &fixes).data()?)
+            (
+                fixes.len(),
+                "KF-GINS GNSS fixes",
+                write_kf_gins_gnss_file(out, &fixes).data()?,
+            )
         }
         Canonical::Trajectory => {
             let points = read_trajectory_file(input, strictness).data()?;
-            (points.len(), "KF-GINS .nav epochs", write_kf_gins_nav_file(out, &points).data()?)
+            (
+                points.len(),
+                "KF-GINS .nav epochs",
+                write_kf_gins_nav_file(out, &points).data()?,
+            )
         }
     };
     Ok((count, format!("{what} ({})", week_note(week))))
