@@ -273,6 +273,7 @@ pub fn write_kf_gins_nav_file(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Strictness;
     use crate::kf_gins::{read_kf_gins_gnss, read_kf_gins_imu, read_kf_gins_nav};
     use thermonav::imu::ImuSample;
 
