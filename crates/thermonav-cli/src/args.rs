@@ -132,25 +132,40 @@ pub enum FiltersArg {
 /// Arguments of `evaluate`.
 #[derive(Debug, Args)]
 pub struct EvaluateArgs {
-    /// The IMU CSV.
-    #[arg(long)]
-    pub imu: PathBuf,
+    /// The IMU CSV (with --gnss and --bank or --profile: our filters run; without them, only
+    /// the --solution files are scored).
+    #[arg(long, requires = "gnss", required_unless_present = "solution")]
+    pub imu: Option<PathBuf>,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
     /// The GNSS CSV.
-    #[arg(long)]
-    pub gnss: PathBuf,
-    /// The reference trajectory CSV (truth), covering every outage.
+    #[arg(long, requires = "imu")]
+    pub gnss: Option<PathBuf>,
+    /// The reference trajectory CSV (truth), covering every outage. It may start after the
+    /// first GNSS fix (the runs then start at its first point, as integrate --initial-from).
     #[arg(long)]
     pub reference: PathBuf,
     /// The temperature model bank (JSON).
-    #[arg(long, required_unless_present = "profile", conflicts_with = "profile")]
+    #[arg(long, conflicts_with = "profile", requires = "imu")]
     pub bank: Option<PathBuf>,
     /// Instead of a bank: a sensor profile (TOML) for a sensor without a chamber campaign; the
     /// candidates are then the profile at its table temperatures and at the operating
     /// temperature, and the profile scheduled by temperature.
-    #[arg(long)]
+    #[arg(long, requires = "imu")]
     pub profile: Option<PathBuf>,
+    /// An outside solution (repeatable) scored with the same outage metrics, as a row of kind
+    /// "outside" beside our candidates (not ranked). The scoring assumes that the solution was
+    /// computed with GNSS withheld in the same --outages, which must then be given.
+    #[arg(long)]
+    pub solution: Vec<PathBuf>,
+    /// Format of each --solution, in order (one value: every solution); default from the
+    /// extension: .csv our trajectory CSV, .nav KF-GINS (week + seconds of week), .pos RTKLIB
+    /// (GPST; heading = course over ground). NaveGo: write its solution as our trajectory CSV.
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub solution_format: Vec<SolutionFormatArg>,
+    /// Label of each --solution, in order (default: the file's name).
+    #[arg(long)]
+    pub solution_label: Vec<String>,
     /// Leave out the candidates scheduled by the IMU's temp_c.
     #[arg(long)]
     pub no_schedule: bool,
@@ -174,9 +189,12 @@ pub struct EvaluateArgs {
     /// Filters to run.
     #[arg(long, value_enum, default_value_t = FiltersArg::Both)]
     pub filter: FiltersArg,
-    /// Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT.
-    #[arg(long, default_value = "spread:8,100")]
-    pub outages: OutageSpec,
+    /// Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT,
+    /// in seconds on the files' t_s scale; after rel: (rel:265+10) in seconds from the first
+    /// IMU sample (from the reference's first point when no IMU is given). Default
+    /// spread:8,100; required with --solution.
+    #[arg(long)]
+    pub outages: Option<OutageSpec>,
     /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
     #[arg(long, default_value_t = 1)]
     pub monte_carlo: usize,
@@ -204,6 +222,35 @@ pub struct EvaluateArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// Formats `convert --to` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ToFormatArg {
+    /// KF-GINS text files (IMU increments, GNSS, .nav).
+    KfGins,
+}
+
+/// Formats of outside solutions (`evaluate --solution-format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SolutionFormatArg {
+    /// Our trajectory CSV (t_s,lat_deg,lon_deg,h_m,vn_m_s,ve_m_s,vd_m_s,roll_deg,pitch_deg,yaw_deg).
+    Csv,
+    /// KF-GINS navigation result (.nav): week, seconds of week, lat, lon, h, vn, ve, vd, roll,
+    /// pitch, yaw (deg, yaw 0..360).
+    KfGinsNav,
+    /// RTKLIB solution (.pos) with velocities; the heading is the course over ground.
+    RtklibPos,
+}
+
+impl From<SolutionFormatArg> for thermonav_io::outside_solution::SolutionFormat {
+    fn from(f: SolutionFormatArg) -> Self {
+        match f {
+            SolutionFormatArg::Csv => Self::Csv,
+            SolutionFormatArg::KfGinsNav => Self::KfGinsNav,
+            SolutionFormatArg::RtklibPos => Self::RtklibPos,
+        }
+    }
 }
 
 /// The navigation filters.
@@ -1053,8 +1100,15 @@ pub struct ConvertArgs {
     /// The foreign file.
     pub input: PathBuf,
     /// Its format; detected from the content when omitted and unambiguous.
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, conflicts_with = "to")]
     pub format: Option<ForeignFormatArg>,
+    /// The other way: INPUT is one of our CSVs (IMU, GNSS or trajectory, told by its header)
+    /// written in this tool's format. kf-gins: IMU increments (rates are turned into
+    /// increments; the first rate sample has no interval and is left out), the 7-column GNSS
+    /// file (needs sd_n_m,sd_e_m,sd_u_m) or a .nav, times as GPS seconds of week (the week is
+    /// printed, for --gps-week when reading back).
+    #[arg(long, value_enum)]
+    pub to: Option<ToFormatArg>,
     /// The canonical CSV to write (atomically; nothing is written on error); px4-ulog: the IMU.
     #[arg(long)]
     pub out: PathBuf,
@@ -1186,7 +1240,11 @@ pub struct PlotArgs {
 /// Arguments of `report`.
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// The folder demo (or characterize + evaluate) wrote: bank.json, evaluation/, vessel/.
+    /// The folder demo (or characterize + evaluate) wrote: DIR/bank.json (required:
+    /// characterize --out DIR/bank.json); optional: DIR/demo.json,
+    /// DIR/evaluation/evaluation.json with its errors/ (evaluate --out DIR/evaluation),
+    /// DIR/vessel/reference.csv (the survey figure), DIR/solution/solution.innovations.csv
+    /// (integrate --out DIR/solution/solution.csv; the innovations figure).
     pub dir: PathBuf,
 }
 

@@ -120,14 +120,16 @@ fn is_innovation_row(fields: &[&str]) -> bool {
         && fields[fields.len() - 2..].iter().all(flag)
 }
 
-/// The first outage's errors of every model of `filter`, from their CSVs.
+/// The first outage's errors of every model of `filter` and of the outside solutions, from
+/// their CSVs.
 pub fn outage_errors(
     models: &[Value],
     filter: &str,
     evaluation_dir: &Path,
 ) -> Result<Vec<ModelErrors>, Failure> {
     let mut out = Vec::new();
-    for m in models.iter().filter(|m| text(m, "filter") == filter) {
+    let shown = |m: &&Value| text(m, "filter") == filter || text(m, "kind") == "outside";
+    for m in models.iter().filter(shown) {
         let Some(stored) = m.get("errors_csv").and_then(Value::as_str) else {
             continue;
         };
@@ -140,16 +142,20 @@ pub fn outage_errors(
     Ok(out)
 }
 
-/// Where a model's errors CSV is: in `errors/` next to the evaluation.json that names it
-/// (the stored path is relative to the folder `evaluate` ran in), else the stored path.
+/// Where a model's errors CSV is: the stored path taken relative to the folder of the
+/// evaluation.json that names it (how `evaluate` stores it), else in `errors/` beside it
+/// (reports of older versions stored it relative to the folder `evaluate` ran in), else the
+/// stored path as it is.
 pub fn errors_csv_path(evaluation_dir: &Path, stored: &Path) -> std::path::PathBuf {
+    let relative = evaluation_dir.join(stored);
     let beside = stored
         .file_name()
         .map(|name| evaluation_dir.join("errors").join(name));
-    match beside {
-        Some(path) if path.is_file() => path,
-        _ => stored.to_path_buf(),
-    }
+    [Some(relative), beside]
+        .into_iter()
+        .flatten()
+        .find(|p| p.is_file())
+        .unwrap_or_else(|| stored.to_path_buf())
 }
 
 /// The rows of an errors CSV in the first outage, as numbers (complete rows only).

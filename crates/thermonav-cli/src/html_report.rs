@@ -27,7 +27,7 @@ use thermonav_plot::html::{Block, InlineFigure, Page, Section, Table, render_pag
 
 /// Builds DIR/report.html and returns its path.
 pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
-    let bank = read_bank(&dir.join("bank.json"))?;
+    let bank = read_bank(&required(dir, "bank.json")?)?;
     let demo = read_json_if_present(&dir.join("demo.json"))?;
     let evaluation = read_json_if_present(&dir.join("evaluation/evaluation.json"))?;
     let mut sections = vec![run_section(dir, demo.as_ref()), models_section(&bank)];
@@ -44,6 +44,22 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
     let out = dir.join("report.html");
     write_html(&out, &render_page(&page))?;
     Ok(out)
+}
+
+/// The layout `report DIR` reads, in words (for its help and its errors).
+pub const LAYOUT: &str = "DIR/bank.json (required: characterize --out DIR/bank.json); optional: DIR/demo.json, DIR/evaluation/evaluation.json with its errors/ (evaluate --out DIR/evaluation), DIR/vessel/reference.csv, DIR/solution/solution.innovations.csv (integrate --out DIR/solution/solution.csv)";
+
+/// `dir/name`, or a data error naming it and the layout.
+fn required(dir: &Path, name: &str) -> Result<std::path::PathBuf, Failure> {
+    let path = dir.join(name);
+    match path.is_file() {
+        true => Ok(path),
+        false => Err(anyhow!(
+            "{}: missing; report DIR reads {LAYOUT}",
+            path.display()
+        ))
+        .data(),
+    }
 }
 
 /// Writes the page to `out` atomically.

@@ -315,7 +315,13 @@ impl Survey<'_> {
             extra: replicates.saturating_sub(1) as usize,
             seed: self.plan.seed,
         };
-        run_and_write(&tournament, &main, &replicates, (out, &Default::default()))
+        run_and_write(
+            &tournament,
+            &main,
+            &replicates,
+            &[],
+            (out, &Default::default()),
+        )
     }
 
     /// The fixed bank models on a survey at each of the plan's matrix temperatures.

@@ -11,17 +11,18 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
 use thermonav::evaluation::metrics::{EpochError, Metric};
+use thermonav::evaluation::outside::OutsideResult;
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
 pub use thermonav::evaluation::scenario::RecordPlan;
 use thermonav::evaluation::scenario::{
     ScenarioError, scenario_imu as library_scenario_imu, scenario_of as library_scenario_of,
     scenario_of_records,
 };
-use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
+use thermonav::evaluation::tournament::{Scenario, ScenarioImu};
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
-use thermonav::nav::engine::EngineSettings;
-use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::engine::{EngineSettings, FilterKind};
+use thermonav::nav::outage::{Outage, OutageSpec};
 use thermonav::nav::run::RunInput;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
@@ -102,12 +103,14 @@ pub fn scenario_of(
     })
 }
 
-/// Runs the tournament (with a progress bar), writes the per-model error CSVs under
-/// `out/errors` and `out/evaluation.json`, and returns what was written.
+/// Runs the tournament (with a progress bar), adds the `outside` solutions' rows, writes the
+/// per-model error CSVs under `out/errors` and `out/evaluation.json`, and returns what was
+/// written.
 pub fn run_and_write(
     tournament: &Tournament,
     main: &Scenario,
     replicates: &Replicates,
+    outside: &[OutsideResult],
     (out, imu): (&Path, &ImuOptions),
 ) -> Result<EvaluationFile, Failure> {
     let bar = crate::progress::bar(tournament.runs(replicates), "tournament runs");
@@ -117,9 +120,50 @@ pub fn run_and_write(
         .data()?;
     bar.finish_and_clear();
     let mut report = outcome.report;
-    let errors_dir = out.join("errors");
-    for (model, result) in report.models.iter_mut().zip(&outcome.main) {
-        model.errors_csv = write_errors(&errors_dir, result)?;
+    report.add_outside(outside);
+    let ours = outcome.main.iter().map(|r| {
+        let errors = r.outcome.as_ref().ok().map(|e| e.errors.as_slice());
+        (format!("{}_{}", r.filter.name(), slug(&r.label)), errors)
+    });
+    let errors: Vec<_> = ours.chain(outside_errors(outside)).collect();
+    write_evaluation(report, &errors, (out, imu))
+}
+
+/// Scores only outside solutions (no filter runs) and writes their error CSVs and
+/// `out/evaluation.json`.
+pub fn write_outside_only(
+    outages: &[Outage],
+    outside: &[OutsideResult],
+    out: &Path,
+) -> Result<EvaluationFile, Failure> {
+    let report = TournamentReport::outside_only(outages, outside);
+    let errors: Vec<_> = outside_errors(outside).collect();
+    write_evaluation(report, &errors, (out, &ImuOptions::default()))
+}
+
+/// The error-CSV names and errors of outside solutions.
+fn outside_errors(
+    outside: &[OutsideResult],
+) -> impl Iterator<Item = (String, Option<&[Vec<EpochError>]>)> {
+    outside.iter().map(|o| {
+        let errors = Some(o.evaluated.errors.as_slice());
+        (format!("outside_{}", slug(&o.label)), errors)
+    })
+}
+
+/// Writes each model's errors (`errors` in the report's model order: file stem and errors, none
+/// for a failed run) under `out/errors`, stores their paths relative to evaluation.json, and
+/// writes `out/evaluation.json`.
+fn write_evaluation(
+    mut report: TournamentReport,
+    errors: &[(String, Option<&[Vec<EpochError>]>)],
+    (out, imu): (&Path, &ImuOptions),
+) -> Result<EvaluationFile, Failure> {
+    for (model, (stem, errors)) in report.models.iter_mut().zip(errors) {
+        model.errors_csv = match errors {
+            Some(e) => Some(write_errors(out, stem, e)?),
+            None => None,
+        };
     }
     let file = EvaluationFile {
         report,
@@ -161,21 +205,16 @@ fn slug(label: &str) -> String {
     out.trim_matches('_').replace("_c", "c")
 }
 
-/// The per-epoch errors inside each outage of one run, as CSV.
-fn write_errors(dir: &Path, result: &ModelResult) -> Result<Option<PathBuf>, Failure> {
-    let Ok(evaluated) = &result.outcome else {
-        return Ok(None);
-    };
-    std::fs::create_dir_all(dir)
+/// The per-epoch errors inside each outage of one run, as `out/errors/STEM.csv`; returns its
+/// path relative to `out` (where evaluation.json is).
+fn write_errors(out: &Path, stem: &str, errors: &[Vec<EpochError>]) -> Result<PathBuf, Failure> {
+    let dir = out.join("errors");
+    std::fs::create_dir_all(&dir)
         .map_err(|e| anyhow!("{}: cannot create: {e}", dir.display()))
         .data()?;
-    let path = dir.join(format!(
-        "{}_{}.csv",
-        result.filter.name(),
-        slug(&result.label)
-    ));
-    write_atomically(&path, |file| write_error_rows(file, &evaluated.errors)).data()?;
-    Ok(Some(path))
+    let relative = Path::new("errors").join(format!("{stem}.csv"));
+    write_atomically(out.join(&relative), |file| write_error_rows(file, errors)).data()?;
+    Ok(relative)
 }
 
 fn write_error_rows(
@@ -201,17 +240,25 @@ fn error_values(out: &mut impl std::io::Write, e: &EpochError) -> std::io::Resul
     out.write_all(b"\n")
 }
 
-/// The table of the paper's Figures 13-15, per filter, best marked with '*'.
+/// The table of the paper's Figures 13-15, per filter, best marked with '*', the outside
+/// solutions in every table (or in their own when no filter ran).
 pub fn print_tournament_table(file: &EvaluationFile) {
     let r = &file.report;
     println!(
-        "\nINS-only errors in {} GNSS outages at {:.1} °C ({:?} models; mean of per-outage RMS; max drift = RMS of per-outage maxima)",
+        "\nINS-only errors in {} GNSS outages{} (mean of per-outage RMS; max drift = RMS of per-outage maxima)",
         r.outages.len(),
-        r.operating_temperature_c,
-        r.gauss_markov_source
+        conditions(r)
     );
     for filter in &r.filters {
-        print_filter_table(r, filter.name());
+        print_filter_table(r, Some(*filter));
+    }
+    if r.filters.is_empty() {
+        print_filter_table(r, None);
+    }
+    if r.models.iter().any(|m| m.filter.is_none()) {
+        println!(
+            "\noutside: scored assuming their solver withheld GNSS in these same outages; not ranked"
+        );
     }
     if r.significance.replicates > 1 {
         print_significance(r);
@@ -221,6 +268,14 @@ pub fn print_tournament_table(file: &EvaluationFile) {
         println!("excluded {}: {}", e.label, e.reason);
     }
     println!("\nwritten: {}", file.report_file.display());
+}
+
+/// " at T °C (SOURCE models)" when our filters ran.
+fn conditions(r: &TournamentReport) -> String {
+    match (r.operating_temperature_c, r.gauss_markov_source) {
+        (Some(t), Some(source)) => format!(" at {t:.1} °C ({source:?} models)"),
+        _ => String::new(),
+    }
 }
 
 /// Every model's horizontal error above the oracle's, when there is one.
@@ -240,30 +295,47 @@ fn print_oracle_gaps(r: &TournamentReport) {
     }
 }
 
-fn print_filter_table(r: &TournamentReport, filter: &str) {
+/// One filter's table (its models, then the outside solutions), or the outside solutions'
+/// alone for `None`.
+fn print_filter_table(r: &TournamentReport, filter: Option<FilterKind>) {
+    let title = filter.map_or("outside", FilterKind::name);
     println!(
         "\n{:<28} {:>15} {:>15} {:>15} {:>13} {:>16}",
-        format!("{} model", filter.to_uppercase()),
+        format!("{} model", title.to_uppercase()),
         "north m",
         "east m",
         "horizontal m",
         "heading deg",
         "max drift m"
     );
-    let best = &r.best_by_filter[filter];
-    for m in r.models.iter().filter(|m| m.filter.name() == filter) {
+    let best = filter.and_then(|f| r.best_by_filter.get(f.name()));
+    let shown = r.models.iter().filter(|m| m.filter == filter);
+    for m in shown.chain(
+        r.models
+            .iter()
+            .filter(|m| filter.is_some() && m.filter.is_none()),
+    ) {
         let cells = Metric::ALL.map(|metric| {
-            let mark = if best.get(metric.key()) == Some(&m.label) {
-                "*"
-            } else {
-                " "
-            };
-            table_cell(m, metric, mark)
+            let best_here = best.and_then(|b| b.get(metric.key())) == Some(&m.label);
+            table_cell(m, metric, if best_here { "*" } else { " " })
         });
         println!(
             "{:<28} {:>15} {:>15} {:>15} {:>13} {:>16}",
-            m.label, cells[0], cells[1], cells[2], cells[3], cells[4]
+            row_label(m),
+            cells[0],
+            cells[1],
+            cells[2],
+            cells[3],
+            cells[4]
         );
+    }
+}
+
+/// A model's label in the tables, an outside solution's marked as such.
+fn row_label(m: &ModelReport) -> String {
+    match m.filter {
+        Some(_) => m.label.clone(),
+        None => format!("{} (outside)", m.label),
     }
 }
 

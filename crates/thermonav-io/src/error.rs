@@ -325,6 +325,24 @@ pub enum WriteError {
         /// 0-based index of the sample.
         index: usize,
     },
+    /// A time that cannot be written as the format's seconds of week.
+    #[error("record {index} at {time_s} s: expected {expected}")]
+    WeekTime {
+        /// 0-based index of the record.
+        index: usize,
+        /// Its time, s.
+        time_s: f64,
+        /// What the format expects.
+        expected: &'static str,
+    },
+    /// A fix without the position standard deviation the format needs.
+    #[error(
+        "fix {index} has no position standard deviation (KF-GINS's GNSS file needs sdn sde sdd: give the GNSS CSV sd_n_m,sd_e_m,sd_u_m)"
+    )]
+    MissingPositionSd {
+        /// 0-based index of the fix.
+        index: usize,
+    },
     /// GNSS fixes that do not all carry the same optional groups.
     #[error("fix {index} {presence} the {group} group, unlike fix 0")]
     InconsistentGroup {

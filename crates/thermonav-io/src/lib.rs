@@ -25,7 +25,10 @@
 //! command writes them out as canonical CSVs):
 //! - [`rtklib_pos`]: RTKLIB solutions (`.pos`), latitude/longitude or ECEF form, `Q` filter;
 //! - [`nmea`]: NMEA 0183 GGA, RMC, VTG, HDT, THS with checksums, combined per epoch;
-//! - [`kf_gins`]: KF-GINS IMU increments, GNSS positions and `.nav` trajectories;
+//! - [`kf_gins`]: KF-GINS IMU increments, GNSS positions and `.nav` trajectories (and their
+//!   writers, [`kf_gins_write`]);
+//! - [`outside_solution`]: KF-GINS, RTKLIB and our own solutions read as trajectories, to score
+//!   other tools beside ours;
 //! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
 //! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
 //!   GNSS of a flight log ([`ulog::px4`]).
@@ -77,6 +80,7 @@ pub mod gnss;
 pub mod gpst;
 pub mod imu;
 pub mod kf_gins;
+pub mod kf_gins_write;
 mod layout;
 mod lines;
 pub mod lot;
@@ -84,6 +88,7 @@ pub mod motion;
 pub mod nmea;
 pub mod noise_export;
 pub mod noise_terms;
+pub mod outside_solution;
 pub mod parsers;
 pub mod profile;
 pub mod raw_imu;

@@ -1,7 +1,8 @@
 //! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag, PX4 ULog)
-//! to the canonical GNSS, IMU or trajectory CSV. The whole input is read before anything is written,
+//! to the canonical GNSS, IMU or trajectory CSV, or (`--to kf-gins`) one of ours to KF-GINS. The whole input is read before anything is written,
 //! and the output is written atomically, so a bad input leaves no output behind.
 
+mod to_kf_gins;
 mod ulog;
 
 use crate::args::{ConvertArgs, ForeignFormatArg, ImuFrameArg};
@@ -23,6 +24,15 @@ use thermonav_io::{
 /// Runs `convert`.
 pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
     crate::settings::analysis::check_convert(args, &tag_path(args))?;
+    if args.to.is_some() {
+        let (count, what) = to_kf_gins::convert(args, strictness_of(args))?;
+        println!(
+            "{}: {count} {what} written to {}",
+            args.input.display(),
+            args.out.display()
+        );
+        return Ok(());
+    }
     let format = match args.format {
         Some(format) => format,
         None => detect_format(&args.input, &tag_path(args))?,

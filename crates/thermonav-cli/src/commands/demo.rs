@@ -335,7 +335,13 @@ fn tournament(
         make: &make,
     };
     let out = out.join("evaluation");
-    run_and_write(&tournament, &main, &replicates, (&out, &Default::default()))
+    run_and_write(
+        &tournament,
+        &main,
+        &replicates,
+        &[],
+        (&out, &Default::default()),
+    )
 }
 
 /// (a) is the paper's set-up at one temperature: no scheduled or compensated candidate (they

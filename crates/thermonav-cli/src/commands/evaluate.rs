@@ -1,42 +1,69 @@
 //! `thermonav evaluate`: the temperature-model tournament on one data set (the paper's Steps
 //! 2-3): every candidate model through the same filter, GNSS outages, errors against the
-//! reference, the ranking, and its Monte Carlo significance over shifted outage starts.
+//! reference, the ranking, and its Monte Carlo significance over shifted outage starts. Outside
+//! solutions (`--solution`: KF-GINS, RTKLIB, any trajectory CSV) are scored beside the
+//! candidates with the same metrics, or alone when no IMU is given.
 
 use crate::args::EvaluateArgs;
 use crate::failure::{Classify, Failure};
 use crate::integration::load_noise;
 use crate::report::print_json;
+use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use crate::tournament_files::{
-    RecordPlan, check_some_model_ran, print_tournament_table, run_and_write, scenario_from_files,
+    EvaluationFile, RecordPlan, check_some_model_ran, print_tournament_table, run_and_write,
+    scenario_from_files, write_outside_only,
 };
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datasheet_model_of};
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::oracle::TrueModel;
+use thermonav::evaluation::outside::{OutsideResult, score_outside};
+use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
+use thermonav::nav::outage::Outage;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
+use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::outside_solution::read_solution_file;
 use thermonav_io::profile::read_profile;
 use thermonav_io::truth::read_truth_file;
+use thermonav_io::{Strictness, read_trajectory_file};
+
+/// An outside solution read: its input and its trajectory.
+type Solution = (OutsideInput, Vec<TrajectoryPoint>);
 
 /// Runs `evaluate`.
 pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
     let s = crate::settings::navigation::evaluate(args)?;
-    let noise = load_noise(&s.noise)?;
-    let engine = EngineSettings {
-        geometry: s.geometry,
-        aiding: s.aiding,
-        max_imu_gap_s: s.max_imu_gap_s,
-        ..EngineSettings::default()
+    let solutions = read_solutions(&s.solutions)?;
+    let file = match &s.run {
+        Some(run) => run_filters(&s, run, &solutions)?,
+        None => score_alone(&s, &solutions)?,
     };
+    if args.json {
+        print_json(&file)?;
+    } else {
+        print_tournament_table(&file);
+    }
+    check_some_model_ran(&file)
+}
+
+/// Our tournament on the files, the outside solutions scored beside it.
+fn run_filters(
+    s: &EvaluateSettings,
+    run: &FilterRun,
+    solutions: &[Solution],
+) -> Result<EvaluationFile, Failure> {
+    let noise = load_noise(&run.noise)?;
     let scale = ScaleFactorPrior::default();
     let truth = read_truth(s.truth.as_deref(), &scale)?;
     let records = RecordPlan {
         oracle: truth.as_ref(),
         ..RecordPlan::calibrated(noise.thermal(), s.compensation)
     };
+    let engine = engine_settings(s);
     let (main, operating_c) = scenario_from_files(
-        &s.files,
+        &run.files,
         engine,
         &s.outages,
         s.operating_temperature_c,
@@ -53,22 +80,77 @@ pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
         oracle: truth.as_ref(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
+    let outside = score_all(solutions, &main.reference, windows(&main))?;
     let replicates = Replicates::ShiftedOutages {
         extra: s.extra_replicates,
         seed: s.seed,
     };
-    let file = run_and_write(
+    run_and_write(
         &tournament,
         &main,
         &replicates,
-        (&s.out, &s.files.imu_options),
-    )?;
-    if args.json {
-        print_json(&file)?;
-    } else {
-        print_tournament_table(&file);
+        &outside,
+        (&s.out, &run.files.imu_options),
+    )
+}
+
+/// The filter settings of `s` (outages are laid over the data later).
+fn engine_settings(s: &EvaluateSettings) -> EngineSettings {
+    EngineSettings {
+        geometry: s.geometry,
+        aiding: s.aiding,
+        max_imu_gap_s: s.max_imu_gap_s,
+        ..EngineSettings::default()
     }
-    check_some_model_ran(&file)
+}
+
+/// The main scenario's outage windows.
+fn windows(main: &Scenario) -> &[Outage] {
+    main.settings.outages.windows()
+}
+
+/// Only the outside solutions, against the reference, with the outages laid over its span.
+fn score_alone(s: &EvaluateSettings, solutions: &[Solution]) -> Result<EvaluationFile, Failure> {
+    let reference = read_trajectory_file(&s.reference, Strictness::Strict).data()?;
+    let span = match (reference.first(), reference.last()) {
+        (Some(a), Some(b)) => (a.time, b.time),
+        _ => return Err(anyhow!("{}: no point", s.reference.display())).data(),
+    };
+    let outages = s
+        .outages
+        .resolve(span)
+        .map_err(|e| {
+            anyhow!(
+                "--outages over the reference {}: {e}",
+                s.reference.display()
+            )
+        })
+        .usage()?;
+    let outside = score_all(solutions, &reference, outages.windows())?;
+    write_outside_only(outages.windows(), &outside, &s.out)
+}
+
+/// Every --solution read (all before any is scored, so a bad file fails early).
+fn read_solutions(inputs: &[OutsideInput]) -> Result<Vec<Solution>, Failure> {
+    let read = |input: &OutsideInput| {
+        let points = read_solution_file(&input.path, input.format, Strictness::Strict).data()?;
+        Ok((input.clone(), points))
+    };
+    inputs.iter().map(read).collect()
+}
+
+/// Every solution scored against `reference` in `outages`, errors naming its file.
+fn score_all(
+    solutions: &[Solution],
+    reference: &[TrajectoryPoint],
+    outages: &[Outage],
+) -> Result<Vec<OutsideResult>, Failure> {
+    let score = |(input, points): &Solution| {
+        score_outside(&input.label, points, reference, outages)
+            .map_err(|e| anyhow!("{} ({}): {e}", input.path.display(), input.format.name()))
+            .data()
+    };
+    solutions.iter().map(score).collect()
 }
 
 /// The survey truth of `--truth`, when given.

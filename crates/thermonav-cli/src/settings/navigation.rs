@@ -13,6 +13,7 @@ use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::stoch::bank::GaussMarkovSource;
 use thermonav_io::ImuOptions;
+use thermonav_io::outside_solution::SolutionFormat;
 
 pub use thermonav::nav::run::ModelTemperature;
 use thermonav::nav::run::RunSettings;
@@ -295,13 +296,35 @@ pub struct ScenarioFiles {
     pub reference: PathBuf,
 }
 
-/// Everything `evaluate` needs, validated.
+/// Our filters' side of `evaluate`: the data and where the candidates come from.
 #[derive(Debug, Clone)]
-pub struct EvaluateSettings {
+pub struct FilterRun {
     /// The data.
     pub files: ScenarioFiles,
     /// The candidates' source: a bank or a sensor profile.
     pub noise: NoiseSource,
+}
+
+/// One outside solution to score.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutsideInput {
+    /// Its file.
+    pub path: PathBuf,
+    /// Its format.
+    pub format: SolutionFormat,
+    /// Its label in tables and JSON.
+    pub label: String,
+}
+
+/// Everything `evaluate` needs, validated.
+#[derive(Debug, Clone)]
+pub struct EvaluateSettings {
+    /// Our filters' data and candidates, when they run.
+    pub run: Option<FilterRun>,
+    /// The reference trajectory.
+    pub reference: PathBuf,
+    /// The outside solutions.
+    pub solutions: Vec<OutsideInput>,
     /// Whether the scheduled candidates compete.
     pub scheduling: Scheduling,
     /// Whether the compensated candidates compete.
@@ -332,16 +355,74 @@ pub struct EvaluateSettings {
     pub out: PathBuf,
 }
 
+/// The outages of `evaluate`: as given, required with outside solutions (their solver had its
+/// own), `spread:8,100` otherwise.
+fn evaluate_outages(args: &EvaluateArgs) -> Result<OutageSpec, Failure> {
+    match (&args.outages, args.solution.is_empty()) {
+        (Some(spec), _) => Ok(spec.clone()),
+        (None, true) => Ok(OutageSpec::Spread {
+            count: 8,
+            duration_s: 100.0,
+        }),
+        (None, false) => Err(Failure::Usage(anyhow!(
+            "--solution needs --outages: the outages the outside solver withheld GNSS in (scoring assumes them)"
+        ))),
+    }
+}
+
+/// Our filters' side, when --imu is given.
+fn filter_run(args: &EvaluateArgs) -> Result<Option<FilterRun>, Failure> {
+    let (Some(imu), Some(gnss)) = (&args.imu, &args.gnss) else {
+        return Ok(None);
+    };
+    let files = ScenarioFiles {
+        imu: imu.clone(),
+        imu_options: super::imu::rotation_only(&args.rotation),
+        gnss: gnss.clone(),
+        reference: args.reference.clone(),
+    };
+    let noise = noise_source(&args.bank, &args.profile)?;
+    Ok(Some(FilterRun { files, noise }))
+}
+
+/// The --solution files with their formats and labels.
+fn outside_inputs(args: &EvaluateArgs) -> Result<Vec<OutsideInput>, Failure> {
+    let n = args.solution.len();
+    let counts = [args.solution_format.len(), args.solution_label.len()];
+    if counts.iter().any(|&c| c > 1 && c != n) || counts[1] == 1 && n > 1 {
+        return Err(Failure::Usage(anyhow!(
+            "give one --solution-format (for all) or one per --solution, and one --solution-label per --solution ({n} solutions)"
+        )));
+    }
+    let inputs = args.solution.iter().enumerate().map(|(k, path)| {
+        let given = args.solution_format.get(k).or(args.solution_format.first());
+        let format = match given {
+            Some(&f) => f.into(),
+            None => SolutionFormat::of_path(path).ok_or_else(|| {
+                anyhow!("{}: cannot tell the format from the extension (.csv, .nav, .pos); give --solution-format", path.display())
+            })?,
+        };
+        let label = args.solution_label.get(k).cloned().unwrap_or_else(|| file_label(path));
+        Ok(OutsideInput { path: path.clone(), format, label })
+    });
+    inputs
+        .collect::<anyhow::Result<Vec<_>>>()
+        .map_err(Failure::Usage)
+}
+
+/// A file's name, as a label.
+fn file_label(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
 /// Resolves `evaluate`.
 pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
     let settings = EvaluateSettings {
-        files: ScenarioFiles {
-            imu: args.imu.clone(),
-            imu_options: super::imu::rotation_only(&args.rotation),
-            gnss: args.gnss.clone(),
-            reference: args.reference.clone(),
-        },
-        noise: noise_source(&args.bank, &args.profile)?,
+        run: filter_run(args)?,
+        reference: args.reference.clone(),
+        solutions: outside_inputs(args)?,
         scheduling: match args.no_schedule {
             true => Scheduling::Fixed,
             false => Scheduling::default(),
@@ -357,7 +438,7 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
             .transpose()?,
         source: args.model.into(),
         filters: args.filter.kinds(),
-        outages: args.outages.clone(),
+        outages: evaluate_outages(args)?,
         extra_replicates: replicates(args.monte_carlo)? - 1,
         seed: args.seed,
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
@@ -366,13 +447,24 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         truth: args.truth.clone(),
         out: args.out.clone(),
     };
-    tournament_io(&settings.files, &settings.noise, &settings.out)
-        .optional_inputs([
-            ("--datasheet", settings.datasheet.as_ref()),
-            ("--truth", settings.truth.as_ref()),
-        ])
-        .check()?;
+    evaluate_io(&settings).check()?;
     Ok(settings)
+}
+
+/// What `evaluate` reads and writes.
+fn evaluate_io(s: &EvaluateSettings) -> Io {
+    let paths: Vec<PathBuf> = s.solutions.iter().map(|o| o.path.clone()).collect();
+    let io = match &s.run {
+        Some(run) => tournament_io(&run.files, &run.noise, &s.out).optional_inputs([
+            ("--datasheet", s.datasheet.as_ref()),
+            ("--truth", s.truth.as_ref()),
+        ]),
+        None => Io::new()
+            .input("--reference", &s.reference)
+            .output("report", &s.out.join("evaluation.json"))
+            .output_folder("per-model error folder", &s.out.join("errors")),
+    };
+    io.inputs("--solution", &paths)
 }
 
 /// What a tournament reads and writes.

@@ -11,6 +11,7 @@ mod modelling;
 mod navigation;
 mod noise_export;
 mod oracle;
+mod outside;
 mod plots;
 mod real_data;
 mod reliability;

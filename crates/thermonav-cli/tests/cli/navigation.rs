@@ -362,7 +362,8 @@ fn evaluate_ranks_the_models_and_writes_the_errors() {
     let model = models.iter().find(|m| m["label"] == "pooled").unwrap();
     assert_eq!(model["filter"], "ekf");
     assert_eq!(model["per_outage"].as_array().unwrap().len(), 2);
-    let csv = std::fs::read_to_string(model["errors_csv"].as_str().unwrap()).unwrap();
+    // Stored relative to evaluation.json (issue 16), not to the folder evaluate ran in.
+    let csv = std::fs::read_to_string(out.join(model["errors_csv"].as_str().unwrap())).unwrap();
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),

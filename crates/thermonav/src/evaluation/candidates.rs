@@ -75,6 +75,9 @@ pub enum CandidateKind {
     Oracle,
     /// The true model scheduled, on the record with the true repeatable bias subtracted.
     OracleCompensated,
+    /// A trajectory computed by another tool, scored beside the candidates (see
+    /// [`super::outside`]); not a model of ours, so it is not ranked.
+    Outside,
 }
 
 /// Which IMU record a candidate runs on.
@@ -137,7 +140,8 @@ impl CandidateKind {
             | CandidateKind::Scheduled { .. }
             | CandidateKind::ScheduledCompensated { .. }
             | CandidateKind::Oracle
-            | CandidateKind::OracleCompensated => None,
+            | CandidateKind::OracleCompensated
+            | CandidateKind::Outside => None,
         }
     }
 

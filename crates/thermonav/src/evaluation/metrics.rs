@@ -231,6 +231,42 @@ fn position_of(p: &TrajectoryPoint) -> Geodetic {
     }
 }
 
+/// One epoch of a solution as the metrics see it: its time, position and yaw. Our filters'
+/// epochs ([`Pose::of_epoch`]) and an outside tool's trajectory ([`Pose::of_point`]) are scored
+/// through the same arithmetic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Epoch.
+    pub time: Timestamp,
+    /// Position.
+    pub position: Geodetic,
+    /// Yaw (heading), rad, in any turn (the error is wrapped).
+    pub yaw_rad: f64,
+}
+
+impl Pose {
+    /// The pose of a filter epoch (yaw from its attitude's Z-Y-X Euler angles).
+    pub fn of_epoch(e: &SolutionEpoch) -> Self {
+        let nav = &e.estimate.nav;
+        let (_, _, yaw_rad) = nav.attitude.euler_zyx();
+        Self {
+            time: nav.time,
+            position: nav.position,
+            yaw_rad,
+        }
+    }
+
+    /// The pose of a trajectory point (its yaw as it is: 0..360° and (−180°, 180°] score
+    /// alike).
+    pub fn of_point(p: &TrajectoryPoint) -> Self {
+        Self {
+            time: p.time,
+            position: position_of(p),
+            yaw_rad: p.yaw_rad,
+        }
+    }
+}
+
 /// The errors at the solution epochs inside `outage`.
 ///
 /// # Errors
@@ -240,46 +276,56 @@ pub fn outage_errors(
     epochs: &[SolutionEpoch],
     outage: &Outage,
 ) -> Result<Vec<EpochError>, MetricsError> {
-    let span = |o: &Outage| (o.start.as_seconds(), o.end.as_seconds());
-    let (start_s, end_s) = span(outage);
-    let (Some(first), Some(last)) = (reference.first(), reference.last()) else {
-        return Err(MetricsError::ReferenceCoverage {
-            start_s,
-            end_s,
-            first_s: f64::NAN,
-            last_s: f64::NAN,
-        });
-    };
-    let inside: Vec<&SolutionEpoch> = epochs
+    let inside = epochs
         .iter()
         .filter(|e| outage.contains(e.estimate.nav.time))
-        .collect();
-    if inside.is_empty() {
-        return Err(MetricsError::NoEpochs { start_s, end_s });
-    }
-    inside
-        .iter()
-        .map(|e| {
-            let nav = &e.estimate.nav;
-            let (position, yaw) =
-                reference_at(reference, nav.time).ok_or(MetricsError::ReferenceCoverage {
-                    start_s,
-                    end_s,
-                    first_s: first.time.as_seconds(),
-                    last_s: last.time.as_seconds(),
-                })?;
-            let d = nav.position.ned_from(&position);
-            let (_, _, solution_yaw) = nav.attitude.euler_zyx();
-            Ok(EpochError {
-                time_s: nav.time.as_seconds(),
-                since_outage_start_s: nav.time.since(outage.start).as_seconds(),
-                north_m: d.x(),
-                east_m: d.y(),
-                horizontal_m: d.x().hypot(d.y()),
-                heading_deg: wrap_pi(solution_yaw - yaw).to_degrees(),
-            })
+        .map(Pose::of_epoch);
+    pose_errors(reference, inside, outage)
+}
+
+/// The errors at the poses of `inside` (the solution's epochs inside `outage`).
+///
+/// # Errors
+/// As [`outage_errors`].
+pub fn pose_errors(
+    reference: &[TrajectoryPoint],
+    inside: impl Iterator<Item = Pose>,
+    outage: &Outage,
+) -> Result<Vec<EpochError>, MetricsError> {
+    let (start_s, end_s) = (outage.start.as_seconds(), outage.end.as_seconds());
+    let coverage = |first_s: f64, last_s: f64| MetricsError::ReferenceCoverage {
+        start_s,
+        end_s,
+        first_s,
+        last_s,
+    };
+    let (Some(first), Some(last)) = (reference.first(), reference.last()) else {
+        return Err(coverage(f64::NAN, f64::NAN));
+    };
+    let errors = inside
+        .map(|pose| {
+            let (position, yaw) = reference_at(reference, pose.time)
+                .ok_or_else(|| coverage(first.time.as_seconds(), last.time.as_seconds()))?;
+            Ok(epoch_error(&pose, &position, yaw, outage))
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()?;
+    match errors.is_empty() {
+        true => Err(MetricsError::NoEpochs { start_s, end_s }),
+        false => Ok(errors),
+    }
+}
+
+/// The error of `pose` against the reference `position` and `yaw` at its time.
+fn epoch_error(pose: &Pose, position: &Geodetic, yaw: f64, outage: &Outage) -> EpochError {
+    let d = pose.position.ned_from(position);
+    EpochError {
+        time_s: pose.time.as_seconds(),
+        since_outage_start_s: pose.time.since(outage.start).as_seconds(),
+        north_m: d.x(),
+        east_m: d.y(),
+        horizontal_m: d.x().hypot(d.y()),
+        heading_deg: wrap_pi(pose.yaw_rad - yaw).to_degrees(),
+    }
 }
 
 fn rms(values: impl Iterator<Item = f64>) -> f64 {
@@ -342,9 +388,34 @@ pub fn evaluate_solution(
     epochs: &[SolutionEpoch],
     outages: &[Outage],
 ) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {
+    evaluate_with(outages, |o| outage_errors(reference, epochs, o))
+}
+
+/// Errors of a trajectory (an outside tool's solution, or any trajectory file) inside every
+/// outage and the run's figures: the same figures as [`evaluate_solution`] of the epochs the
+/// trajectory was written from.
+///
+/// # Errors
+/// As [`evaluate_solution`].
+pub fn evaluate_trajectory(
+    reference: &[TrajectoryPoint],
+    points: &[TrajectoryPoint],
+    outages: &[Outage],
+) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {
+    evaluate_with(outages, |o| {
+        let inside = points.iter().filter(|p| o.contains(p.time));
+        pose_errors(reference, inside.map(Pose::of_point), o)
+    })
+}
+
+/// The errors of every outage by `errors_of` and the run's figures.
+fn evaluate_with(
+    outages: &[Outage],
+    errors_of: impl Fn(&Outage) -> Result<Vec<EpochError>, MetricsError>,
+) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {
     let errors = outages
         .iter()
-        .map(|o| outage_errors(reference, epochs, o))
+        .map(errors_of)
         .collect::<Result<Vec<_>, _>>()?;
     let per_outage = outages
         .iter()

@@ -12,6 +12,8 @@
 //!   and the ranking.
 //! - [`experiment`]: a tournament with its replicates (shifted outages, or scenarios the
 //!   caller makes), bounded in memory, giving the [`report`].
+//! - [`outside`]: trajectories of other tools (KF-GINS, RTKLIB, ...) scored with the same
+//!   outage metrics, as unranked rows of the report.
 //! - [`report`]: the report's types, which are the `evaluation.json` contract, and the
 //!   ranking.
 //! - [`significance`]: Monte Carlo summaries (mean and 95 % interval per metric) and the
@@ -21,6 +23,7 @@ pub mod candidates;
 pub mod experiment;
 pub mod metrics;
 pub mod oracle;
+pub mod outside;
 pub mod report;
 pub mod scenario;
 pub mod significance;

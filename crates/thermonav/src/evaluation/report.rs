@@ -4,9 +4,11 @@
 use super::candidates::{CandidateKind, Excluded};
 use super::experiment::{Replicates, Tournament};
 use super::metrics::{Metric, OutageMetrics, RunMetrics};
+use super::outside::{OutsideResult, outage_spans, outside_model_report};
 use super::significance::MeanInterval;
 use super::tournament::{Contrast, ModelResult, ModelSummary, Scenario, Significance};
 use crate::nav::engine::FilterKind;
+use crate::nav::outage::Outage;
 use crate::nav::solution::InnovationStatistics;
 use crate::stoch::bank::GaussMarkovSource;
 use serde::Serialize;
@@ -32,8 +34,8 @@ pub struct ModelReport {
     pub candidate: CandidateKind,
     /// The temperature the candidate stands for, °C (null for pooled and data sheet).
     pub temperature_c: Option<f64>,
-    /// The filter.
-    pub filter: FilterKind,
+    /// The filter (none for an outside solution, see [`super::outside`]).
+    pub filter: Option<FilterKind>,
     /// Why the main run failed, if it did.
     pub failure: Option<String>,
     /// Mean of per-outage RMS north error, m.
@@ -91,10 +93,11 @@ pub struct SignificanceReport {
 /// The whole report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TournamentReport {
-    /// Operating temperature, °C.
-    pub operating_temperature_c: f64,
-    /// Gauss-Markov family of the bank candidates.
-    pub gauss_markov_source: GaussMarkovSource,
+    /// Operating temperature, °C (none when only outside solutions are scored).
+    pub operating_temperature_c: Option<f64>,
+    /// Gauss-Markov family of the bank candidates (none when only outside solutions are
+    /// scored).
+    pub gauss_markov_source: Option<GaussMarkovSource>,
     /// Filters, in report order.
     pub filters: Vec<FilterKind>,
     /// Outages of the main run.
@@ -113,6 +116,36 @@ pub struct TournamentReport {
     /// With an oracle: every other model's horizontal error against the best oracle run of
     /// its filter (empty without one).
     pub oracle_gaps: Vec<OracleGap>,
+}
+
+impl TournamentReport {
+    /// The report of outside solutions alone (no filter ran): their rows, the outages, no
+    /// ranking, no replicate.
+    pub fn outside_only(outages: &[Outage], outside: &[OutsideResult]) -> Self {
+        Self {
+            operating_temperature_c: None,
+            gauss_markov_source: None,
+            filters: Vec::new(),
+            outages: outage_spans(outages),
+            models: outside.iter().map(outside_model_report).collect(),
+            excluded: Vec::new(),
+            best: BTreeMap::new(),
+            best_by_filter: BTreeMap::new(),
+            significance: SignificanceReport {
+                replicates: 1,
+                replicates_differ_by: Replicates::None.differ_by(),
+                tests: Vec::new(),
+                horizontal_contrasts: Vec::new(),
+            },
+            oracle_gaps: Vec::new(),
+        }
+    }
+
+    /// Adds the rows of outside solutions after the candidates' (they are not ranked: no
+    /// model of ours stands behind them).
+    pub fn add_outside(&mut self, outside: &[OutsideResult]) {
+        self.models.extend(outside.iter().map(outside_model_report));
+    }
 }
 
 /// How far one model is from the best possible one (the oracle) on the horizontal error.
@@ -166,9 +199,9 @@ pub(super) fn report_of(
     let oracle_gaps = oracle_gaps(&ranking, &ranking_values(&oracles, replicated));
     let filters = tournament.filters().to_vec();
     TournamentReport {
-        operating_temperature_c: tournament.operating_temperature_c(),
-        gauss_markov_source: tournament.source(),
-        outages: outage_spans(main),
+        operating_temperature_c: Some(tournament.operating_temperature_c()),
+        gauss_markov_source: Some(tournament.source()),
+        outages: outage_spans(main.settings.outages.windows()),
         excluded: tournament.excluded().to_vec(),
         best: best_labels(&ranking, filters[0]),
         best_by_filter: filters
@@ -218,28 +251,17 @@ fn oracle_gaps(ranking: &[Ranked], oracles: &[Ranked]) -> Vec<OracleGap> {
         .collect()
 }
 
-fn outage_spans(main: &Scenario) -> Vec<OutageSpan> {
-    let windows = main.settings.outages.windows();
-    windows
-        .iter()
-        .map(|w| OutageSpan {
-            start_s: w.start.as_seconds(),
-            end_s: w.end.as_seconds(),
-        })
-        .collect()
-}
-
 /// The values each model is ranked by: the Monte Carlo means when there are replicates,
 /// the main run's values otherwise.
 fn ranking_values(models: &[&ModelReport], replicated: bool) -> Vec<Ranked> {
     models
         .iter()
-        .map(|m| {
+        .filter_map(|m| {
             let pick = |metric: Metric| match replicated {
                 true => m.ci95.get(metric.key()).map(|c| c.mean),
                 false => m.value(metric),
             };
-            (m.label.clone(), m.filter, Metric::ALL.map(pick))
+            Some((m.label.clone(), m.filter?, Metric::ALL.map(pick)))
         })
         .collect()
 }
@@ -268,7 +290,7 @@ fn model_report(result: &ModelResult, ci95: &[(Metric, MeanInterval)]) -> ModelR
         label: result.label.clone(),
         candidate: result.candidate,
         temperature_c: result.candidate.temperature_c(),
-        filter: result.filter,
+        filter: Some(result.filter),
         failure: result.outcome.as_ref().err().cloned(),
         rms_north_m: pick(|m| m.rms_north_m),
         rms_east_m: pick(|m| m.rms_east_m),

@@ -61,12 +61,9 @@ pub enum ScenarioError {
     /// No GNSS fix.
     #[error("the GNSS file has no fix")]
     NoFix,
-    /// The reference starts after the first fix.
-    #[error("the reference starts after the first GNSS fix ({start_s:.3} s)")]
-    ReferenceStartsLate {
-        /// Time of the first fix, s.
-        start_s: f64,
-    },
+    /// The reference has no point to start from.
+    #[error("the reference trajectory has no point")]
+    EmptyReference,
 }
 
 impl ScenarioError {
@@ -76,9 +73,7 @@ impl ScenarioError {
         match self {
             ScenarioError::Temperature(_) | ScenarioError::Oracle(_) => RunInput::Imu,
             ScenarioError::Run(e) => e.input(),
-            ScenarioError::Reference(_) | ScenarioError::ReferenceStartsLate { .. } => {
-                RunInput::Reference
-            }
+            ScenarioError::Reference(_) | ScenarioError::EmptyReference => RunInput::Reference,
             ScenarioError::Nav(e) => RunError::Nav(e.clone()).input(),
             ScenarioError::NoFix => RunInput::Filter,
         }
@@ -102,10 +97,12 @@ pub fn scenario_imu(series: &ImuSeries, plan: RecordPlan) -> Result<ScenarioImu,
 }
 
 /// A scenario from in-memory data, started from the reference at the first fix with the
-/// default initial covariance.
+/// default initial covariance. A reference that starts after the first fix is accepted (as
+/// `integrate --initial-from` does): the runs start at its first point, and only the outages
+/// inside its span can be scored ([`check_reference_covers`] refuses the others).
 ///
 /// # Errors
-/// [`ScenarioError::NoFix`], [`ScenarioError::ReferenceStartsLate`].
+/// [`ScenarioError::NoFix`], [`ScenarioError::EmptyReference`].
 pub fn scenario_of(
     imu: ScenarioImu,
     gnss: Vec<GnssFix>,
@@ -126,7 +123,8 @@ pub fn scenario_of(
     })
 }
 
-/// The reference point at (or last before) the first GNSS fix: the common starting state.
+/// The reference point at (or last before) the first GNSS fix, or the reference's first
+/// point when it starts later: the common starting state.
 fn initial_from_reference(
     reference: &[TrajectoryPoint],
     gnss: &[GnssFix],
@@ -134,10 +132,9 @@ fn initial_from_reference(
     let start = gnss.first().map(|f| f.time).ok_or(ScenarioError::NoFix)?;
     (reference.iter().rev())
         .find(|p| p.time <= start)
+        .or(reference.first())
         .copied()
-        .ok_or(ScenarioError::ReferenceStartsLate {
-            start_s: start.as_seconds(),
-        })
+        .ok_or(ScenarioError::EmptyReference)
 }
 
 /// The scenario of the records: the IMU side under `records`, `engine` with the outages of

@@ -1,7 +1,7 @@
 //! GNSS outages: half-open windows [start, end) in which GNSS updates are withheld and the
 //! solution is INS-only.
 
-use crate::time::{NANOS_PER_SECOND, Timestamp};
+use crate::time::{Duration, NANOS_PER_SECOND, Timestamp};
 use serde::Serialize;
 
 /// One outage window [start, end).
@@ -58,7 +58,7 @@ pub enum OutageError {
     },
     /// A specification that does not parse.
     #[error(
-        "outage specification \"{spec}\": {reason} (expected START+DURATION[,START+DURATION...] or every:FIRST,DURATION,PERIOD,COUNT, in seconds on the files' t_s scale)"
+        "outage specification \"{spec}\": {reason} (expected START+DURATION[,START+DURATION...], every:FIRST,DURATION,PERIOD,COUNT or spread:COUNT,DURATION, in seconds on the files' t_s scale, or any of them after rel: in seconds from the first IMU sample)"
     )]
     Spec {
         /// The text given.
@@ -157,6 +157,19 @@ impl Outages {
         Self::periodic(start, duration_s, gap + duration_s, count)
     }
 
+    /// Every window moved by exactly `offset`.
+    pub fn offset(&self, offset: Duration) -> Self {
+        let windows = self
+            .windows
+            .iter()
+            .map(|w| Outage {
+                start: w.start + offset,
+                end: w.end + offset,
+            })
+            .collect();
+        Self { windows }
+    }
+
     /// Every window moved by `offset_s`.
     ///
     /// # Errors
@@ -216,7 +229,9 @@ impl Outages {
 /// Text forms (seconds on the data's time scale): `none`; a list
 /// `START+DURATION[,START+DURATION...]`; a periodic generator
 /// `every:FIRST,DURATION,PERIOD,COUNT`; or `spread:COUNT,DURATION`, spread over the data span
-/// as [`Outages::spread`] does. Parsing needs no data, so a command can refuse a bad
+/// as [`Outages::spread`] does. Any of them after `rel:` counts its seconds from the first data
+/// time instead (`rel:60+30` starts 60 s after the first IMU sample, whatever the files' time
+/// scale, e.g. GPST seconds). Parsing needs no data, so a command can refuse a bad
 /// specification before it reads a file.
 #[derive(Debug, Clone, PartialEq)]
 pub enum OutageSpec {
@@ -242,6 +257,8 @@ pub enum OutageSpec {
         /// Length of each window, s.
         duration_s: f64,
     },
+    /// Another form in seconds from the first data time (`rel:`).
+    FromStart(Box<OutageSpec>),
 }
 
 impl std::str::FromStr for OutageSpec {
@@ -249,6 +266,9 @@ impl std::str::FromStr for OutageSpec {
 
     fn from_str(spec: &str) -> Result<Self, OutageError> {
         let text = spec.trim();
+        if let Some(rest) = text.strip_prefix("rel:") {
+            return relative_spec(spec, rest);
+        }
         let parsed = if text.eq_ignore_ascii_case("none") || text.is_empty() {
             Ok(Self::None)
         } else if let Some(rest) = text.strip_prefix("spread:") {
@@ -270,6 +290,17 @@ impl std::str::FromStr for OutageSpec {
     }
 }
 
+/// The `rel:` form: another form, not itself relative.
+fn relative_spec(spec: &str, rest: &str) -> Result<OutageSpec, OutageError> {
+    if rest.trim().starts_with("rel:") {
+        return Err(OutageError::Spec {
+            spec: spec.to_owned(),
+            reason: "rel: is given twice".into(),
+        });
+    }
+    Ok(OutageSpec::FromStart(Box::new(rest.parse()?)))
+}
+
 impl std::fmt::Display for OutageSpec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -285,6 +316,7 @@ impl std::fmt::Display for OutageSpec {
                 count,
             } => write!(f, "every:{first_start_s},{duration_s},{period_s},{count}"),
             Self::Spread { count, duration_s } => write!(f, "spread:{count},{duration_s}"),
+            Self::FromStart(inner) => write!(f, "rel:{inner}"),
         }
     }
 }
@@ -348,6 +380,7 @@ impl OutageSpec {
                 ..
             } => (*first_start_s, *duration_s),
             Self::Spread { duration_s, .. } => (0.0, *duration_s),
+            Self::FromStart(inner) => return inner.check_durations(),
         };
         if duration_s > 0.0 {
             Ok(())
@@ -367,6 +400,11 @@ impl OutageSpec {
     /// spread outages that do not fit, and otherwise as [`Outages::from_start_duration`].
     pub fn resolve(&self, data: (Timestamp, Timestamp)) -> Result<Outages, OutageError> {
         let outages = match self {
+            Self::FromStart(inner) => {
+                let zero = Timestamp::from_nanos(0);
+                let relative = inner.resolve((zero, zero + (data.1 - data.0)))?;
+                return Ok(relative.offset(data.0 - zero));
+            }
             Self::None => Outages::none(),
             Self::List(pairs) => Outages::from_start_duration(pairs)?,
             Self::Every {
@@ -429,6 +467,51 @@ pub fn seconds(s: i64) -> Timestamp {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // Issue 16: `rel:` counts from the first data time, exactly (integer nanoseconds): on a
+    // GPST-like scale starting at 1 400 000 000.25 s, rel:60+30 is the window starting
+    // 60 s after it, and a relative window past the data's length is refused in relative
+    // seconds, the user's own numbers.
+    #[test]
+    fn relative_outages_count_from_the_first_data_time() {
+        let first = Timestamp::from_nanos(1_400_000_000_250_000_000);
+        let data = (first, first + Duration::from_nanos(240 * NANOS_PER_SECOND));
+        let o = Outages::from_spec("rel:60+30,150+30", data).unwrap();
+        let after = |s: i64| first + Duration::from_nanos(s * NANOS_PER_SECOND);
+        assert_eq!(
+            o.windows()[0],
+            Outage {
+                start: after(60),
+                end: after(90)
+            }
+        );
+        assert_eq!(
+            o.windows()[1],
+            Outage {
+                start: after(150),
+                end: after(180)
+            }
+        );
+        let every = Outages::from_spec("rel:every:60,30,90,2", data).unwrap();
+        assert_eq!(every, o);
+        let spec: OutageSpec = "rel:60+30".parse().unwrap();
+        assert_eq!(spec.to_string(), "rel:60+30");
+        let error = Outages::from_spec("rel:230+30", data).unwrap_err();
+        assert!(
+            error
+                .to_string()
+                .contains("outage 230-260 s is not inside the data (0-240 s)"),
+            "{error}"
+        );
+        assert!(matches!(
+            "rel:rel:1+2".parse::<OutageSpec>(),
+            Err(OutageError::Spec { .. })
+        ));
+        assert!(matches!(
+            "rel:5+0".parse::<OutageSpec>(),
+            Err(OutageError::Empty { .. })
+        ));
+    }
 
     #[test]
     fn membership_is_half_open_and_overlaps_are_refused() {
