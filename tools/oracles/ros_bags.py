@@ -2,8 +2,8 @@
 """Test bags for the ROS readers (crates/thermonav-io/src/ros, tests in
 crates/thermonav-io/tests/it/ros.rs) and the values they hold.
 
-Generated ONCE with: Python 3.12, rosbags 0.11.9, mcap 1.6.0, zstandard 0.25.0, lz4 4.4.5
-(`pip install rosbags mcap mcap-ros2-support zstandard lz4`). Run from the repository root:
+Generated ONCE with: Python 3.11.7, rosbags 0.11.9, mcap 1.6.0, zstandard 0.25.0, lz4 4.4.5,
+numpy (`pip install rosbags mcap mcap-ros2-support zstandard lz4 numpy`). Run from the repository root:
 `python3 tools/oracles/ros_bags.py`. Output: crates/thermonav-io/tests/data/ros/.
 
 A simulated static IMU, seeded: 150 sensor_msgs/Imu at 100 Hz on /imu/data (gyro ~ N(0, 1e-3)
@@ -23,7 +23,11 @@ Files, each holding the same messages:
   /blob (std_msgs/String of 10000 characters 'A'..'Z' repeated, one message) whose row spills
   onto overflow pages;
 - static.bag, static_lz4.bag, static_bz2.bag: ROS 1 bag v2.0 (rosbags' rosbag1 Writer),
-  uncompressed, lz4 and bz2 chunks; ROS 1 serialization.
+  uncompressed, lz4 and bz2 chunks; ROS 1 serialization;
+- static_10hz.mcap: the README's example, long enough for `characterize` with its default
+  conditioning (1500 sensor_msgs/Imu at 10 Hz, values rounded to binary32 as a driver publishing
+  floats gives them, so that zstd keeps the file small; 150 Temperature at 1 Hz, 25 C);
+  expected_10hz.json holds its count and its first and last messages.
 
 expected.json: the values written, as written (ROS axes), with each message's header stamp
 and record time in integer nanoseconds.
@@ -203,6 +207,39 @@ def write_bag1(path, data, compression):
             w.write(conns[topic], log_time, raw)
 
 
+def simulate_10hz():
+    import numpy as np
+    rng = random.Random(10)
+    r32 = lambda x: float(np.float32(x))
+    imu = []
+    for k in range(1500):
+        stamp = T0_NS + k * 100_000_000
+        imu.append({
+            "stamp_ns": stamp,
+            "log_time_ns": stamp + 2_000_000,
+            "gyro": [r32(rng.gauss(0, 1e-3)) for _ in range(3)],
+            "accel": [r32(rng.gauss(0, 2e-2)), r32(rng.gauss(0, 2e-2)), r32(G + rng.gauss(0, 2e-2))],
+        })
+    temperature = [{"stamp_ns": T0_NS + k * 1_000_000_000, "log_time_ns": T0_NS + k * 1_000_000_000 + 1000,
+                    "temperature_c": 25.0, "variance": 0.0} for k in range(150)]
+    return {"imu": imu, "temperature": temperature, "fixes": [], "imu_raw": []}
+
+
+def write_10hz(path, data):
+    ts = get_typestore(Stores.ROS2_HUMBLE)
+    with open(path, "wb") as f:
+        w = McapWriter(f, chunk_size=64 * 1024, compression=CompressionType.ZSTD)
+        w.start(profile="ros2", library="thermonav oracle (mcap python)")
+        ids = {}
+        for topic, typename, _, _ in streams(data, False)[:2]:
+            msgdef, _ = ts.generate_msgdef(typename, ros_version=2)
+            ids[topic] = w.register_channel(topic, "cdr", w.register_schema(typename, "ros2msg", msgdef.encode()))
+        rows = [r for r in time_ordered(ts, data, False, False, ts.serialize_cdr) if r[1] in ids]
+        for seq, (log_time, topic, _, raw) in enumerate(rows):
+            w.add_message(ids[topic], log_time=log_time, data=raw, publish_time=log_time, sequence=seq)
+        w.finish()
+
+
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
     data = simulate()
@@ -214,6 +251,11 @@ def main():
     write_bag1(OUT / "static.bag", data, None)
     write_bag1(OUT / "static_lz4.bag", data, Bag1Writer.CompressionFormat.LZ4)
     write_bag1(OUT / "static_bz2.bag", data, Bag1Writer.CompressionFormat.BZ2)
+    long = simulate_10hz()
+    write_10hz(OUT / "static_10hz.mcap", long)
+    summary = {"imu_count": len(long["imu"]), "temperature_count": len(long["temperature"]),
+               "imu_first": long["imu"][:3], "imu_last": long["imu"][-1]}
+    (OUT / "expected_10hz.json").write_text(json.dumps(summary, indent=1) + "\n")
     data["blob_text_len"] = len(BLOB_TEXT)
     (OUT / "expected.json").write_text(json.dumps(data, indent=1) + "\n")
     for p in sorted(OUT.iterdir()):

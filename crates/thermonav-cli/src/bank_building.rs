@@ -11,7 +11,7 @@ use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
-use thermonav_io::{Strictness, read_imu_file, write_json_atomically};
+use thermonav_io::write_json_atomically;
 
 /// The temperature of a record: given, or the mean of its temp_c column.
 fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
@@ -46,10 +46,11 @@ pub fn characterize_file(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    if streams(path, reading) {
+    let bag = crate::inputs::bag_format_of(path).is_some();
+    if !bag && streams(path, reading) {
         return characterize_streaming(path, given, settings, &name);
     }
-    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let series = crate::inputs::read_imu_input(path)?;
     let temperature_c = temperature_of(path, &series, given)?;
     let (entry, _) = characterize(&series, temperature_c, &name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))

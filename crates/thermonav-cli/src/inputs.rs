@@ -8,6 +8,8 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
+use thermonav_io::ros::BagFormat;
+use thermonav_io::ros::extract::{TopicChoice, imu_series};
 use thermonav_io::{Strictness, read_imu_file};
 
 /// Reads and validates a bank file.
@@ -34,7 +36,7 @@ fn no_thermal(path: &Path) -> Failure {
 /// Reads an IMU CSV of rates and its nominal sample rate, Hz; `purpose` names what needs
 /// rates in the error for a file of increments.
 pub fn read_rates(path: &Path, purpose: &str) -> Result<(ImuSeries, f64), Failure> {
-    let series = read_imu_file(path, Strictness::Strict).data()?;
+    let series = read_imu_input(path)?;
     if series.kind == Some(SampleKind::Increments) {
         return Err(Failure::Data(anyhow!(
             "{}: {purpose} needs rates; the file holds increments",
@@ -62,5 +64,37 @@ pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
             path.display()
         ))),
         _ => Ok(()),
+    }
+}
+
+/// An IMU record: a canonical IMU CSV, or a ROS bag (told by its magic bytes) whose only
+/// `sensor_msgs/Imu` topic is read in FRD, with `temp_c` from its only temperature topic.
+pub fn read_imu_input(path: &Path) -> Result<ImuSeries, Failure> {
+    match bag_format_of(path) {
+        Some(format) => read_bag_imu(path, format),
+        None => read_imu_file(path, Strictness::Strict).data(),
+    }
+}
+
+/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, or
+/// unreadable, for the CSV reader to name).
+pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    let file = std::fs::File::open(path).ok()?;
+    file.take(16).read_to_end(&mut head).ok()?;
+    BagFormat::detect(&head)
+}
+
+/// The IMU of a bag, its topic chosen as [`imu_series`] does without options.
+fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
+    let bag = thermonav_io::ros::read_bag_file(path, Some(format)).data()?;
+    let input = path.display().to_string();
+    match imu_series(&bag, TopicChoice::default(), &input) {
+        Ok(extract) => Ok(extract.series),
+        Err(e) => Err(Failure::Data(anyhow!(
+            "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
+             --temperature-topic T2 --out imu.csv)"
+        ))),
     }
 }
