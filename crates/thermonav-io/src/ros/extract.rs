@@ -220,7 +220,7 @@ pub fn imu_series(
         };
         check_sample(&series, &sample, topic, k, m.offset, input)?;
         series.push(&sample);
-        lags.push(imu.stamp_ns - m.log_time_ns);
+        lags.push(imu.stamp_ns.saturating_sub(m.log_time_ns));
     }
     if series.is_empty() {
         return Err(topic_error(
@@ -405,7 +405,7 @@ pub fn gnss_fixes(
             velocity_ned_m_s: None,
             heading: None,
         });
-        lags.push(fix.stamp_ns - m.log_time_ns);
+        lags.push(fix.stamp_ns.saturating_sub(m.log_time_ns));
     }
     if fixes.is_empty() {
         return Err(topic_error(

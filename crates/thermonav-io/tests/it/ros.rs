@@ -323,3 +323,23 @@ fn a_db3_with_pending_write_ahead_log_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn random_corruptions_of_every_bag_give_an_error_or_a_bag_never_a_panic() {
+    use rand::{RngExt, SeedableRng};
+    use thermonav_io::parsers::Parser;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
+    let parsers = [Parser::Ros2Mcap, Parser::Ros2Db3, Parser::Ros1Bag];
+    for (name, format) in BAGS {
+        let parser = parsers[format as usize];
+        let bytes = std::fs::read(dir().join(name)).unwrap();
+        for _ in 0..150 {
+            let mut damaged = bytes.clone();
+            for _ in 0..rng.random_range(1..8) {
+                let at = rng.random_range(0..damaged.len());
+                damaged[at] = rng.random();
+            }
+            let _ = parser.record_count(&damaged, name);
+        }
+    }
+}
