@@ -17,6 +17,8 @@ Files, each holding the same messages:
   CDR serializer);
 - static_zstd.mcap: chunked, zstd chunks, plus a second IMU topic /imu/raw (5 messages) so that
   a reader must be told --topic;
+- static_none.mcap, static_unchunked_be.mcap and static.bag also hold 8
+  geometry_msgs/TwistStamped on /gnss/vel;
 - static_lz4.mcap: chunked, lz4 chunks;
 - static_unchunked_be.mcap: no chunks, every message CDR big-endian;
 - static.db3: rosbag2's SQLite storage (rosbags' rosbag2 Writer, version 8), plus a topic
@@ -48,6 +50,7 @@ OUT = ROOT / "crates" / "thermonav-io" / "tests" / "data" / "ros"
 T0_NS = 1_700_000_000_123_456_789
 G = 9.80665
 IMU, TEMP, FIX = "sensor_msgs/msg/Imu", "sensor_msgs/msg/Temperature", "sensor_msgs/msg/NavSatFix"
+TWIST = "geometry_msgs/msg/TwistStamped"
 BLOB_TEXT = "".join(chr(65 + i % 26) for i in range(10000))
 
 
@@ -87,7 +90,18 @@ def simulate():
         })
     raw = [{"stamp_ns": T0_NS + k * 5_000_000, "log_time_ns": T0_NS + k * 5_000_000 + 1000,
             "gyro": [0.1, 0.2, 0.3], "accel": [1.0, 2.0, 3.0]} for k in range(5)]
-    return {"imu": imu, "temperature": temperature, "fixes": fixes, "imu_raw": raw}
+    twist_rng = random.Random(7)
+    twists = [{"stamp_ns": T0_NS + k * 200_000_000 + 9_000_000,
+               "log_time_ns": T0_NS + k * 200_000_000 + 11_000_000,
+               "linear": [twist_rng.gauss(0, 0.05) for _ in range(3)],
+               "angular": [twist_rng.gauss(0, 0.01) for _ in range(3)]} for k in range(8)]
+    return {"imu": imu, "temperature": temperature, "fixes": fixes, "imu_raw": raw, "twists": twists}
+
+
+def twist_msg(ts, m, k, ros1):
+    Twist = ts.types["geometry_msgs/msg/Twist"]
+    return ts.types[TWIST](header=header(ts, m["stamp_ns"], "gnss", k if ros1 else None),
+                           twist=Twist(linear=vec3(ts, m["linear"]), angular=vec3(ts, m["angular"])))
 
 
 def header(ts, stamp_ns, frame_id, seq=None):
@@ -137,38 +151,40 @@ def fix_msg(ts, m, k, ros1):
     )
 
 
-def streams(data, with_raw):
+def streams(data, with_raw, with_twist=False):
     """(topic, type, builder, records) in the order the bags hold them."""
     out = [("/imu/data", IMU, imu_msg, data["imu"]),
            ("/imu/temperature", TEMP, temp_msg, data["temperature"]),
            ("/gnss/fix", FIX, fix_msg, data["fixes"])]
     if with_raw:
         out.append(("/imu/raw", IMU, imu_msg, data["imu_raw"]))
+    if with_twist:
+        out.append(("/gnss/vel", TWIST, twist_msg, data["twists"]))
     return out
 
 
-def time_ordered(ts, data, with_raw, ros1, serialize):
+def time_ordered(ts, data, with_raw, ros1, serialize, with_twist=False):
     rows = []
-    for topic, typename, build, records in streams(data, with_raw):
+    for topic, typename, build, records in streams(data, with_raw, with_twist):
         for k, m in enumerate(records):
             rows.append((m["log_time_ns"], topic, typename, bytes(serialize(build(ts, m, k, ros1), typename))))
     rows.sort(key=lambda r: r[0])
     return rows
 
 
-def write_mcap(path, data, compression, chunked, little_endian, with_raw):
+def write_mcap(path, data, compression, chunked, little_endian, with_raw, with_twist=False):
     ts = get_typestore(Stores.ROS2_HUMBLE)
     ser = lambda msg, t: ts.serialize_cdr(msg, t, little_endian=little_endian)
     with open(path, "wb") as f:
         w = McapWriter(f, chunk_size=16 * 1024, compression=compression, use_chunking=chunked)
         w.start(profile="ros2", library="thermonav oracle (mcap python)")
         channels = {}
-        for topic, typename, _, _ in streams(data, with_raw):
+        for topic, typename, _, _ in streams(data, with_raw, with_twist):
             if typename not in channels:
                 msgdef, _ = ts.generate_msgdef(typename, ros_version=2)
                 channels[typename] = w.register_schema(typename, "ros2msg", msgdef.encode())
             channels[topic] = w.register_channel(topic, "cdr", channels[typename])
-        for seq, (log_time, topic, _, raw) in enumerate(time_ordered(ts, data, with_raw, False, ser)):
+        for seq, (log_time, topic, _, raw) in enumerate(time_ordered(ts, data, with_raw, False, ser, with_twist)):
             w.add_message(channels[topic], log_time=log_time, data=raw, publish_time=log_time, sequence=seq)
         w.finish()
 
@@ -192,7 +208,7 @@ def write_db3(path, data):
         shutil.copy(bag / "bag.db3", path)
 
 
-def write_bag1(path, data, compression):
+def write_bag1(path, data, compression, with_twist=False):
     ts = get_typestore(Stores.ROS1_NOETIC)
     path.unlink(missing_ok=True)
     w = Bag1Writer(path)
@@ -201,9 +217,9 @@ def write_bag1(path, data, compression):
     w.chunk_threshold = 16 * 1024
     with w:
         conns = {}
-        for topic, typename, _, _ in streams(data, False):
+        for topic, typename, _, _ in streams(data, False, with_twist):
             conns[topic] = w.add_connection(topic, typename, typestore=ts)
-        for log_time, topic, _, raw in time_ordered(ts, data, False, True, ts.serialize_ros1):
+        for log_time, topic, _, raw in time_ordered(ts, data, False, True, ts.serialize_ros1, with_twist):
             w.write(conns[topic], log_time, raw)
 
 
@@ -243,12 +259,12 @@ def write_10hz(path, data):
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
     data = simulate()
-    write_mcap(OUT / "static_none.mcap", data, CompressionType.NONE, True, True, False)
+    write_mcap(OUT / "static_none.mcap", data, CompressionType.NONE, True, True, False, True)
     write_mcap(OUT / "static_zstd.mcap", data, CompressionType.ZSTD, True, True, True)
     write_mcap(OUT / "static_lz4.mcap", data, CompressionType.LZ4, True, True, False)
-    write_mcap(OUT / "static_unchunked_be.mcap", data, CompressionType.NONE, False, False, False)
+    write_mcap(OUT / "static_unchunked_be.mcap", data, CompressionType.NONE, False, False, False, True)
     write_db3(OUT / "static.db3", data)
-    write_bag1(OUT / "static.bag", data, None)
+    write_bag1(OUT / "static.bag", data, None, True)
     write_bag1(OUT / "static_lz4.bag", data, Bag1Writer.CompressionFormat.LZ4)
     write_bag1(OUT / "static_bz2.bag", data, Bag1Writer.CompressionFormat.BZ2)
     long = simulate_10hz()

@@ -48,7 +48,7 @@ pub struct StampLag {
 }
 
 impl StampLag {
-    /// The lag of `pairs` (stamp, record time), ns; `None` when empty.
+    /// The range of `lags_ns` (stamp minus record time, ns); `None` when empty.
     fn of(mut lags_ns: Vec<i64>) -> Option<Self> {
         lags_ns.sort_unstable();
         let s = |ns: i64| ns as f64 * 1e-9;

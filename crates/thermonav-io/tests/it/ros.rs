@@ -343,3 +343,25 @@ fn random_corruptions_of_every_bag_give_an_error_or_a_bag_never_a_panic() {
         }
     }
 }
+
+#[test]
+fn twist_stamped_messages_decode_to_the_written_values() {
+    use thermonav_io::ros::messages::decode_twist_stamped;
+    let expected = expected();
+    let rows = expected["twists"].as_array().unwrap();
+    for name in ["static_none.mcap", "static_unchunked_be.mcap", "static.bag"] {
+        let bag = bag(name);
+        let topic = bag.topics.iter().find(|t| t.name == "/gnss/vel").unwrap();
+        assert_eq!(topic.message_type, Some(MessageType::TwistStamped));
+        assert_eq!(topic.messages.len(), rows.len(), "{name}");
+        for (m, row) in topic.messages.iter().zip(rows) {
+            let twist = decode_twist_stamped(&m.data, &topic.encoding, name, m.offset).unwrap();
+            assert_eq!(twist.stamp_ns, ns(&row["stamp_ns"]), "{name}");
+            assert_eq!(m.log_time_ns, ns(&row["log_time_ns"]), "{name}");
+            for k in 0..3 {
+                assert_eq!(twist.linear[k], f(&row["linear"][k]), "{name}");
+                assert_eq!(twist.angular[k], f(&row["angular"][k]), "{name}");
+            }
+        }
+    }
+}
