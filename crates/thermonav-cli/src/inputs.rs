@@ -76,10 +76,14 @@ pub fn read_imu_input(path: &Path) -> Result<ImuSeries, Failure> {
     }
 }
 
-/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, or
+/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, not a
+/// regular file (a pipe is never read ahead: its bytes would be gone for the CSV reader), or
 /// unreadable, for the CSV reader to name).
 pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
     use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return None;
+    }
     let mut head = Vec::new();
     let file = std::fs::File::open(path).ok()?;
     file.take(16).read_to_end(&mut head).ok()?;
