@@ -382,7 +382,7 @@ pub enum TausArg {
 /// Arguments of `allan`.
 #[derive(Debug, Args)]
 pub struct AllanArgs {
-    /// The IMU CSV (rates).
+    /// The IMU CSV (rates), or a ROS bag (.mcap, .db3, .bag: its only sensor_msgs/Imu topic, in FRD).
     pub file: PathBuf,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
@@ -408,7 +408,7 @@ pub struct AllanArgs {
 /// Arguments of `gmwm`.
 #[derive(Debug, Args)]
 pub struct GmwmArgs {
-    /// The IMU CSV (rates, raw: white noise must not be filtered away).
+    /// The IMU CSV (rates, raw: white noise must not be filtered away), or a ROS bag.
     pub file: PathBuf,
     /// The composite, e.g. wn+rw+2gm or wn+qn+gm (wn, qn, rw, dr, gm, kgm), or auto: the
     /// candidate with the smallest Wavelet Information Criterion.
@@ -461,7 +461,8 @@ pub struct ArArgs {
 /// Arguments of `characterize`.
 #[derive(Debug, Args)]
 pub struct CharacterizeArgs {
-    /// Static IMU CSVs, one per temperature point.
+    /// Static IMU CSVs, one per temperature point; or ROS bags (.mcap, .db3, .bag: the only
+    /// sensor_msgs/Imu topic, in FRD, temp_c from the only sensor_msgs/Temperature topic).
     #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
     #[command(flatten)]
@@ -1061,6 +1062,13 @@ pub enum ForeignFormatArg {
     /// PX4 ULog (.ulg): sensor_combined or vehicle_imu → IMU CSV (--out, with temp_c when
     /// logged), vehicle_gps_position or sensor_gps → GNSS CSV (--gnss-out), OUT.json sidecar.
     Px4Ulog,
+    /// ROS 2 bag, MCAP storage (.mcap): sensor_msgs/Imu → IMU CSV in FRD (--out, temp_c from
+    /// sensor_msgs/Temperature), NavSatFix → GNSS CSV (--gnss-out), OUT.json sidecar.
+    Ros2Mcap,
+    /// ROS 2 bag, SQLite storage (.db3): as ros2-mcap.
+    Ros2Db3,
+    /// ROS 1 bag v2.0 (.bag): as ros2-mcap.
+    Ros1Bag,
 }
 
 /// `--imu-rotation`, shared by every command that reads an IMU record.
@@ -1112,9 +1120,18 @@ pub struct ConvertArgs {
     /// The canonical CSV to write (atomically; nothing is written on error); px4-ulog: the IMU.
     #[arg(long)]
     pub out: PathBuf,
-    /// px4-ulog: also write the GNSS fixes to this canonical GNSS CSV.
+    /// px4-ulog, ROS bags: also write the GNSS fixes to this canonical GNSS CSV.
     #[arg(long)]
     pub gnss_out: Option<PathBuf>,
+    /// ROS bags: the sensor_msgs/Imu topic (default: the only one; several are listed).
+    #[arg(long)]
+    pub topic: Option<String>,
+    /// ROS bags: the sensor_msgs/NavSatFix topic for --gnss-out (default: the only one).
+    #[arg(long)]
+    pub gnss_topic: Option<String>,
+    /// ROS bags: the sensor_msgs/Temperature topic for temp_c (default: the only one, if any).
+    #[arg(long)]
+    pub temperature_topic: Option<String>,
     /// raw-imu-tag: the time-tag file (default: INPUT.tag).
     #[arg(long)]
     pub tag: Option<PathBuf>,

@@ -11,7 +11,7 @@ use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
-use thermonav_io::{ImuOptions, Strictness, read_imu_file_with, write_json_atomically};
+use thermonav_io::{ImuOptions, write_json_atomically};
 
 /// The temperature of a record: given, or the mean of its temp_c column.
 fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
@@ -47,7 +47,8 @@ pub fn characterize_file(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let mut entry = match streams(path, reading) {
+    let bag = crate::inputs::bag_format_of(path).is_some();
+    let mut entry = match !bag && streams(path, reading) {
         true => characterize_streaming(path, given, settings, (&name, imu))?,
         false => characterize_in_memory(path, given, settings, (&name, imu))?,
     };
@@ -55,14 +56,14 @@ pub fn characterize_file(
     Ok(entry)
 }
 
-/// Characterises one file read whole; `name` is its source label.
+/// Characterises one file (a CSV or a bag) read whole; `name` is its source label.
 fn characterize_in_memory(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
     (name, imu): (&str, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
-    let series = read_imu_file_with(path, Strictness::Strict, imu).data()?;
+    let series = crate::inputs::read_imu_input(path, imu)?;
     let temperature_c = temperature_of(path, &series, given)?;
     let (entry, _) = characterize(&series, temperature_c, name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))

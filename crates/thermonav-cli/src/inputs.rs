@@ -8,6 +8,8 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
+use thermonav_io::ros::BagFormat;
+use thermonav_io::ros::extract::{TopicChoice, imu_series};
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
 
 /// Reads and validates a bank file.
@@ -31,14 +33,14 @@ fn no_thermal(path: &Path) -> Failure {
     ))
 }
 
-/// Reads an IMU CSV of rates as `options` say, and its nominal sample rate, Hz; `purpose`
-/// names what needs rates in the error for a file of increments.
+/// Reads an IMU record (a CSV as `options` say, or a ROS bag) of rates and its nominal sample
+/// rate, Hz; `purpose` names what needs rates in the error for a file of increments.
 pub fn read_rates(
     path: &Path,
     purpose: &str,
     options: &ImuOptions,
 ) -> Result<(ImuSeries, f64), Failure> {
-    let series = read_imu_file_with(path, Strictness::Strict, options).data()?;
+    let series = read_imu_input(path, options)?;
     if series.kind == Some(SampleKind::Increments) {
         return Err(Failure::Data(anyhow!(
             "{}: {purpose} needs rates; the file holds increments",
@@ -76,5 +78,49 @@ pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
             path.display()
         ))),
         _ => Ok(()),
+    }
+}
+
+/// An IMU record: a canonical IMU CSV read as `options` say, or a ROS bag (told by its magic
+/// bytes) whose only `sensor_msgs/Imu` topic is read in FRD, with `temp_c` from its only
+/// temperature topic. A bag carries its own times and axes: a mounting or a rate for it is
+/// refused (convert the bag, then rotate the CSV).
+pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Failure> {
+    match bag_format_of(path) {
+        Some(_) if options.mounting.is_some() || options.rate_hz.is_some() => {
+            Err(Failure::Data(anyhow!(
+                "{}: a ROS bag has its own times and is read in FRD from ROS body axes:                  --imu-rotation and --rate-hz apply to CSV input (thermonav convert BAG --out                  imu.csv, then give the options with imu.csv)",
+                path.display()
+            )))
+        }
+        Some(format) => read_bag_imu(path, format),
+        None => read_imu_file_with(path, Strictness::Strict, options).data(),
+    }
+}
+
+/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, not a
+/// regular file (a pipe is never read ahead: its bytes would be gone for the CSV reader), or
+/// unreadable, for the CSV reader to name).
+pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
+    use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return None;
+    }
+    let mut head = Vec::new();
+    let file = std::fs::File::open(path).ok()?;
+    file.take(16).read_to_end(&mut head).ok()?;
+    BagFormat::detect(&head)
+}
+
+/// The IMU of a bag, its topic chosen as [`imu_series`] does without options.
+fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
+    let bag = thermonav_io::ros::read_bag_file(path, Some(format)).data()?;
+    let input = path.display().to_string();
+    match imu_series(&bag, TopicChoice::default(), &input) {
+        Ok(extract) => Ok(extract.series),
+        Err(e) => Err(Failure::Data(anyhow!(
+            "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
+             --temperature-topic T2 --out imu.csv)"
+        ))),
     }
 }

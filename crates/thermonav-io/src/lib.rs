@@ -31,7 +31,9 @@
 //!   other tools beside ours;
 //! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
 //! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
-//!   GNSS of a flight log ([`ulog::px4`]).
+//!   GNSS of a flight log ([`ulog::px4`]);
+//! - [`ros`]: ROS 2 bags (MCAP and SQLite `.db3`) and ROS 1 bags (v2.0): `sensor_msgs/Imu`
+//!   (ROS body axes turned into FRD), `Temperature` and `NavSatFix`, timed at header stamps.
 //!
 //! They share one absolute time scale, [`gpst`]: seconds since 1970 counted in GPST without
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
@@ -92,6 +94,7 @@ pub mod outside_solution;
 pub mod parsers;
 pub mod profile;
 pub mod raw_imu;
+pub mod ros;
 mod rows;
 pub mod rtklib_pos;
 pub mod solution;

@@ -6,7 +6,7 @@
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
 use crate::{
-    Strictness, bank, kf_gins, motion, nmea, profile, raw_imu, rtklib_pos, temperature_table,
+    Strictness, bank, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos, temperature_table,
     truth, ulog,
 };
 use std::io::Cursor;
@@ -49,6 +49,13 @@ pub enum Parser {
     TemperatureTable,
     /// Motion definition TOML ([`motion::parse_motion`]).
     MotionToml,
+    /// ROS 2 MCAP bag ([`ros::mcap::decode_mcap`]), then its IMU (with temperature) and GNSS
+    /// extraction ([`ros::extract::imu_series`], [`ros::extract::gnss_fixes`]).
+    Ros2Mcap,
+    /// rosbag2 SQLite `.db3` ([`ros::db3::decode_db3`]), then the same extraction.
+    Ros2Db3,
+    /// ROS 1 bag v2.0 ([`ros::ros1::decode_ros1`]), then the same extraction.
+    Ros1Bag,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -56,7 +63,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 16] = [
+    pub const ALL: [Parser; 19] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -73,6 +80,9 @@ impl Parser {
         Parser::TruthJson,
         Parser::TemperatureTable,
         Parser::MotionToml,
+        Parser::Ros2Mcap,
+        Parser::Ros2Db3,
+        Parser::Ros1Bag,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -94,6 +104,9 @@ impl Parser {
             Parser::TruthJson => "truth_json",
             Parser::TemperatureTable => "temperature_table",
             Parser::MotionToml => "motion_toml",
+            Parser::Ros2Mcap => "ros2_mcap",
+            Parser::Ros2Db3 => "ros2_db3",
+            Parser::Ros1Bag => "ros1_bag",
         }
     }
 
@@ -140,6 +153,9 @@ impl Parser {
                 let text = std::str::from_utf8(bytes)?;
                 motion::parse_motion(text, input)?.segments.len()
             }
+            Parser::Ros2Mcap => bag_record_count(bytes, input, ros::BagFormat::Ros2Mcap)?,
+            Parser::Ros2Db3 => bag_record_count(bytes, input, ros::BagFormat::Ros2Db3)?,
+            Parser::Ros1Bag => bag_record_count(bytes, input, ros::BagFormat::Ros1Bag)?,
         })
     }
 }
@@ -153,6 +169,19 @@ fn ulog_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
     let _ = ulog::px4::gnss_fixes(&log, input, scale);
     let _ = ulog::px4::raw_sensor_series(&log, input, scale, 0);
     Ok(log.record_counts().values().sum())
+}
+
+/// The messages of a bag, after its IMU and GNSS extraction has run (a bag without those
+/// topics is still counted, as for a ULog).
+fn bag_record_count(
+    bytes: &[u8],
+    input: &str,
+    format: ros::BagFormat,
+) -> Result<usize, ParseFailure> {
+    let bag = ros::decode_bag(bytes, input, format)?;
+    let _ = ros::extract::imu_series(&bag, Default::default(), input);
+    let _ = ros::extract::gnss_fixes(&bag, None, input);
+    Ok(bag.message_count())
 }
 
 /// NMEA settings that keep headings and level velocities, so that every sentence is decoded.

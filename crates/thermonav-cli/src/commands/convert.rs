@@ -2,6 +2,7 @@
 //! to the canonical GNSS, IMU or trajectory CSV, or (`--to kf-gins`) one of ours to KF-GINS. The whole input is read before anything is written,
 //! and the output is written atomically, so a bad input leaves no output behind.
 
+mod ros;
 mod to_kf_gins;
 mod ulog;
 
@@ -37,10 +38,11 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
         Some(format) => format,
         None => detect_format(&args.input, &tag_path(args))?,
     };
-    if format != ForeignFormatArg::Px4Ulog {
+    if !matches!(format, ForeignFormatArg::Px4Ulog) && ros::bag_format(format).is_none() {
         ulog::reject_gnss_out(args)?;
     }
     reject_rotation_without_imu(format, args)?;
+    ros::reject_topics(format, args)?;
     let (count, what) = convert(format, args, strictness_of(args))?;
     println!(
         "{}: {count} {what} written to {}",
@@ -90,6 +92,9 @@ fn convert(
         ForeignFormatArg::RawImuTag => convert_raw_imu(args, strictness),
         ForeignFormatArg::Px4Ulog => ulog::convert(args),
         ForeignFormatArg::KfGinsNav => convert_kf_gins_nav(args, strictness),
+        ForeignFormatArg::Ros2Mcap | ForeignFormatArg::Ros2Db3 | ForeignFormatArg::Ros1Bag => {
+            ros::convert(format, args)
+        }
     }
 }
 
@@ -287,6 +292,9 @@ fn read_head(input: &Path) -> Result<Vec<u8>, Failure> {
 fn format_of_content(head: &[u8], tag: &Path) -> Result<ForeignFormatArg, &'static str> {
     if head.starts_with(&thermonav_io::ulog::MAGIC) {
         return Ok(ForeignFormatArg::Px4Ulog);
+    }
+    if let Some(bag) = thermonav_io::ros::BagFormat::detect(head) {
+        return Ok(ros::format_arg(bag));
     }
     if head.starts_with(b"TIMETAG") {
         return Err("an RTKLIB time-tag file: convert the IMU CSV it belongs to");

@@ -830,3 +830,103 @@ fn a_subset_of_channels_refuses_angles_and_streaming() {
     assert!(stderr.contains("1 of the six channels"), "{stderr}");
     assert!(!bank.exists());
 }
+
+/// A ROS test bag of the io crate (tests/data/ros, written by tools/oracles/ros_bags.py).
+fn ros_bag(name: &str) -> Vec<u8> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../thermonav-io/tests/data/ros");
+    std::fs::read(dir.join(name)).unwrap()
+}
+
+/// `convert` of `bytes` saved as `name` (and `--format` when given): exit 1 naming the file,
+/// nothing written; returns stderr.
+fn bag_fails(name: &str, bytes: &[u8], format: Option<&str>) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join(name);
+    std::fs::write(&input, bytes).unwrap();
+    let out = dir.path().join("imu.csv");
+    let mut args = vec!["convert", arg(&input), "--out", arg(&out)];
+    if let Some(format) = format {
+        args.extend(["--format", format]);
+    }
+    let (status, stdout, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 1, "{name}: {stderr}");
+    assert!(
+        stdout.is_empty() && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    assert!(stderr.contains(name), "{stderr}");
+    assert_eq!(
+        files_in(dir.path()),
+        vec![name.to_string()],
+        "nothing written"
+    );
+    stderr
+}
+
+#[test]
+fn ros_bags_truncated_are_refused_naming_the_byte() {
+    let mcap = ros_bag("static_zstd.mcap");
+    let stderr = bag_fails("cut.mcap", &mcap[..mcap.len() / 2], None);
+    assert!(
+        stderr.contains("at byte") && stderr.contains("a truncated file"),
+        "{stderr}"
+    );
+    let bag = ros_bag("static.bag");
+    let stderr = bag_fails("cut.bag", &bag[..bag.len() / 3], None);
+    assert!(
+        stderr.contains("at byte") && stderr.contains("bytes are left"),
+        "{stderr}"
+    );
+    let db = ros_bag("static.db3");
+    let stderr = bag_fails("cut.db3", &db[..db.len() / 2], None);
+    assert!(
+        stderr.contains("at byte 28") && stderr.contains("a truncated file"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn ros_bags_of_the_wrong_magic_are_refused() {
+    let mut mcap = ros_bag("static_none.mcap");
+    mcap[1] = b'X';
+    let stderr = bag_fails("x.mcap", &mcap, Some("ros2-mcap"));
+    assert!(
+        stderr.contains("at byte 0: expected the MCAP magic bytes"),
+        "{stderr}"
+    );
+    let stderr = bag_fails("x.bag", b"#ROSBAG V1.2\n", Some("ros1-bag"));
+    assert!(stderr.contains("#ROSBAG V2.0"), "{stderr}");
+    let stderr = bag_fails("x.db3", b"SQLite format 2\0", Some("ros2-db3"));
+    assert!(stderr.contains("SQLite header"), "{stderr}");
+}
+
+#[test]
+fn ros_bags_with_a_huge_length_field_are_refused_without_allocating_it() {
+    let mut mcap = ros_bag("static_none.mcap");
+    mcap[9..17].copy_from_slice(&u64::MAX.to_le_bytes());
+    let stderr = bag_fails("huge.mcap", &mcap, None);
+    assert!(
+        stderr.contains("expected a record's content of 18446744073709551615 bytes"),
+        "{stderr}"
+    );
+    let mut bag = ros_bag("static.bag");
+    bag[13..17].copy_from_slice(&u32::MAX.to_le_bytes());
+    let stderr = bag_fails("huge.bag", &bag, None);
+    assert!(
+        stderr.contains("at byte 17: expected a record header of 4294967295 bytes"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn ros_bags_of_an_unknown_chunk_compression_name_it() {
+    let mcap = ros_bag("static_lz4.mcap");
+    let at = mcap.windows(3).position(|w| w == b"lz4").unwrap();
+    let mut renamed = mcap.clone();
+    renamed[at..at + 3].copy_from_slice(b"lzo");
+    let stderr = bag_fails("lzo.mcap", &renamed, None);
+    assert!(
+        stderr.contains("chunk compression \"lzo\" is not supported"),
+        "{stderr}"
+    );
+}

@@ -124,7 +124,9 @@ fn gnss_out_belongs_to_ulog_only() {
     let (status, _, stderr) = convert_with_gnss(&input, &out, &gnss);
     assert_eq!(status, 2, "{stderr}");
     assert!(
-        stderr.contains("--gnss-out goes with --format px4-ulog only"),
+        stderr.contains(
+            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3 or ros1-bag only"
+        ),
         "{stderr}"
     );
 }

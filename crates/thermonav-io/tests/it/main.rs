@@ -10,6 +10,7 @@ mod nmea;
 mod non_finite;
 mod parallel;
 mod raw_imu;
+mod ros;
 mod round_trip;
 mod rtklib_pos;
 mod support;

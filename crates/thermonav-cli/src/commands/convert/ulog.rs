@@ -151,7 +151,10 @@ fn report_notes(record: &UlogRecord<'_>) {
 /// The error for options that make no sense with a ULog.
 pub fn reject_gnss_out(args: &ConvertArgs) -> Result<(), Failure> {
     match &args.gnss_out {
-        Some(_) => Err(anyhow!("--gnss-out goes with --format px4-ulog only")).usage(),
+        Some(_) => Err(anyhow!(
+            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3 or ros1-bag only"
+        ))
+        .usage(),
         None => Ok(()),
     }
 }

@@ -1,0 +1,203 @@
+//! `thermonav convert` on ROS bags (the io crate's tests/data/ros, written by
+//! `tools/oracles/ros_bags.py` with rosbags 0.11.9 and mcap 1.6.0; values in expected.json),
+//! `characterize` and `allan` on a bag directly, and the README's two commands from a static
+//! MCAP bag to a Kalibr imu.yaml.
+
+use crate::{arg, files_in, outcome, thermonav};
+use std::path::{Path, PathBuf};
+use thermonav_io::{Strictness, read_gnss_file, read_imu_file};
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../thermonav-io/tests/data/ros")
+        .join(name)
+}
+
+fn expected(name: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(data(name)).unwrap()).unwrap()
+}
+
+/// `thermonav ARGS`: status, stdout, stderr.
+fn run(args: &[&str]) -> (i32, String, String) {
+    outcome(&thermonav(args))
+}
+
+#[test]
+fn each_bag_format_converts_to_the_written_values_in_frd_with_temperature_and_gnss() {
+    let expected = expected("expected.json");
+    let first = &expected["imu"][0];
+    let fix = &expected["fixes"][0];
+    for name in ["static_none.mcap", "static.db3", "static_bz2.bag"] {
+        let dir = tempfile::tempdir().unwrap();
+        let (imu, gnss) = (dir.path().join("imu.csv"), dir.path().join("gnss.csv"));
+        let bag = data(name);
+        let args = [
+            "convert",
+            arg(&bag),
+            "--out",
+            arg(&imu),
+            "--gnss-out",
+            arg(&gnss),
+        ];
+        let (status, stdout, stderr) = run(&args);
+        assert_eq!(status, 0, "{name}: {stderr}");
+        assert!(
+            stdout.contains("150 IMU samples (rates)") && stdout.contains("8 GNSS fixes"),
+            "{stdout}"
+        );
+        let series = read_imu_file(&imu, Strictness::Strict).unwrap();
+        assert_eq!(series.len(), 150);
+        assert_eq!(
+            series.time[0].as_nanos(),
+            first["stamp_ns"].as_i64().unwrap()
+        );
+        let g = |k: usize| first["gyro"][k].as_f64().unwrap();
+        let a = |k: usize| first["accel"][k].as_f64().unwrap();
+        let frd = [g(0), -g(1), -g(2), a(0), -a(1), -a(2)];
+        for (c, v) in frd.iter().enumerate() {
+            assert_eq!(series.channels[c][0], *v, "{name} channel {c}");
+        }
+        assert!(
+            series.temperature_c.is_some(),
+            "{name}: temp_c from /imu/temperature"
+        );
+        let fixes = read_gnss_file(&gnss, Strictness::Strict).unwrap();
+        assert_eq!(fixes.len(), 8);
+        assert_eq!(fixes[0].height_m, fix["altitude_m"].as_f64().unwrap());
+        let sidecar: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("imu.csv.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(sidecar["imu"]["topic"], "/imu/data");
+        assert!(
+            sidecar["imu"]["frame"]
+                .as_str()
+                .unwrap()
+                .contains("(x, -y, -z)")
+        );
+        assert!(
+            sidecar["imu"]["time"]
+                .as_str()
+                .unwrap()
+                .contains("header stamp")
+        );
+        assert_eq!(sidecar["imu"]["stamp_lag_s"]["max_s"], -0.002);
+    }
+}
+
+#[test]
+fn an_ambiguous_imu_topic_is_listed_and_topic_chooses_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("imu.csv");
+    let bag = data("static_zstd.mcap");
+    let (status, _, stderr) = run(&["convert", arg(&bag), "--out", arg(&out)]);
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("/imu/data (sensor_msgs/msg/Imu, 150 messages), /imu/raw (sensor_msgs/msg/Imu, 5 messages); choose one with --topic"),
+        "{stderr}"
+    );
+    assert!(files_in(dir.path()).is_empty());
+    let args = [
+        "convert",
+        arg(&bag),
+        "--format",
+        "ros2-mcap",
+        "--topic",
+        "/imu/raw",
+        "--out",
+        arg(&out),
+    ];
+    let (status, stdout, stderr) = run(&args);
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("5 IMU samples"), "{stdout}");
+}
+
+#[test]
+fn topic_options_belong_to_bags_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("x.pos");
+    std::fs::write(&input, "% RTKLIB\n").unwrap();
+    let out = dir.path().join("o.csv");
+    let (status, _, stderr) = run(&[
+        "convert",
+        arg(&input),
+        "--topic",
+        "/imu",
+        "--out",
+        arg(&out),
+    ]);
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("--topic, --gnss-topic and --temperature-topic go with"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn allan_reads_a_bag_as_its_converted_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("imu.csv");
+    let bag = data("static.db3");
+    assert_eq!(run(&["convert", arg(&bag), "--out", arg(&csv)]).0, 0);
+    let (status, from_bag, stderr) = run(&["allan", arg(&bag), "--json"]);
+    assert_eq!(status, 0, "{stderr}");
+    let (_, from_csv, _) = run(&["allan", arg(&csv), "--json"]);
+    let strip = |text: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+        v.as_object_mut().unwrap().remove("file");
+        v
+    };
+    assert_eq!(strip(&from_bag), strip(&from_csv));
+}
+
+#[test]
+fn readme_a_static_mcap_bag_to_a_bank_and_a_kalibr_imu_yaml_in_two_commands() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, yaml) = (dir.path().join("bank.json"), dir.path().join("imu.yaml"));
+    let bag = data("static_10hz.mcap");
+    let (status, _, stderr) = run(&["characterize", arg(&bag), "--out", arg(&bank)]);
+    assert_eq!(status, 0, "{stderr}");
+    let args = [
+        "bank",
+        "export",
+        arg(&bank),
+        "--format",
+        "kalibr",
+        "--rostopic",
+        "/imu/data",
+        "--out",
+        arg(&yaml),
+    ];
+    let (status, _, stderr) = run(&args);
+    assert_eq!(status, 0, "{stderr}");
+    let text = std::fs::read_to_string(&yaml).unwrap();
+    assert!(text.contains("rostopic: \"/imu/data\""), "{text}");
+    assert!(text.contains("update_rate: 1.0e+1"), "{text}");
+    // The bank is the one characterize builds from the converted CSV (the bag read as the CSV).
+    let csv = dir.path().join("imu.csv");
+    assert_eq!(run(&["convert", arg(&bag), "--out", arg(&csv)]).0, 0);
+    let from_csv = dir.path().join("csv-bank.json");
+    assert_eq!(
+        run(&["characterize", arg(&csv), "--out", arg(&from_csv)]).0,
+        0
+    );
+    let read = |p: &Path| {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .replace("static_10hz.mcap", "imu.csv")
+    };
+    assert_eq!(read(&bank), read(&from_csv));
+    let series = read_imu_file(&csv, Strictness::Strict).unwrap();
+    let summary = expected("expected_10hz.json");
+    assert_eq!(series.len() as u64, summary["imu_count"].as_u64().unwrap());
+    let last = &summary["imu_last"];
+    assert_eq!(
+        series.time[series.len() - 1].as_nanos(),
+        last["stamp_ns"].as_i64().unwrap()
+    );
+    assert_eq!(
+        series.channels[5][series.len() - 1],
+        -last["accel"][2].as_f64().unwrap()
+    );
+    assert_eq!(series.temperature_c.unwrap()[0], 25.0);
+}

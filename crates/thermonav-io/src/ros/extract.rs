@@ -1,0 +1,427 @@
+//! A bag's topics as thermonav series.
+//!
+//! - **Time**: each sample is timed at its message's **header stamp** (`header.stamp`, ns since
+//!   the epoch of the recording computer's clock: UTC for ROS time, not GPST, and not shifted),
+//!   not at the record (log) time at which the recorder received it; [`StampLag`] reports how
+//!   far the two differ. Header stamps must increase strictly within a topic (in record order).
+//! - **Axes**: `sensor_msgs/Imu` is in the ROS body frame of REP 103 (x forward, y left, z up; a
+//!   level unit at rest reads +g on z). thermonav's body frame is FRD, so both the angular
+//!   velocity and the specific force become (x, −y, −z): a level unit at rest then reads
+//!   az ≈ −9.8 m/s², as CONVENTIONS.md has it. The specific force stays a specific force.
+//! - **Topic**: the one asked for; else the only topic of the needed type; else an error listing
+//!   the candidates with their types and counts.
+//! - **Temperature**: the nearest `sensor_msgs/Temperature` message in time (ties to the
+//!   earlier), as the ULog reader does.
+//! - **GNSS**: `NavSatFix` with `status.status` ≥ 0 (a fix) and finite latitude, longitude and
+//!   altitude (above the WGS84 ellipsoid, as the message defines it); standard deviations from
+//!   the diagonal of `position_covariance` (east-north-up, m²) when its type is not 0 (unknown).
+
+use super::messages::{MessageType, decode_imu, decode_nav_sat_fix, decode_temperature};
+use super::{Bag, Topic};
+use crate::error::{ReadError, ReadErrorKind};
+use serde::Serialize;
+use thermonav::gnss::GnssFix;
+use thermonav::imu::{ImuSample, ImuSeries, SampleKind};
+use thermonav::time::Timestamp;
+use thermonav::units::deg_to_rad;
+
+/// What [`imu_series`] did to the axes, for the sidecar.
+pub const FRAME_NOTE: &str = "sensor_msgs/Imu is in the ROS body frame (REP 103: x forward, y \
+    left, z up; a level unit at rest reads +g on z); written in thermonav's FRD frame as (x, -y, \
+    -z) for both angular velocity and specific force (a level unit at rest reads az = -g)";
+
+/// What the sample times are, for the sidecar.
+pub const TIME_NOTE: &str = "t_s is each message's header stamp (header.stamp), seconds since \
+    1970 on the recording computer's clock (ROS time, UTC unless the bag was recorded in \
+    simulation time; not GPST); the record (log) time is not used, and stamp_lag_s says how \
+    far it differs";
+
+/// Header stamp minus record time over a topic's messages, s.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StampLag {
+    /// Smallest (most negative: the stamp furthest before the record time), s.
+    pub min_s: f64,
+    /// Median, s.
+    pub median_s: f64,
+    /// Largest, s.
+    pub max_s: f64,
+}
+
+impl StampLag {
+    /// The range of `lags_ns` (stamp minus record time, ns); `None` when empty.
+    fn of(mut lags_ns: Vec<i64>) -> Option<Self> {
+        lags_ns.sort_unstable();
+        let s = |ns: i64| ns as f64 * 1e-9;
+        Some(Self {
+            min_s: s(*lags_ns.first()?),
+            median_s: s(lags_ns[lags_ns.len() / 2]),
+            max_s: s(*lags_ns.last()?),
+        })
+    }
+}
+
+/// A topic as the sidecar names it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TopicSummary {
+    /// Topic name.
+    pub name: String,
+    /// Type as the bag names it.
+    pub type_name: String,
+    /// Messages.
+    pub count: usize,
+}
+
+impl TopicSummary {
+    /// The summaries of a bag's topics.
+    pub fn of_bag(bag: &Bag) -> Vec<Self> {
+        bag.topics
+            .iter()
+            .map(|t| Self {
+                name: t.name.clone(),
+                type_name: t.type_name.clone(),
+                count: t.count,
+            })
+            .collect()
+    }
+}
+
+/// A problem with a topic.
+fn topic_error(input: &str, what: String) -> ReadError {
+    ReadError::new(input, None, ReadErrorKind::Unusable(what))
+}
+
+/// The topics of `bag` as `name (type, N messages)`, comma-separated.
+fn listing<'a>(topics: impl Iterator<Item = &'a Topic>) -> String {
+    let items: Vec<String> = topics
+        .map(|t| format!("{} ({}, {} messages)", t.name, t.type_name, t.count))
+        .collect();
+    match items.is_empty() {
+        true => "none".to_string(),
+        false => items.join(", "),
+    }
+}
+
+/// The topic of type `kind`: `requested` by name, else the only one of that type.
+///
+/// # Errors
+/// [`ReadErrorKind::Unusable`]: no topic of that name (listing every topic), one of another
+/// type, or zero or several topics of the type when none is requested (listing them, and
+/// naming `option`, the command-line option that chooses one).
+pub fn select_topic<'a>(
+    bag: &'a Bag,
+    kind: MessageType,
+    requested: Option<&str>,
+    option: &str,
+    input: &str,
+) -> Result<&'a Topic, ReadError> {
+    let candidates = || bag.topics.iter().filter(|t| t.message_type == Some(kind));
+    if let Some(name) = requested {
+        let named: Vec<&Topic> = bag.topics.iter().filter(|t| t.name == name).collect();
+        return match named.iter().find(|t| t.message_type == Some(kind)) {
+            Some(t) => Ok(t),
+            None if named.is_empty() => Err(topic_error(
+                input,
+                format!(
+                    "no topic {name} in the bag (topics: {})",
+                    listing(bag.topics.iter())
+                ),
+            )),
+            None => Err(topic_error(
+                input,
+                format!(
+                    "topic {name} is {}, not {} (topics of that type: {})",
+                    named[0].type_name,
+                    kind.name(),
+                    listing(candidates())
+                ),
+            )),
+        };
+    }
+    let found: Vec<&Topic> = candidates().collect();
+    match found[..] {
+        [one] => Ok(one),
+        [] => Err(topic_error(
+            input,
+            format!(
+                "no {} topic in the bag (topics: {})",
+                kind.name(),
+                listing(bag.topics.iter())
+            ),
+        )),
+        _ => Err(topic_error(
+            input,
+            format!(
+                "{} topics of type {}: {}; choose one with {option}",
+                found.len(),
+                kind.name(),
+                listing(found.into_iter())
+            ),
+        )),
+    }
+}
+
+/// Where the IMU series of [`imu_series`] came from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ImuExtract {
+    /// The rates, in FRD, timed at the header stamps.
+    #[serde(skip)]
+    pub series: ImuSeries,
+    /// The IMU topic read.
+    pub topic: String,
+    /// The temperature topic, when there is one.
+    pub temperature_topic: Option<String>,
+    /// How temperatures are assigned to samples.
+    pub temperature_assignment: Option<&'static str>,
+    /// Header stamp minus record time of the IMU messages.
+    pub stamp_lag_s: Option<StampLag>,
+    /// What was done to the axes.
+    pub frame: &'static str,
+    /// What the times are.
+    pub time: &'static str,
+}
+
+/// Which topics to read.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct TopicChoice<'a> {
+    /// The IMU topic (`--topic`).
+    pub imu: Option<&'a str>,
+    /// The temperature topic (`--temperature-topic`).
+    pub temperature: Option<&'a str>,
+    /// The GNSS topic (`--gnss-topic`).
+    pub gnss: Option<&'a str>,
+}
+
+/// How temperatures are assigned.
+const NEAREST: &str =
+    "nearest sensor_msgs/Temperature message in time (header stamps; ties to the earlier)";
+
+/// The IMU of `bag` as rates in FRD, with `temp_c` when a temperature topic is chosen or is the
+/// only one.
+///
+/// # Errors
+/// Those of [`select_topic`]; a message that does not decode (naming its offset), a non-finite
+/// value, a header stamp that does not increase; several temperature topics and none chosen.
+pub fn imu_series(
+    bag: &Bag,
+    choice: TopicChoice<'_>,
+    input: &str,
+) -> Result<ImuExtract, ReadError> {
+    let topic = select_topic(bag, MessageType::Imu, choice.imu, "--topic", input)?;
+    let mut series = ImuSeries::new(SampleKind::Rates);
+    let mut lags = Vec::with_capacity(topic.messages.len());
+    for (k, m) in topic.messages.iter().enumerate() {
+        let imu = decode_imu(&m.data, &topic.encoding, input, m.offset)?;
+        let frd = |v: [f64; 3]| [v[0], -v[1], -v[2]];
+        let sample = ImuSample {
+            time: Timestamp::from_nanos(imu.stamp_ns),
+            gyro: frd(imu.angular_velocity),
+            accel: frd(imu.linear_acceleration),
+            temperature_c: None,
+        };
+        check_sample(&series, &sample, topic, k, m.offset, input)?;
+        series.push(&sample);
+        lags.push(imu.stamp_ns.saturating_sub(m.log_time_ns));
+    }
+    if series.is_empty() {
+        return Err(topic_error(
+            input,
+            format!("topic {} has no message", topic.name),
+        ));
+    }
+    let temperature = temperature_topic(bag, choice.temperature, input)?;
+    let temperature_topic = match temperature {
+        Some(t) => {
+            let (times, values) = temperature_records(t, input)?;
+            series.temperature_c = Some(crate::ulog::px4::nearest_values(
+                &series.time,
+                &times,
+                &values,
+            ));
+            Some(t.name.clone())
+        }
+        None => None,
+    };
+    Ok(ImuExtract {
+        series,
+        topic: topic.name.clone(),
+        temperature_assignment: temperature_topic.as_ref().map(|_| NEAREST),
+        temperature_topic,
+        stamp_lag_s: StampLag::of(lags),
+        frame: FRAME_NOTE,
+        time: TIME_NOTE,
+    })
+}
+
+/// A sample's values finite and its time after the previous one.
+fn check_sample(
+    series: &ImuSeries,
+    sample: &ImuSample,
+    topic: &Topic,
+    k: usize,
+    offset: u64,
+    input: &str,
+) -> Result<(), ReadError> {
+    let name = &topic.name;
+    if sample
+        .gyro
+        .iter()
+        .chain(&sample.accel)
+        .any(|v| !v.is_finite())
+    {
+        return Err(topic_error(
+            input,
+            format!("at byte {offset}: {name} message {k} holds a NaN or infinite value"),
+        ));
+    }
+    match series.time.last() {
+        Some(&previous) if sample.time <= previous => Err(topic_error(
+            input,
+            format!(
+                "at byte {offset}: {name} message {k} is stamped {:.9} s, not after the previous \
+             message's {:.9} s",
+                sample.time.as_seconds(),
+                previous.as_seconds()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The temperature topic: the one requested, else the only one, else none (several and none
+/// requested: an error).
+fn temperature_topic<'a>(
+    bag: &'a Bag,
+    requested: Option<&str>,
+    input: &str,
+) -> Result<Option<&'a Topic>, ReadError> {
+    let count = bag
+        .topics
+        .iter()
+        .filter(|t| t.message_type == Some(MessageType::Temperature))
+        .count();
+    match (requested, count) {
+        (None, 0) => Ok(None),
+        _ => select_topic(
+            bag,
+            MessageType::Temperature,
+            requested,
+            "--temperature-topic",
+            input,
+        )
+        .map(Some),
+    }
+}
+
+/// A temperature topic's (stamps, °C), in stamp order, finite values only.
+fn temperature_records(
+    topic: &Topic,
+    input: &str,
+) -> Result<(Vec<Timestamp>, Vec<f64>), ReadError> {
+    let mut records = Vec::with_capacity(topic.messages.len());
+    for m in &topic.messages {
+        let t = decode_temperature(&m.data, &topic.encoding, input, m.offset)?;
+        if t.temperature_c.is_finite() {
+            records.push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
+        }
+    }
+    records.sort_by_key(|&(time, _)| time);
+    if records.is_empty() {
+        return Err(topic_error(
+            input,
+            format!("temperature topic {} has no finite value", topic.name),
+        ));
+    }
+    Ok(records.into_iter().unzip())
+}
+
+/// Where the fixes of [`gnss_fixes`] came from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GnssExtract {
+    /// The fixes, timed at the header stamps.
+    #[serde(skip)]
+    pub fixes: Vec<GnssFix>,
+    /// The topic read.
+    pub topic: String,
+    /// Messages left out: `status.status` < 0 (no fix) or a non-finite position.
+    pub messages_without_fix: usize,
+    /// Header stamp minus record time of the fixes kept.
+    pub stamp_lag_s: Option<StampLag>,
+    /// What the height is.
+    pub height: &'static str,
+}
+
+/// The GNSS fixes of `bag` (`NavSatFix`).
+///
+/// # Errors
+/// Those of [`select_topic`]; a message that does not decode; a header stamp that does not
+/// increase; no fix at all.
+pub fn gnss_fixes(
+    bag: &Bag,
+    requested: Option<&str>,
+    input: &str,
+) -> Result<GnssExtract, ReadError> {
+    let topic = select_topic(
+        bag,
+        MessageType::NavSatFix,
+        requested,
+        "--gnss-topic",
+        input,
+    )?;
+    let mut fixes: Vec<GnssFix> = Vec::new();
+    let (mut without, mut lags) = (0, Vec::new());
+    for (k, m) in topic.messages.iter().enumerate() {
+        let fix = decode_nav_sat_fix(&m.data, &topic.encoding, input, m.offset)?;
+        let finite = [fix.latitude_deg, fix.longitude_deg, fix.altitude_m]
+            .iter()
+            .all(|v| v.is_finite());
+        if fix.status < 0
+            || !finite
+            || fix.latitude_deg.abs() > 90.0
+            || fix.longitude_deg.abs() > 180.0
+        {
+            without += 1;
+            continue;
+        }
+        let time = Timestamp::from_nanos(fix.stamp_ns);
+        if fixes.last().is_some_and(|p| time <= p.time) {
+            return Err(topic_error(
+                input,
+                format!(
+                    "at byte {}: {} message {k} is not stamped after the previous fix",
+                    m.offset, topic.name
+                ),
+            ));
+        }
+        let c = fix.position_covariance;
+        let sd = (fix.position_covariance_type != 0)
+            .then(|| [c[4], c[0], c[8]].map(f64::sqrt))
+            .filter(|sd| sd.iter().all(|v| v.is_finite() && *v > 0.0));
+        fixes.push(GnssFix {
+            time,
+            latitude_rad: deg_to_rad(fix.latitude_deg),
+            longitude_rad: deg_to_rad(fix.longitude_deg),
+            height_m: fix.altitude_m,
+            position_sd_ned_m: sd,
+            velocity_ned_m_s: None,
+            heading: None,
+        });
+        lags.push(fix.stamp_ns.saturating_sub(m.log_time_ns));
+    }
+    if fixes.is_empty() {
+        return Err(topic_error(
+            input,
+            format!(
+                "topic {} has no fix (status >= 0, finite position) in {} messages",
+                topic.name, topic.count
+            ),
+        ));
+    }
+    Ok(GnssExtract {
+        fixes,
+        topic: topic.name.clone(),
+        messages_without_fix: without,
+        stamp_lag_s: StampLag::of(lags),
+        height: "altitude above the WGS84 ellipsoid (NavSatFix.altitude); sd_n/sd_e/sd_u from the \
+                 diagonal of position_covariance (east-north-up) when its type is not unknown",
+    })
+}
