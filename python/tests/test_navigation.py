@@ -109,7 +109,7 @@ def test_evaluate_equals_the_clis_evaluation_json_and_error_csvs(binary, data, t
         csv = theirs.pop("errors_csv")
         assert {k: v for k, v in model.items() if k not in ("errors", "errors_csv")} == theirs
         if csv is not None:
-            table = read_csv(csv)
+            table = read_csv(tmp_path / csv)  # errors_csv is relative to evaluation.json
             for name in table.dtype.names:
                 assert np.array_equal(model.errors[name], table[name]), (model.label, name)
 
