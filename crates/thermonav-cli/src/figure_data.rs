@@ -47,9 +47,11 @@ pub fn innovations_of(path: &Path) -> Result<Vec<Innovations>, Failure> {
 
 /// The checked rows of accepted updates; an error when there is none.
 fn accepted_rows<'a>(path: &Path, csv: &'a str) -> Result<Vec<Vec<&'a str>>, Failure> {
+    let columns: Vec<&str> = INNOVATIONS_HEADER.split(',').collect();
+    let accepted = columns.iter().position(|c| *c == "accepted");
     let rows: Vec<Vec<&str>> = checked_innovation_rows(path, csv)?
         .into_iter()
-        .filter(|f| f.len() == 12 && f[10] == "1")
+        .filter(|f| f.len() == columns.len() && accepted.is_some_and(|k| f[k] == "1"))
         .collect();
     if rows.is_empty() {
         return Err(anyhow!(

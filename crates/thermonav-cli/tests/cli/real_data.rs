@@ -284,3 +284,32 @@ fn integrate_takes_the_initial_bias_sd_from_the_profile() {
     assert!(course["distance_m"].as_f64().unwrap() >= 2.0);
     assert!(course["fixes"].as_u64().unwrap() >= 3);
 }
+
+// The innovations file integrate writes is the one `plot innovations` reads: every column,
+// gate_scale included, and the accepted updates found by the header's name (the demo's
+// report failed on this once a column was added).
+#[test]
+fn plot_innovations_reads_what_integrate_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (imu, gnss, profile) = converted_drive(dir.path());
+    let (out, svg) = (
+        dir.path().join("sol.csv"),
+        dir.path().join("innovations.svg"),
+    );
+    run_ok(&[
+        "integrate",
+        "--imu",
+        arg(&imu),
+        "--gnss",
+        arg(&gnss),
+        "--profile",
+        arg(&profile),
+        "--out",
+        arg(&out),
+        "--quiet",
+    ]);
+    let innovations = dir.path().join("sol.innovations.csv");
+    run_ok(&["plot", "innovations", arg(&innovations), "--out", arg(&svg)]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("<svg"), "an SVG was written");
+}
