@@ -176,6 +176,40 @@ fn convert_kf_gins_nav(
 }
 
 /// Writes fixes as one GNSS CSV, dropping (with a note) the groups only some fixes carry.
+/// A log's outputs (the GNSS CSV with `--gnss-out`, the IMU CSV, its JSON sidecar), in that
+/// order, each atomically; if a later one fails, the earlier ones of this run are removed, so a
+/// failed run leaves no half of a conversion behind.
+fn write_log_outputs(
+    args: &ConvertArgs,
+    series: &ImuSeries,
+    fixes: Option<&[GnssFix]>,
+    sidecar: &impl serde::Serialize,
+) -> Result<(), Failure> {
+    let mut written: Vec<PathBuf> = Vec::new();
+    let mut write = || {
+        if let (Some(path), Some(fixes)) = (&args.gnss_out, fixes) {
+            let (count, what) = write_fixes(path, fixes.to_vec())?;
+            written.push(path.clone());
+            println!(
+                "{}: {count} {what} written to {}",
+                args.input.display(),
+                path.display()
+            );
+        }
+        thermonav_io::write_imu_file(&args.out, series).data()?;
+        written.push(args.out.clone());
+        let json = crate::settings::analysis::json_sidecar(&args.out);
+        thermonav_io::write_json_atomically(json, sidecar).data()
+    };
+    let outcome = write();
+    if outcome.is_err() {
+        written.iter().for_each(|path| {
+            let _ = std::fs::remove_file(path);
+        });
+    }
+    outcome
+}
+
 fn write_fixes(out: &Path, mut fixes: Vec<GnssFix>) -> Result<(usize, &'static str), Failure> {
     for group in keep_common_groups(&mut fixes) {
         eprintln!("note: {group} is not given at every epoch and is left out");

@@ -12,7 +12,6 @@ use thermonav_io::ros::extract::{
     GnssExtract, ImuExtract, TopicChoice, TopicSummary, gnss_fixes, imu_series,
 };
 use thermonav_io::ros::{BagFormat, read_bag_file};
-use thermonav_io::{write_imu_file, write_json_atomically};
 
 /// The sidecar: where the series came from, their time and axes.
 #[derive(Serialize)]
@@ -91,37 +90,7 @@ pub fn convert(
         gnss_fixes: gnss.as_ref().map(|g| g.fixes.len()),
         topics: TopicSummary::of_bag(&bag),
     };
-    write_outputs(args, &imu, gnss.as_ref(), &record)?;
+    let fixes = gnss.as_ref().map(|g| g.fixes.as_slice());
+    super::write_log_outputs(args, &imu.series, fixes, &record)?;
     Ok((imu.series.len(), "IMU samples (rates)"))
-}
-
-/// Writes the GNSS CSV (with `--gnss-out`), the IMU CSV and the sidecar; a failure removes
-/// what this run wrote before it.
-fn write_outputs(
-    args: &ConvertArgs,
-    imu: &ImuExtract,
-    gnss: Option<&GnssExtract>,
-    record: &BagRecord<'_>,
-) -> Result<(), Failure> {
-    let mut written = Vec::new();
-    let outcome = (|| {
-        if let (Some(path), Some(gnss)) = (&args.gnss_out, gnss) {
-            let (count, what) = super::write_fixes(path, gnss.fixes.clone())?;
-            written.push(path.clone());
-            println!(
-                "{}: {count} {what} written to {}",
-                args.input.display(),
-                path.display()
-            );
-        }
-        write_imu_file(&args.out, &imu.series).data()?;
-        written.push(args.out.clone());
-        write_json_atomically(crate::settings::analysis::json_sidecar(&args.out), record).data()
-    })();
-    if outcome.is_err() {
-        written.iter().for_each(|path| {
-            let _ = std::fs::remove_file(path);
-        });
-    }
-    outcome
 }

@@ -7,12 +7,10 @@ use crate::args::ConvertArgs;
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use serde::Serialize;
-use std::path::PathBuf;
 use thermonav_io::ulog::px4::{
     GnssExtract, ImuExtract, TimeScale, gnss_fixes, imu_series, time_scale,
 };
 use thermonav_io::ulog::{Ulog, read_ulog_file};
-use thermonav_io::{write_imu_file, write_json_atomically};
 
 /// The sidecar: where the series came from and on which time scale.
 #[derive(Serialize)]
@@ -84,7 +82,8 @@ pub fn convert(args: &ConvertArgs) -> Result<(usize, &'static str), Failure> {
         log: LogSummary::of(&log),
     };
     report_notes(&record);
-    write_all_or_none(args, &imu, gnss.as_ref(), &record)?;
+    let fixes = gnss.as_ref().map(|g| g.fixes.as_slice());
+    super::write_log_outputs(args, &imu.series, fixes, &record)?;
     Ok((imu.series.len(), imu_samples_kind(imu.topic)))
 }
 
@@ -104,25 +103,6 @@ fn imu_samples_kind(topic: &str) -> &'static str {
         "vehicle_imu" => "IMU samples (increments)",
         _ => "IMU samples (rates)",
     }
-}
-
-/// Writes the outputs; if a later one fails, removes the earlier ones of this run.
-fn write_all_or_none(
-    args: &ConvertArgs,
-    imu: &ImuExtract,
-    gnss: Option<&GnssExtract>,
-    record: &UlogRecord,
-) -> Result<(), Failure> {
-    // Three files, each written atomically; if a later one fails, the earlier ones of this run
-    // are removed, so a failed run leaves no half of a conversion behind.
-    let mut written: Vec<PathBuf> = Vec::new();
-    let outcome = write_outputs(args, imu, gnss, record, &mut written);
-    if outcome.is_err() {
-        written.iter().for_each(|path| {
-            let _ = std::fs::remove_file(path);
-        });
-    }
-    outcome
 }
 
 /// Notes on stderr about the time scale, temperature and skipped messages.
@@ -157,28 +137,4 @@ pub fn reject_gnss_out(args: &ConvertArgs) -> Result<(), Failure> {
         .usage(),
         None => Ok(()),
     }
-}
-
-/// Writes the GNSS CSV (with `--gnss-out`), the IMU CSV and its JSON record, in that order,
-/// pushing each path onto `written` once it is complete.
-fn write_outputs(
-    args: &ConvertArgs,
-    imu: &ImuExtract,
-    gnss: Option<&GnssExtract>,
-    record: &UlogRecord,
-    written: &mut Vec<PathBuf>,
-) -> Result<(), Failure> {
-    if let (Some(path), Some(gnss)) = (&args.gnss_out, gnss) {
-        let (count, what) = super::write_fixes(path, gnss.fixes.clone())?;
-        written.push(path.clone());
-        println!(
-            "{}: {count} {what} written to {}",
-            args.input.display(),
-            path.display()
-        );
-    }
-    write_imu_file(&args.out, &imu.series).data()?;
-    written.push(args.out.clone());
-    write_json_atomically(crate::settings::analysis::json_sidecar(&args.out), record).data()?;
-    Ok(())
 }
