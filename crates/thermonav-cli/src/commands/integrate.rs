@@ -34,10 +34,15 @@ fn summary_rows(s: &Summary) -> Vec<Row> {
     rows
 }
 
+/// A unit variant's JSON name in words ("course_over_ground" as "course over ground").
+fn in_words(choice: impl serde::Serialize) -> String {
+    let name = serde_json::to_value(choice).map_or_else(|_| String::new(), |v| v.to_string());
+    name.trim_matches('"').replace('_', " ")
+}
+
 /// Where the initial state came from, in words, with the course baseline when there is one.
 fn initial_state_text(s: &RunReport) -> String {
-    let source = serde_json::to_value(s.initial).map_or_else(|_| String::new(), |v| v.to_string());
-    let source = source.trim_matches('"').replace('_', " ");
+    let source = in_words(s.initial);
     match &s.course_baseline {
         Some(c) => format!(
             "{source} along {:.2} m in {:.2} s ({} fixes, course sd {:.2} deg)",
@@ -53,13 +58,9 @@ fn initial_state_text(s: &RunReport) -> String {
 /// The initial bias sds and their source, in words.
 fn initial_bias_text(s: &RunReport) -> String {
     let b = &s.initial_bias_sd;
-    let source = serde_json::to_value(b.source).map_or_else(|_| String::new(), |v| v.to_string());
     let [g, a] =
         [b.gyro_deg_h, b.accel_mg].map(|v| format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2]));
-    format!(
-        "gyro {g} deg/h, accel {a} mg ({})",
-        source.trim_matches('"').replace('_', " ")
-    )
+    format!("gyro {g} deg/h, accel {a} mg ({})", in_words(b.source))
 }
 
 fn run_rows(s: &RunReport) -> Vec<Row> {

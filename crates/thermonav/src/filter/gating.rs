@@ -6,6 +6,7 @@
 //! car, lever-arm and timing residuals in turns), and a fixed gate then throws away good fixes
 //! in runs. Outliers stand far above their neighbours' level and are still rejected.
 
+use crate::stoch::lot::median_of_sorted;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::collections::VecDeque;
 
@@ -84,7 +85,9 @@ impl ScaledGate {
         if self.recent.is_empty() {
             return 1.0;
         }
-        let level = median(self.recent.iter().copied().collect()) / self.chi_square_median;
+        let mut recent: Vec<f64> = self.recent.iter().copied().collect();
+        recent.sort_by(f64::total_cmp);
+        let level = median_of_sorted(&recent) / self.chi_square_median;
         level.clamp(1.0, MAX_GATE_SCALE)
     }
 
@@ -105,17 +108,6 @@ impl ScaledGate {
     /// The unscaled quantile.
     pub fn threshold(&self) -> f64 {
         self.gate.threshold()
-    }
-}
-
-/// The median of finite values (the mean of the middle two for an even count).
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    if n % 2 == 1 {
-        values[n / 2]
-    } else {
-        0.5 * (values[n / 2 - 1] + values[n / 2])
     }
 }
 
@@ -166,11 +158,5 @@ mod tests {
         plain.judge(1e3);
         assert_eq!(plain.scale(), 1.0);
         assert!(!plain.judge(f64::NAN).passed);
-    }
-
-    #[test]
-    fn the_median_of_odd_and_even_counts() {
-        assert_eq!(median(vec![3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(median(vec![4.0, 1.0, 3.0, 2.0]), 2.5);
     }
 }
