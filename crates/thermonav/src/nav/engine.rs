@@ -28,7 +28,7 @@ use super::sensor_model::ImuStochasticModel;
 use super::smoother::{ForwardHistory, MAX_SMOOTHED_STEPS};
 use super::solution::{InnovationRecord, Solution, SolutionEpoch};
 use crate::filter::FilterError;
-use crate::filter::ekf::{joseph_update, propagate_covariance};
+use crate::filter::ekf::joseph_update;
 use crate::filter::gating::ScaledGate;
 use crate::filter::sigma_points::SigmaPointScheme;
 use crate::filter::ukf::Ukf;
@@ -651,9 +651,9 @@ impl<'a> Run<'a> {
         let q = model.process_noise(&start.nav.attitude, &phi, dt);
         match &mut self.core {
             Core::Ekf(p) => {
-                **p = propagate_covariance(p, &phi, &q);
+                **p = phi.propagate(p, &q);
                 if let Some(history) = &mut self.history {
-                    history.end(phi, self.estimate, **p);
+                    history.end(phi.to_matrix(), self.estimate, **p);
                 }
             }
             Core::Ukf(u) => {
@@ -680,7 +680,7 @@ impl<'a> Run<'a> {
                     }
                     out
                 };
-                u.predict(propagate_point, &q)
+                u.predict(propagate_point, &q.to_matrix())
                     .map_err(|e| NavError::Diverged {
                         filter: "ukf",
                         time_s: self.estimate.nav.time.as_seconds(),
