@@ -67,14 +67,14 @@ pub fn write_finite(out: &mut impl Write, value: f64) -> io::Result<()> {
     let mut buffer = zmij::Buffer::new();
     let text = buffer.format_finite(value);
     // Żmij writes integral values as `1.0` and positive exponents as `e+20`; Rust as `1` and
-    // `e20`.
-    match text.split_once("e+") {
-        Some((mantissa, exponent)) => {
-            out.write_all(mantissa.as_bytes())?;
-            out.write_all(b"e")?;
-            out.write_all(exponent.as_bytes())
+    // `e20` (a `+` appears only there).
+    let bytes = text.as_bytes();
+    match bytes.iter().position(|b| *b == b'+') {
+        Some(plus) => {
+            out.write_all(&bytes[..plus])?;
+            out.write_all(&bytes[plus + 1..])
         }
-        None => out.write_all(text.strip_suffix(".0").unwrap_or(text).as_bytes()),
+        None => out.write_all(bytes.strip_suffix(b".0").unwrap_or(bytes)),
     }
 }
 

@@ -31,7 +31,8 @@ pub fn within_navigation_latitudes(latitude_rad: f64) -> bool {
 /// Meridian radius of curvature R_N(φ) = a (1 − e²) / (1 − e² sin²φ)^{3/2}, m.
 pub fn meridian_radius_m(latitude_rad: f64) -> f64 {
     let s2 = latitude_rad.sin().powi(2);
-    SEMI_MAJOR_AXIS_M * (1.0 - ECCENTRICITY_SQ) / (1.0 - ECCENTRICITY_SQ * s2).powf(1.5)
+    let d = 1.0 - ECCENTRICITY_SQ * s2;
+    SEMI_MAJOR_AXIS_M * (1.0 - ECCENTRICITY_SQ) / (d * d.sqrt())
 }
 
 /// Transverse (prime-vertical) radius of curvature R_E(φ) = a / √(1 − e² sin²φ), m.
