@@ -6,7 +6,7 @@
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
 use crate::{
-    Strictness, bank, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos, temperature_table,
+    Strictness, bank, dataflash, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos, temperature_table,
     truth, ulog,
 };
 use std::io::Cursor;
@@ -56,6 +56,9 @@ pub enum Parser {
     Ros2Db3,
     /// ROS 1 bag v2.0 ([`ros::ros1::decode_ros1`]), then the same extraction.
     Ros1Bag,
+    /// ArduPilot DataFlash ([`dataflash::decode_dataflash`]), then its IMU and GPS extraction
+    /// ([`dataflash::ardupilot::imu_series`], [`dataflash::ardupilot::gnss_fixes`]).
+    DataFlash,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -63,7 +66,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 19] = [
+    pub const ALL: [Parser; 20] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -83,6 +86,7 @@ impl Parser {
         Parser::Ros2Mcap,
         Parser::Ros2Db3,
         Parser::Ros1Bag,
+        Parser::DataFlash,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -107,6 +111,7 @@ impl Parser {
             Parser::Ros2Mcap => "ros2_mcap",
             Parser::Ros2Db3 => "ros2_db3",
             Parser::Ros1Bag => "ros1_bag",
+            Parser::DataFlash => "dataflash",
         }
     }
 
@@ -156,6 +161,7 @@ impl Parser {
             Parser::Ros2Mcap => bag_record_count(bytes, input, ros::BagFormat::Ros2Mcap)?,
             Parser::Ros2Db3 => bag_record_count(bytes, input, ros::BagFormat::Ros2Db3)?,
             Parser::Ros1Bag => bag_record_count(bytes, input, ros::BagFormat::Ros1Bag)?,
+            Parser::DataFlash => dataflash_record_count(bytes, input)?,
         })
     }
 }
@@ -182,6 +188,18 @@ fn bag_record_count(
     let _ = ros::extract::imu_series(&bag, Default::default(), input);
     let _ = ros::extract::gnss_fixes(&bag, None, input);
     Ok(bag.message_count())
+}
+
+/// The records of a DataFlash log, after its IMU (the first instance, so that a log with
+/// several still reaches the decoding) and GPS extraction has run.
+fn dataflash_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+    use dataflash::ardupilot::{gnss_fixes, imu_instances, imu_series, time_scale};
+    let log = dataflash::decode_dataflash(bytes, input)?;
+    let scale = time_scale(&log);
+    let first = imu_instances(&log).first().map(|s| s.instance);
+    let _ = imu_series(&log, first, "--imu-instance", input, scale);
+    let _ = gnss_fixes(&log, input, scale);
+    Ok(log.record_count())
 }
 
 /// NMEA settings that keep headings and level velocities, so that every sentence is decoded.
