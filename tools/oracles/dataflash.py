@@ -36,7 +36,11 @@ Files:
   fix), GPS instance 1 (2 records), GPA for every GPS record, UNIT/MULT/FMTU for IMU, GPS and
   GPA, PARM and MSG records (read past), and TYP1/TYP2 records that use every format character;
 - boot.bin: IMU instance 0 only (20 records), no GPS, no units: times stay since boot;
-- deg_units.bin: boot.bin with an FMTU that puts GyrX..Z in deg/s, which the reader refuses.
+- deg_units.bin: boot.bin with an FMTU that puts GyrX..Z in deg/s, which the reader refuses;
+- static_10hz.bin.gz (gzip): long enough for `characterize` with its default conditioning:
+  1500 IMU records at 10 Hz, instance 0, T = 25 degC, values multiples of 2^-14 (exact in
+  binary32, so that gzip keeps the file small); expected_10hz.json holds its count and its
+  first and last records.
 
 expected.json: what was written: each IMU record's TimeUS and values as the binary32 or
 scaled-integer value it decodes to (raw / 100 for c, C, e, E; raw / 1e7 for L, each the
@@ -46,6 +50,7 @@ GWk > 0); the TYP1/TYP2 fields. Every file is read back with pymavlink's DFReade
 decode to the same values (scaled fields within 1 ulp: pymavlink multiplies by 0.01 and 1e-7,
 which are not exact in binary, where the documented scale divides by 100 and 1e7).
 """
+import gzip
 import json
 import math
 import pathlib
@@ -242,6 +247,23 @@ def boot_log(fmtu=None):
     return bytes(log.data), {"imu0": imu}
 
 
+def q14(rng, sd):
+    """A normal draw rounded to a multiple of 2^-14 (exact in binary32)."""
+    return round(rng.gauss(0.0, sd) * 2**14) / 2**14
+
+
+def long_log():
+    rng = random.Random(10)
+    log = Log()
+    log.define(130, "IMU", *IMU[1:])
+    imu = []
+    for k in range(1500):
+        gyro = [q14(rng, 1e-3) for _ in range(3)]
+        accel = [q14(rng, 2e-2), q14(rng, 2e-2), -9.8125 + q14(rng, 2e-2)]
+        imu.append(write_imu(log, 1_000_000 + 100_000 * k, 0, gyro, accel, 25.0))
+    return bytes(log.data), imu
+
+
 def close(a, b):
     """Equal, or within 1 ulp (pymavlink scales by multiplication, the documentation by
     division)."""
@@ -314,6 +336,13 @@ def main():
     degrees = {"IMU": ("s#kkkooo--O--zz", FMTU["IMU"][1])}
     deg, _ = boot_log(degrees)
     (OUT / "deg_units.bin").write_bytes(deg)
+    long, long_imu = long_log()
+    (OUT / "static_10hz.bin").write_bytes(long)
+    check_boot(OUT / "static_10hz.bin", {"imu0": long_imu})
+    (OUT / "static_10hz.bin").unlink()
+    long_expected = {"imu_count": len(long_imu), "imu_first": long_imu[0], "imu_last": long_imu[-1]}
+    (OUT / "static_10hz.bin.gz").write_bytes(gzip.compress(long, 9, mtime=0))
+    (OUT / "expected_10hz.json").write_text(json.dumps(long_expected, indent=1) + "\n")
     expected = {"static": static_expected, "boot": boot_expected}
     (OUT / "expected.json").write_text(json.dumps(expected, separators=(",", ":")) + "\n")
     print({p.name: p.stat().st_size for p in sorted(OUT.iterdir())})

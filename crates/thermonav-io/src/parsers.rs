@@ -6,8 +6,8 @@
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
 use crate::{
-    Strictness, bank, dataflash, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos, temperature_table,
-    truth, ulog,
+    Strictness, bank, dataflash, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos,
+    temperature_table, truth, ulog,
 };
 use std::io::Cursor;
 use thermonav::time::{Duration, Timestamp};

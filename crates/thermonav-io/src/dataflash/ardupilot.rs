@@ -91,7 +91,11 @@ fn column(t: &MessageType, name: &str, input: &str) -> Result<usize, ReadError> 
     t.column(name).ok_or_else(|| {
         unusable(
             input,
-            format!("message {} has no column {name} (columns: {})", t.name, t.columns.join(",")),
+            format!(
+                "message {} has no column {name} (columns: {})",
+                t.name,
+                t.columns.join(",")
+            ),
         )
     })
 }
@@ -194,13 +198,19 @@ impl Units {
                 .collect()
         };
         for (id, v) in pairs("UNIT", "Label") {
-            units.labels.insert(id, v.as_text().unwrap_or("").to_string());
+            units
+                .labels
+                .insert(id, v.as_text().unwrap_or("").to_string());
         }
         for (id, v) in pairs("MULT", "Mult") {
             units.multipliers.insert(id, v.as_f64().unwrap_or(f64::NAN));
         }
         if let Some(t) = log.message("FMTU") {
-            let cols = (t.column("FmtType"), t.column("UnitIds"), t.column("MultIds"));
+            let cols = (
+                t.column("FmtType"),
+                t.column("UnitIds"),
+                t.column("MultIds"),
+            );
             if let (Some(ty), Some(u), Some(m)) = cols {
                 for r in 0..t.len() {
                     let text = |c| t.value(c, r).as_text().unwrap_or("").to_string();
@@ -255,7 +265,10 @@ impl Units {
         let refuse = |what: String| {
             unusable(
                 input,
-                format!("{}.{name}: the log's FMTU, UNIT and MULT records give {what}", t.name),
+                format!(
+                    "{}.{name}: the log's FMTU, UNIT and MULT records give {what}",
+                    t.name
+                ),
             )
         };
         let label = unit_ids.as_bytes().get(c).and_then(|u| self.labels.get(u));
@@ -756,7 +769,9 @@ impl Accuracy {
     /// Where the standard deviations come from.
     fn note(&self) -> &'static str {
         match self.present {
-            true => "GPA.HAcc north and east, GPA.VAcc down (the GPA record of the fix's instance and TimeUS)",
+            true => {
+                "GPA.HAcc north and east, GPA.VAcc down (the GPA record of the fix's instance and TimeUS)"
+            }
             false => "none: the log has no GPA records",
         }
     }

@@ -60,8 +60,16 @@ fn every_imu_record_of_instance_0_is_read_exactly_at_gpst() {
         let time_ns = r["time_us"].as_i64().unwrap() * 1_000 + offset;
         assert_eq!(imu.series.time[k].as_nanos(), time_ns, "record {k}");
         for c in 0..3 {
-            assert_eq!(imu.series.channels[c][k], f(&r["gyro"][c]), "gyro {c} at {k}");
-            assert_eq!(imu.series.channels[3 + c][k], f(&r["accel"][c]), "accel {c} at {k}");
+            assert_eq!(
+                imu.series.channels[c][k],
+                f(&r["gyro"][c]),
+                "gyro {c} at {k}"
+            );
+            assert_eq!(
+                imu.series.channels[3 + c][k],
+                f(&r["accel"][c]),
+                "accel {c} at {k}"
+            );
         }
         assert_eq!(temperature[k], f(&r["temp_c"]), "T at {k}");
     }
@@ -77,7 +85,10 @@ fn the_second_imu_instance_is_listed_and_read_when_asked_for() {
     let instances = imu_instances(&log);
     let counts: Vec<(u64, usize)> = instances.iter().map(|s| (s.instance, s.count)).collect();
     let n1 = want["imu1_count"].as_u64().unwrap() as usize;
-    assert_eq!(counts, vec![(0, want["imu0"].as_array().unwrap().len()), (1, n1)]);
+    assert_eq!(
+        counts,
+        vec![(0, want["imu0"].as_array().unwrap().len()), (1, n1)]
+    );
     let scale = time_scale(&log);
     let err = imu_series(&log, None, "--imu-instance", "static.bin", scale).unwrap_err();
     let text = err.to_string();
@@ -91,7 +102,10 @@ fn the_second_imu_instance_is_listed_and_read_when_asked_for() {
     assert_eq!(imu.series.channels[2][0], f(&first["gyro"][2]));
     assert_eq!(imu.series.temperature_c.unwrap()[0], f(&first["temp_c"]));
     let err = imu_series(&log, Some(7), "--imu-instance", "static.bin", scale).unwrap_err();
-    assert!(err.to_string().contains("no IMU instance 7 (instances: 0 (IMU, 100 records), 1"));
+    assert!(
+        err.to_string()
+            .contains("no IMU instance 7 (instances: 0 (IMU, 100 records), 1")
+    );
 }
 
 #[test]
@@ -176,9 +190,15 @@ fn a_log_without_gps_stays_on_boot_time() {
 #[test]
 fn a_gyro_the_log_says_is_in_deg_s_is_refused() {
     let log = log("deg_units.bin");
-    let err = imu_series(&log, None, "--imu-instance", "deg_units.bin", TimeScale::Boot)
-        .unwrap_err()
-        .to_string();
+    let err = imu_series(
+        &log,
+        None,
+        "--imu-instance",
+        "deg_units.bin",
+        TimeScale::Boot,
+    )
+    .unwrap_err()
+    .to_string();
     assert!(
         err.contains("deg_units.bin: IMU.GyrX: the log's FMTU, UNIT and MULT records give the unit deg/s, expected rad/s"),
         "{err}"
@@ -236,7 +256,10 @@ fn broken_logs_are_refused_with_the_byte_and_the_expectation() {
     let mut unknown = good.clone();
     unknown[imu_fmt + 9] = b'x';
     let text = refusal(&unknown);
-    assert!(text.contains("format character 'x' is not one of"), "{text}");
+    assert!(
+        text.contains("format character 'x' is not one of"),
+        "{text}"
+    );
     assert!(refusal(b"").contains("empty"));
 }
 
