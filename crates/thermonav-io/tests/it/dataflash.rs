@@ -272,3 +272,24 @@ fn a_log_cut_inside_a_data_record_keeps_its_whole_records_and_says_so() {
     let imu = imu_series(&log, None, "--imu-instance", "cut.bin", TimeScale::Boot).unwrap();
     assert_eq!(imu.series.len(), 19);
 }
+
+#[test]
+fn every_cut_and_random_corruption_of_the_logs_gives_an_error_or_a_log_never_a_panic() {
+    use rand::{RngExt, SeedableRng};
+    use thermonav_io::parsers::Parser;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
+    for name in ["static.bin", "boot.bin", "deg_units.bin"] {
+        let good = bytes(name);
+        for cut in (0..good.len()).step_by(7) {
+            let _ = Parser::DataFlash.record_count(&good[..cut], "cut");
+        }
+        for _ in 0..300 {
+            let mut damaged = good.clone();
+            for _ in 0..rng.random_range(1..8) {
+                let at = rng.random_range(0..damaged.len());
+                damaged[at] = rng.random();
+            }
+            let _ = Parser::DataFlash.record_count(&damaged, name);
+        }
+    }
+}
