@@ -6,8 +6,8 @@
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
 use crate::{
-    Strictness, bank, dataflash, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos,
-    temperature_table, truth, ulog,
+    Strictness, bank, dataflash, kf_gins, motion, nmea, outside_solution, profile, raw_imu, ros,
+    rtklib_pos, temperature_table, truth, ulog,
 };
 use std::io::Cursor;
 use thermonav::time::{Duration, Timestamp};
@@ -59,6 +59,9 @@ pub enum Parser {
     /// ArduPilot DataFlash ([`dataflash::decode_dataflash`]), then its IMU and GPS extraction
     /// ([`dataflash::ardupilot::imu_series`], [`dataflash::ardupilot::gnss_fixes`]).
     DataFlash,
+    /// An outside solution ([`outside_solution::read_solution`]) read as each of its formats
+    /// (our trajectory CSV, KF-GINS `.nav`, RTKLIB `.pos` with the course over ground as yaw).
+    OutsideSolution,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -66,7 +69,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 20] = [
+    pub const ALL: [Parser; 21] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -87,6 +90,7 @@ impl Parser {
         Parser::Ros2Db3,
         Parser::Ros1Bag,
         Parser::DataFlash,
+        Parser::OutsideSolution,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -112,6 +116,7 @@ impl Parser {
             Parser::Ros2Db3 => "ros2_db3",
             Parser::Ros1Bag => "ros1_bag",
             Parser::DataFlash => "dataflash",
+            Parser::OutsideSolution => "outside_solution",
         }
     }
 
@@ -162,6 +167,7 @@ impl Parser {
             Parser::Ros2Db3 => bag_record_count(bytes, input, ros::BagFormat::Ros2Db3)?,
             Parser::Ros1Bag => bag_record_count(bytes, input, ros::BagFormat::Ros1Bag)?,
             Parser::DataFlash => dataflash_record_count(bytes, input)?,
+            Parser::OutsideSolution => solution_point_count(bytes, input)?,
         })
     }
 }
@@ -200,6 +206,30 @@ fn dataflash_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailu
     let _ = imu_series(&log, first, "--imu-instance", input, scale);
     let _ = gnss_fixes(&log, input, scale);
     Ok(log.record_count())
+}
+
+/// The points of `bytes` read as every outside-solution format: their total, or the last
+/// format's error when none reads them.
+fn solution_point_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+    use outside_solution::{SolutionFormat, read_solution};
+    let formats = [
+        SolutionFormat::Csv,
+        SolutionFormat::KfGinsNav,
+        SolutionFormat::RtklibPos,
+    ];
+    let mut outcome: Result<usize, ParseFailure> = Ok(0);
+    let mut any = false;
+    for format in formats {
+        match read_solution(Cursor::new(bytes), input, format, Strictness::Strict) {
+            Ok(points) => {
+                any = true;
+                outcome = Ok(outcome.unwrap_or(0) + points.len());
+            }
+            Err(e) if !any => outcome = Err(e.into()),
+            Err(_) => {}
+        }
+    }
+    outcome
 }
 
 /// NMEA settings that keep headings and level velocities, so that every sentence is decoded.

@@ -9,6 +9,7 @@ mod imu_units;
 mod kf_gins;
 mod nmea;
 mod non_finite;
+mod outside_solution;
 mod parallel;
 mod raw_imu;
 mod ros;
