@@ -109,8 +109,8 @@ pub enum Command {
     /// The temperature-model tournament: every bank model through the filter, GNSS outages,
     /// errors against a reference, ranking and its Monte Carlo significance.
     Evaluate(EvaluateArgs),
-    /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag, PX4 ULog) to a
-    /// canonical CSV.
+    /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag, PX4 ULog, ROS bags,
+    /// ArduPilot DataFlash) to a canonical CSV.
     Convert(ConvertArgs),
     /// Build DIR/report.html (one self-contained page) from what demo or evaluate wrote there.
     Report(ReportArgs),
@@ -382,7 +382,8 @@ pub enum TausArg {
 /// Arguments of `allan`.
 #[derive(Debug, Args)]
 pub struct AllanArgs {
-    /// The IMU CSV (rates), or a ROS bag (.mcap, .db3, .bag: its only sensor_msgs/Imu topic, in FRD).
+    /// The IMU CSV (rates), or a ROS bag (.mcap, .db3, .bag: its only sensor_msgs/Imu topic, in
+    /// FRD), or an ArduPilot DataFlash log (.bin: its only IMU instance).
     pub file: PathBuf,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
@@ -408,7 +409,8 @@ pub struct AllanArgs {
 /// Arguments of `gmwm`.
 #[derive(Debug, Args)]
 pub struct GmwmArgs {
-    /// The IMU CSV (rates, raw: white noise must not be filtered away), or a ROS bag.
+    /// The IMU CSV (rates, raw: white noise must not be filtered away), or a ROS bag, or an
+    /// ArduPilot DataFlash log.
     pub file: PathBuf,
     /// The composite, e.g. wn+rw+2gm or wn+qn+gm (wn, qn, rw, dr, gm, kgm), or auto: the
     /// candidate with the smallest Wavelet Information Criterion.
@@ -462,7 +464,8 @@ pub struct ArArgs {
 #[derive(Debug, Args)]
 pub struct CharacterizeArgs {
     /// Static IMU CSVs, one per temperature point; or ROS bags (.mcap, .db3, .bag: the only
-    /// sensor_msgs/Imu topic, in FRD, temp_c from the only sensor_msgs/Temperature topic).
+    /// sensor_msgs/Imu topic, in FRD, temp_c from the only sensor_msgs/Temperature topic); or
+    /// ArduPilot DataFlash logs (.bin: the only IMU instance, temp_c from its T).
     #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
     #[command(flatten)]
@@ -1069,6 +1072,9 @@ pub enum ForeignFormatArg {
     Ros2Db3,
     /// ROS 1 bag v2.0 (.bag): as ros2-mcap.
     Ros1Bag,
+    /// ArduPilot DataFlash log (.bin): IMU (one instance, FRD, temp_c from its T) → IMU CSV
+    /// (--out), GPS (with GPA accuracies) → GNSS CSV (--gnss-out), OUT.json sidecar.
+    Dataflash,
 }
 
 /// `--imu-rotation`, shared by every command that reads an IMU record.
@@ -1120,7 +1126,7 @@ pub struct ConvertArgs {
     /// The canonical CSV to write (atomically; nothing is written on error); px4-ulog: the IMU.
     #[arg(long)]
     pub out: PathBuf,
-    /// px4-ulog, ROS bags: also write the GNSS fixes to this canonical GNSS CSV.
+    /// px4-ulog, ROS bags, dataflash: also write the GNSS fixes to this canonical GNSS CSV.
     #[arg(long)]
     pub gnss_out: Option<PathBuf>,
     /// ROS bags: the sensor_msgs/Imu topic (default: the only one; several are listed).
@@ -1132,6 +1138,10 @@ pub struct ConvertArgs {
     /// ROS bags: the sensor_msgs/Temperature topic for temp_c (default: the only one, if any).
     #[arg(long)]
     pub temperature_topic: Option<String>,
+    /// dataflash: the IMU instance (the I column of IMU records; IMU2, IMU3 of older logs are 1
+    /// and 2) (default: the only one; several are listed).
+    #[arg(long)]
+    pub imu_instance: Option<u64>,
     /// raw-imu-tag: the time-tag file (default: INPUT.tag).
     #[arg(long)]
     pub tag: Option<PathBuf>,

@@ -47,8 +47,8 @@ pub fn characterize_file(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let bag = crate::inputs::bag_format_of(path).is_some();
-    let mut entry = match !bag && streams(path, reading) {
+    let whole = crate::inputs::is_whole_log(path);
+    let mut entry = match !whole && streams(path, reading) {
         true => characterize_streaming(path, given, settings, (&name, imu))?,
         false => characterize_in_memory(path, given, settings, (&name, imu))?,
     };
@@ -56,7 +56,7 @@ pub fn characterize_file(
     Ok(entry)
 }
 
-/// Characterises one file (a CSV or a bag) read whole; `name` is its source label.
+/// Characterises one file (a CSV, a bag or a DataFlash log) read whole; `name` is its source label.
 fn characterize_in_memory(
     path: &Path,
     given: Option<f64>,

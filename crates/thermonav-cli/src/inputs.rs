@@ -33,7 +33,7 @@ fn no_thermal(path: &Path) -> Failure {
     ))
 }
 
-/// Reads an IMU record (a CSV as `options` say, or a ROS bag) of rates and its nominal sample
+/// Reads an IMU record (a CSV as `options` say, a ROS bag or a DataFlash log) of rates and its nominal sample
 /// rate, Hz; `purpose` names what needs rates in the error for a file of increments.
 pub fn read_rates(
     path: &Path,
@@ -86,6 +86,9 @@ pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
 /// temperature topic. A bag carries its own times and axes: a mounting or a rate for it is
 /// refused (convert the bag, then rotate the CSV).
 pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Failure> {
+    if is_dataflash(path) {
+        return read_dataflash_imu(path, options);
+    }
     match bag_format_of(path) {
         Some(_) if options.mounting.is_some() || options.rate_hz.is_some() => {
             Err(Failure::Data(anyhow!(
@@ -98,18 +101,55 @@ pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Fa
     }
 }
 
-/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, not a
-/// regular file (a pipe is never read ahead: its bytes would be gone for the CSV reader), or
-/// unreadable, for the CSV reader to name).
-pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
+/// True when the file at `path` is a ROS bag or a DataFlash log, read whole (never streamed).
+pub fn is_whole_log(path: &Path) -> bool {
+    bag_format_of(path).is_some() || is_dataflash(path)
+}
+
+/// The first `n` bytes of the regular file at `path`, decompressed when it is gzip (`None`: not
+/// a regular file, or unreadable, for the CSV reader to name; a pipe is never read ahead).
+fn head_of(path: &Path, n: u64) -> Option<Vec<u8>> {
     use std::io::Read;
     if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
         return None;
     }
     let mut head = Vec::new();
-    let file = std::fs::File::open(path).ok()?;
-    file.take(16).read_to_end(&mut head).ok()?;
-    BagFormat::detect(&head)
+    let file = thermonav_io::open_input(path).ok()?;
+    file.take(n).read_to_end(&mut head).ok()?;
+    Some(head)
+}
+
+/// True when the file at `path` starts like an ArduPilot DataFlash log.
+pub fn is_dataflash(path: &Path) -> bool {
+    head_of(path, 16).is_some_and(|head| thermonav_io::dataflash::looks_like_dataflash(&head))
+}
+
+/// The IMU of a DataFlash log (its only instance), turned by the mounting of `options`; a rate
+/// is refused (the log has its own times).
+fn read_dataflash_imu(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Failure> {
+    use thermonav_io::dataflash::ardupilot::{imu_series, time_scale};
+    if options.rate_hz.is_some() {
+        return Err(Failure::Data(anyhow!(
+            "{}: a DataFlash log has its own times (TimeUS): --rate-hz applies to CSV input",
+            path.display()
+        )));
+    }
+    let log = thermonav_io::dataflash::read_dataflash_file(path).data()?;
+    let input = path.display().to_string();
+    match imu_series(&log, None, "--imu-instance", &input, time_scale(&log)) {
+        Ok(extract) => Ok(to_body(extract.series, options)),
+        Err(e) => Err(Failure::Data(anyhow!(
+            "{e} (to choose the instance, convert the log first: thermonav convert LOG.bin \
+             --imu-instance N --out imu.csv)"
+        ))),
+    }
+}
+
+/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, not a
+/// regular file (a pipe is never read ahead: its bytes would be gone for the CSV reader), or
+/// unreadable, for the CSV reader to name).
+pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
+    BagFormat::detect(&head_of(path, 16)?)
 }
 
 /// The IMU of a bag, its topic chosen as [`imu_series`] does without options.

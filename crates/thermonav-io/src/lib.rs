@@ -33,7 +33,9 @@
 //! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
 //!   GNSS of a flight log ([`ulog::px4`]);
 //! - [`ros`]: ROS 2 bags (MCAP and SQLite `.db3`) and ROS 1 bags (v2.0): `sensor_msgs/Imu`
-//!   (ROS body axes turned into FRD), `Temperature` and `NavSatFix`, timed at header stamps.
+//!   (ROS body axes turned into FRD), `Temperature` and `NavSatFix`, timed at header stamps;
+//! - [`dataflash`]: ArduPilot DataFlash logs (`.bin`): any message by column name, and the IMU
+//!   (with its temperature) and GPS of a flight log ([`dataflash::ardupilot`]).
 //!
 //! They share one absolute time scale, [`gpst`]: seconds since 1970 counted in GPST without
 //! leap seconds (the `.tag` convention), so that IMU and GNSS files from these sources line
@@ -74,6 +76,7 @@
 
 pub mod atomic;
 pub mod bank;
+pub mod dataflash;
 pub mod error;
 pub mod finite;
 mod fixed;

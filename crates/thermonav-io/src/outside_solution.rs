@@ -13,9 +13,10 @@
 
 use crate::Strictness;
 use crate::error::{ReadError, ReadErrorKind};
-use crate::kf_gins::read_kf_gins_nav_file;
-use crate::rtklib_pos::{PosSettings, PosSolution, read_rtklib_pos_file};
-use crate::trajectory::read_trajectory_file;
+use crate::kf_gins::{read_kf_gins_nav, read_kf_gins_nav_file};
+use crate::rtklib_pos::{PosSettings, PosSolution, read_rtklib_pos, read_rtklib_pos_file};
+use crate::trajectory::{read_trajectory, read_trajectory_file};
+use std::io::BufRead;
 use std::path::Path;
 use thermonav::trajectory::TrajectoryPoint;
 
@@ -70,20 +71,47 @@ pub fn read_solution_file(
                 ..PosSettings::default()
             };
             let solutions = read_rtklib_pos_file(path, settings)?;
-            solutions.iter().map(|s| point_of_pos(s, path)).collect()
+            let input = path.display().to_string();
+            solutions.iter().map(|s| point_of_pos(s, &input)).collect()
+        }
+    }
+}
+
+/// Reads a solution in `format` from `reader` (named `input` in errors) as a trajectory, as
+/// [`read_solution_file`] does from a file (the entry point of the `outside_solution` fuzz
+/// target).
+///
+/// # Errors
+/// As [`read_solution_file`].
+pub fn read_solution(
+    reader: impl BufRead,
+    input: &str,
+    format: SolutionFormat,
+    strictness: Strictness,
+) -> Result<Vec<TrajectoryPoint>, ReadError> {
+    match format {
+        SolutionFormat::Csv => read_trajectory(reader, input, strictness),
+        SolutionFormat::KfGinsNav => read_kf_gins_nav(reader, input, strictness),
+        SolutionFormat::RtklibPos => {
+            let settings = PosSettings {
+                strictness,
+                ..PosSettings::default()
+            };
+            let solutions = read_rtklib_pos(reader, input, settings)?;
+            solutions.iter().map(|s| point_of_pos(s, input)).collect()
         }
     }
 }
 
 /// A `.pos` epoch as a trajectory point: yaw from the course over ground.
-fn point_of_pos(s: &PosSolution, path: &Path) -> Result<TrajectoryPoint, ReadError> {
+fn point_of_pos(s: &PosSolution, input: &str) -> Result<TrajectoryPoint, ReadError> {
     let fix = &s.fix;
     let [vn, ve, vd] = fix.velocity_ned_m_s.ok_or_else(|| {
         let kind = ReadErrorKind::MissingColumn {
             name: "vn(m/s) ve(m/s) vu(m/s)",
             alternatives: " (or vx vy vz: the heading of an RTKLIB solution is its course over ground)",
         };
-        ReadError::new(path.display().to_string(), None, kind)
+        ReadError::new(input, None, kind)
     })?;
     Ok(TrajectoryPoint {
         time: fix.time,

@@ -6,8 +6,8 @@
 
 use crate::raw_imu::{RawImuSettings, TimeTag};
 use crate::{
-    Strictness, bank, kf_gins, motion, nmea, profile, raw_imu, ros, rtklib_pos, temperature_table,
-    truth, ulog,
+    Strictness, bank, dataflash, kf_gins, motion, nmea, outside_solution, profile, raw_imu, ros,
+    rtklib_pos, temperature_table, truth, ulog,
 };
 use std::io::Cursor;
 use thermonav::time::{Duration, Timestamp};
@@ -56,6 +56,12 @@ pub enum Parser {
     Ros2Db3,
     /// ROS 1 bag v2.0 ([`ros::ros1::decode_ros1`]), then the same extraction.
     Ros1Bag,
+    /// ArduPilot DataFlash ([`dataflash::decode_dataflash`]), then its IMU and GPS extraction
+    /// ([`dataflash::ardupilot::imu_series`], [`dataflash::ardupilot::gnss_fixes`]).
+    DataFlash,
+    /// An outside solution ([`outside_solution::read_solution`]) read as each of its formats
+    /// (our trajectory CSV, KF-GINS `.nav`, RTKLIB `.pos` with the course over ground as yaw).
+    OutsideSolution,
 }
 
 /// Why a parser refused its input (any reader's error, as text).
@@ -63,7 +69,7 @@ pub type ParseFailure = Box<dyn std::error::Error + Send + Sync>;
 
 impl Parser {
     /// Every parser, in the order of the fuzz targets.
-    pub const ALL: [Parser; 19] = [
+    pub const ALL: [Parser; 21] = [
         Parser::CanonicalImu,
         Parser::CanonicalGnss,
         Parser::CanonicalTrajectory,
@@ -83,6 +89,8 @@ impl Parser {
         Parser::Ros2Mcap,
         Parser::Ros2Db3,
         Parser::Ros1Bag,
+        Parser::DataFlash,
+        Parser::OutsideSolution,
     ];
 
     /// The fuzz target's name (also the corpus folder's).
@@ -107,6 +115,8 @@ impl Parser {
             Parser::Ros2Mcap => "ros2_mcap",
             Parser::Ros2Db3 => "ros2_db3",
             Parser::Ros1Bag => "ros1_bag",
+            Parser::DataFlash => "dataflash",
+            Parser::OutsideSolution => "outside_solution",
         }
     }
 
@@ -156,6 +166,8 @@ impl Parser {
             Parser::Ros2Mcap => bag_record_count(bytes, input, ros::BagFormat::Ros2Mcap)?,
             Parser::Ros2Db3 => bag_record_count(bytes, input, ros::BagFormat::Ros2Db3)?,
             Parser::Ros1Bag => bag_record_count(bytes, input, ros::BagFormat::Ros1Bag)?,
+            Parser::DataFlash => dataflash_record_count(bytes, input)?,
+            Parser::OutsideSolution => solution_point_count(bytes, input)?,
         })
     }
 }
@@ -182,6 +194,42 @@ fn bag_record_count(
     let _ = ros::extract::imu_series(&bag, Default::default(), input);
     let _ = ros::extract::gnss_fixes(&bag, None, input);
     Ok(bag.message_count())
+}
+
+/// The records of a DataFlash log, after its IMU (the first instance, so that a log with
+/// several still reaches the decoding) and GPS extraction has run.
+fn dataflash_record_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+    use dataflash::ardupilot::{gnss_fixes, imu_instances, imu_series, time_scale};
+    let log = dataflash::decode_dataflash(bytes, input)?;
+    let scale = time_scale(&log);
+    let first = imu_instances(&log).first().map(|s| s.instance);
+    let _ = imu_series(&log, first, "--imu-instance", input, scale);
+    let _ = gnss_fixes(&log, input, scale);
+    Ok(log.record_count())
+}
+
+/// The points of `bytes` read as every outside-solution format: their total, or the last
+/// format's error when none reads them.
+fn solution_point_count(bytes: &[u8], input: &str) -> Result<usize, ParseFailure> {
+    use outside_solution::{SolutionFormat, read_solution};
+    let formats = [
+        SolutionFormat::Csv,
+        SolutionFormat::KfGinsNav,
+        SolutionFormat::RtklibPos,
+    ];
+    let mut outcome: Result<usize, ParseFailure> = Ok(0);
+    let mut any = false;
+    for format in formats {
+        match read_solution(Cursor::new(bytes), input, format, Strictness::Strict) {
+            Ok(points) => {
+                any = true;
+                outcome = Ok(outcome.unwrap_or(0) + points.len());
+            }
+            Err(e) if !any => outcome = Err(e.into()),
+            Err(_) => {}
+        }
+    }
+    outcome
 }
 
 /// NMEA settings that keep headings and level velocities, so that every sentence is decoded.

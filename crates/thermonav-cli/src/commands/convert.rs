@@ -1,7 +1,9 @@
-//! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag, PX4 ULog)
+//! `thermonav convert`: a foreign file (RTKLIB, NMEA, KF-GINS, raw IMU + time tag, PX4 ULog,
+//! ROS bags, ArduPilot DataFlash)
 //! to the canonical GNSS, IMU or trajectory CSV, or (`--to kf-gins`) one of ours to KF-GINS. The whole input is read before anything is written,
 //! and the output is written atomically, so a bad input leaves no output behind.
 
+mod dataflash;
 mod ros;
 mod to_kf_gins;
 mod ulog;
@@ -38,11 +40,12 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
         Some(format) => format,
         None => detect_format(&args.input, &tag_path(args))?,
     };
-    if !matches!(format, ForeignFormatArg::Px4Ulog) && ros::bag_format(format).is_none() {
+    if !log_with_gnss(format) {
         ulog::reject_gnss_out(args)?;
     }
     reject_rotation_without_imu(format, args)?;
     ros::reject_topics(format, args)?;
+    dataflash::reject_instance(format, args)?;
     let (count, what) = convert(format, args, strictness_of(args))?;
     println!(
         "{}: {count} {what} written to {}",
@@ -52,6 +55,14 @@ pub fn run(args: &ConvertArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// A log that holds GNSS fixes beside its IMU (`--gnss-out` applies).
+fn log_with_gnss(format: ForeignFormatArg) -> bool {
+    matches!(
+        format,
+        ForeignFormatArg::Px4Ulog | ForeignFormatArg::Dataflash
+    ) || ros::bag_format(format).is_some()
+}
+
 /// The error for `--imu-rotation` on a format without an IMU.
 fn reject_rotation_without_imu(
     format: ForeignFormatArg,
@@ -59,11 +70,14 @@ fn reject_rotation_without_imu(
 ) -> Result<(), Failure> {
     let imu = matches!(
         format,
-        ForeignFormatArg::KfGinsImu | ForeignFormatArg::RawImuTag | ForeignFormatArg::Px4Ulog
+        ForeignFormatArg::KfGinsImu
+            | ForeignFormatArg::RawImuTag
+            | ForeignFormatArg::Px4Ulog
+            | ForeignFormatArg::Dataflash
     );
     match (imu, args.rotation.imu_rotation) {
         (false, Some(_)) => Err(anyhow!(
-            "--imu-rotation goes with an IMU input (kf-gins-imu, raw-imu-tag, px4-ulog); this input holds no IMU samples"
+            "--imu-rotation goes with an IMU input (kf-gins-imu, raw-imu-tag, px4-ulog, dataflash); this input holds no IMU samples"
         ))
         .usage(),
         _ => Ok(()),
@@ -91,6 +105,7 @@ fn convert(
         ForeignFormatArg::KfGinsImu => convert_kf_gins_imu(args, strictness),
         ForeignFormatArg::RawImuTag => convert_raw_imu(args, strictness),
         ForeignFormatArg::Px4Ulog => ulog::convert(args),
+        ForeignFormatArg::Dataflash => dataflash::convert(args),
         ForeignFormatArg::KfGinsNav => convert_kf_gins_nav(args, strictness),
         ForeignFormatArg::Ros2Mcap | ForeignFormatArg::Ros2Db3 | ForeignFormatArg::Ros1Bag => {
             ros::convert(format, args)
@@ -326,6 +341,9 @@ fn read_head(input: &Path) -> Result<Vec<u8>, Failure> {
 fn format_of_content(head: &[u8], tag: &Path) -> Result<ForeignFormatArg, &'static str> {
     if head.starts_with(&thermonav_io::ulog::MAGIC) {
         return Ok(ForeignFormatArg::Px4Ulog);
+    }
+    if thermonav_io::dataflash::looks_like_dataflash(head) {
+        return Ok(ForeignFormatArg::Dataflash);
     }
     if let Some(bag) = thermonav_io::ros::BagFormat::detect(head) {
         return Ok(ros::format_arg(bag));

@@ -930,3 +930,77 @@ fn ros_bags_of_an_unknown_chunk_compression_name_it() {
         "{stderr}"
     );
 }
+
+/// A DataFlash test log of the io crate (tests/data/dataflash, written by
+/// tools/oracles/dataflash.py).
+fn dataflash_log(name: &str) -> Vec<u8> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../thermonav-io/tests/data/dataflash");
+    std::fs::read(dir.join(name)).unwrap()
+}
+
+/// Offset of the FMT record that defines the IMU message.
+fn imu_fmt(log: &[u8]) -> usize {
+    (0..log.len() - 89)
+        .find(|&i| log[i..i + 3] == [0xA3, 0x95, 128] && log[i + 5..].starts_with(b"IMU\0"))
+        .unwrap()
+}
+
+#[test]
+fn dataflash_logs_truncated_or_out_of_order_are_refused_naming_the_byte() {
+    let log = dataflash_log("boot.bin");
+    let at = imu_fmt(&log);
+    let stderr = bag_fails("cut.bin", &log[..at + 30], Some("dataflash"));
+    assert!(
+        stderr.contains(&format!(
+            "at byte {at}: the file ends inside an FMT record (30 of its 89 bytes"
+        )),
+        "{stderr}"
+    );
+    // The IMU's FMT record turned into garbage: its records come before any definition.
+    let mut orphan = log.clone();
+    orphan[at..at + 89].copy_from_slice(&log[..89]);
+    orphan[at + 3] = 129;
+    orphan[at + 5..at + 9].copy_from_slice(b"XXX\0");
+    let stderr = bag_fails("orphan.bin", &orphan, None);
+    assert!(
+        stderr.contains("a record of message type 130, which no earlier FMT record defines (expected its FMT first)"),
+        "{stderr}"
+    );
+    let mut garbage = log.clone();
+    garbage[at + 89] = 0x00;
+    let stderr = bag_fails("garbage.bin", &garbage, None);
+    assert!(
+        stderr.contains(&format!(
+            "at byte {}: expected a record header 0xA3 0x95, found 0x00",
+            at + 89
+        )),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn dataflash_logs_with_an_impossible_or_huge_length_are_refused() {
+    let log = dataflash_log("boot.bin");
+    let at = imu_fmt(&log);
+    // The largest length a record can claim (one byte: 255) for a 54-byte format.
+    let mut huge = log.clone();
+    huge[at + 4] = 255;
+    let stderr = bag_fails("huge.bin", &huge, None);
+    assert!(
+        stderr.contains("FMT of IMU (type 130): expected a length of 54 bytes (3 header bytes and format \"QBffffffIIfBBHH\"), found 255"),
+        "{stderr}"
+    );
+    // A length shorter than its header.
+    let mut short = log.clone();
+    short[at + 4] = 2;
+    let stderr = bag_fails("short.bin", &short, None);
+    assert!(stderr.contains("expected a length of 54 bytes"), "{stderr}");
+    // FMT's own definition with a wrong length.
+    let mut own = log.clone();
+    own[4] = 200;
+    let stderr = bag_fails("own.bin", &own, Some("dataflash"));
+    assert!(
+        stderr.contains("at byte 0: FMT of FMT (type 128): expected a length of 89 bytes"),
+        "{stderr}"
+    );
+}

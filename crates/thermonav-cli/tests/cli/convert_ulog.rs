@@ -125,7 +125,7 @@ fn gnss_out_belongs_to_ulog_only() {
     assert_eq!(status, 2, "{stderr}");
     assert!(
         stderr.contains(
-            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3 or ros1-bag only"
+            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3, ros1-bag or dataflash only"
         ),
         "{stderr}"
     );

@@ -4,6 +4,7 @@ mod bad_input;
 mod bank_export;
 mod commands;
 mod convert;
+mod convert_dataflash;
 mod convert_ros;
 mod convert_ulog;
 mod denoise;

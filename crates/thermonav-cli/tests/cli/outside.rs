@@ -142,6 +142,91 @@ fn a_kf_gins_nav_scores_like_the_same_trajectory_as_csv() {
     );
 }
 
+// The RTKLIB variant: one trajectory written as an RTKLIB `.pos` (its latitude, longitude and
+// height text copied from our CSV, vu the negated vd, GPST calendar times to the nanosecond)
+// and as our CSV with the attitude a `.pos` stands for (roll = pitch = 0, yaw the course over
+// ground atan2(ve, vn), printed in degrees), scored by evaluate --solution, gives the same
+// per-outage errors: positions to the bit (the same decimal text), headings within TOLERANCE
+// (one radian-degree-radian round trip of the CSV's yaw).
+#[test]
+fn an_rtklib_pos_scores_like_the_same_trajectory_as_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let solution = dir.path().join("ours.csv");
+    integrate(&vessel, &bank, &solution);
+    let (pos, course) = (dir.path().join("rtk.pos"), dir.path().join("course.csv"));
+    write_pos_and_course(&solution, &pos, &course);
+    let (_, _, reference) = vessel_files(&vessel);
+    let json = score(
+        &reference,
+        &[&course, &pos],
+        OUTAGES,
+        &dir.path().join("ev"),
+    );
+    let (csv, rtk) = (model(&json, "course.csv"), model(&json, "rtk.pos"));
+    assert_eq!(rtk["kind"], "outside");
+    let per_outage = rtk["per_outage"].as_array().unwrap();
+    assert_eq!(per_outage.len(), 2);
+    assert!(per_outage[0]["epochs"].as_u64().unwrap() > 10);
+    assert!(per_outage[0]["rms_horizontal_m"].as_f64().unwrap() > 0.0);
+    assert_close(csv, rtk);
+}
+
+/// Days since 1970-01-01 as (year, month, day) (Hinnant's civil_from_days).
+fn civil_from_days(days: i64) -> (i64, i64, i64) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    (yoe + era * 400 + i64::from(month <= 2), month, day)
+}
+
+/// `t_s` text (seconds since 1970 with a fraction) as RTKLIB's `yyyy/mm/dd hh:mm:ss.fff…`.
+fn pos_time(t: &str) -> String {
+    let (whole, fraction) = t.split_once('.').unwrap_or((t, "0"));
+    let seconds: i64 = whole.parse().unwrap();
+    let (y, m, d) = civil_from_days(seconds.div_euclid(86_400));
+    let s = seconds.rem_euclid(86_400);
+    let (hh, mm, ss) = (s / 3600, s / 60 % 60, s % 60);
+    format!("{y:04}/{m:02}/{d:02} {hh:02}:{mm:02}:{ss:02}.{fraction}")
+}
+
+/// The trajectory CSV `from` as an RTKLIB `.pos` and as a CSV with yaw the course over ground.
+fn write_pos_and_course(from: &Path, pos: &Path, course: &Path) {
+    let text = std::fs::read_to_string(from).unwrap();
+    let mut lines = text.lines();
+    let mut csv = vec![lines.next().unwrap().to_string()];
+    let mut rtk = vec![
+        "% program   : written by the thermonav test from a trajectory CSV".to_string(),
+        "%  GPST                  latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)   sde(m)   sdu(m)  sdne(m)  sdeu(m)  sdun(m) age(s)  ratio    vn(m/s)    ve(m/s)    vu(m/s)".to_string(),
+    ];
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let (vn, ve): (f64, f64) = (f[4].parse().unwrap(), f[5].parse().unwrap());
+        let vu = match f[6].strip_prefix('-') {
+            Some(positive) => positive.to_string(),
+            None => format!("-{}", f[6]),
+        };
+        rtk.push(format!(
+            "{} {} {} {} 1 10 0.01 0.01 0.02 0 0 0 0.0 0.0 {} {} {vu}",
+            pos_time(f[0]),
+            f[1],
+            f[2],
+            f[3],
+            f[4],
+            f[5]
+        ));
+        let yaw = ve.atan2(vn).to_degrees();
+        csv.push(format!("{},0,0,{yaw}", f[..7].join(",")));
+    }
+    std::fs::write(pos, rtk.join("\n") + "\n").unwrap();
+    std::fs::write(course, csv.join("\n") + "\n").unwrap();
+}
+
 // Done when: a tournament with --solution pointing at one of our own integrate outputs (the
 // 25 °C bank model on the raw record, started from the reference, the same outages) scores
 // it with that candidate's per-outage errors (to the last bits of the CSV's degrees, see

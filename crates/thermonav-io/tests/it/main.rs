@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav-io file formats: readers, writers and atomic output.
 
 mod atomic;
+mod dataflash;
 mod fuzz_corpus;
 mod gnss;
 mod imu_errors;
@@ -8,6 +9,7 @@ mod imu_units;
 mod kf_gins;
 mod nmea;
 mod non_finite;
+mod outside_solution;
 mod parallel;
 mod raw_imu;
 mod ros;

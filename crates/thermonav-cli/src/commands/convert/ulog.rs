@@ -132,7 +132,7 @@ fn report_notes(record: &UlogRecord<'_>) {
 pub fn reject_gnss_out(args: &ConvertArgs) -> Result<(), Failure> {
     match &args.gnss_out {
         Some(_) => Err(anyhow!(
-            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3 or ros1-bag only"
+            "--gnss-out goes with --format px4-ulog, ros2-mcap, ros2-db3, ros1-bag or dataflash only"
         ))
         .usage(),
         None => Ok(()),
