@@ -231,15 +231,32 @@ fn print_ekf_ukf_gap_without_heading_aiding() {
         };
         let (ekf, ukf) = (run_with(FilterKind::Ekf), run_with(FilterKind::Ukf));
         let (mut gap, mut e_max, mut u_max) = (0.0f64, 0.0f64, 0.0f64);
+        let mut start = None;
         for (a, b) in ekf.epochs.iter().zip(&ukf.epochs) {
             if !a.in_outage {
                 continue;
+            }
+            if start.is_none() {
+                let (ea, eb) = (
+                    nav_error(&record, &a.estimate),
+                    nav_error(&record, &b.estimate),
+                );
+                start = Some((
+                    ea[8].to_degrees(),
+                    a.sd[8].to_degrees(),
+                    eb[8].to_degrees(),
+                    b.sd[8].to_degrees(),
+                ));
             }
             let d = a.estimate.nav.position.ned_from(&b.estimate.nav.position);
             gap = gap.max(d.x().hypot(d.y()));
             e_max = e_max.max(horizontal_error_m(&record, &a.estimate));
             u_max = u_max.max(horizontal_error_m(&record, &b.estimate));
         }
-        eprintln!("seed {seed}: gap {gap:.1} m, EKF max {e_max:.1} m, UKF max {u_max:.1} m");
+        let (a, sa, b, sb) = start.unwrap();
+        eprintln!(
+            "seed {seed}: gap {gap:.1} m, EKF max {e_max:.1} m, UKF max {u_max:.1} m; heading \
+             error at the outage's start: EKF {a:.1} deg (sd {sa:.1}), UKF {b:.1} deg (sd {sb:.1})"
+        );
     }
 }
