@@ -444,7 +444,8 @@ pub fn run_scheduled(
     if settings.smooth {
         check_smoothable(&increments[first..], gnss, settings)?;
     }
-    let mut run = Run::new(initial, p0, schedule, settings)?;
+    let carried = schedule.keeping_turn_on_bias(&p0, start);
+    let mut run = Run::new(initial, p0, carried.schedule(), settings)?;
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
     for (n, inc) in increments[first..].iter().enumerate() {
         let mut raw = *inc;

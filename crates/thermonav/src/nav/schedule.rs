@@ -16,6 +16,7 @@
 
 use super::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError};
 use crate::imu::ImuSeries;
+use crate::ins::error_model::SystemMatrix;
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use crate::stoch::thermal::ThermalCalibration;
@@ -300,6 +301,51 @@ impl<'a> ModelSchedule<'a> {
         match *self {
             Self::Fixed(model) => model,
             Self::ByTemperature { track, grid } => grid.model_at(track.at(time)),
+        }
+    }
+}
+
+/// The models a run's filter carries: a schedule's models with the turn-on biases its
+/// initial covariance states kept in their bias states ([`ModelSchedule::keeping_turn_on_bias`]).
+#[derive(Debug, Clone)]
+pub enum CarriedModels<'a> {
+    /// One model throughout.
+    Fixed(ImuStochasticModel),
+    /// The models by temperature along a track.
+    ByTemperature {
+        /// The IMU's temperature over time.
+        track: &'a TemperatureTrack,
+        /// The carried models by temperature.
+        grid: ModelGrid,
+    },
+}
+
+impl CarriedModels<'_> {
+    /// The schedule of these models.
+    pub fn schedule(&self) -> ModelSchedule<'_> {
+        match self {
+            Self::Fixed(model) => ModelSchedule::Fixed(model),
+            Self::ByTemperature { track, grid } => ModelSchedule::ByTemperature { track, grid },
+        }
+    }
+}
+
+impl<'a> ModelSchedule<'a> {
+    /// The models with the turn-on biases that `p0` implies at `start` (the part of each
+    /// initial bias variance above the Gauss-Markov σ² of the model at `start`:
+    /// [`ImuStochasticModel::turn_on_bias_in`]) added to every model's bias states, so that
+    /// the filter does not forget a bias it has not observed yet.
+    pub fn keeping_turn_on_bias(&self, p0: &SystemMatrix, start: Timestamp) -> CarriedModels<'a> {
+        let turn_on = self.model_at(start).turn_on_bias_in(p0);
+        match *self {
+            Self::Fixed(model) => CarriedModels::Fixed(model.keeping_turn_on_bias(&turn_on)),
+            Self::ByTemperature { track, grid } => {
+                let mut grid = grid.clone();
+                for model in &mut grid.models {
+                    *model = model.keeping_turn_on_bias(&turn_on);
+                }
+                CarriedModels::ByTemperature { track, grid }
+            }
         }
     }
 }

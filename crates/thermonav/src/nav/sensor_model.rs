@@ -301,6 +301,69 @@ impl ImuStochasticModel {
     }
 }
 
+/// Turn-on bias standard deviations, per axis: the part of a bias that is constant while the
+/// unit runs (unit to unit and power-on to power-on), on top of its Gauss-Markov wander.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct TurnOnBias {
+    /// Gyro x, y, z, rad/s.
+    pub gyro_rad_s: [f64; 3],
+    /// Accelerometer x, y, z, m/s².
+    pub accel_m_s2: [f64; 3],
+}
+
+impl GaussMarkovParameters {
+    /// The process a filter state carries for this Gauss-Markov wander plus a constant of sd
+    /// `constant_sd` (one state for both): steady-state variance σ² + c², and the correlation
+    /// time stretched to Tc (σ² + c²)/σ² so that the driving noise per unit time,
+    /// 2σ²/Tc for Δt ≪ Tc, stays the Gauss-Markov's. Left alone, the state's variance then stays
+    /// at σ² + c² (the truth's) instead of decaying to σ² within a few Tc, which would forget
+    /// the constant that has not been observed yet; over Δt ≪ Tc the increments are the
+    /// Gauss-Markov's. With σ = 0 it is a random constant (Tc infinite).
+    pub fn with_constant(&self, constant_sd: f64) -> GaussMarkovParameters {
+        let (s2, c2) = (self.sigma * self.sigma, constant_sd * constant_sd);
+        if c2 == 0.0 || !c2.is_finite() {
+            return *self;
+        }
+        let correlation_time_s = match s2 > 0.0 {
+            true => self.correlation_time_s * (s2 + c2) / s2,
+            false => f64::INFINITY,
+        };
+        GaussMarkovParameters {
+            correlation_time_s,
+            sigma: (s2 + c2).sqrt(),
+        }
+    }
+}
+
+impl ImuStochasticModel {
+    /// The turn-on bias sds an initial covariance `p0` implies for this model: the part of each
+    /// initial bias variance above the Gauss-Markov's stationary σ² (a stationary
+    /// Gauss-Markov process is never more uncertain than σ, so the excess is a constant the
+    /// filter must keep until it is observed; see [`GaussMarkovParameters::with_constant`]).
+    pub fn turn_on_bias_in(&self, p0: &SystemMatrix) -> TurnOnBias {
+        let excess = |state: usize, gm: &GaussMarkovParameters| {
+            (p0[(state, state)] - gm.sigma * gm.sigma).max(0.0).sqrt()
+        };
+        TurnOnBias {
+            gyro_rad_s: std::array::from_fn(|k| excess(block::GYRO_BIAS + k, &self.gyro[k].bias)),
+            accel_m_s2: std::array::from_fn(|k| excess(block::ACCEL_BIAS + k, &self.accel[k].bias)),
+        }
+    }
+
+    /// The model whose bias states also carry the constant turn-on biases `turn_on`
+    /// ([`GaussMarkovParameters::with_constant`], axis by axis).
+    pub fn keeping_turn_on_bias(&self, turn_on: &TurnOnBias) -> ImuStochasticModel {
+        let mut model = *self;
+        for (axis, sd) in model.gyro.iter_mut().zip(turn_on.gyro_rad_s) {
+            axis.bias = axis.bias.with_constant(sd);
+        }
+        for (axis, sd) in model.accel.iter_mut().zip(turn_on.accel_m_s2) {
+            axis.bias = axis.bias.with_constant(sd);
+        }
+        model
+    }
+}
+
 /// The first parameter of `gm` out of range: ("correlation time", Tc) unless finite and
 /// positive, ("sigma", σ) unless finite and non-negative.
 fn invalid_part(gm: GaussMarkovParameters) -> Option<(&'static str, f64)> {
@@ -451,6 +514,66 @@ mod discretisation_tests {
         let propagated = blocks.propagate(&p, &model.process_noise(&state.attitude, &blocks, dt));
         let dense = propagate_covariance(&p, &phi, &q);
         assert_covariances_agree(&propagated, &dense);
+    }
+}
+
+#[cfg(test)]
+mod turn_on_tests {
+    use super::*;
+
+    // Closed forms of the carried process: its stationary variance is σ² + c² (φ²(σ² + c²) + q
+    // = σ² + c² for every Δt), and for Δt ≪ Tc its driving noise per second is the
+    // Gauss-Markov's 2σ²/Tc (the relative difference is O(Δt/Tc), 1e-4 here at most).
+    #[test]
+    fn a_constant_keeps_the_variance_and_the_short_term_driving_noise() {
+        let gm = GaussMarkovParameters {
+            correlation_time_s: 215.0,
+            sigma: 1.6e-4,
+        };
+        let c = 1f64.to_radians();
+        let carried = gm.with_constant(c);
+        let total = gm.sigma.powi(2) + c * c;
+        assert!((carried.sigma.powi(2) / total - 1.0).abs() < 1e-12);
+        for dt in [1e-3, 0.1, 1.0, 600.0] {
+            let phi = carried.transition(dt);
+            let after = phi * phi * total + carried.discrete_variance(dt);
+            assert!((after / total - 1.0).abs() < 1e-12, "dt {dt}");
+        }
+        let dt = 0.01;
+        let rate = |g: &GaussMarkovParameters| g.discrete_variance(dt) / dt;
+        assert!((rate(&carried) / rate(&gm) - 1.0).abs() < 1e-4);
+        assert_eq!(gm.with_constant(0.0), gm);
+    }
+
+    // With no Gauss-Markov part the carried state is a random constant: Φ = 1, no noise.
+    #[test]
+    fn a_constant_alone_is_a_random_constant() {
+        let gm = GaussMarkovParameters {
+            correlation_time_s: 100.0,
+            sigma: 0.0,
+        };
+        let carried = gm.with_constant(0.02);
+        assert_eq!(carried.transition(10.0), 1.0);
+        assert_eq!(carried.discrete_variance(10.0), 0.0);
+        assert!((carried.sigma - 0.02).abs() < 1e-15);
+    }
+
+    // The turn-on part is the initial variance above σ²; none where P0 is at or below it.
+    #[test]
+    fn the_turn_on_part_is_the_initial_variance_above_the_gauss_markov() {
+        let model = crate::sensor::adis16364_like()
+            .stochastic_model(17.0, &ScaleFactorPrior::default())
+            .unwrap();
+        let mut p0 = SystemMatrix::identity() * 1e-12;
+        let sigma = model.gyro[2].bias.sigma;
+        p0[(block::GYRO_BIAS + 2, block::GYRO_BIAS + 2)] = sigma * sigma + 0.01f64.powi(2);
+        let turn_on = model.turn_on_bias_in(&p0);
+        assert!((turn_on.gyro_rad_s[2] / 0.01 - 1.0).abs() < 1e-9);
+        assert_eq!(turn_on.gyro_rad_s[0], 0.0);
+        assert_eq!(turn_on.accel_m_s2, [0.0; 3]);
+        let carried = model.keeping_turn_on_bias(&turn_on);
+        assert_eq!(carried.gyro[0], model.gyro[0]);
+        assert!((carried.gyro[2].bias.sigma.powi(2) / p0[(11, 11)] - 1.0).abs() < 1e-12);
     }
 }
 

@@ -12,6 +12,7 @@ mod gmwm;
 mod ideal_imu;
 mod ins;
 mod navigation;
+mod position_only;
 mod round_trip;
 mod schedule;
 mod signal;

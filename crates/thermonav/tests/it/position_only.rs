@@ -1,0 +1,262 @@
+//! Issue 18: consistency without heading aiding. The vessel's GNSS gives positions only, so the
+//! heading (and the z-gyro bias) are observable only through horizontal accelerations: the
+//! turns and speed changes of `harbour_survey`. The reported sd must still cover the error.
+
+use super::navigation::{
+    initial, nav_error, navigate_from, nees, profile_uncertainty, settings, true_model, vessel,
+};
+use statrs::distribution::{ChiSquared, ContinuousCDF};
+use thermonav::imu::Channel;
+use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
+use thermonav::nav::engine::{increments_from_series, run};
+use thermonav::nav::outage::Outages;
+use thermonav::nav::solution::Solution;
+use thermonav::sensor::adis16364_like;
+use thermonav::sim::vessel::VesselRecord;
+
+const POSITION_ONLY: Aiding = Aiding {
+    position: true,
+    velocity: false,
+    heading: false,
+};
+
+/// What 12 position-only runs give at the sampled epochs (every 10 s after the first 30 s).
+struct Consistency {
+    /// Average NEES of position, velocity and attitude over the runs, per epoch.
+    anees: Vec<f64>,
+    /// Its two-sided 95 % band for that many runs.
+    band: (f64, f64),
+    /// Heading error over its sd, every run and epoch.
+    heading_z: Vec<f64>,
+    /// Largest heading error, deg, and the sd the filter gave for it.
+    worst_heading_deg: (f64, f64),
+}
+
+fn position_only(filter: FilterKind) -> EngineSettings {
+    EngineSettings {
+        aiding: POSITION_ONLY,
+        ..settings(filter, Outages::none())
+    }
+}
+
+fn navigate(record: &VesselRecord, seed: u64, settings: &EngineSettings) -> Solution {
+    navigate_from(record, seed, settings, profile_uncertainty())
+}
+
+fn consistency(filter: FilterKind, runs: u64, duration_s: f64) -> Consistency {
+    let mut sums: Vec<f64> = Vec::new();
+    let mut heading_z = Vec::new();
+    let mut worst_heading_deg = (0.0f64, 0.0);
+    for seed in 0..runs {
+        let record = vessel(100 + seed, duration_s);
+        let solution = navigate(&record, seed, &position_only(filter));
+        let sampled: Vec<_> = solution
+            .epochs
+            .iter()
+            .filter(|e| {
+                let t = e.estimate.nav.time.as_seconds();
+                t > 30.0 && (t % 10.0) < 1e-6
+            })
+            .collect();
+        if sums.is_empty() {
+            sums = vec![0.0; sampled.len()];
+        }
+        for (sum, epoch) in sums.iter_mut().zip(&sampled) {
+            let e = nav_error(&record, &epoch.estimate);
+            let variance: [f64; 9] = std::array::from_fn(|i| epoch.sd[i] * epoch.sd[i]);
+            *sum += nees(&e, &variance);
+            heading_z.push(e[8] / epoch.sd[8]);
+            if e[8].abs().to_degrees() > worst_heading_deg.0 {
+                worst_heading_deg = (e[8].abs().to_degrees(), epoch.sd[8].to_degrees());
+            }
+        }
+    }
+    let n = runs as f64;
+    let chi = ChiSquared::new(9.0 * n).unwrap();
+    Consistency {
+        anees: sums.iter().map(|s| s / n).collect(),
+        band: (chi.inverse_cdf(0.025) / n, chi.inverse_cdf(0.975) / n),
+        heading_z,
+        worst_heading_deg,
+    }
+}
+
+// Issue 18's target: on 12 simulated position-only runs of 900 s (the transit's speed changes
+// and slow turn, two survey lines and two 6°/s U-turns), the average NEES is inside its 95 %
+// band at >= 80 % of the sampled epochs (95 % expected of a consistent filter; 80 % because the
+// diagonal NEES ignores correlations and neighbouring epochs are correlated). The start is the
+// truth perturbed by half an sd, P0 the profile's (the distribution the units' biases are
+// drawn from), so any inconsistency is the filter's.
+//
+// Not met yet (hence ignored; run it with --ignored --nocapture for the numbers). Measured with
+// the turn-on bias kept (an_unobserved_turn_on_bias_is_not_forgotten): EKF 0 % of epochs inside
+// [6.76, 11.55], mean ANEES 372, heading error / sd RMS 18.6; UKF 0 %, 294, 16.4. The cause
+// left: the z-gyro turn-on bias (sd 1 °/s) turns the heading by tens of degrees in the first
+// 30-60 s, before the 0.1 m/s² speed-up (confounded with the y accelerometer's 2.7 mg turn-on
+// bias) can reveal it, and through the 200 s straight transit nothing observes the heading at
+// all; 5 of 12 runs pass 90° of heading error, where neither the psi-angle linearisation nor
+// 2n + 1 sigma points of a Gaussian describe the error (a Gaussian-sum or heading-reset scheme
+// would be needed). Smaller sigma-point spreads (α = 0.2, 0.5) gave 0 % too.
+#[test]
+#[ignore = "issue 18 target not met: heading errors pass 90° in 5 of 12 runs (see the comment)"]
+fn nees_without_heading_aiding_is_consistent() {
+    let mut fractions = Vec::new();
+    for filter in [FilterKind::Ekf, FilterKind::Ukf] {
+        let c = consistency(filter, 12, 900.0);
+        let (lo, hi) = c.band;
+        let inside =
+            c.anees.iter().filter(|v| **v >= lo && **v <= hi).count() as f64 / c.anees.len() as f64;
+        let mean = c.anees.iter().sum::<f64>() / c.anees.len() as f64;
+        let rms_z =
+            (c.heading_z.iter().map(|z| z * z).sum::<f64>() / c.heading_z.len() as f64).sqrt();
+        let beyond_3 = c.heading_z.iter().filter(|z| z.abs() > 3.0).count();
+        eprintln!(
+            "{filter:?}: inside {inside:.3} of [{lo:.2}, {hi:.2}], mean ANEES {mean:.2}, heading \
+             error/sd RMS {rms_z:.2}, {beyond_3} of {} beyond 3 sd, worst {:.2} deg at sd {:.2} deg",
+            c.heading_z.len(),
+            c.worst_heading_deg.0,
+            c.worst_heading_deg.1
+        );
+        eprintln!(
+            "{filter:?} ANEES: {:?}",
+            c.anees
+                .iter()
+                .map(|v| (v * 10.0).round() / 10.0)
+                .collect::<Vec<_>>()
+        );
+        fractions.push((filter, inside));
+    }
+    for (filter, inside) in fractions {
+        assert!(inside >= 0.8, "{filter:?}: {inside} inside");
+    }
+}
+
+// Diagnostic (run by hand with --ignored --nocapture): per run, the true z-gyro constant bias
+// and the heading error, its sd and the z-gyro bias estimate every 30 s.
+#[test]
+#[ignore]
+fn print_position_only_runs() {
+    use thermonav::sim::unit::SimulatedUnit;
+    let profile = adis16364_like();
+    let filter = match std::env::var("FILTER").as_deref() {
+        Ok("ukf") => FilterKind::Ukf,
+        _ => FilterKind::Ekf,
+    };
+    let runs: u64 = std::env::var("RUNS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12);
+    for seed in 0..runs {
+        let record = vessel(100 + seed, 900.0);
+        let unit = SimulatedUnit { serial: 100 + seed };
+        let p = &profile.channels[&Channel::Gz];
+        let d = 17.0 - profile.reference_temperature_c;
+        let bz = unit.fixed_bias(&profile, Channel::Gz)
+            + unit.power_on_offset(&profile, Channel::Gz, 100 + seed, "vessel")
+            + p.bias_temperature_coefficient_per_c * d
+            + p.bias_temperature_quadratic_per_c2 * d * d;
+        let solution = navigate(&record, seed, &position_only(filter));
+        let mut line = format!("seed {seed} true bz {:.3} deg/s:", bz.to_degrees());
+        for e in &solution.epochs {
+            let t = e.estimate.nav.time.as_seconds();
+            if (t % 30.0) > 1e-6 && t > 1e-6 {
+                continue;
+            }
+            let err = nav_error(&record, &e.estimate);
+            line += &format!(
+                " [{t:.0} psi {:.1}/{:.1} bz {:.3}/{:.3}]",
+                err[8].to_degrees(),
+                e.sd[8].to_degrees(),
+                e.estimate.sensors.gyro_bias_rad_s[2].to_degrees(),
+                e.sd[11].to_degrees()
+            );
+        }
+        eprintln!("{line}");
+    }
+}
+
+// Closed form: with no fix at all, nothing observes the sensor biases, so each bias variance
+// must stay at its initial value: the turn-on bias is a constant the filter has not seen,
+// whatever the Gauss-Markov wander on top of it (its stationary variance is below the initial
+// one). The model used to let it decay to the Gauss-Markov σ² within a few Tc (1 °/s down to
+// 0.010 °/s in 10 minutes; a quarter of the sd lost in the 60 s here), after which the filter
+// believed a bias it had never estimated. 1e-9 relative: rounding over 600 steps. (60 s: a free
+// inertial solution with 1 °/s biases tumbles within minutes.)
+#[test]
+fn an_unobserved_turn_on_bias_is_not_forgotten() {
+    let record = vessel(7, 60.0);
+    let (start, uncertainty) = initial(&record, 7);
+    let mut increments = increments_from_series(&record.imu);
+    increments.retain(|i| i.time.as_seconds() <= 60.0);
+    for filter in [FilterKind::Ekf, FilterKind::Ukf] {
+        let solution = run(
+            &increments,
+            &[],
+            start,
+            uncertainty.covariance(),
+            &true_model(),
+            &settings(filter, Outages::none()),
+            &mut |_| {},
+        )
+        .unwrap();
+        let (first, last) = (solution.epochs[0], *solution.epochs.last().unwrap());
+        assert!(last.estimate.nav.time.as_seconds() > 59.9);
+        for state in 9..15 {
+            assert!(
+                (last.sd[state] / first.sd[state] - 1.0).abs() < 1e-9,
+                "{filter:?} state {state}: sd {} at the start, {} at the end",
+                first.sd[state],
+                last.sd[state]
+            );
+        }
+    }
+}
+
+// Diagnostic (run by hand with --ignored --nocapture): EKF against UKF without heading aiding
+// through one 60 s outage of the survey, per seed: the largest horizontal gap between them and
+// each filter's largest horizontal error.
+#[test]
+#[ignore]
+fn print_ekf_ukf_gap_without_heading_aiding() {
+    use super::navigation::horizontal_error_m;
+    let outages = Outages::from_start_duration(&[(640.0, 60.0)]).unwrap();
+    for seed in 0..6 {
+        let record = vessel(200 + seed, 720.0);
+        let run_with = |filter| {
+            let s = EngineSettings {
+                aiding: POSITION_ONLY,
+                ..settings(filter, outages.clone())
+            };
+            navigate(&record, seed, &s)
+        };
+        let (ekf, ukf) = (run_with(FilterKind::Ekf), run_with(FilterKind::Ukf));
+        let (mut gap, mut e_max, mut u_max) = (0.0f64, 0.0f64, 0.0f64);
+        let mut start = None;
+        for (a, b) in ekf.epochs.iter().zip(&ukf.epochs) {
+            if !a.in_outage {
+                continue;
+            }
+            if start.is_none() {
+                let (ea, eb) = (
+                    nav_error(&record, &a.estimate),
+                    nav_error(&record, &b.estimate),
+                );
+                start = Some((
+                    ea[8].to_degrees(),
+                    a.sd[8].to_degrees(),
+                    eb[8].to_degrees(),
+                    b.sd[8].to_degrees(),
+                ));
+            }
+            let d = a.estimate.nav.position.ned_from(&b.estimate.nav.position);
+            gap = gap.max(d.x().hypot(d.y()));
+            e_max = e_max.max(horizontal_error_m(&record, &a.estimate));
+            u_max = u_max.max(horizontal_error_m(&record, &b.estimate));
+        }
+        let (a, sa, b, sb) = start.unwrap();
+        eprintln!(
+            "seed {seed}: gap {gap:.1} m, EKF max {e_max:.1} m, UKF max {u_max:.1} m; heading \
+             error at the outage's start: EKF {a:.1} deg (sd {sa:.1}), UKF {b:.1} deg (sd {sb:.1})"
+        );
+    }
+}
