@@ -60,7 +60,11 @@ fn integrate_in_memory(
     }
     let outcome = run_with_progress(prepared).map_err(|e| run_failure(e, settings))?;
     write_outputs(&settings.outputs, &outcome.solution)?;
-    Ok(summarize(settings, RunReport::of(&outcome)))
+    Ok(summarize(
+        settings,
+        ImuReading::Whole,
+        RunReport::of(&outcome),
+    ))
 }
 
 /// A refused run, naming the file (or the option) it is about.
@@ -178,6 +182,9 @@ pub struct Summary {
     gnss: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
+    /// How the IMU record was read: `streamed` (bounded memory, the files written as the
+    /// filter went) or `whole` (a bank's thermal compensation, or `--in-memory`).
+    pub imu_reading: ImuReading,
     /// The run's report.
     #[serde(flatten)]
     pub run: RunReport,
@@ -185,7 +192,21 @@ pub struct Summary {
     pub files: SolutionFiles,
 }
 
-pub(crate) fn summarize(settings: &IntegrateSettings, run: RunReport) -> Summary {
+/// How `integrate` read the IMU record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImuReading {
+    /// As a stream, twice, with the outputs written as the filter went.
+    Streamed,
+    /// Whole, with the solution kept until written.
+    Whole,
+}
+
+pub(crate) fn summarize(
+    settings: &IntegrateSettings,
+    imu_reading: ImuReading,
+    run: RunReport,
+) -> Summary {
     let (bank, profile) = match &settings.noise {
         NoiseSource::Bank(p) => (Some(p.clone()), None),
         NoiseSource::Profile(p) => (None, Some(p.clone())),
@@ -196,6 +217,7 @@ pub(crate) fn summarize(settings: &IntegrateSettings, run: RunReport) -> Summary
         gnss: settings.gnss.clone(),
         bank,
         profile,
+        imu_reading,
         run,
         files: settings.outputs.clone(),
     }

@@ -5,7 +5,7 @@
 //! [`thermonav::nav::stream`]; [`crate::integration`] chooses it when the run allows.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::{LoadedNoise, Summary, run_failure, summarize, write_epochs};
+use crate::integration::{ImuReading, LoadedNoise, Summary, run_failure, summarize, write_epochs};
 use crate::settings::navigation::IntegrateSettings;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
@@ -90,7 +90,7 @@ pub fn integrate(
         write_epochs(trajectory, states, &outcome.outcome.solution.smoothed)?;
     }
     writer.finish().data()?;
-    Ok(summarize(settings, report))
+    Ok(summarize(settings, ImuReading::Streamed, report))
 }
 
 fn run_with_progress(

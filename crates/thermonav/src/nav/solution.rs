@@ -66,7 +66,7 @@ pub struct InnovationStatistics {
 }
 
 /// Everything a run produces.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Solution {
     /// Output epochs.
     pub epochs: Vec<SolutionEpoch>,

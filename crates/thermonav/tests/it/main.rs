@@ -15,6 +15,7 @@ mod navigation;
 mod round_trip;
 mod schedule;
 mod signal;
+mod streamed_navigation;
 mod streaming;
 mod thermal;
 mod thermal_recovery;
