@@ -442,7 +442,7 @@ mod tests {
             let bits = f64::from_bits(rng.random::<u64>());
             let decade = rng.random_range(-12.0..20.0);
             let scaled = rng.random_range(-1.0..1.0) * 10f64.powf(decade);
-            let integral = (rng.random_range(-1e6..1e6) as f64).round();
+            let integral = rng.random_range(-1e6_f64..1e6).round();
             for v in [bits, scaled, integral]
                 .into_iter()
                 .filter(|v| v.is_finite())

@@ -55,15 +55,14 @@ fn settings(smooth: bool) -> EngineSettings {
     }
 }
 
+type Streamed = Result<(Solution, SolutionSummary), StreamError<String>>;
+
 /// The whole-record run and the streamed one (into a kept Solution and a summary).
 fn both(
     record: &VesselRecord,
     increments: &[Increment],
     settings: &EngineSettings,
-) -> (
-    Result<Solution, NavError>,
-    Result<(Solution, SolutionSummary), StreamError<String>>,
-) {
+) -> (Result<Solution, NavError>, Streamed) {
     let model = model();
     let initial = uncorrected(record.reference.states[0]);
     let p0 = InitialUncertainty::default().covariance();
