@@ -357,6 +357,11 @@ pub struct IntegrateArgs {
     /// states beside the solution, as STEM.smoothed.csv and STEM.smoothed.states.csv.
     #[arg(long)]
     pub smooth: bool,
+    /// Read the whole IMU record and keep the whole solution in memory before writing
+    /// (the path `integrate` takes when a bank's thermal compensation applies); for tests
+    /// and memory comparisons.
+    #[arg(long, hide = true)]
+    pub in_memory: bool,
     /// Do not subtract the bank's thermal bias calibration bias(T) from the IMU samples.
     #[arg(long)]
     pub no_compensation: bool,

@@ -17,6 +17,7 @@ use thermonav::nav::run::{
     operating_temperature_c, prepare,
 };
 use thermonav::nav::solution::{Solution, SolutionEpoch};
+use thermonav::nav::stream::is_streamable;
 use thermonav::sensor::SensorProfile;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
@@ -28,10 +29,25 @@ use thermonav_io::{
 
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
+    let noise = load_noise(&settings.noise)?;
+    let survey = match settings.in_memory {
+        true => None,
+        false => Some(crate::integration_stream::survey(settings)?),
+    };
+    match survey.filter(|s| is_streamable(noise.model(), &settings.run, s)) {
+        Some(survey) => crate::integration_stream::integrate(settings, &noise, &survey),
+        None => integrate_in_memory(settings, &noise),
+    }
+}
+
+/// [`integrate`] with the record read whole and the solution kept until it is written.
+fn integrate_in_memory(
+    settings: &IntegrateSettings,
+    noise: &LoadedNoise,
+) -> Result<Summary, Failure> {
     let series =
         read_imu_file_with(&settings.imu, Strictness::Strict, &settings.imu_options).data()?;
     let gnss = read_gnss_file(&settings.gnss, Strictness::Strict).data()?;
-    let noise = load_noise(&settings.noise)?;
     let reference = match &settings.initial_from {
         Some(path) => Some(read_trajectory_file(path, Strictness::Strict).data()?),
         None => None,
@@ -44,11 +60,15 @@ pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     }
     let outcome = run_with_progress(prepared).map_err(|e| run_failure(e, settings))?;
     write_outputs(&settings.outputs, &outcome.solution)?;
-    Ok(summarize(settings, &outcome))
+    Ok(summarize(
+        settings,
+        ImuReading::Whole,
+        RunReport::of(&outcome),
+    ))
 }
 
 /// A refused run, naming the file (or the option) it is about.
-fn run_failure(error: RunError, s: &IntegrateSettings) -> Failure {
+pub(crate) fn run_failure(error: RunError, s: &IntegrateSettings) -> Failure {
     let named = match error.input() {
         _ if error == RunError::NoTemperature => return no_temperature(&s.imu),
         RunInput::Settings => return Failure::Usage(anyhow!("--outages: {error}")),
@@ -139,7 +159,11 @@ fn write_outputs(files: &SolutionFiles, solution: &Solution) -> Result<(), Failu
 }
 
 /// A solution's trajectory CSV and its state file.
-fn write_epochs(trajectory: &Path, states: &Path, epochs: &[SolutionEpoch]) -> Result<(), Failure> {
+pub(crate) fn write_epochs(
+    trajectory: &Path,
+    states: &Path,
+    epochs: &[SolutionEpoch],
+) -> Result<(), Failure> {
     let points: Vec<TrajectoryPoint> = epochs
         .iter()
         .map(|e| TrajectoryPoint::from_nav_state(&e.estimate.nav))
@@ -158,6 +182,9 @@ pub struct Summary {
     gnss: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
+    /// How the IMU record was read: `streamed` (bounded memory, the files written as the
+    /// filter went) or `whole` (a bank's thermal compensation, or `--in-memory`).
+    pub imu_reading: ImuReading,
     /// The run's report.
     #[serde(flatten)]
     pub run: RunReport,
@@ -165,7 +192,21 @@ pub struct Summary {
     pub files: SolutionFiles,
 }
 
-fn summarize(settings: &IntegrateSettings, outcome: &RunOutcome) -> Summary {
+/// How `integrate` read the IMU record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImuReading {
+    /// As a stream, twice, with the outputs written as the filter went.
+    Streamed,
+    /// Whole, with the solution kept until written.
+    Whole,
+}
+
+pub(crate) fn summarize(
+    settings: &IntegrateSettings,
+    imu_reading: ImuReading,
+    run: RunReport,
+) -> Summary {
     let (bank, profile) = match &settings.noise {
         NoiseSource::Bank(p) => (Some(p.clone()), None),
         NoiseSource::Profile(p) => (None, Some(p.clone())),
@@ -176,7 +217,8 @@ fn summarize(settings: &IntegrateSettings, outcome: &RunOutcome) -> Summary {
         gnss: settings.gnss.clone(),
         bank,
         profile,
-        run: RunReport::of(outcome),
+        imu_reading,
+        run,
         files: settings.outputs.clone(),
     }
 }

@@ -14,6 +14,7 @@ mod html_report;
 mod html_temperature;
 mod inputs;
 mod integration;
+mod integration_stream;
 mod noise_units;
 mod production_lot;
 mod progress;

@@ -10,14 +10,18 @@
 //! sd_bgx_deg_h,…,sd_saz_ppm,in_outage
 //! ```
 
+use crate::atomic::AtomicFile;
 use crate::atomic::write_atomically;
 use crate::error::WriteError;
 use crate::finite::write_finite;
 use crate::text::write_time;
+use crate::trajectory::{write_trajectory_header, write_trajectory_point};
 use std::io::Write;
 use std::path::Path;
 use thermonav::ins::error_model::STATES;
-use thermonav::nav::solution::SolutionEpoch;
+use thermonav::nav::measurement::MeasurementKind;
+use thermonav::nav::solution::{InnovationRecord, SolutionEpoch, SolutionSink};
+use thermonav::trajectory::TrajectoryPoint;
 use thermonav::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
 
 /// Header names of the 21 standard deviations, in state order.
@@ -106,20 +110,32 @@ pub fn write_solution_states(
             what: "solution epochs",
         });
     }
+    write_states_header(&mut out)?;
+    for epoch in epochs {
+        write_states_row(&mut out, epoch)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// The state file's header line.
+fn write_states_header(out: &mut impl Write) -> Result<(), WriteError> {
     let header: Vec<&str> = std::iter::once("t_s")
         .chain(state_column_names())
         .chain(std::iter::once("in_outage"))
         .collect();
     writeln!(out, "{}", header.join(","))?;
-    for epoch in epochs {
-        write_time(&mut out, epoch.estimate.nav.time)?;
-        for value in state_values(epoch) {
-            out.write_all(b",")?;
-            write_finite(&mut out, value)?;
-        }
-        writeln!(out, ",{}", u8::from(epoch.in_outage))?;
+    Ok(())
+}
+
+/// One epoch's line of the state file.
+fn write_states_row(out: &mut impl Write, epoch: &SolutionEpoch) -> Result<(), WriteError> {
+    write_time(out, epoch.estimate.nav.time)?;
+    for value in state_values(epoch) {
+        out.write_all(b",")?;
+        write_finite(out, value)?;
     }
-    out.flush()?;
+    writeln!(out, ",{}", u8::from(epoch.in_outage))?;
     Ok(())
 }
 
@@ -144,34 +160,45 @@ pub fn write_solution_states_file(
 /// [`WriteError::Io`].
 pub fn write_innovations(
     mut out: impl Write,
-    records: &[thermonav::nav::solution::InnovationRecord],
+    records: &[InnovationRecord],
 ) -> Result<(), WriteError> {
-    use thermonav::nav::measurement::MeasurementKind;
+    write_innovations_header(&mut out)?;
+    for r in records {
+        write_innovation_row(&mut out, r)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// The innovation file's header line.
+fn write_innovations_header(out: &mut impl Write) -> Result<(), WriteError> {
     writeln!(
         out,
         "t_s,kind,unit,innovation_1,innovation_2,innovation_3,sd_1,sd_2,sd_3,nis,gate_scale,accepted,forced"
     )?;
-    for r in records {
-        let (unit, factor) = match r.kind {
-            MeasurementKind::Position => ("m", 1.0),
-            MeasurementKind::Velocity => ("m/s", 1.0),
-            MeasurementKind::Heading => ("deg", 1f64.to_degrees()),
-        };
-        write_time(&mut out, r.time)?;
-        write!(out, ",{},{unit}", r.kind.name())?;
-        for value in r
-            .innovation
-            .iter()
-            .chain(&r.sd)
-            .map(|v| v * factor)
-            .chain([r.nis, r.gate_scale])
-        {
-            out.write_all(b",")?;
-            write_finite(&mut out, value)?;
-        }
-        writeln!(out, ",{},{}", u8::from(r.accepted), u8::from(r.forced))?;
+    Ok(())
+}
+
+/// One update's line of the innovation file.
+fn write_innovation_row(out: &mut impl Write, r: &InnovationRecord) -> Result<(), WriteError> {
+    let (unit, factor) = match r.kind {
+        MeasurementKind::Position => ("m", 1.0),
+        MeasurementKind::Velocity => ("m/s", 1.0),
+        MeasurementKind::Heading => ("deg", 1f64.to_degrees()),
+    };
+    write_time(out, r.time)?;
+    write!(out, ",{},{unit}", r.kind.name())?;
+    for value in r
+        .innovation
+        .iter()
+        .chain(&r.sd)
+        .map(|v| v * factor)
+        .chain([r.nis, r.gate_scale])
+    {
+        out.write_all(b",")?;
+        write_finite(out, value)?;
     }
-    out.flush()?;
+    writeln!(out, ",{},{}", u8::from(r.accepted), u8::from(r.forced))?;
     Ok(())
 }
 
@@ -184,4 +211,113 @@ pub fn write_innovations_file(
     records: &[thermonav::nav::solution::InnovationRecord],
 ) -> Result<(), WriteError> {
     write_atomically(path, |file| write_innovations(file, records))
+}
+
+/// The three files of a navigation run (trajectory, state file, innovations) written as the
+/// run goes: a [`SolutionSink`] whose every record becomes a line at once, into temporary
+/// files that [`SolutionFilesWriter::finish`] renames into place. The lines are those of
+/// [`crate::write_trajectory`], [`write_solution_states`] and [`write_innovations`], byte for
+/// byte. A failed write is kept (later records are dropped) and returned by `finish`; a writer
+/// dropped unfinished (the run failed) deletes its temporary files and leaves no output.
+pub struct SolutionFilesWriter {
+    trajectory: AtomicFile,
+    states: AtomicFile,
+    innovations: AtomicFile,
+    epochs: usize,
+    error: Option<WriteError>,
+}
+
+impl SolutionFilesWriter {
+    /// Starts the three files (their headers written).
+    ///
+    /// # Errors
+    /// Those of [`AtomicFile::create`], and [`WriteError::InFile`] for a header that fails.
+    pub fn create(
+        trajectory: impl AsRef<Path>,
+        states: impl AsRef<Path>,
+        innovations: impl AsRef<Path>,
+    ) -> Result<Self, WriteError> {
+        let mut writer = Self {
+            trajectory: AtomicFile::create(trajectory)?,
+            states: AtomicFile::create(states)?,
+            innovations: AtomicFile::create(innovations)?,
+            epochs: 0,
+            error: None,
+        };
+        let trajectory = write_trajectory_header(&mut writer.trajectory);
+        writer.keep(trajectory, Part::Trajectory);
+        let states = write_states_header(&mut writer.states);
+        writer.keep(states, Part::States);
+        let innovations = write_innovations_header(&mut writer.innovations);
+        writer.keep(innovations, Part::Innovations);
+        match writer.error.take() {
+            Some(error) => Err(error),
+            None => Ok(writer),
+        }
+    }
+
+    /// Renames the three files into place.
+    ///
+    /// # Errors
+    /// The first failed write, wrapped with its file's path; [`WriteError::Empty`] for a run
+    /// without epochs (as the whole-solution writers); those of [`AtomicFile::commit`].
+    pub fn finish(mut self) -> Result<(), WriteError> {
+        if self.epochs == 0 {
+            let empty = Err(WriteError::Empty { what: "points" });
+            self.keep(empty, Part::Trajectory);
+        }
+        if let Some(error) = self.error {
+            return Err(error);
+        }
+        self.trajectory.commit()?;
+        self.states.commit()?;
+        self.innovations.commit()
+    }
+
+    /// Keeps the first error, wrapped with the path of its file.
+    fn keep(&mut self, result: Result<(), WriteError>, part: Part) {
+        let Err(error) = result else {
+            return;
+        };
+        let file = match part {
+            Part::Trajectory => &self.trajectory,
+            Part::States => &self.states,
+            Part::Innovations => &self.innovations,
+        };
+        let wrapped = WriteError::InFile {
+            path: file.target().display().to_string(),
+            source: Box::new(error),
+        };
+        self.error.get_or_insert(wrapped);
+    }
+}
+
+/// One of the three files.
+#[derive(Clone, Copy)]
+enum Part {
+    Trajectory,
+    States,
+    Innovations,
+}
+
+impl SolutionSink for SolutionFilesWriter {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        if self.error.is_some() {
+            return;
+        }
+        self.epochs += 1;
+        let point = TrajectoryPoint::from_nav_state(&epoch.estimate.nav);
+        let trajectory = write_trajectory_point(&mut self.trajectory, &point);
+        self.keep(trajectory, Part::Trajectory);
+        let states = write_states_row(&mut self.states, epoch);
+        self.keep(states, Part::States);
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        if self.error.is_some() {
+            return;
+        }
+        let innovations = write_innovation_row(&mut self.innovations, record);
+        self.keep(innovations, Part::Innovations);
+    }
 }

@@ -145,16 +145,25 @@ pub fn write_trajectory(mut out: impl Write, points: &[TrajectoryPoint]) -> Resu
     if points.is_empty() {
         return Err(WriteError::Empty { what: "points" });
     }
+    write_trajectory_header(&mut out)?;
+    for point in points {
+        write_trajectory_point(&mut out, point)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// The header line of [`write_trajectory`].
+///
+/// # Errors
+/// [`WriteError::Io`].
+pub fn write_trajectory_header(out: &mut impl Write) -> Result<(), WriteError> {
     out.write_all(TIME_COLUMN.as_bytes())?;
     for column in &COLUMNS {
         out.write_all(b",")?;
         out.write_all(column.name.as_bytes())?;
     }
     out.write_all(b"\n")?;
-    for point in points {
-        write_point(&mut out, point)?;
-    }
-    out.flush()?;
     Ok(())
 }
 
@@ -169,7 +178,11 @@ pub fn write_trajectory_file(
     write_atomically(path, |file| write_trajectory(file, points))
 }
 
-fn write_point(out: &mut impl Write, p: &TrajectoryPoint) -> Result<(), WriteError> {
+/// One point's line of [`write_trajectory`].
+///
+/// # Errors
+/// [`WriteError::Io`].
+pub fn write_trajectory_point(out: &mut impl Write, p: &TrajectoryPoint) -> Result<(), WriteError> {
     write_time(out, p.time)?;
     for value in trajectory_values(p) {
         out.write_all(b",")?;

@@ -112,6 +112,9 @@ pub struct IntegrateSettings {
     pub initial_from: Option<PathBuf>,
     /// What is written.
     pub outputs: SolutionFiles,
+    /// Read the record whole and keep the solution in memory (`--in-memory`) rather than
+    /// stream them.
+    pub in_memory: bool,
 }
 
 /// Resolves `integrate`.
@@ -156,6 +159,7 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         },
         initial_from: args.initial_from.clone(),
         outputs,
+        in_memory: args.in_memory,
     })
 }
 

@@ -19,6 +19,7 @@ mod real_data;
 mod reliability;
 mod shapes;
 mod streaming;
+mod streaming_integrate;
 mod thermal;
 mod thermal_ulog;
 #[path = "../../../thermonav-io/tests/it/ulog_writer.rs"]

@@ -26,7 +26,7 @@ use super::outage::Outages;
 use super::schedule::ModelSchedule;
 use super::sensor_model::ImuStochasticModel;
 use super::smoother::{ForwardHistory, MAX_SMOOTHED_STEPS};
-use super::solution::{InnovationRecord, Solution, SolutionEpoch};
+use super::solution::{InnovationRecord, Solution, SolutionEpoch, SolutionSink};
 use crate::filter::FilterError;
 use crate::filter::ekf::joseph_update;
 use crate::filter::gating::ScaledGate;
@@ -35,7 +35,7 @@ use crate::filter::ukf::Ukf;
 use crate::frames::Vector;
 use crate::geo::position::{Geodetic, NAVIGATION_LATITUDE_LIMIT_DEG, within_navigation_latitudes};
 use crate::gnss::GnssFix;
-use crate::imu::{ImuSeries, SampleKind};
+use crate::imu::{ImuSample, ImuSeries, SampleKind};
 use crate::ins::error_model::{STATES, SystemMatrix, system_matrix};
 use crate::ins::mechanization::mechanize;
 use crate::ins::state::Increment;
@@ -43,6 +43,7 @@ use crate::time::{Duration, Timestamp};
 use crate::units::wrap_pi;
 use nalgebra::{SVector, Vector3};
 use serde::Serialize;
+use std::convert::Infallible;
 
 /// Which filter carries the error state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -223,21 +224,57 @@ pub fn increments_from_series(series: &ImuSeries) -> Vec<Increment> {
     let kind = series.kind.unwrap_or(SampleKind::Rates);
     (1..series.len())
         .map(|k| {
-            let dt = series.time[k] - series.time[k - 1];
             let value = |c: usize| series.channels[c][k];
-            let gyro = [value(0), value(1), value(2)];
-            let accel = [value(3), value(4), value(5)];
-            match kind {
-                SampleKind::Rates => Increment::from_rates(series.time[k], dt, gyro, accel),
-                SampleKind::Increments => Increment {
-                    time: series.time[k],
-                    dt,
-                    delta_angle: Vector::from_array(gyro),
-                    delta_velocity: Vector::from_array(accel),
-                },
-            }
+            let sample = ImuSample {
+                time: series.time[k],
+                gyro: [value(0), value(1), value(2)],
+                accel: [value(3), value(4), value(5)],
+                temperature_c: None,
+            };
+            increment_of_sample(kind, series.time[k - 1], &sample)
         })
         .collect()
+}
+
+/// The increment of `sample` (rates or increments, as `kind` says) over the interval since
+/// the previous sample's time `previous`: what [`increments_from_series`] makes of each sample.
+pub fn increment_of_sample(kind: SampleKind, previous: Timestamp, sample: &ImuSample) -> Increment {
+    let dt = sample.time - previous;
+    match kind {
+        SampleKind::Rates => Increment::from_rates(sample.time, dt, sample.gyro, sample.accel),
+        SampleKind::Increments => Increment {
+            time: sample.time,
+            dt,
+            delta_angle: Vector::from_array(sample.gyro),
+            delta_velocity: Vector::from_array(sample.accel),
+        },
+    }
+}
+
+/// The increments of a stream of samples, as [`increments_from_series`] makes them of a
+/// series: one per sample after the first; the stream's errors passed on (and the stream
+/// ended after the first).
+pub fn increments_of_samples<E>(
+    kind: SampleKind,
+    samples: impl IntoIterator<Item = Result<ImuSample, E>>,
+) -> impl Iterator<Item = Result<Increment, E>> {
+    let mut previous: Option<Timestamp> = None;
+    let mut failed = false;
+    samples.into_iter().filter_map(move |sample| {
+        if failed {
+            return None;
+        }
+        match sample {
+            Err(e) => {
+                failed = true;
+                Some(Err(e))
+            }
+            Ok(sample) => {
+                let before = previous.replace(sample.time)?;
+                Some(Ok(increment_of_sample(kind, before, &sample)))
+            }
+        }
+    })
 }
 
 fn check_settings(settings: &EngineSettings) -> Result<(), NavError> {
@@ -275,16 +312,26 @@ fn check_smoothable(
     gnss: &[GnssFix],
     settings: &EngineSettings,
 ) -> Result<(), NavError> {
+    let span_s = match (increments.first(), increments.last()) {
+        (Some(a), Some(b)) => (b.time - a.start()).as_seconds(),
+        _ => 0.0,
+    };
+    check_smoothable_span(span_s, gnss, settings)
+}
+
+/// [`check_smoothable`] of a record spanning `span_s` from the start of its first interval
+/// after the run's start.
+fn check_smoothable_span(
+    span_s: f64,
+    gnss: &[GnssFix],
+    settings: &EngineSettings,
+) -> Result<(), NavError> {
     if settings.filter != FilterKind::Ekf {
         return Err(NavError::Smoothing(format!(
             "the RTS smoother runs on the EKF's covariance, not the {}'s",
             settings.filter.name()
         )));
     }
-    let span_s = match (increments.first(), increments.last()) {
-        (Some(a), Some(b)) => (b.time - a.start()).as_seconds(),
-        _ => 0.0,
-    };
     let steps = (span_s / settings.covariance_interval_s).ceil() as usize + gnss.len();
     match steps <= MAX_SMOOTHED_STEPS {
         true => Ok(()),
@@ -383,7 +430,7 @@ impl Window {
     }
 }
 
-struct Run<'a> {
+struct Run<'a, 's> {
     estimate: Estimate,
     core: Core,
     window: Window,
@@ -393,7 +440,10 @@ struct Run<'a> {
     settings: &'a EngineSettings,
     gates: [Option<ScaledGate>; 3],
     consecutive_rejections: [usize; 3],
-    solution: Solution,
+    sink: &'s mut dyn SolutionSink,
+    /// The last epoch recorded, held back from the sink until the updates at its time are
+    /// done ([`Run::refresh_last_epoch`]) and the next epoch (or the end) comes.
+    pending: Option<SolutionEpoch>,
     history: Option<ForwardHistory>,
     next_output: Timestamp,
     output_step: Duration,
@@ -444,53 +494,141 @@ pub fn run_scheduled(
     if settings.smooth {
         check_smoothable(&increments[first..], gnss, settings)?;
     }
-    let carried = schedule.keeping_turn_on_bias(&p0, start);
-    let mut run = Run::new(initial, p0, carried.schedule(), settings)?;
+    let mut solution = Solution {
+        epochs: Vec::new(),
+        innovations: Vec::new(),
+        imu_samples: 0,
+        smoothed: Vec::new(),
+    };
+    let filtering = Filtering {
+        initial,
+        p0,
+        schedule,
+        settings,
+    };
+    let records = increments[first..].iter().map(|i| Ok::<_, Infallible>(*i));
+    let tail = run_streaming(filtering, records, gnss, None, &mut solution, progress)
+        .map_err(StreamError::into_nav)?;
+    solution.imu_samples = tail.imu_samples;
+    solution.smoothed = tail.smoothed;
+    Ok(solution)
+}
+
+/// What a filter starts from: the initial estimate and covariance, the noise models and the
+/// settings.
+#[derive(Debug, Clone)]
+pub struct Filtering<'a> {
+    /// The initial estimate (its time is the run's start).
+    pub initial: Estimate,
+    /// Its covariance.
+    pub p0: SystemMatrix,
+    /// The noise models.
+    pub schedule: ModelSchedule<'a>,
+    /// The settings.
+    pub settings: &'a EngineSettings,
+}
+
+/// What a streamed run returns besides what went to its sink.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StreamTail {
+    /// IMU samples processed.
+    pub imu_samples: usize,
+    /// The smoothed solution (empty unless [`EngineSettings::smooth`]).
+    pub smoothed: Vec<SolutionEpoch>,
+}
+
+/// Why a streamed run failed: the filter, or the stream of increments.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StreamError<E> {
+    /// The filter refused the data or diverged.
+    Nav(NavError),
+    /// The increments could not be read.
+    Input(E),
+}
+
+impl<E> From<NavError> for StreamError<E> {
+    fn from(error: NavError) -> Self {
+        StreamError::Nav(error)
+    }
+}
+
+impl StreamError<Infallible> {
+    /// The filter's error (an infallible stream has no other).
+    pub fn into_nav(self) -> NavError {
+        match self {
+            StreamError::Nav(e) => e,
+            StreamError::Input(never) => match never {},
+        }
+    }
+}
+
+/// [`run_scheduled`] over a stream of increments, in memory bounded whatever the record's
+/// length: each solution epoch and innovation goes to `sink` as it is made (the epoch at a
+/// fix's time after that fix's updates), nothing is kept. Increments at or before the start are
+/// skipped; the checks [`check_inputs`] makes on a whole record are made increment by
+/// increment (a gap is refused when it arrives). `last_time`, the time of the record's last
+/// sample, lets a smoothed run be checked before it starts (as [`run_scheduled`] does); `None`
+/// skips that check.
+///
+/// # Errors
+/// [`StreamError::Input`] for the first increment the stream fails on; [`StreamError::Nav`] as
+/// [`run_scheduled`].
+pub fn run_streaming<E>(
+    filtering: Filtering,
+    increments: impl IntoIterator<Item = Result<Increment, E>>,
+    gnss: &[GnssFix],
+    last_time: Option<Timestamp>,
+    sink: &mut dyn SolutionSink,
+    progress: &mut dyn FnMut(usize),
+) -> Result<StreamTail, StreamError<E>> {
+    let settings = filtering.settings;
+    check_settings(settings)?;
+    check_fix_latitudes(gnss)?;
+    let start = filtering.initial.nav.time;
+    let carried = filtering
+        .schedule
+        .keeping_turn_on_bias(&filtering.p0, start);
+    let filtering = Filtering {
+        schedule: carried.schedule(),
+        ..filtering
+    };
+    let mut run = Run::new(filtering, sink)?;
     let mut fixes = gnss.iter().filter(|f| f.time > start).peekable();
-    for (n, inc) in increments[first..].iter().enumerate() {
-        let mut raw = *inc;
-        if raw.start() < start {
-            raw = split(&raw, start).1;
+    let mut n = 0;
+    for inc in increments {
+        let inc = inc.map_err(StreamError::Input)?;
+        if inc.time <= start {
+            continue;
         }
-        while let Some(fix) = fixes.next_if(|f| f.time <= raw.time) {
-            if fix.time > run.estimate.nav.time && fix.time < raw.time {
-                let (before, after) = split(&raw, fix.time);
-                run.step(&before)?;
-                raw = after;
-            } else if fix.time == raw.time {
-                run.step(&raw)?;
-                raw.dt = Duration::ZERO;
-            }
-            run.update(fix)?;
+        if let (0, Some(end), true) = (n, last_time, settings.smooth) {
+            check_smoothable_span(end.since(inc.start()).as_seconds(), gnss, settings)?;
         }
-        if raw.dt.is_positive() {
-            run.step(&raw)?;
-        }
+        check_imu_gaps(std::slice::from_ref(&inc), settings.max_imu_gap_s)?;
+        run.feed(inc, start, &mut fixes)?;
         if n % 4096 == 0 {
             progress(n);
         }
+        n += 1;
     }
-    run.propagate()?;
-    run.record();
-    if let (Some(history), Core::Ekf(p)) = (&mut run.history, &run.core) {
-        // The last updates came after the last step's end: the history ends filtered.
-        history.begin(run.estimate, **p);
-        run.solution.smoothed = history
-            .smooth(&settings.outages)
-            .map_err(|e| NavError::Smoothing(e.to_string()))?;
+    if n == 0 {
+        return Err(NavError::NoImu(start.as_seconds()).into());
     }
-    run.solution.imu_samples = increments.len() - first;
-    progress(increments.len() - first);
-    Ok(run.solution)
+    let smoothed = run.finish()?;
+    progress(n);
+    Ok(StreamTail {
+        imu_samples: n,
+        smoothed,
+    })
 }
 
-impl<'a> Run<'a> {
-    fn new(
-        initial: Estimate,
-        p0: SystemMatrix,
-        schedule: ModelSchedule<'a>,
-        settings: &'a EngineSettings,
-    ) -> Result<Self, NavError> {
+impl<'a, 's> Run<'a, 's> {
+    fn new(filtering: Filtering<'a>, sink: &'s mut dyn SolutionSink) -> Result<Self, NavError> {
+        let Filtering {
+            initial,
+            p0,
+            schedule,
+            settings,
+        } = filtering;
         let core = match settings.filter {
             FilterKind::Ekf => Core::Ekf(Box::new(p0)),
             FilterKind::Ukf => Core::Ukf(Box::new(Ukf::new(
@@ -526,12 +664,8 @@ impl<'a> Run<'a> {
             settings,
             gates: MeasurementKind::ALL.map(gate),
             consecutive_rejections: [0; 3],
-            solution: Solution {
-                epochs: Vec::new(),
-                innovations: Vec::new(),
-                imu_samples: 0,
-                smoothed: Vec::new(),
-            },
+            sink,
+            pending: None,
             history: settings.smooth.then(ForwardHistory::default),
             next_output: initial.nav.time,
             output_step,
@@ -539,6 +673,53 @@ impl<'a> Run<'a> {
         };
         run.record();
         Ok(run)
+    }
+
+    /// One increment after the start: split at the fixes inside it, stepped, updated.
+    fn feed<'g>(
+        &mut self,
+        inc: Increment,
+        start: Timestamp,
+        fixes: &mut std::iter::Peekable<impl Iterator<Item = &'g GnssFix>>,
+    ) -> Result<(), NavError> {
+        let mut raw = inc;
+        if raw.start() < start {
+            raw = split(&raw, start).1;
+        }
+        while let Some(fix) = fixes.next_if(|f| f.time <= raw.time) {
+            if fix.time > self.estimate.nav.time && fix.time < raw.time {
+                let (before, after) = split(&raw, fix.time);
+                self.step(&before)?;
+                raw = after;
+            } else if fix.time == raw.time {
+                self.step(&raw)?;
+                raw.dt = Duration::ZERO;
+            }
+            self.update(fix)?;
+        }
+        if raw.dt.is_positive() {
+            self.step(&raw)?;
+        }
+        Ok(())
+    }
+
+    /// The end of the record: the last propagation and epoch, the smoother, the last epoch
+    /// to the sink.
+    fn finish(mut self) -> Result<Vec<SolutionEpoch>, NavError> {
+        self.propagate()?;
+        self.record();
+        let mut smoothed = Vec::new();
+        if let (Some(history), Core::Ekf(p)) = (&mut self.history, &self.core) {
+            // The last updates came after the last step's end: the history ends filtered.
+            history.begin(self.estimate, **p);
+            smoothed = history
+                .smooth(&self.settings.outages)
+                .map_err(|e| NavError::Smoothing(e.to_string()))?;
+        }
+        if let Some(last) = self.pending.take() {
+            self.sink.epoch(&last);
+        }
+        Ok(smoothed)
     }
 
     fn diverged(&self, reason: impl ToString) -> NavError {
@@ -616,14 +797,17 @@ impl<'a> Run<'a> {
     fn record(&mut self) {
         let sd = self.current_sd();
         let time = self.estimate.nav.time;
-        if self.solution.epochs.last().map(|e| e.estimate.nav.time) == Some(time) {
+        if self.pending.map(|e| e.estimate.nav.time) == Some(time) {
             return;
         }
-        self.solution.epochs.push(SolutionEpoch {
+        let epoch = SolutionEpoch {
             estimate: self.estimate,
             sd,
             in_outage: self.settings.outages.contains(time),
-        });
+        };
+        if let Some(done) = self.pending.replace(epoch) {
+            self.sink.epoch(&done);
+        }
         while self.next_output <= time {
             match self.next_output.checked_add(self.output_step) {
                 Some(next) => self.next_output = next,
@@ -762,7 +946,7 @@ impl<'a> Run<'a> {
     /// An epoch recorded at this fix's time, before its updates, shows the updated state.
     fn refresh_last_epoch(&mut self) {
         let (time, sd) = (self.estimate.nav.time, self.current_sd());
-        if let Some(last) = self.solution.epochs.last_mut() {
+        if let Some(last) = &mut self.pending {
             if last.estimate.nav.time == time {
                 last.estimate = self.estimate;
                 last.sd = sd;
@@ -806,7 +990,7 @@ impl<'a> Run<'a> {
         let forced = !passed && *streak >= self.settings.gate_recovery_after;
         *streak = if passed || forced { 0 } else { *streak + 1 };
         let accepted = passed || forced;
-        self.solution.innovations.push(InnovationRecord {
+        self.sink.innovation(&InnovationRecord {
             time: self.estimate.nav.time,
             kind,
             innovation: std::array::from_fn(|k| if k < M { innovation[k] } else { 0.0 }),

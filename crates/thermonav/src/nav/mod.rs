@@ -15,7 +15,8 @@
 //!   chosen rate, updates at GNSS epochs, closed-loop feedback.
 //! - [`solution`]: what a run returns: solution epochs, innovations and their statistics.
 //! - [`run`]: one run on records already read (model chosen, record compensated, outages
-//!   laid, start aligned, filter run), and [`report`]: what it reports.
+//!   laid, start aligned, filter run), and [`report`]: what it reports; [`stream`]: the same
+//!   run on a record read as it goes, its records streamed to a sink, in bounded memory.
 //!
 //! Error conventions (as in [`crate::ins::error_model`]): δr = r̂ − r (NED, m), δv = v̂ − v,
 //! Ĉ_b^n = (I − [φ×]) C_b^n, and the sensor states are the error left in the corrected
@@ -33,3 +34,4 @@ pub mod schedule;
 pub mod sensor_model;
 pub mod smoother;
 pub mod solution;
+pub mod stream;

@@ -10,7 +10,7 @@ use super::outage::Outage;
 use super::run::{InitialSource, RunOutcome};
 use super::schedule::{CompensationOutcome, ScheduleSummary};
 use super::sensor_model::{BankChoice, ImuStochasticModel};
-use super::solution::{InnovationStatistics, Solution, SolutionEpoch};
+use super::solution::{InnovationStatistics, SolutionEpoch, SolutionSummary};
 use crate::imu::Channel;
 use crate::stoch::bank::{GaussMarkovSource, Selection};
 use crate::units::{STANDARD_GRAVITY_M_S2, rad_per_s_to_deg_per_h};
@@ -173,7 +173,13 @@ pub struct RunReport {
 impl RunReport {
     /// The report of a run.
     pub fn of(run: &RunOutcome) -> Self {
-        let duration_s = solution_span_s(&run.solution);
+        Self::of_summary(run, &SolutionSummary::of(&run.solution))
+    }
+
+    /// The report of a run whose records went to a sink that `summary` also saw (the run's
+    /// solution then holds no epochs or innovations: [`super::stream`]).
+    pub fn of_summary(run: &RunOutcome, summary: &SolutionSummary) -> Self {
+        let duration_s = summary.span_s();
         let windows = run.engine.outages.windows();
         Self {
             filter: run.engine.filter,
@@ -200,16 +206,9 @@ impl RunReport {
             duration_s,
             processing_time_s: run.processing_s,
             real_time_factor: real_time_factor(duration_s, run.processing_s),
-            innovations: innovation_rows(&run.solution),
-            last: run.solution.epochs.last().map(final_json),
+            innovations: innovation_rows(summary),
+            last: summary.last.as_ref().map(final_json),
         }
-    }
-}
-
-fn solution_span_s(solution: &Solution) -> f64 {
-    match (solution.epochs.first(), solution.epochs.last()) {
-        (Some(a), Some(b)) => b.estimate.nav.time.since(a.estimate.nav.time).as_seconds(),
-        _ => 0.0,
     }
 }
 
@@ -221,8 +220,8 @@ fn real_time_factor(duration_s: f64, processing_s: f64) -> f64 {
     }
 }
 
-fn innovation_rows(solution: &Solution) -> Vec<InnovationJson> {
-    let statistics = solution.innovation_statistics();
+fn innovation_rows(summary: &SolutionSummary) -> Vec<InnovationJson> {
+    let statistics = summary.innovation_statistics();
     statistics.iter().map(InnovationJson::from).collect()
 }
 

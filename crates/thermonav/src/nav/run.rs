@@ -34,6 +34,7 @@ use crate::ins::state::Increment;
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use crate::stoch::thermal::ThermalCalibration;
+use crate::time::Timestamp;
 use crate::trajectory::TrajectoryPoint;
 use serde::Serialize;
 use std::time::Instant;
@@ -247,10 +248,22 @@ impl RunModels {
         noise: NoiseModel,
         series: &ImuSeries,
     ) -> Result<Self, RunError> {
-        let (model, choice) = fixed_model(settings, noise, series)?;
+        let track = || TemperatureTrack::of_series(series);
+        Self::of_record(settings, noise, series.mean_temperature_c(), track)
+    }
+
+    /// [`RunModels::of`] from what they need of the record: the mean of its temp_c column
+    /// and its temperature track (asked for only when the run is scheduled).
+    pub(super) fn of_record(
+        settings: &RunSettings,
+        noise: NoiseModel,
+        mean_temperature_c: Option<f64>,
+        track: impl FnOnce() -> Result<Option<TemperatureTrack>, ScheduleError>,
+    ) -> Result<Self, RunError> {
+        let (model, choice) = fixed_model(settings, noise, mean_temperature_c)?;
         let mut model = model.map_err(RunError::NoiseModel)?;
         model.scale_white_noise(settings.process_noise_scale);
-        let scheduled = match schedule_track(settings, series)? {
+        let scheduled = match schedule_track(settings, track)? {
             Some(track) => Some(scheduled_models(settings, noise, track)?),
             None => None,
         };
@@ -283,12 +296,12 @@ impl RunModels {
 /// The IMU's temperature track when the run is scheduled and the record has temp_c.
 fn schedule_track(
     settings: &RunSettings,
-    series: &ImuSeries,
+    track: impl FnOnce() -> Result<Option<TemperatureTrack>, ScheduleError>,
 ) -> Result<Option<TemperatureTrack>, RunError> {
     if settings.scheduling == Scheduling::Fixed {
         return Ok(None);
     }
-    TemperatureTrack::of_series(series).map_err(RunError::TemperatureTrack)
+    track().map_err(RunError::TemperatureTrack)
 }
 
 /// The track with the models by temperature over its range (white noise scaled).
@@ -317,12 +330,12 @@ type ModelResult = Result<ImuStochasticModel, SensorModelError>;
 fn fixed_model(
     settings: &RunSettings,
     noise: NoiseModel,
-    series: &ImuSeries,
+    mean_temperature_c: Option<f64>,
 ) -> Result<(ModelResult, BankChoice), RunError> {
     match noise {
-        NoiseModel::Profile(profile) => Ok(profile_model(settings, profile, series)),
+        NoiseModel::Profile(profile) => Ok(profile_model(settings, profile, mean_temperature_c)),
         NoiseModel::Bank(bank) => {
-            let choice = bank_choice(settings, series)?;
+            let choice = bank_choice(settings, mean_temperature_c)?;
             let model = ImuStochasticModel::from_bank(bank, &choice, &ScaleFactorPrior::default());
             Ok((model, choice))
         }
@@ -333,13 +346,13 @@ fn fixed_model(
 fn profile_model(
     settings: &RunSettings,
     profile: &SensorProfile,
-    series: &ImuSeries,
+    mean_temperature_c: Option<f64>,
 ) -> (ModelResult, BankChoice) {
     let temperature_c = match settings.temperature {
         ModelTemperature::Fixed(t) => Some(t),
         ModelTemperature::Operating { given_c, .. } => given_c,
     }
-    .or_else(|| series.mean_temperature_c())
+    .or(mean_temperature_c)
     .unwrap_or(profile.reference_temperature_c);
     let model = profile.stochastic_model(temperature_c, &ScaleFactorPrior::default());
     let choice = BankChoice {
@@ -352,12 +365,18 @@ fn profile_model(
 
 /// The temperature and rule of the settings, with the record's mean temp_c for an
 /// operating temperature not given.
-fn bank_choice(settings: &RunSettings, series: &ImuSeries) -> Result<BankChoice, RunError> {
+fn bank_choice(
+    settings: &RunSettings,
+    mean_temperature_c: Option<f64>,
+) -> Result<BankChoice, RunError> {
     let (temperature_c, selection) = match settings.temperature {
         ModelTemperature::Fixed(t) => (t, Selection::Nearest),
-        ModelTemperature::Operating { given_c, selection } => {
-            (operating_temperature_c(given_c, series)?, selection)
-        }
+        ModelTemperature::Operating { given_c, selection } => (
+            given_c
+                .or(mean_temperature_c)
+                .ok_or(RunError::NoTemperature)?,
+            selection,
+        ),
     };
     Ok(BankChoice {
         temperature_c,
@@ -401,6 +420,18 @@ pub fn with_outages(
         (Some(first), Some(last)) => (first.time, last.time),
         _ => return Err(RunError::TooShort),
     };
+    with_outages_over(engine, spec, span)
+}
+
+/// [`with_outages`] over the span from the first increment's time to the last's.
+///
+/// # Errors
+/// [`RunError::Outages`] for windows outside the span.
+pub fn with_outages_over(
+    engine: &EngineSettings,
+    spec: &OutageSpec,
+    span: (Timestamp, Timestamp),
+) -> Result<EngineSettings, RunError> {
     let outages = spec.resolve(span).map_err(RunError::Outages)?;
     Ok(EngineSettings {
         outages,
@@ -468,7 +499,7 @@ pub fn prepare(
 /// The initial uncertainty of a run: [`InitialUncertainty::default`] with the bias sds the
 /// noise model states ([`InitialBiasSource`]), axis by axis; an axis it says nothing about
 /// keeps the default.
-fn initial_uncertainty(
+pub(super) fn initial_uncertainty(
     noise: NoiseModel,
     compensation: &CompensationOutcome,
     model: &ImuStochasticModel,
@@ -527,16 +558,19 @@ fn initial_uncertainty(
     (uncertainty, source)
 }
 
+/// The IMU record after the alignment fix that levels the start, s.
+pub(super) const LEVELLING_S: f64 = 1.0;
+
 /// The start: aligned from GNSS (with the course baseline when the heading came from one), or
 /// the reference point at the first fix.
-fn initial_estimate(
+pub(super) fn initial_estimate(
     start: Start,
     increments: &[Increment],
     gnss: &[GnssFix],
     engine: &EngineSettings,
 ) -> Result<(Estimate, InitialSource, Option<CourseBaseline>), RunError> {
     let Start::Reference(points) = start else {
-        let alignment = align_from_gnss(increments, gnss, &engine.geometry, 1.0)
+        let alignment = align_from_gnss(increments, gnss, &engine.geometry, LEVELLING_S)
             .map_err(RunError::Alignment)?;
         let (source, baseline) = match alignment.heading_source {
             HeadingSource::DualAntenna => (InitialSource::DualAntennaHeading, None),

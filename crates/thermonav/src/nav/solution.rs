@@ -66,7 +66,7 @@ pub struct InnovationStatistics {
 }
 
 /// Everything a run produces.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Solution {
     /// Output epochs.
     pub epochs: Vec<SolutionEpoch>,
@@ -77,6 +77,158 @@ pub struct Solution {
     /// The RTS-smoothed solution at every covariance step ([`super::smoother`]); empty
     /// unless [`super::engine::EngineSettings::smooth`] was set.
     pub smoothed: Vec<SolutionEpoch>,
+}
+
+/// Where a run's records go as the filter makes them (an observer of the run, not code inside
+/// its loop): the in-memory [`Solution`], a [`SolutionSummary`], or a writer that streams them
+/// to files. Epochs arrive in time order, each once and final (the engine holds the last one
+/// back until the updates at its time are done).
+pub trait SolutionSink {
+    /// One solution epoch.
+    fn epoch(&mut self, epoch: &SolutionEpoch);
+    /// One measurement update (accepted or rejected).
+    fn innovation(&mut self, record: &InnovationRecord);
+}
+
+impl SolutionSink for Solution {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        self.epochs.push(*epoch);
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        self.innovations.push(*record);
+    }
+}
+
+impl<S: SolutionSink + ?Sized> SolutionSink for &mut S {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        (**self).epoch(epoch);
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        (**self).innovation(record);
+    }
+}
+
+/// Both sinks see every record.
+impl<A: SolutionSink, B: SolutionSink> SolutionSink for (A, B) {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        self.0.epoch(epoch);
+        self.1.epoch(epoch);
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        self.0.innovation(record);
+        self.1.innovation(record);
+    }
+}
+
+/// What a run's report needs of its records, accumulated record by record in bounded memory:
+/// the first epoch's time, the last epoch, and the innovation statistics (the same sums in the
+/// same order as [`Solution::innovation_statistics`], so the same numbers to the bit).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SolutionSummary {
+    /// Time of the first epoch.
+    pub first_time: Option<Timestamp>,
+    /// The last epoch.
+    pub last: Option<SolutionEpoch>,
+    /// Epochs seen.
+    pub epochs: usize,
+    tallies: [Tally; 3],
+}
+
+/// Running sums of one measurement kind's updates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Tally {
+    offered: usize,
+    accepted: usize,
+    forced: usize,
+    nis_sum: f64,
+    nis_in_95: usize,
+    innovation_squares: [f64; 3],
+    gate_scale_sum: f64,
+    /// The 95 % NIS band, computed at the first accepted update.
+    band: Option<(f64, f64)>,
+}
+
+impl SolutionSummary {
+    /// The summary of a whole solution's records.
+    pub fn of(solution: &Solution) -> Self {
+        let mut summary = Self::default();
+        solution.epochs.iter().for_each(|e| summary.epoch(e));
+        (solution.innovations.iter()).for_each(|r| summary.innovation(r));
+        summary
+    }
+
+    /// Span from the first epoch to the last, s (0 without two epochs).
+    pub fn span_s(&self) -> f64 {
+        match (self.first_time, &self.last) {
+            (Some(a), Some(b)) => b.estimate.nav.time.since(a).as_seconds(),
+            _ => 0.0,
+        }
+    }
+
+    /// Statistics per measurement kind present in the run.
+    pub fn innovation_statistics(&self) -> Vec<InnovationStatistics> {
+        MeasurementKind::ALL
+            .into_iter()
+            .filter_map(|kind| self.tallies[kind as usize].statistics(kind))
+            .collect()
+    }
+}
+
+impl SolutionSink for SolutionSummary {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        self.first_time = self.first_time.or(Some(epoch.estimate.nav.time));
+        self.last = Some(*epoch);
+        self.epochs += 1;
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        let tally = &mut self.tallies[record.kind as usize];
+        tally.offered += 1;
+        tally.forced += usize::from(record.forced);
+        tally.gate_scale_sum += record.gate_scale;
+        if !record.accepted {
+            return;
+        }
+        let band = tally.band.or_else(|| nis_band_95(record.kind));
+        tally.band = band;
+        let (lo, hi) = band.unwrap_or((f64::NAN, f64::NAN));
+        tally.accepted += 1;
+        tally.nis_sum += record.nis;
+        tally.nis_in_95 += usize::from(record.nis >= lo && record.nis <= hi);
+        for (sum, v) in tally.innovation_squares.iter_mut().zip(record.innovation) {
+            *sum += v.powi(2);
+        }
+    }
+}
+
+impl Tally {
+    fn statistics(&self, kind: MeasurementKind) -> Option<InnovationStatistics> {
+        if self.offered == 0 {
+            return None;
+        }
+        nis_band_95(kind)?;
+        let n = self.accepted.max(1) as f64;
+        Some(InnovationStatistics {
+            kind,
+            dimension: kind.dimension(),
+            offered: self.offered,
+            rejected: self.offered - self.accepted,
+            forced: self.forced,
+            mean_nis: self.nis_sum / n,
+            fraction_nis_in_95: self.nis_in_95 as f64 / n,
+            rms_innovation: self.innovation_squares.map(|s| (s / n).sqrt()),
+            mean_gate_scale: self.gate_scale_sum / self.offered as f64,
+        })
+    }
+}
+
+/// The two-sided 95 % interval of a chi-square with the kind's dimension.
+fn nis_band_95(kind: MeasurementKind) -> Option<(f64, f64)> {
+    let chi = ChiSquared::new(kind.dimension() as f64).ok()?;
+    Some((chi.inverse_cdf(0.025), chi.inverse_cdf(0.975)))
 }
 
 impl Solution {

@@ -16,6 +16,7 @@ mod position_only;
 mod round_trip;
 mod schedule;
 mod signal;
+mod streamed_navigation;
 mod streaming;
 mod thermal;
 mod thermal_recovery;
