@@ -12,6 +12,7 @@ use thermonav::imu::ImuSeries;
 use thermonav::ins::state::Increment;
 use thermonav::nav::engine::increments_of_samples;
 use thermonav::nav::run::{RunReport, Start};
+use thermonav::nav::solution::with_sink_on_own_thread;
 use thermonav::nav::stream::{PreparedStream, RecordSurvey, StreamRunError, prepare_stream};
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
@@ -100,7 +101,10 @@ fn run_with_progress(
 ) -> Result<thermonav::nav::stream::StreamOutcome, StreamRunError<ReadError>> {
     let label = format!("integrating ({})", prepared.engine().filter.name());
     let bar = crate::progress::bar(prepared.imu_samples(), &label);
-    let outcome = prepared.run(rest, writer, &mut |n| bar.set_position(n as u64))?;
+    // The files are formatted and written on a thread of their own while the filter runs.
+    let outcome = with_sink_on_own_thread(writer, |sink| {
+        prepared.run(rest, sink, &mut |n| bar.set_position(n as u64))
+    })?;
     bar.finish_and_clear();
     Ok(outcome)
 }

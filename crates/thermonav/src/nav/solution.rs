@@ -100,6 +100,86 @@ impl SolutionSink for Solution {
     }
 }
 
+/// Runs `body` with a sink that hands every record, in order, to `inner` on a thread of its
+/// own, in batches of [`HANDOVER_BATCH`] with at most [`HANDOVER_BATCHES`] batches in flight
+/// (so memory stays bounded): writing a solution at the IMU rate costs about as much as
+/// computing it, and the two then share the two cores. Returns what `body` returns once
+/// `inner` has seen every record. A panic on the writer's thread is resumed here.
+pub fn with_sink_on_own_thread<S, R>(
+    inner: &mut S,
+    body: impl FnOnce(&mut dyn SolutionSink) -> R,
+) -> R
+where
+    S: SolutionSink + Send,
+{
+    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Handover>>(HANDOVER_BATCHES);
+    std::thread::scope(|scope| {
+        let writer = scope.spawn(move || {
+            for batch in receiver {
+                for record in batch {
+                    match record {
+                        Handover::Epoch(epoch) => inner.epoch(&epoch),
+                        Handover::Innovation(record) => inner.innovation(&record),
+                    }
+                }
+            }
+        });
+        let mut batching = Batching {
+            sender,
+            batch: Vec::with_capacity(HANDOVER_BATCH),
+        };
+        let result = body(&mut batching);
+        batching.send();
+        drop(batching);
+        if let Err(panic) = writer.join() {
+            std::panic::resume_unwind(panic);
+        }
+        result
+    })
+}
+
+/// Records per handover batch of [`with_sink_on_own_thread`].
+pub const HANDOVER_BATCH: usize = 1024;
+/// Batches in flight at most in [`with_sink_on_own_thread`] (about 3 MB of epochs).
+pub const HANDOVER_BATCHES: usize = 8;
+
+enum Handover {
+    Epoch(SolutionEpoch),
+    Innovation(InnovationRecord),
+}
+
+struct Batching {
+    sender: std::sync::mpsc::SyncSender<Vec<Handover>>,
+    batch: Vec<Handover>,
+}
+
+impl Batching {
+    fn push(&mut self, record: Handover) {
+        self.batch.push(record);
+        if self.batch.len() == HANDOVER_BATCH {
+            self.send();
+        }
+    }
+
+    /// Sends the batch; a writer that stopped has panicked, which the join resumes.
+    fn send(&mut self) {
+        if !self.batch.is_empty() {
+            let batch = std::mem::replace(&mut self.batch, Vec::with_capacity(HANDOVER_BATCH));
+            let _ = self.sender.send(batch);
+        }
+    }
+}
+
+impl SolutionSink for Batching {
+    fn epoch(&mut self, epoch: &SolutionEpoch) {
+        self.push(Handover::Epoch(*epoch));
+    }
+
+    fn innovation(&mut self, record: &InnovationRecord) {
+        self.push(Handover::Innovation(*record));
+    }
+}
+
 impl<S: SolutionSink + ?Sized> SolutionSink for &mut S {
     fn epoch(&mut self, epoch: &SolutionEpoch) {
         (**self).epoch(epoch);

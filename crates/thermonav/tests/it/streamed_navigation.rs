@@ -210,3 +210,37 @@ fn increments_of_a_sample_stream_are_those_of_the_series() {
     assert_eq!(out.len(), 4);
     assert_eq!(out[3], Err("bad".to_string()));
 }
+
+// The same run with its sink on a thread of its own (records handed over in batches of
+// 1024): the sink sees the whole-record run's epochs and innovations in the same order, with
+// a smoothed run too (4500 epochs: five batches and a partial one).
+#[test]
+fn a_sink_on_its_own_thread_sees_the_same_records_in_order() {
+    use thermonav::nav::solution::with_sink_on_own_thread;
+    let record = vessel(90.0);
+    let increments = increments_from_series(&record.imu);
+    let model = model();
+    for smooth in [false, true] {
+        let settings = settings(smooth);
+        let (whole, _) = both(&record, &increments, &settings);
+        let whole = whole.unwrap();
+        let initial = uncorrected(record.reference.states[0]);
+        let filtering = Filtering {
+            initial,
+            p0: InitialUncertainty::default().covariance(),
+            schedule: ModelSchedule::Fixed(&model),
+            settings: &settings,
+        };
+        let mut kept = Solution::default();
+        let last = increments.last().map(|i| i.time);
+        let stream = increments.iter().map(|i| Ok::<_, String>(*i));
+        let tail = with_sink_on_own_thread(&mut kept, |sink| {
+            run_streaming(filtering, stream, &record.gnss, last, sink, &mut |_| {})
+        })
+        .unwrap();
+        kept.imu_samples = tail.imu_samples;
+        kept.smoothed = tail.smoothed;
+        assert!(kept.epochs.len() > 4 * 1024);
+        assert_eq!(kept, whole, "smooth {smooth}");
+    }
+}
