@@ -143,6 +143,8 @@ pub const HANDOVER_BATCH: usize = 1024;
 /// Batches in flight at most in [`with_sink_on_own_thread`] (about 3 MB of epochs).
 pub const HANDOVER_BATCHES: usize = 8;
 
+// Boxing the epoch would allocate once per record; the batches are what bound the memory.
+#[allow(clippy::large_enum_variant)]
 enum Handover {
     Epoch(SolutionEpoch),
     Innovation(InnovationRecord),
