@@ -31,6 +31,14 @@ factor states (the export writes the geometric mean of the six bias Tc; thermona
 channel's, and 1 h for the scale factors); KF-GINS has no innovation gate (thermonav's scaled
 gate rejects nothing on these simulated fixes).
 
+Second, the real car drive of ../shared/data/rtklibexplorer-gnss-imu/drive_0708 (100 Hz MEMS
+IMU, 5 Hz RTK fixes, the settings of bench/drive_gating.sh): KF-GINS starts at thermonav's
+first solution epoch (its alignment from the fixes) with the drive profile's noise (white noise
+x10 as `--process-noise-scale 10`; the profile's one-hour correlation times are KF-GINS's
+`corrtime` exactly), and both are scored by the horizontal RMS distance of their antenna
+point from the RTK fixes (aided RMS; fixes from 5 s after the start): thermonav with position
+fixes only, as KF-GINS, and with the fixes' velocities too (its default on the drive).
+
 KF-GINS (GPL-3.0) is built from ../shared/peers/kf-gins-f39bc2e.tar.gz in a temporary folder
 (about 3 minutes with -j2), or taken from --kf-gins. Nothing of it enters the repository.
 
@@ -267,6 +275,110 @@ def print_scores(name: str, table):
         print(f"{label:22}{cells}")
 
 
+DRIVE = ROOT.parent / "shared" / "data" / "rtklibexplorer-gnss-imu" / "drive_0708"
+DRIVE_PROFILE = ROOT / "examples" / "profiles" / "drive_0708_imu.toml"
+DRIVE_LEVER_ARM_M = (0.0, -0.05, 0.0)
+DRIVE_NOISE_SCALE = 10.0
+
+
+def drive_inputs(t: str, w: Path):
+    w.mkdir()
+    run([t, "convert", str(DRIVE / "imu_1934.csv"), "--imu-frame", "drive-frd",
+         "--time-offset-s=-0.125", "--out", str(w / "imu.csv")])
+    run([t, "convert", str(DRIVE / "gnss_1934_sf.pos"), "--out", str(w / "gnss.csv")])
+    (w / "kf" / "out").mkdir(parents=True)
+    run([t, "convert", str(w / "imu.csv"), "--to", "kf-gins", "--out", str(w / "kf/imu.txt")])
+    run([t, "convert", str(w / "gnss.csv"), "--to", "kf-gins", "--out", str(w / "kf/gnss.txt")])
+
+
+def drive_thermonav(t: str, w: Path, label: str, velocity: bool):
+    cmd = [t, "integrate", "--imu", str(w / "imu.csv"), "--gnss", str(w / "gnss.csv"),
+           "--profile", str(DRIVE_PROFILE), "--process-noise-scale", str(DRIVE_NOISE_SCALE),
+           "--velocity-sd-m-s", "0.1", "--lever-arm-m", ",".join(map(str, DRIVE_LEVER_ARM_M)),
+           "--output-rate-hz", "100", "--out", str(w / f"{label}.csv"), "--quiet", "--json"]
+    if not velocity:
+        cmd.append("--no-velocity")
+    return json.loads(run(cmd).stdout)
+
+
+def drive_kf_gins_config(w: Path, report) -> Path:
+    """KF-GINS at thermonav's first epoch, with the drive profile's noise."""
+    import tomllib
+    profile = tomllib.loads(DRIVE_PROFILE.read_text())["channels"]
+    first = next(csv.DictReader(open(w / "position_only.csv")))
+    sow_offset = float(open(w / "kf/gnss.txt").readline().split()[0]) - \
+        float(next(csv.DictReader(open(w / "gnss.csv")))["t_s"])
+    gyro = [profile[c] for c in ("gx", "gy", "gz")]
+    accel = [profile[c] for c in ("ax", "ay", "az")]
+    gm = lambda ch, key: ch["bias_gauss_markov"][0][key]
+    start = {"lat_deg": float(first["lat_deg"]), "lon_deg": float(first["lon_deg"]),
+             "h_m": float(first["h_m"]), "vn_m_s": float(first["vn_m_s"]),
+             "ve_m_s": float(first["ve_m_s"]), "vd_m_s": float(first["vd_m_s"]),
+             "roll_deg": float(first["roll_deg"]), "pitch_deg": float(first["pitch_deg"]),
+             "yaw_deg": float(first["yaw_deg"])}
+    noise = "\n".join([
+        "imunoise:",
+        f"  arw: {vec([c['white_noise_deg_per_sqrt_h'] * DRIVE_NOISE_SCALE for c in gyro])}",
+        f"  vrw: {vec([c['white_noise_m_s_per_sqrt_h'] * DRIVE_NOISE_SCALE for c in accel])}",
+        f"  gbstd: {vec([gm(c, 'sigma_deg_h') for c in gyro])}",
+        f"  abstd: {vec([gm(c, 'sigma_mg') * MG_TO_MGAL for c in accel])}",
+        "  gsstd: [ 1000, 1000, 1000 ]",
+        "  asstd: [ 1000, 1000, 1000 ]",
+        f"  corrtime: {gm(gyro[0], 'correlation_time_s') / 3600.0!r}",
+    ])
+    config = kf_gins_config(w, start, float(first["t_s"]) + sow_offset, report["initial_bias_sd"], noise)
+    text = config.read_text().replace("imudatarate: 200", "imudatarate: 100")
+    text = re.sub(r"antlever: .*", f"antlever: {vec(DRIVE_LEVER_ARM_M)}", text)
+    config.write_text(text)
+    return config, sow_offset
+
+
+def aided_rms_m(track, fixes, lever_right_m: float) -> float:
+    """Horizontal RMS distance of the antenna point (the track interpolated at each fix, from
+    5 s after its start) from the fixes; `track` rows are (t_s, lat_deg, lon_deg, yaw_deg)."""
+    times = [p[0] for p in track]
+    errors = []
+    for fix in fixes:
+        time = float(fix["t_s"])
+        k = bisect.bisect_left(times, time)
+        if time < times[0] + 5 or k == 0 or k == len(times):
+            continue
+        a, b = track[k - 1], track[k]
+        w = (time - a[0]) / (b[0] - a[0])
+        lat, lon = a[1] + w * (b[1] - a[1]), a[2] + w * (b[2] - a[2])
+        yaw = math.radians(a[3])
+        north = math.radians(lat - float(fix["lat_deg"])) * 6378137 - lever_right_m * math.sin(yaw)
+        east = (math.radians(lon - float(fix["lon_deg"])) * 6378137 * math.cos(math.radians(lat))
+                + lever_right_m * math.cos(yaw))
+        errors.append(math.hypot(north, east))
+    return math.sqrt(sum(e * e for e in errors) / len(errors))
+
+
+def drive_side_by_side(t: str, kf: Path, w: Path):
+    drive_inputs(t, w)
+    report = drive_thermonav(t, w, "position_only", False)
+    with_velocity = drive_thermonav(t, w, "with_velocity", True)
+    config, sow_offset = drive_kf_gins_config(w, report)
+    run([str(kf), str(config)], cwd=w / "kf")
+    fixes = list(csv.DictReader(open(w / "gnss.csv")))
+    ours = lambda label: [(float(r["t_s"]), float(r["lat_deg"]), float(r["lon_deg"]),
+                           float(r["yaw_deg"])) for r in csv.DictReader(open(w / f"{label}.csv"))]
+    nav = next((w / "kf/out").glob("*.nav"))
+    theirs = [(float(c[1]) - sow_offset, float(c[2]), float(c[3]), float(c[10]))
+              for c in (line.split() for line in open(nav))]
+    rejected = lambda r: next(i for i in r["innovations"] if i["kind"] == "position")["rejected"]
+    lever = DRIVE_LEVER_ARM_M[1]
+    rows = {"KF-GINS (positions)": (aided_rms_m(theirs, fixes, lever), 0),
+            "thermonav EKF (positions)": (aided_rms_m(ours("position_only"), fixes, lever), rejected(report)),
+            "thermonav EKF (positions, velocities)": (aided_rms_m(ours("with_velocity"), fixes, lever),
+                                                      rejected(with_velocity))}
+    print(f"\ncar drive (drive_0708): aided RMS of the antenna point against {len(fixes)} RTK fixes")
+    base = rows["KF-GINS (positions)"][0]
+    for label, (rms, n) in rows.items():
+        print(f"{label:40} {rms:8.4f} m ({rms / base - 1:+6.1%})  fixes rejected {n}")
+    return {label: {"aided_rms_m": rms, "fixes_rejected": n} for label, (rms, n) in rows.items()}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--thermonav", default=str(ROOT / "target/release/thermonav"))
@@ -297,6 +409,7 @@ def main():
               f"{kf_wall / m['wall_s']:12.2f}")
     for name, r in results.items():
         print_scores(name, r["scores"])
+    results["car drive"] = drive_side_by_side(t, kf, w / "drive")
     (w / "side_by_side.json").write_text(json.dumps(results, indent=1))
     print(f"\nworking folder: {w}")
 
