@@ -190,7 +190,24 @@ fn convert_kf_gins_nav(
     Ok((points.len(), "trajectory points"))
 }
 
-/// Writes fixes as one GNSS CSV, dropping (with a note) the groups only some fixes carry.
+/// The sidecar of a converted flight log (ULog, DataFlash): where the series came from and on
+/// which time scale; the scale, the IMU and GNSS extracts and the container's figures are each
+/// format's own.
+#[derive(serde::Serialize)]
+struct LogSidecar<'a, Scale, Imu, Gnss, Log> {
+    input: String,
+    time_scale: Scale,
+    time_scale_note: &'static str,
+    imu: &'a Imu,
+    /// The `--imu-rotation` the IMU series was turned by into body axes, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    imu_rotation: Option<String>,
+    imu_samples: usize,
+    gnss: Option<&'a Gnss>,
+    gnss_fixes: Option<usize>,
+    log: Log,
+}
+
 /// A log's outputs (the GNSS CSV with `--gnss-out`, the IMU CSV, its JSON sidecar), in that
 /// order, each atomically; if a later one fails, the earlier ones of this run are removed, so a
 /// failed run leaves no half of a conversion behind.
@@ -225,6 +242,7 @@ fn write_log_outputs(
     outcome
 }
 
+/// Writes fixes as one GNSS CSV, dropping (with a note) the groups only some fixes carry.
 fn write_fixes(out: &Path, mut fixes: Vec<GnssFix>) -> Result<(usize, &'static str), Failure> {
     for group in keep_common_groups(&mut fixes) {
         eprintln!("note: {group} is not given at every epoch and is left out");

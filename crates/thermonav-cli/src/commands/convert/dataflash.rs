@@ -14,21 +14,8 @@ use thermonav_io::dataflash::ardupilot::{
 };
 use thermonav_io::dataflash::{DataFlash, read_dataflash_file};
 
-/// The sidecar: where the series came from and on which time scale.
-#[derive(Serialize)]
-struct DataFlashRecord<'a> {
-    input: String,
-    time_scale: TimeScale,
-    time_scale_note: &'static str,
-    imu: &'a ImuExtract,
-    /// The `--imu-rotation` the IMU series was turned by into body axes, when given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    imu_rotation: Option<String>,
-    imu_samples: usize,
-    gnss: Option<&'a GnssExtract>,
-    gnss_fixes: Option<usize>,
-    log: LogSummary,
-}
+/// This format's sidecar.
+type DataFlashRecord<'a> = super::LogSidecar<'a, TimeScale, ImuExtract, GnssExtract, LogSummary>;
 
 /// The container's own figures.
 #[derive(Serialize)]

@@ -12,21 +12,8 @@ use thermonav_io::ulog::px4::{
 };
 use thermonav_io::ulog::{Ulog, read_ulog_file};
 
-/// The sidecar: where the series came from and on which time scale.
-#[derive(Serialize)]
-struct UlogRecord<'a> {
-    input: String,
-    time_scale: TimeScale,
-    time_scale_note: &'static str,
-    imu: &'a ImuExtract,
-    /// The `--imu-rotation` the IMU series was turned by into body axes, when given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    imu_rotation: Option<String>,
-    imu_samples: usize,
-    gnss: Option<&'a GnssExtract>,
-    gnss_fixes: Option<usize>,
-    log: LogSummary,
-}
+/// This format's sidecar.
+type UlogRecord<'a> = super::LogSidecar<'a, TimeScale, ImuExtract, GnssExtract, LogSummary>;
 
 /// The container's own figures.
 #[derive(Serialize)]
