@@ -10,7 +10,7 @@ use thermonav::nav::error_state::{ErrorVector, Estimate};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
-use thermonav::nav::solution::Solution;
+use thermonav::nav::solution::{Solution, SolutionEpoch};
 use thermonav::sensor::adis16364_like;
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::vessel::{
@@ -203,20 +203,13 @@ fn anees(filter: FilterKind, runs: u64, duration_s: f64) -> (Vec<f64>, f64, f64)
             &settings(filter, Outages::none()),
             profile_uncertainty(),
         );
-        let sampled: Vec<_> = solution
-            .epochs
-            .iter()
-            .filter(|e| {
-                let t = e.estimate.nav.time.as_seconds();
-                t > 30.0 && (t % 10.0) < 1e-6
-            })
-            .collect();
+        let sampled = sampled_epochs(&solution);
         if sums.is_empty() {
             sums = vec![0.0; sampled.len()];
         }
         for (sum, epoch) in sums.iter_mut().zip(&sampled) {
             let e = nav_error(&record, &epoch.estimate);
-            *sum += nees(&e, &epoch_covariance(&solution, epoch.estimate.nav.time));
+            *sum += nees(&e, &nav_variance(epoch));
         }
     }
     let n = runs as f64;
@@ -225,12 +218,18 @@ fn anees(filter: FilterKind, runs: u64, duration_s: f64) -> (Vec<f64>, f64, f64)
     (sums.iter().map(|s| s / n).collect(), lo, hi)
 }
 
-pub(crate) fn epoch_covariance(solution: &Solution, time: thermonav::time::Timestamp) -> [f64; 9] {
-    let epoch = solution
-        .epochs
-        .iter()
-        .find(|e| e.estimate.nav.time == time)
-        .unwrap();
+/// The epochs the consistency tests sample: one every 10 s after the first 30 s.
+pub(crate) fn sampled_epochs(solution: &Solution) -> Vec<&SolutionEpoch> {
+    let sampled = |e: &&SolutionEpoch| {
+        let t = e.estimate.nav.time.as_seconds();
+        t > 30.0 && (t % 10.0) < 1e-6
+    };
+    solution.epochs.iter().filter(sampled).collect()
+}
+
+/// The variances of the position, velocity and attitude errors at an epoch (the diagonal of
+/// P: the solution reports standard deviations only).
+pub(crate) fn nav_variance(epoch: &SolutionEpoch) -> [f64; 9] {
     std::array::from_fn(|i| epoch.sd[i] * epoch.sd[i])
 }
 

@@ -3,7 +3,8 @@
 //! turns and speed changes of `harbour_survey`. The reported sd must still cover the error.
 
 use super::navigation::{
-    initial, nav_error, navigate_from, nees, profile_uncertainty, settings, true_model, vessel,
+    initial, nav_error, nav_variance, navigate_from, nees, profile_uncertainty, sampled_epochs,
+    settings, true_model, vessel,
 };
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use thermonav::imu::Channel;
@@ -50,21 +51,13 @@ fn consistency(filter: FilterKind, runs: u64, duration_s: f64) -> Consistency {
     for seed in 0..runs {
         let record = vessel(100 + seed, duration_s);
         let solution = navigate(&record, seed, &position_only(filter));
-        let sampled: Vec<_> = solution
-            .epochs
-            .iter()
-            .filter(|e| {
-                let t = e.estimate.nav.time.as_seconds();
-                t > 30.0 && (t % 10.0) < 1e-6
-            })
-            .collect();
+        let sampled = sampled_epochs(&solution);
         if sums.is_empty() {
             sums = vec![0.0; sampled.len()];
         }
         for (sum, epoch) in sums.iter_mut().zip(&sampled) {
             let e = nav_error(&record, &epoch.estimate);
-            let variance: [f64; 9] = std::array::from_fn(|i| epoch.sd[i] * epoch.sd[i]);
-            *sum += nees(&e, &variance);
+            *sum += nees(&e, &nav_variance(epoch));
             heading_z.push(e[8] / epoch.sd[8]);
             if e[8].abs().to_degrees() > worst_heading_deg.0 {
                 worst_heading_deg = (e[8].abs().to_degrees(), epoch.sd[8].to_degrees());
