@@ -121,14 +121,15 @@ def vec(v):
     return "[ " + ", ".join(repr(float(x)) for x in v) + " ]"
 
 
-def kf_gins_config(w: Path, start, t0: float, bias_sd, imunoise_block: str) -> Path:
+def kf_gins_config(w: Path, start, t0: float, bias_sd, imunoise_block: str,
+                   rate_hz: int = IMU_RATE_HZ, lever_arm_m=LEVER_ARM_M) -> Path:
     gyro_deg_h = bias_sd["gyro_deg_h"]
     accel_mgal = [v * MG_TO_MGAL for v in bias_sd["accel_mg"]]
     text = f"""imupath: "{w}/kf/imu.txt"
 gnsspath: "{w}/kf/gnss.txt"
 outputpath: "{w}/kf/out"
 imudatalen: 7
-imudatarate: {IMU_RATE_HZ}
+imudatarate: {rate_hz}
 starttime: {t0!r}
 endtime: -1
 initpos: {vec([start['lat_deg'], start['lon_deg'], start['h_m']])}
@@ -146,7 +147,7 @@ initbastd: {vec(accel_mgal)}
 initsgstd: [ 1000, 1000, 1000 ]
 initsastd: [ 1000, 1000, 1000 ]
 {imunoise_block}
-antlever: {vec(LEVER_ARM_M)}
+antlever: {vec(lever_arm_m)}
 """
     path = w / "kf" / "kf-gins.yaml"
     path.write_text(text)
@@ -326,10 +327,8 @@ def drive_kf_gins_config(w: Path, report) -> Path:
         "  asstd: [ 1000, 1000, 1000 ]",
         f"  corrtime: {gm(gyro[0], 'correlation_time_s') / 3600.0!r}",
     ])
-    config = kf_gins_config(w, start, float(first["t_s"]) + sow_offset, report["initial_bias_sd"], noise)
-    text = config.read_text().replace("imudatarate: 200", "imudatarate: 100")
-    text = re.sub(r"antlever: .*", f"antlever: {vec(DRIVE_LEVER_ARM_M)}", text)
-    config.write_text(text)
+    config = kf_gins_config(w, start, float(first["t_s"]) + sow_offset, report["initial_bias_sd"],
+                            noise, rate_hz=100, lever_arm_m=DRIVE_LEVER_ARM_M)
     return config, sow_offset
 
 
