@@ -234,10 +234,15 @@ impl ImuStochasticModel {
 
     /// The sensor states' decay factors e^{−Δt/Tc} over Δt, in state order.
     pub fn decay(&self, dt_s: f64) -> SensorDiagonal {
+        self.per_sensor_state(|gm| gm.transition(dt_s))
+    }
+
+    /// `value` of each sensor state's Gauss-Markov process, in state order.
+    fn per_sensor_state(&self, value: impl Fn(&GaussMarkovParameters) -> f64) -> SensorDiagonal {
         let mut d = SensorDiagonal::zeros();
         for (start, group) in self.gauss_markov_states() {
             for (k, gm) in group.iter().enumerate() {
-                d[start - block::GYRO_BIAS + k] = gm.transition(dt_s);
+                d[start - block::GYRO_BIAS + k] = value(gm);
             }
         }
         d
@@ -276,12 +281,7 @@ impl ImuStochasticModel {
         let spread = driven
             * white.fixed_view::<6, 6>(block::VELOCITY, block::VELOCITY)
             * driven.transpose();
-        let mut sensor = SensorDiagonal::zeros();
-        for (start, group) in self.gauss_markov_states() {
-            for (k, gm) in group.iter().enumerate() {
-                sensor[start - block::GYRO_BIAS + k] = gm.discrete_variance(dt_s);
-            }
-        }
+        let sensor = self.per_sensor_state(|gm| gm.discrete_variance(dt_s));
         ProcessNoise {
             nav: (spread + white) * 0.5,
             sensor,
@@ -291,13 +291,7 @@ impl ImuStochasticModel {
     /// Steady-state standard deviations of the 12 sensor states in state order (for the
     /// initial covariance when nothing better is known).
     pub fn steady_state_sd(&self) -> [f64; STATES - block::GYRO_BIAS] {
-        let mut sd = [0.0; STATES - block::GYRO_BIAS];
-        for (start, group) in self.gauss_markov_states() {
-            for (k, gm) in group.iter().enumerate() {
-                sd[start - block::GYRO_BIAS + k] = gm.sigma;
-            }
-        }
-        sd
+        self.per_sensor_state(|gm| gm.sigma).into()
     }
 }
 
