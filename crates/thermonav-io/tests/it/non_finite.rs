@@ -103,6 +103,7 @@ fn innovation_with(bad: f64) -> InnovationRecord {
         innovation: [0.1, 0.2, 0.3],
         sd: [1.0; 3],
         nis: bad,
+        log_likelihood: 0.0,
         gate_scale: 1.0,
         accepted: true,
         forced: false,

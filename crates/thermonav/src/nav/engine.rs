@@ -18,6 +18,7 @@
 //! ([`Estimate::corrected_by`]) and reset to zero.
 
 use super::error_state::{ErrorVector, Estimate};
+use super::gaussian_sum::{BiasHypotheses, run_gaussian_sum};
 use super::measurement::{
     AntennaGeometry, Linearized, MeasurementKind, antenna_position, antenna_velocity,
     baseline_heading, heading_linearized, position_linearized, velocity_linearized,
@@ -41,7 +42,7 @@ use crate::ins::mechanization::mechanize;
 use crate::ins::state::Increment;
 use crate::time::{Duration, Timestamp};
 use crate::units::wrap_pi;
-use nalgebra::{SVector, Vector3};
+use nalgebra::{SMatrix, SVector, Vector3};
 use serde::Serialize;
 use std::convert::Infallible;
 
@@ -127,6 +128,10 @@ pub struct EngineSettings {
     /// Longest IMU interval the filter crosses, s: a longer gap is refused
     /// ([`NavError::ImuGap`]) rather than dead-reckoned on one held rate.
     pub max_imu_gap_s: f64,
+    /// Split the z-gyro bias prior into a Gaussian sum of filters run in lockstep
+    /// ([`super::gaussian_sum`]): for runs in which nothing observes the heading directly
+    /// (position-only GNSS). `None` runs one filter.
+    pub bias_hypotheses: Option<BiasHypotheses>,
 }
 
 impl Default for EngineSettings {
@@ -153,6 +158,7 @@ impl Default for EngineSettings {
             velocity_sd_m_s: [0.05, 0.05, 0.1],
             max_imu_gap_s: 1.0,
             smooth: false,
+            bias_hypotheses: None,
         }
     }
 }
@@ -277,7 +283,7 @@ pub fn increments_of_samples<E>(
     })
 }
 
-fn check_settings(settings: &EngineSettings) -> Result<(), NavError> {
+pub(crate) fn check_settings(settings: &EngineSettings) -> Result<(), NavError> {
     for (what, value) in [
         ("covariance_interval_s", settings.covariance_interval_s),
         ("output_interval_s", settings.output_interval_s),
@@ -342,7 +348,7 @@ fn check_smoothable_span(
 }
 
 /// The first IMU interval longer than `limit_s`, refused.
-fn check_imu_gaps(increments: &[Increment], limit_s: f64) -> Result<(), NavError> {
+pub(crate) fn check_imu_gaps(increments: &[Increment], limit_s: f64) -> Result<(), NavError> {
     match increments.iter().find(|i| i.dt_s() > limit_s) {
         Some(gap) => Err(NavError::ImuGap {
             start_s: gap.start().as_seconds(),
@@ -354,7 +360,7 @@ fn check_imu_gaps(increments: &[Increment], limit_s: f64) -> Result<(), NavError
 }
 
 /// The first GNSS fix beyond the navigable latitudes, refused.
-fn check_fix_latitudes(gnss: &[GnssFix]) -> Result<(), NavError> {
+pub(crate) fn check_fix_latitudes(gnss: &[GnssFix]) -> Result<(), NavError> {
     match gnss
         .iter()
         .find(|f| !within_navigation_latitudes(f.latitude_rad))
@@ -430,7 +436,7 @@ impl Window {
     }
 }
 
-struct Run<'a, 's> {
+pub(crate) struct Run<'a, 's> {
     estimate: Estimate,
     core: Core,
     window: Window,
@@ -582,6 +588,9 @@ pub fn run_streaming<E>(
     progress: &mut dyn FnMut(usize),
 ) -> Result<StreamTail, StreamError<E>> {
     let settings = filtering.settings;
+    if let Some(hypotheses) = &settings.bias_hypotheses {
+        return run_gaussian_sum(filtering, hypotheses, increments, gnss, sink, progress);
+    }
     check_settings(settings)?;
     check_fix_latitudes(gnss)?;
     let start = filtering.initial.nav.time;
@@ -622,7 +631,10 @@ pub fn run_streaming<E>(
 }
 
 impl<'a, 's> Run<'a, 's> {
-    fn new(filtering: Filtering<'a>, sink: &'s mut dyn SolutionSink) -> Result<Self, NavError> {
+    pub(crate) fn new(
+        filtering: Filtering<'a>,
+        sink: &'s mut dyn SolutionSink,
+    ) -> Result<Self, NavError> {
         let Filtering {
             initial,
             p0,
@@ -676,7 +688,7 @@ impl<'a, 's> Run<'a, 's> {
     }
 
     /// One increment after the start: split at the fixes inside it, stepped, updated.
-    fn feed<'g>(
+    pub(crate) fn feed<'g>(
         &mut self,
         inc: Increment,
         start: Timestamp,
@@ -705,7 +717,7 @@ impl<'a, 's> Run<'a, 's> {
 
     /// The end of the record: the last propagation and epoch, the smoother, the last epoch
     /// to the sink.
-    fn finish(mut self) -> Result<Vec<SolutionEpoch>, NavError> {
+    pub(crate) fn finish(mut self) -> Result<Vec<SolutionEpoch>, NavError> {
         self.propagate()?;
         self.record();
         let mut smoothed = Vec::new();
@@ -1002,6 +1014,7 @@ impl<'a, 's> Run<'a, 's> {
                 }
             }),
             nis,
+            log_likelihood: innovation_log_likelihood(&s, nis),
             gate_scale: verdict.map_or(1.0, |v| v.scale),
             accepted,
             forced,
@@ -1011,6 +1024,18 @@ impl<'a, 's> Run<'a, 's> {
             self.estimate = self.estimate.corrected_by(&x);
         }
         Ok(())
+    }
+}
+
+/// ln N(ν; 0, S) from the NIS and S: −(NIS + ln det S + m ln 2π)/2. When S is not positive
+/// definite (rounding at a degenerate update) the density is taken as zero.
+fn innovation_log_likelihood<const M: usize>(s: &SMatrix<f64, M, M>, nis: f64) -> f64 {
+    match s.cholesky() {
+        Some(c) => {
+            let log_det = 2.0 * c.l().diagonal().iter().map(|v| v.ln()).sum::<f64>();
+            -0.5 * (nis + log_det + M as f64 * (2.0 * std::f64::consts::PI).ln())
+        }
+        None => f64::NEG_INFINITY,
     }
 }
 

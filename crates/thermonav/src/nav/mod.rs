@@ -26,6 +26,7 @@
 pub mod alignment;
 pub mod engine;
 pub mod error_state;
+pub mod gaussian_sum;
 pub mod measurement;
 pub mod outage;
 pub mod report;

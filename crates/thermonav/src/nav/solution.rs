@@ -33,6 +33,11 @@ pub struct InnovationRecord {
     pub sd: [f64; 3],
     /// Normalised innovation squared νᵀ S⁻¹ ν.
     pub nis: f64,
+    /// Log of the Gaussian density of the innovation, ln N(ν; 0, S) =
+    /// −(NIS + ln det S + m ln 2π)/2 with m the dimension: what a Gaussian sum of filters
+    /// weighs its members by ([`super::gaussian_sum`]). Not written to files.
+    #[serde(skip)]
+    pub log_likelihood: f64,
     /// The factor the gate's chi-square quantile was widened by for this update, from the
     /// recent NIS level (1 = the plain gate; see [`crate::filter::gating::ScaledGate`]).
     pub gate_scale: f64,
