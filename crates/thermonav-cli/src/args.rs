@@ -345,6 +345,13 @@ pub struct IntegrateArgs {
     /// Ignore GNSS velocities.
     #[arg(long)]
     pub no_velocity: bool,
+    /// Split the z-gyro bias prior into a Gaussian sum of this many filters run in lockstep
+    /// (odd, at least 9; weighted by their innovations, the unlikely ones dropped) so that the
+    /// heading's sd stays honest when nothing observes the heading directly: position-only
+    /// GNSS with a large turn-on gyro bias. Costs up to that many filters until the heading
+    /// has been seen. 1 (the default) runs one filter. Not with --smooth.
+    #[arg(long, default_value_t = 1)]
+    pub bias_hypotheses: usize,
     /// Ignore dual-antenna headings.
     #[arg(long)]
     pub no_heading: bool,

@@ -63,10 +63,23 @@ fn initial_bias_text(s: &RunReport) -> String {
     format!("gyro {g} deg/h, accel {a} mg ({})", in_words(b.source))
 }
 
+/// The filter, and the Gaussian sum it runs as when there is one.
+fn filter_text(s: &RunReport) -> String {
+    match &s.bias_hypotheses {
+        None => s.filter.name().to_string(),
+        Some(h) => format!(
+            "{}, a Gaussian sum of {} over ±{} sd of the z-gyro bias prior",
+            s.filter.name(),
+            h.members,
+            h.span_sd
+        ),
+    }
+}
+
 fn run_rows(s: &RunReport) -> Vec<Row> {
     let m = &s.model;
     vec![
-        ("filter", s.filter.name().to_string()),
+        ("filter", filter_text(s)),
         (
             "model",
             format!(

@@ -8,6 +8,7 @@ use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::MAX_REPLICATES;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
+use thermonav::nav::gaussian_sum::{BiasHypotheses, split_prior};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
@@ -238,8 +239,31 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         },
         max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         smooth: args.smooth,
+        bias_hypotheses: bias_hypotheses(args.bias_hypotheses, args.smooth)?,
         ..EngineSettings::default()
     })
+}
+
+/// `--bias-hypotheses N`: none for 1, the default split with N members otherwise.
+fn bias_hypotheses(members: usize, smooth: bool) -> Result<Option<BiasHypotheses>, Failure> {
+    if members == 1 {
+        return Ok(None);
+    }
+    let hypotheses = BiasHypotheses {
+        members,
+        ..BiasHypotheses::default()
+    };
+    if split_prior(members, hypotheses.span_sd).is_none() {
+        return Err(Failure::Usage(anyhow!(
+            "--bias-hypotheses {members}: expected 1 or an odd count of at least 9 (members closer than one prior sd)"
+        )));
+    }
+    if smooth {
+        return Err(Failure::Usage(anyhow!(
+            "--bias-hypotheses with --smooth: a Gaussian sum has no single forward history to smooth"
+        )));
+    }
+    Ok(Some(hypotheses))
 }
 
 /// The fastest covariance and output rates, Hz: above the fastest MEMS logs (1-4 kHz), a

@@ -832,3 +832,43 @@ fn integrate_turns_a_rotated_imu_back_into_body_axes() {
     assert_eq!(turned["imu_rotation"], "-y,x,z");
     assert_eq!(plain["models"], turned["models"]);
 }
+
+// Issue 18: `integrate --bias-hypotheses N` runs the Gaussian sum over the z-gyro bias (its
+// consistency is tested in the library's position_only tests) and says so in --json; a count
+// that cannot split the prior, or a sum with --smooth, is refused (exit 2) naming the option,
+// before anything is written.
+#[test]
+fn integrate_runs_a_gaussian_sum_over_the_gyro_bias_when_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("sum.csv");
+    let args = integrate_args(
+        &vessel,
+        &bank,
+        &out,
+        &["--no-heading", "--bias-hypotheses", "21"],
+    );
+    let summary = json_of(&args);
+    assert_eq!(summary["bias_hypotheses"]["members"], 21);
+    assert!(std::fs::read_to_string(&out).unwrap().lines().count() > 100);
+    let single = json_of(&integrate_args(
+        &vessel,
+        &bank,
+        &dir.path().join("one.csv"),
+        &["--no-heading"],
+    ));
+    assert!(single.get("bias_hypotheses").is_none());
+    for (extra, expected) in [
+        (&["--bias-hypotheses", "4"][..], "--bias-hypotheses 4"),
+        (&["--bias-hypotheses", "7"][..], "--bias-hypotheses 7"),
+        (&["--bias-hypotheses", "21", "--smooth"][..], "--smooth"),
+    ] {
+        let refused = dir.path().join("refused.csv");
+        let args = integrate_args(&vessel, &bank, &refused, extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (status, _, stderr) = outcome(&thermonav(&args));
+        assert_eq!(status, 2, "{extra:?}: {stderr}");
+        assert!(stderr.contains(expected), "{extra:?}: {stderr}");
+        assert!(!refused.exists(), "{extra:?}");
+    }
+}

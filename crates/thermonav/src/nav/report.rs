@@ -5,6 +5,7 @@
 
 use super::alignment::{CourseBaseline, InitialBiasSource};
 use super::engine::FilterKind;
+use super::gaussian_sum::BiasHypotheses;
 use super::measurement::MeasurementKind;
 use super::outage::Outage;
 use super::run::{InitialSource, RunOutcome};
@@ -149,6 +150,9 @@ pub struct RunReport {
     pub course_baseline: Option<CourseBaseline>,
     /// The initial bias standard deviations and where they came from.
     pub initial_bias_sd: InitialBiasJson,
+    /// The Gaussian sum the z-gyro bias prior was split into (absent: one filter).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bias_hypotheses: Option<BiasHypotheses>,
     /// Covariance steps per second, Hz.
     pub covariance_rate_hz: f64,
     /// Solution epochs per second, Hz.
@@ -199,6 +203,7 @@ impl RunReport {
                     .accel_bias_sd_m_s2
                     .map(|a| 1e3 * a / STANDARD_GRAVITY_M_S2),
             },
+            bias_hypotheses: run.engine.bias_hypotheses,
             covariance_rate_hz: 1.0 / run.engine.covariance_interval_s,
             output_rate_hz: 1.0 / run.engine.output_interval_s,
             outages: windows.iter().map(OutageJson::from).collect(),

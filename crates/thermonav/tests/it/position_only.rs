@@ -238,51 +238,101 @@ fn an_unobserved_turn_on_bias_is_not_forgotten() {
     }
 }
 
-// Diagnostic (run by hand with --ignored --nocapture): EKF against UKF without heading aiding
-// through one 60 s outage of the survey, per seed: the largest horizontal gap between them and
-// each filter's largest horizontal error.
-#[test]
-#[ignore]
-fn print_ekf_ukf_gap_without_heading_aiding() {
+/// EKF against UKF without heading aiding through one 60 s outage of the survey, for six
+/// seeds: the largest horizontal gap between them, each filter's largest horizontal error (m),
+/// and each filter's heading error over its sd at the outage's start.
+struct OutageGap {
+    gap_m: f64,
+    max_error_m: [f64; 2],
+    heading_z: [f64; 2],
+    heading_deg: [(f64, f64); 2],
+}
+
+fn outage_gaps(bias_hypotheses: Option<BiasHypotheses>) -> Vec<OutageGap> {
     use super::navigation::horizontal_error_m;
     let outages = Outages::from_start_duration(&[(640.0, 60.0)]).unwrap();
+    let mut gaps = Vec::new();
     for seed in 0..6 {
         let record = vessel(200 + seed, 720.0);
         let run_with = |filter| {
             let s = EngineSettings {
                 aiding: POSITION_ONLY,
+                bias_hypotheses,
                 ..settings(filter, outages.clone())
             };
             navigate(&record, seed, &s)
         };
         let (ekf, ukf) = (run_with(FilterKind::Ekf), run_with(FilterKind::Ukf));
-        let (mut gap, mut e_max, mut u_max) = (0.0f64, 0.0f64, 0.0f64);
-        let mut start = None;
+        let mut g = OutageGap {
+            gap_m: 0.0,
+            max_error_m: [0.0; 2],
+            heading_z: [f64::NAN; 2],
+            heading_deg: [(0.0, 0.0); 2],
+        };
         for (a, b) in ekf.epochs.iter().zip(&ukf.epochs) {
             if !a.in_outage {
                 continue;
             }
-            if start.is_none() {
-                let (ea, eb) = (
-                    nav_error(&record, &a.estimate),
-                    nav_error(&record, &b.estimate),
-                );
-                start = Some((
-                    ea[8].to_degrees(),
-                    a.sd[8].to_degrees(),
-                    eb[8].to_degrees(),
-                    b.sd[8].to_degrees(),
-                ));
+            if g.heading_z[0].is_nan() {
+                for (k, epoch) in [a, b].into_iter().enumerate() {
+                    let e = nav_error(&record, &epoch.estimate)[8];
+                    g.heading_z[k] = e / epoch.sd[8];
+                    g.heading_deg[k] = (e.to_degrees(), epoch.sd[8].to_degrees());
+                }
             }
             let d = a.estimate.nav.position.ned_from(&b.estimate.nav.position);
-            gap = gap.max(d.x().hypot(d.y()));
-            e_max = e_max.max(horizontal_error_m(&record, &a.estimate));
-            u_max = u_max.max(horizontal_error_m(&record, &b.estimate));
+            g.gap_m = g.gap_m.max(d.x().hypot(d.y()));
+            g.max_error_m[0] = g.max_error_m[0].max(horizontal_error_m(&record, &a.estimate));
+            g.max_error_m[1] = g.max_error_m[1].max(horizontal_error_m(&record, &b.estimate));
         }
-        let (a, sa, b, sb) = start.unwrap();
+        gaps.push(g);
+    }
+    gaps
+}
+
+// Issue 18: without heading aiding the EKF and the UKF agree once the z-gyro bias prior is a
+// Gaussian sum. Through a 60 s outage after 640 s of position-only fixes, on six seeds, the
+// largest horizontal gap between them is within 10 m (measured 1.3-6.7 m, against largest
+// errors of 16-180 m), and each filter's heading error at the outage's start is within 3 of its
+// sds (measured within 1.1). As single filters they differed by up to 368 m on the same runs
+// (2026-12-03: 88, 368, 43 and 344 m on four of the six seeds), where one of the two had lost
+// its heading by 90-150° while reporting an sd of 2-4°.
+#[test]
+fn ekf_and_ukf_agree_without_heading_aiding_as_gaussian_sums() {
+    for (seed, g) in outage_gaps(Some(BiasHypotheses::default()))
+        .iter()
+        .enumerate()
+    {
+        assert!(
+            g.gap_m < 10.0,
+            "seed {seed}: gap {} m (largest errors {:?} m)",
+            g.gap_m,
+            g.max_error_m
+        );
+        for (k, z) in g.heading_z.iter().enumerate() {
+            assert!(
+                z.abs() < 3.0,
+                "seed {seed} filter {k}: {:?}",
+                g.heading_deg[k]
+            );
+        }
+    }
+}
+
+// Diagnostic (run by hand with --ignored --nocapture): the same outage with single filters
+// (GAUSSIAN_SUM=1 for the sums).
+#[test]
+#[ignore]
+fn print_ekf_ukf_gap_without_heading_aiding() {
+    let sums = std::env::var("GAUSSIAN_SUM")
+        .is_ok()
+        .then(BiasHypotheses::default);
+    for (seed, g) in outage_gaps(sums).iter().enumerate() {
+        let [(a, sa), (b, sb)] = g.heading_deg;
         eprintln!(
-            "seed {seed}: gap {gap:.1} m, EKF max {e_max:.1} m, UKF max {u_max:.1} m; heading \
-             error at the outage's start: EKF {a:.1} deg (sd {sa:.1}), UKF {b:.1} deg (sd {sb:.1})"
+            "seed {seed}: gap {:.1} m, EKF max {:.1} m, UKF max {:.1} m; heading error at the \
+             outage's start: EKF {a:.1} deg (sd {sa:.1}), UKF {b:.1} deg (sd {sb:.1})",
+            g.gap_m, g.max_error_m[0], g.max_error_m[1]
         );
     }
 }
