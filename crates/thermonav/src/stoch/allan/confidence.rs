@@ -3,7 +3,7 @@
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 use super::edf::edf_overlapping_adev;
-use super::noise_id::identify_noise;
+use super::noise_id::identify_noise_at_factors;
 use super::{AllanCurve, AllanError, AllanIntervals};
 
 /// erf(1/√2) = 0.682689...: the probability within ±1 sigma of a normal distribution.
@@ -70,7 +70,7 @@ fn valid_level_or_one_sigma(level: f64) -> f64 {
 
 /// Confidence limits for every point of `curve`, computed from the series `y` it came from.
 ///
-/// At each averaging factor m: identify the dominant noise ([`identify_noise`], Stable32's
+/// At each averaging factor m: identify the dominant noise ([`super::identify_noise`], Stable32's
 /// rule), compute Greenhall's EDF for N + 1 phase points ([`edf_overlapping_adev`]), and bound
 /// the variance by the chi-square distribution (NIST SP 1065 eq. 45):
 /// edf σ²/χ²(1 − q, edf) ≤ σ²_true ≤ edf σ²/χ²(q, edf), q = (1 − level)/2.
@@ -91,16 +91,13 @@ pub fn confidence_intervals_with(
         quantile: settings.quantile,
     };
     let matches = y.len() == curve.n_samples;
-    let alpha: Vec<i32> = curve
-        .averaging_factor
-        .iter()
-        .map(|&m| {
-            matches
-                .then(|| identify_noise(y, m))
-                .flatten()
-                .map_or(0, |id| id.noise.alpha())
-        })
-        .collect();
+    let alpha: Vec<i32> = match matches {
+        true => identify_noise_at_factors(y, &curve.averaging_factor)
+            .iter()
+            .map(|id| id.map_or(0, |id| id.noise.alpha()))
+            .collect(),
+        false => vec![0; curve.averaging_factor.len()],
+    };
     if matches {
         return intervals_for_noise(curve, alpha, &settings);
     }

@@ -55,7 +55,9 @@ pub use family::{channel_deviations, deviation};
 pub use hadamard::{hadamard_deviation, overlapping_hadamard_deviation};
 pub use kind::{DeviationCurve, DeviationKind, UnknownDeviationKind};
 pub use modified::{modified_adev, time_deviation};
-pub use noise_id::{NoiseIdMethod, NoiseIdentification, PowerLawNoise, identify_noise};
+pub use noise_id::{
+    NoiseIdMethod, NoiseIdentification, PowerLawNoise, identify_noise, identify_noise_at_factors,
+};
 pub use streaming::{StreamingAllan, StreamingAllanSettings};
 pub use total::total_deviation;
 
