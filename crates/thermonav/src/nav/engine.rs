@@ -17,6 +17,9 @@
 //! error is not exactly zero) the error estimate is folded into the nominal
 //! ([`Estimate::corrected_by`]) and reset to zero.
 
+use super::error_filter::{
+    ChosenFilter, ErrorEkf, ErrorStateFilter, ErrorUkf, Measurement, Updated,
+};
 use super::error_state::{ErrorVector, Estimate};
 use super::gaussian_sum::{BiasHypotheses, run_gaussian_sum};
 use super::measurement::{
@@ -24,20 +27,18 @@ use super::measurement::{
     baseline_heading, heading_linearized, position_linearized, velocity_linearized,
 };
 use super::outage::Outages;
+use super::process_model::ProcessStep;
 use super::schedule::ModelSchedule;
 use super::sensor_model::ImuStochasticModel;
 use super::smoother::{ForwardHistory, MAX_SMOOTHED_STEPS};
 use super::solution::{InnovationRecord, Solution, SolutionEpoch, SolutionSink};
-use crate::filter::FilterError;
-use crate::filter::ekf::joseph_update;
 use crate::filter::gating::ScaledGate;
 use crate::filter::sigma_points::SigmaPointScheme;
-use crate::filter::ukf::Ukf;
 use crate::frames::Vector;
 use crate::geo::position::{Geodetic, NAVIGATION_LATITUDE_LIMIT_DEG, within_navigation_latitudes};
 use crate::gnss::GnssFix;
 use crate::imu::{ImuSample, ImuSeries, SampleKind};
-use crate::ins::error_model::{STATES, SystemMatrix, system_matrix};
+use crate::ins::error_model::{STATES, SystemMatrix};
 use crate::ins::mechanization::mechanize;
 use crate::ins::state::Increment;
 use crate::time::{Duration, Timestamp};
@@ -392,22 +393,6 @@ fn split(inc: &Increment, at: Timestamp) -> (Increment, Increment) {
     )
 }
 
-/// The covariance or the UKF that carries it.
-#[derive(Debug, Clone)]
-enum Core {
-    Ekf(Box<SystemMatrix>),
-    Ukf(Box<Ukf<STATES>>),
-}
-
-impl Core {
-    fn covariance(&self) -> &SystemMatrix {
-        match self {
-            Core::Ekf(p) => p,
-            Core::Ukf(u) => &u.p,
-        }
-    }
-}
-
 /// Raw increments accumulated since the last covariance propagation.
 #[derive(Debug, Clone, Copy)]
 struct Window {
@@ -438,7 +423,7 @@ impl Window {
 
 pub(crate) struct Run<'a, 's> {
     estimate: Estimate,
-    core: Core,
+    core: ChosenFilter,
     window: Window,
     previous: Increment,
     last_raw_rate: Vector3<f64>,
@@ -642,12 +627,8 @@ impl<'a, 's> Run<'a, 's> {
             settings,
         } = filtering;
         let core = match settings.filter {
-            FilterKind::Ekf => Core::Ekf(Box::new(p0)),
-            FilterKind::Ukf => Core::Ukf(Box::new(Ukf::new(
-                ErrorVector::zeros(),
-                p0,
-                settings.sigma_points,
-            ))),
+            FilterKind::Ekf => ChosenFilter::Ekf(ErrorEkf::new(p0)),
+            FilterKind::Ukf => ChosenFilter::Ukf(ErrorUkf::new(p0, settings.sigma_points)),
         };
         let gate = |kind: MeasurementKind| {
             settings
@@ -721,9 +702,9 @@ impl<'a, 's> Run<'a, 's> {
         self.propagate()?;
         self.record();
         let mut smoothed = Vec::new();
-        if let (Some(history), Core::Ekf(p)) = (&mut self.history, &self.core) {
+        if let (Some(history), ChosenFilter::Ekf(ekf)) = (&mut self.history, &self.core) {
             // The last updates came after the last step's end: the history ends filtered.
-            history.begin(self.estimate, **p);
+            history.begin(self.estimate, *ekf.covariance());
             smoothed = history
                 .smooth(&self.settings.outages)
                 .map_err(|e| NavError::Smoothing(e.to_string()))?;
@@ -744,12 +725,12 @@ impl<'a, 's> Run<'a, 's> {
 
     /// One IMU interval: mechanize the nominal, accumulate the window, propagate when due.
     fn step(&mut self, raw: &Increment) -> Result<(), NavError> {
-        if let (Some(history), Core::Ekf(p), false) = (
+        if let (Some(history), ChosenFilter::Ekf(ekf), false) = (
             &mut self.history,
             &self.core,
             self.window.raw.dt.is_positive(),
         ) {
-            history.begin(self.estimate, **p);
+            history.begin(self.estimate, *ekf.covariance());
         }
         let corrected = self.estimate.sensors.correct(raw);
         let previous = if self.previous.dt.is_positive() {
@@ -834,59 +815,23 @@ impl<'a, 's> Run<'a, 's> {
         if !self.window.raw.dt.is_positive() {
             return Ok(());
         }
-        let dt = self.window.raw.dt_s();
         let start = self.window.start;
         let model = self.schedule.model_at(start.nav.time);
-        let corrected = start.sensors.correct(&self.window.raw);
-        let f = system_matrix(
-            &start.nav,
-            &corrected.delta_angle.scale(1.0 / dt),
-            &corrected.delta_velocity.scale(1.0 / dt),
-            &model.correlation_times(),
-        );
-        let phi = model.transition_matrix(&f, dt);
-        let q = model.process_noise(&start.nav.attitude, &phi, dt);
-        match &mut self.core {
-            Core::Ekf(p) => {
-                **p = phi.propagate(p, &q);
-                if let Some(history) = &mut self.history {
-                    history.end(phi.to_matrix(), self.estimate, **p);
-                }
-            }
-            Core::Ukf(u) => {
-                let raw = self.window.raw;
-                let reference = Estimate {
-                    nav: mechanize(&start.nav, &corrected, &corrected),
-                    sensors: start.sensors,
-                };
-                let decay: [[f64; 3]; 4] = model
-                    .gauss_markov_states()
-                    .map(|(_, group)| group.map(|gm| gm.transition(dt)));
-                let propagate_point = |dx: &ErrorVector| {
-                    let point = start.corrected_by(dx);
-                    let inc = point.sensors.correct(&raw);
-                    let moved = Estimate {
-                        nav: mechanize(&point.nav, &inc, &inc),
-                        sensors: point.sensors,
-                    };
-                    let mut out = moved.error_from(&reference);
-                    for (g, factors) in decay.iter().enumerate() {
-                        for (k, factor) in factors.iter().enumerate() {
-                            out[9 + 3 * g + k] *= factor;
-                        }
-                    }
-                    out
-                };
-                u.predict(propagate_point, &q.to_matrix())
-                    .map_err(|e| NavError::Diverged {
-                        filter: "ukf",
-                        time_s: self.estimate.nav.time.as_seconds(),
-                        reason: e.to_string(),
-                    })?;
-                let mean = u.x;
-                u.x = ErrorVector::zeros();
-                self.estimate = self.estimate.corrected_by(&mean);
-            }
+        let step = ProcessStep::new(&start, &self.window.raw, model);
+        // Taken out by value (a run whose prediction fails stops, so the placeholder is never
+        // used).
+        let core = std::mem::replace(&mut self.core, ChosenFilter::placeholder());
+        let predicted = core.predict(&step).map_err(|e| self.diverged(e))?;
+        self.core = predicted.filter;
+        if let (Some(history), ChosenFilter::Ekf(ekf)) = (&mut self.history, &self.core) {
+            history.end(
+                step.transition().to_matrix(),
+                self.estimate,
+                *ekf.covariance(),
+            );
+        }
+        if let Some(shift) = predicted.shift {
+            self.estimate = self.estimate.corrected_by(&shift);
         }
         self.window = Window::at(self.estimate);
         Ok(())
@@ -975,27 +920,22 @@ impl<'a, 's> Run<'a, 's> {
         z: SVector<f64, M>,
         h: impl Fn(&ErrorVector) -> SVector<f64, M>,
     ) -> Result<(), NavError> {
-        let outcome = match &self.core {
-            Core::Ekf(p) => {
-                let (mut x, mut p) = (ErrorVector::zeros(), **p);
-                joseph_update(&mut x, &mut p, &lin.residual, &lin.jacobian, &lin.noise).map(
-                    |innovation| {
-                        let record = (-innovation.residual, innovation.covariance, innovation.nis);
-                        (x, Core::Ekf(Box::new(p)), record)
-                    },
-                )
-            }
-            Core::Ukf(u) => {
-                let mut trial = u.clone();
-                trial.update(&z, h, &lin.noise).map(|innovation| {
-                    let x = trial.x;
-                    trial.x = ErrorVector::zeros();
-                    let record = (innovation.residual, innovation.covariance, innovation.nis);
-                    (x, Core::Ukf(trial), record)
-                })
-            }
+        let measurement = Measurement {
+            linearized: lin,
+            z,
+            model: &h,
         };
-        let (x, core, (innovation, s, nis)) = outcome.map_err(|e: FilterError| self.diverged(e))?;
+        let Updated {
+            filter,
+            correction: x,
+            innovation,
+            covariance: s,
+            nis,
+        } = self
+            .core
+            .clone()
+            .update(&measurement)
+            .map_err(|e| self.diverged(e))?;
         let verdict = self.gates[kind as usize].as_mut().map(|g| g.judge(nis));
         let passed = verdict.is_none_or(|v| v.passed);
         let streak = &mut self.consecutive_rejections[kind as usize];
@@ -1020,7 +960,7 @@ impl<'a, 's> Run<'a, 's> {
             forced,
         });
         if accepted {
-            self.core = core;
+            self.core = filter;
             self.estimate = self.estimate.corrected_by(&x);
         }
         Ok(())

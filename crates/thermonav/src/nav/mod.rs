@@ -13,6 +13,10 @@
 //! - [`outage`]: windows in which GNSS updates are withheld.
 //! - [`engine`]: the run loop: mechanization at the IMU rate, covariance propagation at a
 //!   chosen rate, updates at GNSS epochs, closed-loop feedback.
+//! - [`process_model`]: one covariance step's linearisation (Φ, Q) and nonlinear propagation;
+//!   [`error_filter`]: the EKF and the UKF behind one interface (predict and update by value).
+//! - [`gaussian_sum`]: the z-gyro bias prior split into filters run in lockstep, for runs in
+//!   which nothing observes the heading directly.
 //! - [`solution`]: what a run returns: solution epochs, innovations and their statistics.
 //! - [`run`]: one run on records already read (model chosen, record compensated, outages
 //!   laid, start aligned, filter run), and [`report`]: what it reports; [`stream`]: the same
@@ -25,10 +29,12 @@
 
 pub mod alignment;
 pub mod engine;
+pub mod error_filter;
 pub mod error_state;
 pub mod gaussian_sum;
 pub mod measurement;
 pub mod outage;
+pub mod process_model;
 pub mod report;
 pub mod run;
 pub mod schedule;
