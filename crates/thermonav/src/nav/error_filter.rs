@@ -170,7 +170,10 @@ impl ErrorStateFilter for ErrorUkf {
     }
 }
 
-/// The filter a run chose: either one, behind the same interface.
+/// The filter a run chose: either one, behind the same interface. (The EKF's covariance is kept
+/// inline, on purpose: it is copied for every gated update and moved at every step, which a box
+/// would turn into an allocation each.)
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum ChosenFilter {
     /// The EKF.
