@@ -285,7 +285,9 @@ mod tests {
             kappa: 0.0,
         };
         let ekf = ErrorEkf::new(small_covariance()).predict(&step).unwrap();
-        let ukf = ErrorUkf::new(small_covariance(), scheme).predict(&step).unwrap();
+        let ukf = ErrorUkf::new(small_covariance(), scheme)
+            .predict(&step)
+            .unwrap();
         assert!(ekf.shift.is_none());
         let (a, b) = (ekf.filter.covariance(), ukf.filter.covariance());
         for i in 0..STATES {
@@ -323,7 +325,9 @@ mod tests {
             beta: 2.0,
             kappa: 0.0,
         };
-        let ekf = ErrorEkf::new(small_covariance()).update(&measurement).unwrap();
+        let ekf = ErrorEkf::new(small_covariance())
+            .update(&measurement)
+            .unwrap();
         let ukf = ErrorUkf::new(small_covariance(), scheme)
             .update(&measurement)
             .unwrap();

@@ -140,6 +140,22 @@ enum Record {
     Innovation(InnovationRecord),
 }
 
+impl Record {
+    fn innovation(&self) -> Option<&InnovationRecord> {
+        match self {
+            Record::Innovation(r) => Some(r),
+            Record::Epoch(_) => None,
+        }
+    }
+
+    fn epoch(&self) -> Option<&SolutionEpoch> {
+        match self {
+            Record::Epoch(e) => Some(e),
+            Record::Innovation(_) => None,
+        }
+    }
+}
+
 /// A member's sink: its records wait in a shared buffer until the sum combines them.
 struct Buffered(Rc<RefCell<Records>>);
 
@@ -327,24 +343,14 @@ impl Sum<'_, '_, '_> {
         for j in 0..count {
             match taken[0][j] {
                 Record::Innovation(_) => {
-                    let records: Vec<&InnovationRecord> = taken
-                        .iter()
-                        .filter_map(|t| match &t[j] {
-                            Record::Innovation(r) => Some(r),
-                            Record::Epoch(_) => None,
-                        })
-                        .collect();
+                    let records: Vec<&InnovationRecord> =
+                        taken.iter().filter_map(|t| t[j].innovation()).collect();
                     self.weigh(&records);
                     sink.innovation(records[self.heaviest()]);
                 }
                 Record::Epoch(_) => {
-                    let epochs: Vec<&SolutionEpoch> = taken
-                        .iter()
-                        .filter_map(|t| match &t[j] {
-                            Record::Epoch(e) => Some(e),
-                            Record::Innovation(_) => None,
-                        })
-                        .collect();
+                    let epochs: Vec<&SolutionEpoch> =
+                        taken.iter().filter_map(|t| t[j].epoch()).collect();
                     sink.epoch(&self.mixture(&epochs));
                 }
             }
