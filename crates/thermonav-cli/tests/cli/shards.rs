@@ -78,6 +78,12 @@ fn three_shards(dir: &Path, bank: &Path, vessel: &Path) -> PathBuf {
         (json["shard_index"].as_u64(), json["shard_count"].as_u64()),
         (Some(2), Some(3))
     );
+    // Round robin: shard 2 of 3 holds the runs k = 1, 4, 7, ... of the total.
+    let (runs, total) = (
+        json["runs"].as_u64().unwrap(),
+        json["total_runs"].as_u64().unwrap(),
+    );
+    assert!(total >= 9 && runs == (total + 1) / 3, "{runs} of {total}");
     shards
 }
 
