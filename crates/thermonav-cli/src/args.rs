@@ -131,7 +131,11 @@ pub enum FiltersArg {
 
 /// Arguments of `evaluate`.
 #[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct EvaluateArgs {
+    /// `merge`: the shards of a `--shard` run into one evaluation.
+    #[command(subcommand)]
+    pub action: Option<EvaluateAction>,
     /// The IMU CSV (with --gnss and --bank or --profile: our filters run; without them, only
     /// the --solution files are scored).
     #[arg(long, requires = "gnss", required_unless_present = "solution")]
@@ -143,8 +147,8 @@ pub struct EvaluateArgs {
     pub gnss: Option<PathBuf>,
     /// The reference trajectory CSV (truth), covering every outage. It may start after the
     /// first GNSS fix (the runs then start at its first point, as integrate --initial-from).
-    #[arg(long)]
-    pub reference: PathBuf,
+    #[arg(long, required = true)]
+    pub reference: Option<PathBuf>,
     /// The temperature model bank (JSON).
     #[arg(long, conflicts_with = "profile", requires = "imu")]
     pub bank: Option<PathBuf>,
@@ -216,6 +220,33 @@ pub struct EvaluateArgs {
     /// (ARW, in-run bias stability / 0.62, a 1 h correlation time).
     #[arg(long)]
     pub datasheet: Option<PathBuf>,
+    /// Run one slice of the tournament's runs (replicate x model), I/N with I in 1..=N, or
+    /// auto/N to take I from $SLURM_ARRAY_TASK_ID (`sbatch --array=1-N`): writes
+    /// OUT/shard-I-of-N.json instead of evaluation.json; `evaluate merge` joins the shards.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Output folder (evaluation.json and errors/*.csv).
+    #[arg(long, required = true)]
+    pub out: Option<PathBuf>,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Actions of `evaluate` beside the tournament itself.
+#[derive(Debug, Subcommand)]
+pub enum EvaluateAction {
+    /// Merge the shard files of `evaluate --shard` runs into OUT/evaluation.json and
+    /// OUT/errors/*.csv, the same files, byte for byte, as one unsharded run into OUT.
+    Merge(EvaluateMergeArgs),
+}
+
+/// Arguments of `evaluate merge`.
+#[derive(Debug, Args)]
+pub struct EvaluateMergeArgs {
+    /// Folders holding the shard files (shard-I-of-N.json), or the shard files themselves.
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
     /// Output folder (evaluation.json and errors/*.csv).
     #[arg(long)]
     pub out: PathBuf,

@@ -23,6 +23,7 @@ mod settings;
 mod thermal_calibration;
 mod thermal_scenarios;
 mod tournament_files;
+mod tournament_shards;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -18,7 +18,7 @@ use thermonav::evaluation::scenario::{
     ScenarioError, scenario_imu as library_scenario_imu, scenario_of as library_scenario_of,
     scenario_of_records,
 };
-use thermonav::evaluation::tournament::{Scenario, ScenarioImu};
+use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
@@ -119,14 +119,25 @@ pub fn run_and_write(
         .map_err(|e| anyhow!("{e}"))
         .data()?;
     bar.finish_and_clear();
-    let mut report = outcome.report;
+    let rotation = crate::settings::imu::rotation_text(imu);
+    write_outcome((outcome.report, &outcome.main), outside, (out, rotation))
+}
+
+/// Adds the `outside` solutions' rows to `report`, writes the per-model error CSVs of the
+/// main run `main` under `out/errors` and `out/evaluation.json` (with the `--imu-rotation`
+/// text, when given), and returns what was written (also the end of `evaluate merge`).
+pub fn write_outcome(
+    (mut report, main): (TournamentReport, &[ModelResult]),
+    outside: &[OutsideResult],
+    (out, imu_rotation): (&Path, Option<String>),
+) -> Result<EvaluationFile, Failure> {
     report.add_outside(outside);
-    let ours = outcome.main.iter().map(|r| {
+    let ours = main.iter().map(|r| {
         let errors = r.outcome.as_ref().ok().map(|e| e.errors.as_slice());
         (format!("{}_{}", r.filter.name(), slug(&r.label)), errors)
     });
     let errors: Vec<_> = ours.chain(outside_errors(outside)).collect();
-    write_evaluation(report, &errors, (out, imu))
+    write_evaluation(report, &errors, (out, imu_rotation))
 }
 
 /// Scores only outside solutions (no filter runs) and writes their error CSVs and
@@ -138,7 +149,7 @@ pub fn write_outside_only(
 ) -> Result<EvaluationFile, Failure> {
     let report = TournamentReport::outside_only(outages, outside);
     let errors: Vec<_> = outside_errors(outside).collect();
-    write_evaluation(report, &errors, (out, &ImuOptions::default()))
+    write_evaluation(report, &errors, (out, None))
 }
 
 /// The error-CSV names and errors of outside solutions.
@@ -157,7 +168,7 @@ fn outside_errors(
 fn write_evaluation(
     mut report: TournamentReport,
     errors: &[(String, Option<&[Vec<EpochError>]>)],
-    (out, imu): (&Path, &ImuOptions),
+    (out, imu_rotation): (&Path, Option<String>),
 ) -> Result<EvaluationFile, Failure> {
     for (model, (stem, errors)) in report.models.iter_mut().zip(errors) {
         model.errors_csv = match errors {
@@ -167,7 +178,7 @@ fn write_evaluation(
     }
     let file = EvaluationFile {
         report,
-        imu_rotation: crate::settings::imu::rotation_text(imu),
+        imu_rotation,
         report_file: out.join("evaluation.json"),
     };
     // The folder exists already when an error CSV was written, not when every run failed.

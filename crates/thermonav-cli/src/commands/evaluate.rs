@@ -4,7 +4,7 @@
 //! solutions (`--solution`: KF-GINS, RTKLIB, any trajectory CSV) are scored beside the
 //! candidates with the same metrics, or alone when no IMU is given.
 
-use crate::args::EvaluateArgs;
+use crate::args::{EvaluateAction, EvaluateArgs};
 use crate::failure::{Classify, Failure};
 use crate::integration::load_noise;
 use crate::report::print_json;
@@ -13,12 +13,14 @@ use crate::tournament_files::{
     EvaluationFile, RecordPlan, check_some_model_ran, print_tournament_table, run_and_write,
     scenario_from_files, write_outside_only,
 };
+use crate::tournament_shards;
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datasheet_model_of};
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::outside::{OutsideResult, score_outside};
+use thermonav::evaluation::shard::Shard;
 use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::Outage;
@@ -34,18 +36,60 @@ type Solution = (OutsideInput, Vec<TrajectoryPoint>);
 
 /// Runs `evaluate`.
 pub fn run(args: &EvaluateArgs) -> Result<(), Failure> {
+    if let Some(EvaluateAction::Merge(merge)) = &args.action {
+        return print_evaluation(&tournament_shards::merge(merge)?, merge.json);
+    }
     let s = crate::settings::navigation::evaluate(args)?;
     let solutions = read_solutions(&s.solutions)?;
-    let file = match &s.run {
-        Some(run) => run_filters(&s, run, &solutions)?,
-        None => score_alone(&s, &solutions)?,
+    let file = match (&s.run, s.shard) {
+        (Some(run), Some(shard)) => return run_shard(&s, run, shard, args.json),
+        (Some(run), None) => run_filters(&s, run, &solutions)?,
+        (None, _) => score_alone(&s, &solutions)?,
     };
-    if args.json {
-        print_json(&file)?;
+    print_evaluation(&file, args.json)
+}
+
+/// Prints what was written (the table, or the JSON document) and fails when no model ran.
+fn print_evaluation(file: &EvaluationFile, json: bool) -> Result<(), Failure> {
+    if json {
+        print_json(file)?;
     } else {
-        print_tournament_table(&file);
+        print_tournament_table(file);
     }
-    check_some_model_ran(&file)
+    check_some_model_ran(file)
+}
+
+/// One shard of the tournament (`--shard`), written for `evaluate merge`.
+fn run_shard(
+    s: &EvaluateSettings,
+    run: &FilterRun,
+    shard: Shard,
+    json: bool,
+) -> Result<(), Failure> {
+    let (tournament, main) = prepare(s, run)?;
+    let replicates = replicates_of(s);
+    let parts = (&tournament, &main, &replicates);
+    let written = tournament_shards::run_and_write_shard(parts, shard, (s, run))?;
+    if json {
+        return print_json(&written);
+    }
+    println!(
+        "shard {}/{}: {} of {} runs\nwritten: {}",
+        written.shard_index,
+        written.shard_count,
+        written.runs,
+        written.total_runs,
+        written.shard_file.display()
+    );
+    Ok(())
+}
+
+/// The Monte Carlo of `s`: shifted outage starts.
+fn replicates_of(s: &EvaluateSettings) -> Replicates<'static> {
+    Replicates::ShiftedOutages {
+        extra: s.extra_replicates,
+        seed: s.seed,
+    }
 }
 
 /// Our tournament on the files, the outside solutions scored beside it.
@@ -54,6 +98,19 @@ fn run_filters(
     run: &FilterRun,
     solutions: &[Solution],
 ) -> Result<EvaluationFile, Failure> {
+    let (tournament, main) = prepare(s, run)?;
+    let outside = score_all(solutions, &main.reference, windows(&main))?;
+    run_and_write(
+        &tournament,
+        &main,
+        &replicates_of(s),
+        &outside,
+        (&s.out, &run.files.imu_options),
+    )
+}
+
+/// The tournament of `s` and its main scenario, from the files.
+fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenario), Failure> {
     let noise = load_noise(&run.noise)?;
     let scale = ScaleFactorPrior::default();
     let truth = read_truth(s.truth.as_deref(), &scale)?;
@@ -80,18 +137,7 @@ fn run_filters(
         oracle: truth.as_ref(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
-    let outside = score_all(solutions, &main.reference, windows(&main))?;
-    let replicates = Replicates::ShiftedOutages {
-        extra: s.extra_replicates,
-        seed: s.seed,
-    };
-    run_and_write(
-        &tournament,
-        &main,
-        &replicates,
-        &outside,
-        (&s.out, &run.files.imu_options),
-    )
+    Ok((tournament, main))
 }
 
 /// The filter settings of `s` (outages are laid over the data later).

@@ -7,6 +7,7 @@ use crate::failure::Failure;
 use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::MAX_REPLICATES;
+use thermonav::evaluation::shard::Shard;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::gaussian_sum::{BiasHypotheses, split_prior};
 use thermonav::nav::measurement::AntennaGeometry;
@@ -381,6 +382,8 @@ pub struct EvaluateSettings {
     pub truth: Option<PathBuf>,
     /// Output folder.
     pub out: PathBuf,
+    /// The slice of the runs to run (`--shard`), when not all.
+    pub shard: Option<Shard>,
 }
 
 /// The outages of `evaluate`: as given, required with outside solutions (their solver had its
@@ -399,7 +402,7 @@ fn evaluate_outages(args: &EvaluateArgs) -> Result<OutageSpec, Failure> {
 }
 
 /// Our filters' side, when --imu is given.
-fn filter_run(args: &EvaluateArgs) -> Result<Option<FilterRun>, Failure> {
+fn filter_run(args: &EvaluateArgs, reference: &Path) -> Result<Option<FilterRun>, Failure> {
     let (Some(imu), Some(gnss)) = (&args.imu, &args.gnss) else {
         return Ok(None);
     };
@@ -407,7 +410,7 @@ fn filter_run(args: &EvaluateArgs) -> Result<Option<FilterRun>, Failure> {
         imu: imu.clone(),
         imu_options: super::imu::rotation_only(&args.rotation),
         gnss: gnss.clone(),
-        reference: args.reference.clone(),
+        reference: reference.to_path_buf(),
     };
     let noise = noise_source(&args.bank, &args.profile)?;
     Ok(Some(FilterRun { files, noise }))
@@ -447,9 +450,10 @@ fn file_label(path: &Path) -> String {
 
 /// Resolves `evaluate`.
 pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
+    let reference = required(&args.reference, "--reference")?;
     let settings = EvaluateSettings {
-        run: filter_run(args)?,
-        reference: args.reference.clone(),
+        run: filter_run(args, &reference)?,
+        reference,
         solutions: outside_inputs(args)?,
         scheduling: match args.no_schedule {
             true => Scheduling::Fixed,
@@ -473,7 +477,8 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         datasheet: args.datasheet.clone(),
         truth: args.truth.clone(),
-        out: args.out.clone(),
+        out: required(&args.out, "--out")?,
+        shard: shard_of(args)?,
     };
     evaluate_io(&settings).check()?;
     Ok(settings)
@@ -504,6 +509,59 @@ pub fn tournament_io(files: &ScenarioFiles, noise: &NoiseSource, out: &Path) -> 
     with_noise(io, noise)
         .output("report", &out.join("evaluation.json"))
         .output_folder("per-model error folder", &out.join("errors"))
+}
+
+/// An option clap requires (unless `evaluate merge` is given, which does not come here).
+fn required(value: &Option<PathBuf>, name: &str) -> Result<PathBuf, Failure> {
+    value
+        .clone()
+        .ok_or_else(|| Failure::Usage(anyhow!("{name} is required")))
+}
+
+/// The environment variable `--shard auto/N` takes the shard's index from.
+pub const SHARD_INDEX_VARIABLE: &str = "SLURM_ARRAY_TASK_ID";
+
+/// `--shard I/N` or `auto/N` (I from [`SHARD_INDEX_VARIABLE`]); refused with `--solution`
+/// (outside solutions are scored by the unsharded run only).
+fn shard_of(args: &EvaluateArgs) -> Result<Option<Shard>, Failure> {
+    let Some(text) = &args.shard else {
+        return Ok(None);
+    };
+    if args.imu.is_none() {
+        return Err(Failure::Usage(anyhow!(
+            "--shard needs --imu: only our filters' runs are sharded"
+        )));
+    }
+    if !args.solution.is_empty() {
+        return Err(Failure::Usage(anyhow!(
+            "--shard with --solution: outside solutions are scored only by an unsharded run"
+        )));
+    }
+    let index = std::env::var(SHARD_INDEX_VARIABLE).ok();
+    parse_shard(text, index.as_deref())
+        .map(Some)
+        .map_err(Failure::Usage)
+}
+
+/// `I/N` (1-based) or `auto/N` with I from `auto_index` (the environment's value).
+pub fn parse_shard(text: &str, auto_index: Option<&str>) -> anyhow::Result<Shard> {
+    let expected = "expected I/N with 1 <= I <= N, or auto/N";
+    let (index, count) = text
+        .split_once('/')
+        .ok_or_else(|| anyhow!("--shard {text}: {expected}"))?;
+    let count: usize = (count.trim().parse()).map_err(|_| {
+        anyhow!("--shard {text}: the count {count:?} is not a whole number ({expected})")
+    })?;
+    let index = match index.trim() {
+        "auto" => auto_index.ok_or_else(|| {
+            anyhow!("--shard {text}: ${SHARD_INDEX_VARIABLE} is not set (run it as a Slurm array task, or give I/N)")
+        })?,
+        given => given,
+    };
+    let index: usize = (index.trim().parse()).map_err(|_| {
+        anyhow!("--shard {text}: the index {index:?} is not a whole number ({expected})")
+    })?;
+    Shard::new(index, count).map_err(|e| anyhow!("--shard {text}: {e}"))
 }
 
 fn replicates(count: usize) -> Result<usize, Failure> {

@@ -18,6 +18,7 @@ mod plots;
 mod real_data;
 mod reliability;
 mod shapes;
+mod shards;
 mod streaming;
 mod streaming_integrate;
 mod thermal;

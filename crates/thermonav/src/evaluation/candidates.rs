@@ -34,7 +34,7 @@ use serde::Serialize;
 use std::sync::Arc;
 
 /// What a candidate is.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum CandidateKind {
     /// A bank entry's model.
@@ -160,7 +160,7 @@ impl CandidateKind {
 }
 
 /// A candidate that could not be built, and why.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Excluded {
     /// Label it would have had.
     pub label: String,

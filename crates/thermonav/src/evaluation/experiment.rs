@@ -11,16 +11,17 @@ use super::candidates::{
     tournament_candidates,
 };
 use super::oracle::TrueModel;
-use super::report::{TournamentReport, report_of};
-use super::tournament::{
-    ModelResult, Scenario, horizontal_contrasts, run_tournament, summarize_replicates,
-};
+use super::outside::outage_spans;
+use super::report::TournamentReport;
+use super::shard::{FrameModel, Shard, ShardFrame, TournamentShard, merge_shards, stored_run};
+use super::tournament::{ModelResult, Scenario, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank};
+use std::collections::BTreeMap;
 
 /// The most replicates a tournament runs (each is a run of every candidate through every
 /// filter: 1000 replicates of the demo's 28 runs take hours already).
@@ -188,7 +189,9 @@ impl Tournament {
         self.candidates.len() * self.filters.len() * (1 + replicates.extra())
     }
 
-    /// Runs the main scenario and the replicates; `on_done` is called after every run.
+    /// Runs the main scenario and the replicates; `on_done` is called after every run. The
+    /// same as running [`Shard::WHOLE`] with [`Tournament::run_shard`] and merging it alone
+    /// (which it does), so that a sharded run merged gives the same report.
     ///
     /// # Errors
     /// [`TournamentError`] for too many replicates or a replicate that cannot be made. A
@@ -199,6 +202,28 @@ impl Tournament {
         replicates: &Replicates,
         on_done: &(dyn Fn() + Sync),
     ) -> Result<TournamentOutcome, TournamentError> {
+        let whole = self.run_shard(main, replicates, Shard::WHOLE, on_done)?;
+        let merged = merge_shards(&[(String::from("the whole run"), whole)])
+            .expect("one whole shard always merges");
+        Ok(TournamentOutcome {
+            report: merged.report,
+            main: merged.main,
+        })
+    }
+
+    /// Runs the share of the main scenario and the replicates that `shard` holds (see
+    /// [`super::shard`]), with an empty fingerprint for the caller to fill; replicates with
+    /// no run in the shard are not made. `on_done` is called after every run.
+    ///
+    /// # Errors
+    /// As [`Tournament::run`].
+    pub fn run_shard(
+        &self,
+        main: &Scenario,
+        replicates: &Replicates,
+        shard: Shard,
+        on_done: &(dyn Fn() + Sync),
+    ) -> Result<TournamentShard, TournamentError> {
         let asked = 1 + replicates.extra();
         if asked > MAX_REPLICATES {
             return Err(TournamentError::TooManyReplicates { asked });
@@ -207,44 +232,59 @@ impl Tournament {
             Replicates::ShiftedOutages { extra, seed } => outage_shifts_s(main, *seed, *extra),
             _ => Vec::new(),
         };
-        let results = run_tournament(main, &self.candidates, &self.filters, on_done);
-        let mut all = vec![results.clone()];
-        for index in 1..asked {
-            let scenario = replicate(main, replicates, &shifts_s, index)?;
-            let mut run = run_tournament(&scenario, &self.candidates, &self.filters, on_done);
-            drop_epoch_errors(&mut run);
-            all.push(run);
+        let per_replicate = self.candidates.len() * self.filters.len();
+        let mut runs = Vec::new();
+        for index in 0..asked {
+            let first = index * per_replicate;
+            let held: Vec<usize> = (0..per_replicate)
+                .filter(|p| shard.holds(first + p))
+                .collect();
+            if held.is_empty() {
+                continue;
+            }
+            let made;
+            let scenario = match index {
+                0 => main,
+                _ => {
+                    made = replicate(main, replicates, &shifts_s, index)?;
+                    &made
+                }
+            };
+            let pairs = (self.candidates.as_slice(), self.filters.as_slice());
+            let mut results = run_selected(scenario, pairs, &held, on_done);
+            if index > 0 {
+                drop_epoch_errors(&mut results);
+            }
+            let numbered = held.iter().zip(&results);
+            runs.extend(numbered.map(|(p, r)| stored_run(first + p, r)));
         }
-        let (summaries, tests) = summarize_replicates(&all);
-        let contrasts = horizontal_contrasts(&all);
-        let report = report_of(
-            self,
-            main,
-            &results,
-            &summaries,
-            (tests, contrasts),
-            replicates,
-        );
-        Ok(TournamentOutcome {
-            report,
-            main: results,
+        Ok(TournamentShard {
+            shard,
+            fingerprint: BTreeMap::new(),
+            frame: self.frame(main, replicates),
+            runs,
         })
     }
 
-    pub(super) fn excluded(&self) -> &[Excluded] {
-        &self.excluded
-    }
-
-    pub(super) fn operating_temperature_c(&self) -> f64 {
-        self.operating_temperature_c
-    }
-
-    pub(super) fn source(&self) -> GaussMarkovSource {
-        self.source
-    }
-
-    pub(super) fn filters(&self) -> &[FilterKind] {
-        &self.filters
+    /// What every shard of this tournament on `main` with `replicates` shares.
+    fn frame(&self, main: &Scenario, replicates: &Replicates) -> ShardFrame {
+        let models = self.candidates.iter().flat_map(|c| {
+            self.filters.iter().map(|f| FrameModel {
+                label: c.label.clone(),
+                candidate: c.kind,
+                filter: *f,
+            })
+        });
+        ShardFrame {
+            operating_temperature_c: self.operating_temperature_c,
+            gauss_markov_source: self.source,
+            filters: self.filters.clone(),
+            outages: outage_spans(main.settings.outages.windows()),
+            models: models.collect(),
+            excluded: self.excluded.clone(),
+            replicates: 1 + replicates.extra(),
+            replicates_differ_by: replicates.differ_by().into(),
+        }
     }
 }
 

@@ -14,7 +14,7 @@ use crate::units::wrap_pi;
 use serde::Serialize;
 
 /// The error at one epoch.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct EpochError {
     /// Epoch, s.
     pub time_s: f64,
@@ -55,7 +55,7 @@ impl EpochError {
 }
 
 /// Figures of one outage.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct OutageMetrics {
     /// Outage start, s.
     pub start_s: f64,
@@ -82,7 +82,7 @@ pub struct OutageMetrics {
 }
 
 /// Figures of a whole run over all its outages.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct RunMetrics {
     /// Mean over outages of the per-outage RMS north error, m (the paper's figure).
     pub rms_north_m: f64,

@@ -16,6 +16,8 @@
 //!   outage metrics, as unranked rows of the report.
 //! - [`report`]: the report's types, which are the `evaluation.json` contract, and the
 //!   ranking.
+//! - [`shard`]: a tournament's runs cut into shards (one batch job each) and the merge that
+//!   gives the report of one whole run.
 //! - [`significance`]: Monte Carlo summaries (mean and 95 % interval per metric) and the
 //!   paired test of the winner against the runner-up.
 
@@ -26,5 +28,6 @@ pub mod oracle;
 pub mod outside;
 pub mod report;
 pub mod scenario;
+pub mod shard;
 pub mod significance;
 pub mod tournament;

@@ -2,11 +2,12 @@
 //! units in the names), built from the runs by [`super::experiment::Tournament::run`].
 
 use super::candidates::{CandidateKind, Excluded};
-use super::experiment::{Replicates, Tournament};
+use super::experiment::Replicates;
 use super::metrics::{Metric, OutageMetrics, RunMetrics};
 use super::outside::{OutsideResult, outage_spans, outside_model_report};
+use super::shard::ShardFrame;
 use super::significance::MeanInterval;
-use super::tournament::{Contrast, ModelResult, ModelSummary, Scenario, Significance};
+use super::tournament::{Contrast, ModelResult, ModelSummary, Significance};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::Outage;
 use crate::nav::solution::InnovationStatistics;
@@ -16,7 +17,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// One outage window, s on the data's time scale.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct OutageSpan {
     /// First instant without GNSS, s.
     pub start_s: f64,
@@ -83,7 +84,7 @@ pub struct SignificanceReport {
     /// Replicates, the main run included.
     pub replicates: usize,
     /// How they differ, in words.
-    pub replicates_differ_by: &'static str,
+    pub replicates_differ_by: String,
     /// Winner against runner-up, per filter and metric.
     pub tests: Vec<Significance>,
     /// Every pair of models of a filter on the horizontal error, the better one first.
@@ -133,7 +134,7 @@ impl TournamentReport {
             best_by_filter: BTreeMap::new(),
             significance: SignificanceReport {
                 replicates: 1,
-                replicates_differ_by: Replicates::None.differ_by(),
+                replicates_differ_by: Replicates::None.differ_by().into(),
                 tests: Vec::new(),
                 horizontal_contrasts: Vec::new(),
             },
@@ -180,37 +181,37 @@ fn horizontal_index() -> usize {
 }
 
 pub(super) fn report_of(
-    tournament: &Tournament,
-    main: &Scenario,
+    frame: &ShardFrame,
     results: &[ModelResult],
     summaries: &[ModelSummary],
     (tests, horizontal_contrasts): (Vec<Significance>, Vec<Contrast>),
-    replicates: &Replicates,
 ) -> TournamentReport {
     let models: Vec<ModelReport> = results
         .iter()
         .zip(summaries)
         .map(|(r, s)| model_report(r, &s.ci95))
         .collect();
-    let replicated = replicates.extra() > 0;
+    let replicated = frame.replicates > 1;
     let (oracles, users): (Vec<&ModelReport>, Vec<&ModelReport>) =
         models.iter().partition(|m| m.candidate.is_oracle());
     let ranking = ranking_values(&users, replicated);
     let oracle_gaps = oracle_gaps(&ranking, &ranking_values(&oracles, replicated));
-    let filters = tournament.filters().to_vec();
+    let filters = frame.filters.clone();
     TournamentReport {
-        operating_temperature_c: Some(tournament.operating_temperature_c()),
-        gauss_markov_source: Some(tournament.source()),
-        outages: outage_spans(main.settings.outages.windows()),
-        excluded: tournament.excluded().to_vec(),
-        best: best_labels(&ranking, filters[0]),
+        operating_temperature_c: Some(frame.operating_temperature_c),
+        gauss_markov_source: Some(frame.gauss_markov_source),
+        outages: frame.outages.clone(),
+        excluded: frame.excluded.clone(),
+        best: (filters.first())
+            .map(|f| best_labels(&ranking, *f))
+            .unwrap_or_default(),
         best_by_filter: filters
             .iter()
             .map(|f| (f.name(), best_labels(&ranking, *f)))
             .collect(),
         significance: SignificanceReport {
-            replicates: 1 + replicates.extra(),
-            replicates_differ_by: replicates.differ_by(),
+            replicates: frame.replicates,
+            replicates_differ_by: frame.replicates_differ_by.clone(),
             tests,
             horizontal_contrasts,
         },

@@ -143,14 +143,27 @@ pub fn run_tournament(
     filters: &[FilterKind],
     on_done: &(dyn Fn() + Sync),
 ) -> Vec<ModelResult> {
+    let all: Vec<usize> = (0..candidates.len() * filters.len()).collect();
+    run_selected(scenario, (candidates, filters), &all, on_done)
+}
+
+/// The runs `selected` (positions in the candidate-major order of [`run_tournament`]) on
+/// `scenario`, in parallel, in the order given.
+pub(super) fn run_selected(
+    scenario: &Scenario,
+    (candidates, filters): (&[Candidate], &[FilterKind]),
+    selected: &[usize],
+    on_done: &(dyn Fn() + Sync),
+) -> Vec<ModelResult> {
     let pairs: Vec<(&Candidate, FilterKind)> = candidates
         .iter()
         .flat_map(|c| filters.iter().map(move |f| (c, *f)))
         .collect();
-    pairs
+    selected
         .par_iter()
-        .map(|(candidate, filter)| {
-            let result = run_one(scenario, candidate, *filter);
+        .map(|&k| {
+            let (candidate, filter) = pairs[k];
+            let result = run_one(scenario, candidate, filter);
             on_done();
             result
         })

@@ -48,7 +48,7 @@ use serde::Serialize;
 use std::convert::Infallible;
 
 /// Which filter carries the error state.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FilterKind {
     /// Error-state extended Kalman filter, Joseph-form updates.

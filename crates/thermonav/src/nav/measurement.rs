@@ -40,7 +40,9 @@ impl Default for AntennaGeometry {
 }
 
 /// The kinds of GNSS measurement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum MeasurementKind {
     /// Antenna position (3).

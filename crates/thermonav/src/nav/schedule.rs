@@ -145,7 +145,7 @@ impl TemperatureTrack {
 }
 
 /// How a grid's models are made from a temperature.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TemperatureRule {
     /// The bank entry nearest the temperature.

@@ -48,7 +48,7 @@ pub struct InnovationRecord {
 }
 
 /// Statistics of one measurement kind over a run.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct InnovationStatistics {
     /// Measurement kind.
     pub kind: MeasurementKind,
