@@ -99,6 +99,7 @@ pub mod profile;
 pub mod raw_imu;
 pub mod ros;
 mod rows;
+mod short_decimal;
 pub mod rtklib_pos;
 pub mod solution;
 pub mod temperature_table;

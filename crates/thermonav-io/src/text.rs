@@ -17,7 +17,7 @@ const FRACTION_DIGITS: usize = 9;
 /// many bytes it takes.
 #[inline]
 pub(crate) fn parse_value_prefix(text: &[u8]) -> Option<(f64, usize)> {
-    fast_float2::parse_partial(text).ok()
+    crate::short_decimal::parse_float_prefix(text)
 }
 
 /// Parses the seconds at the start of `text` into a timestamp, and how many bytes they take.
