@@ -159,7 +159,11 @@ mod tests {
     /// subnormal and up to overflow.
     fn random_decimal(rng: &mut ChaCha8Rng) -> String {
         let digits = |rng: &mut ChaCha8Rng, n: usize| -> String {
-            let zeros = if rng.random_range(0..4) == 0 { rng.random_range(0..n + 1) } else { 0 };
+            let zeros = if rng.random_range(0..4) == 0 {
+                rng.random_range(0..n + 1)
+            } else {
+                0
+            };
             (0..n)
                 .map(|i| match i < zeros {
                     true => '0',
@@ -181,7 +185,11 @@ mod tests {
             text.push_str(&digits(rng, fraction));
         }
         if rng.random_range(0..3) == 0 {
-            text.push(if rng.random_range(0..2) == 0 { 'e' } else { 'E' });
+            text.push(if rng.random_range(0..2) == 0 {
+                'e'
+            } else {
+                'E'
+            });
             match rng.random_range(0..3) {
                 0 => text.push('-'),
                 1 => text.push('+'),
@@ -200,7 +208,9 @@ mod tests {
 
     /// Text that may follow a number in a line.
     fn random_suffix(rng: &mut ChaCha8Rng) -> &'static str {
-        ["", ",", " ,", "\t", "e", "e+", "E-", ".", "x", ".5", "e5x", "1"][rng.random_range(0..12)]
+        [
+            "", ",", " ,", "\t", "e", "e+", "E-", ".", "x", ".5", "e5x", "1",
+        ][rng.random_range(0..12)]
     }
 
     /// The oracle: the longest prefix that `str::parse::<f64>` accepts as a plain decimal
@@ -209,7 +219,9 @@ mod tests {
         (1..=text.len()).rev().find_map(|len| {
             let prefix = &text[..len];
             let plain = !prefix.contains(|c: char| c.is_ascii_alphabetic() && c != 'e' && c != 'E');
-            plain.then(|| prefix.parse::<f64>().ok().map(|v| (v, len))).flatten()
+            plain
+                .then(|| prefix.parse::<f64>().ok().map(|v| (v, len)))
+                .flatten()
         })
     }
 
@@ -227,14 +239,21 @@ mod tests {
             fast += usize::from(short_decimal_prefix(text.as_bytes()).is_some());
             // Same value and length as the parser used before (nothing newly accepted or
             // refused), and the value std gives for the bytes taken.
-            assert_eq!(bits(ours), bits(fast_float2::parse_partial(text.as_bytes()).ok()), "{text:?}");
+            assert_eq!(
+                bits(ours),
+                bits(fast_float2::parse_partial(text.as_bytes()).ok()),
+                "{text:?}"
+            );
             if let Some((value, len)) = ours {
                 let std: f64 = text[..len].parse().unwrap();
                 assert_eq!(value.to_bits(), std.to_bits(), "{text:?}");
             }
         }
         // The cases reach both paths in earnest.
-        assert!(fast > 50_000 && fast < 250_000, "{fast} of 300000 on the fast path");
+        assert!(
+            fast > 50_000 && fast < 250_000,
+            "{fast} of 300000 on the fast path"
+        );
     }
 
     #[test]
@@ -242,12 +261,19 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(52);
         for _ in 0..200_000 {
             let value = (rng.random::<f64>() - 0.5) * 10f64.powi(rng.random_range(-8..5));
-            for text in [format!("{value:.8e}"), format!("{value}"), format!("{:.9}", value)] {
-                let ours = short_decimal_prefix(text.as_bytes()).or_else(|| {
-                    fast_float2::parse_partial(text.as_bytes()).ok()
-                });
+            for text in [
+                format!("{value:.8e}"),
+                format!("{value}"),
+                format!("{:.9}", value),
+            ] {
+                let ours = short_decimal_prefix(text.as_bytes())
+                    .or_else(|| fast_float2::parse_partial(text.as_bytes()).ok());
                 let std: f64 = text.parse().unwrap();
-                assert_eq!(ours.map(|(v, l)| (v.to_bits(), l)), Some((std.to_bits(), text.len())), "{text}");
+                assert_eq!(
+                    ours.map(|(v, l)| (v.to_bits(), l)),
+                    Some((std.to_bits(), text.len())),
+                    "{text}"
+                );
             }
         }
     }
@@ -255,18 +281,42 @@ mod tests {
     #[test]
     fn edge_cases_match_std() {
         for text in [
-            "0", "-0", "-0.0", "+0.0", "9007199254740992", "9007199254740993", "1e22", "1e23",
-            "1e-22", "4.9e-324", "2.2250738585072014e-308", "1.7976931348623157e308",
-            "9999999999999999999", "0.1", "0.30000000000000004", "123456789012345678e-22",
-            "-9.80665", "20.0000007", "0.00686996749", "1.23456789e-05",
+            "0",
+            "-0",
+            "-0.0",
+            "+0.0",
+            "9007199254740992",
+            "9007199254740993",
+            "1e22",
+            "1e23",
+            "1e-22",
+            "4.9e-324",
+            "2.2250738585072014e-308",
+            "1.7976931348623157e308",
+            "9999999999999999999",
+            "0.1",
+            "0.30000000000000004",
+            "123456789012345678e-22",
+            "-9.80665",
+            "20.0000007",
+            "0.00686996749",
+            "1.23456789e-05",
         ] {
             let (value, len) = parse_float_prefix(text.as_bytes()).unwrap();
             assert_eq!(len, text.len(), "{text}");
-            assert_eq!(value.to_bits(), text.parse::<f64>().unwrap().to_bits(), "{text}");
+            assert_eq!(
+                value.to_bits(),
+                text.parse::<f64>().unwrap().to_bits(),
+                "{text}"
+            );
         }
         assert_eq!(std_prefix("-0.5e3,"), Some((-500.0, 6)));
         for text in ["", "-", "+", ".", "e5", "-e5", "abc", ",1"] {
-            assert_eq!(bits(parse_float_prefix(text.as_bytes())), bits(std_prefix(text)), "{text:?}");
+            assert_eq!(
+                bits(parse_float_prefix(text.as_bytes())),
+                bits(std_prefix(text)),
+                "{text:?}"
+            );
         }
     }
 
@@ -282,7 +332,10 @@ mod tests {
             for place in 0..8 {
                 let mut text = *b"12345678";
                 text[place] = byte;
-                assert!(!all_eight_digits(u64::from_le_bytes(text)), "{byte} at {place}");
+                assert!(
+                    !all_eight_digits(u64::from_le_bytes(text)),
+                    "{byte} at {place}"
+                );
             }
         }
     }
