@@ -9,6 +9,7 @@ use thermonav::mounting::Mounting;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::time_offset::TimeOffsetSearch;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::signal::wavelet::daubechies::Daubechies;
 use thermonav::signal::wavelet::denoise::WaveletDenoise;
@@ -400,6 +401,14 @@ pub struct IntegrateArgs {
     /// and memory comparisons.
     #[arg(long, hide = true)]
     pub in_memory: bool,
+    /// Estimate the IMU-GNSS time offset (added to the IMU times, as convert
+    /// --time-offset-s) that maximises the innovations' likelihood over the run, within
+    /// ±--time-offset-bracket-s, and run at it; reported with its sd. Reads the record whole.
+    #[arg(long)]
+    pub estimate_time_offset: bool,
+    /// Half-width of the offsets --estimate-time-offset searches, s.
+    #[arg(long, default_value_t = TimeOffsetSearch::default().bracket_s)]
+    pub time_offset_bracket_s: f64,
     /// Do not subtract the bank's thermal bias calibration bias(T) from the IMU samples.
     #[arg(long)]
     pub no_compensation: bool,

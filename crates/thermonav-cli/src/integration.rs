@@ -18,6 +18,7 @@ use thermonav::nav::run::{
 };
 use thermonav::nav::solution::{Solution, SolutionEpoch};
 use thermonav::nav::stream::is_streamable;
+use thermonav::nav::time_offset::{TimeOffsetEstimate, estimate_time_offset, shifted};
 use thermonav::sensor::SensorProfile;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
@@ -30,7 +31,8 @@ use thermonav_io::{
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     let noise = load_noise(&settings.noise)?;
-    let survey = match settings.in_memory {
+    // The offset search runs the filter many times on the record read once.
+    let survey = match settings.in_memory || settings.time_offset_search.is_some() {
         true => None,
         false => Some(crate::integration_stream::survey(settings)?),
     };
@@ -53,6 +55,17 @@ fn integrate_in_memory(
         None => None,
     };
     let start = reference.as_deref().map_or(Start::Align, Start::Reference);
+    let time_offset = match &settings.time_offset_search {
+        Some(search) => Some(
+            estimate_time_offset(&series, &gnss, noise.model(), start, &settings.run, search)
+                .map_err(|e| run_failure(e, settings))?,
+        ),
+        None => None,
+    };
+    let series = match &time_offset {
+        Some(estimate) => shifted(&series, estimate.time_offset_s),
+        None => series,
+    };
     let prepared = prepare(series, gnss, noise.model(), start, &settings.run)
         .map_err(|e| run_failure(e, settings))?;
     for note in &prepared.notes {
@@ -60,11 +73,9 @@ fn integrate_in_memory(
     }
     let outcome = run_with_progress(prepared).map_err(|e| run_failure(e, settings))?;
     write_outputs(&settings.outputs, &outcome.solution)?;
-    Ok(summarize(
-        settings,
-        ImuReading::Whole,
-        RunReport::of(&outcome),
-    ))
+    let mut summary = summarize(settings, ImuReading::Whole, RunReport::of(&outcome));
+    summary.time_offset = time_offset;
+    Ok(summary)
 }
 
 /// A refused run, naming the file (or the option) it is about.
@@ -185,6 +196,10 @@ pub struct Summary {
     /// How the IMU record was read: `streamed` (bounded memory, the files written as the
     /// filter went) or `whole` (a bank's thermal compensation, or `--in-memory`).
     pub imu_reading: ImuReading,
+    /// With `--estimate-time-offset`: the offset added to the IMU times for the run, its sd
+    /// and the search.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_offset: Option<TimeOffsetEstimate>,
     /// The run's report.
     #[serde(flatten)]
     pub run: RunReport,
@@ -218,6 +233,7 @@ pub(crate) fn summarize(
         bank,
         profile,
         imu_reading,
+        time_offset: None,
         run,
         files: settings.outputs.clone(),
     }

@@ -454,6 +454,7 @@ fn solution_settings(
         initial_from: Some(files.reference.clone()),
         outputs: SolutionFiles::beside(&out.join("solution/solution.csv")),
         in_memory: false,
+        time_offset_search: None,
     }
 }
 

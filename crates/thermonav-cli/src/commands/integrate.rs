@@ -7,6 +7,7 @@ use crate::failure::Failure;
 use crate::integration::{Summary, integrate};
 use crate::report::{print_json, print_rows};
 use thermonav::nav::report::{FinalJson, InnovationJson, RunReport};
+use thermonav::nav::time_offset::TimeOffsetEstimate;
 
 /// Runs `integrate`.
 pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
@@ -23,6 +24,7 @@ type Row = (&'static str, String);
 
 fn summary_rows(s: &Summary) -> Vec<Row> {
     let mut rows = run_rows(&s.run);
+    rows.extend(s.time_offset.as_ref().map(time_offset_row));
     rows.extend(s.run.innovations.iter().map(innovation_row));
     rows.extend(s.run.last.as_ref().map(final_rows).unwrap_or_default());
     rows.push(("solution", s.files.solution.display().to_string()));
@@ -74,6 +76,23 @@ fn filter_text(s: &RunReport) -> String {
             h.span_sd
         ),
     }
+}
+
+/// The estimated IMU-GNSS time offset, in words.
+fn time_offset_row(t: &TimeOffsetEstimate) -> Row {
+    let sd = match t.time_offset_sd_s {
+        Some(sd) => format!("sd {:.1} ms", 1e3 * sd),
+        None => "sd unknown: the likelihood is not concave there".to_string(),
+    };
+    (
+        "IMU time offset",
+        format!(
+            "{:+.1} ms added to the IMU times ({sd}; {} runs over ±{:.0} ms)",
+            1e3 * t.time_offset_s,
+            t.runs,
+            1e3 * t.bracket_s[1]
+        ),
+    )
 }
 
 fn run_rows(s: &RunReport) -> Vec<Row> {

@@ -13,6 +13,7 @@ use thermonav::nav::gaussian_sum::{BiasHypotheses, split_prior};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
+use thermonav::nav::time_offset::TimeOffsetSearch;
 use thermonav::stoch::bank::GaussMarkovSource;
 use thermonav_io::ImuOptions;
 use thermonav_io::outside_solution::SolutionFormat;
@@ -117,6 +118,8 @@ pub struct IntegrateSettings {
     /// Read the record whole and keep the solution in memory (`--in-memory`) rather than
     /// stream them.
     pub in_memory: bool,
+    /// `--estimate-time-offset`: how the IMU-GNSS offset is searched for.
+    pub time_offset_search: Option<TimeOffsetSearch>,
 }
 
 /// Resolves `integrate`.
@@ -162,7 +165,26 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         initial_from: args.initial_from.clone(),
         outputs,
         in_memory: args.in_memory,
+        time_offset_search: time_offset_search(args)?,
     })
+}
+
+/// `--estimate-time-offset` with its bracket (positive, at most 10 s: a larger offset is a
+/// clock-scale error, not a delay).
+fn time_offset_search(args: &IntegrateArgs) -> Result<Option<TimeOffsetSearch>, Failure> {
+    if !args.estimate_time_offset {
+        return Ok(None);
+    }
+    let bracket_s = positive("--time-offset-bracket-s", args.time_offset_bracket_s)?;
+    if bracket_s > 10.0 {
+        return Err(Failure::Usage(anyhow!(
+            "--time-offset-bracket-s: {bracket_s} s is beyond 10 s"
+        )));
+    }
+    Ok(Some(TimeOffsetSearch {
+        bracket_s,
+        ..TimeOffsetSearch::default()
+    }))
 }
 
 fn noise_source(bank: &Option<PathBuf>, profile: &Option<PathBuf>) -> Result<NoiseSource, Failure> {

@@ -21,6 +21,7 @@
 //! - [`run`]: one run on records already read (model chosen, record compensated, outages
 //!   laid, start aligned, filter run), and [`report`]: what it reports; [`stream`]: the same
 //!   run on a record read as it goes, its records streamed to a sink, in bounded memory.
+//! - [`time_offset`]: the IMU-GNSS time offset that maximises the innovations' likelihood.
 //!
 //! Error conventions (as in [`crate::ins::error_model`]): δr = r̂ − r (NED, m), δv = v̂ − v,
 //! Ĉ_b^n = (I − [φ×]) C_b^n, and the sensor states are the error left in the corrected
@@ -42,3 +43,4 @@ pub mod sensor_model;
 pub mod smoother;
 pub mod solution;
 pub mod stream;
+pub mod time_offset;
