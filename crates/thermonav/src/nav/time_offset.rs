@@ -220,11 +220,13 @@ mod tests {
 
     #[test]
     fn shifted_adds_the_offset_to_every_time() {
-        let mut series = ImuSeries::default();
-        series.time = vec![
-            crate::time::Timestamp::from_nanos(1_000_000_000),
-            crate::time::Timestamp::from_nanos(1_005_000_000),
-        ];
+        let series = ImuSeries {
+            time: vec![
+                crate::time::Timestamp::from_nanos(1_000_000_000),
+                crate::time::Timestamp::from_nanos(1_005_000_000),
+            ],
+            ..ImuSeries::default()
+        };
         let out = shifted(&series, -0.125);
         assert_eq!(out.time[0].as_nanos(), 875_000_000);
         assert_eq!(out.time[1].as_nanos(), 880_000_000);

@@ -20,6 +20,7 @@ mod streamed_navigation;
 mod streaming;
 mod thermal;
 mod thermal_recovery;
+mod time_offset;
 mod ukf;
 mod vessel;
 mod wavelet_denoise;
