@@ -384,6 +384,11 @@ pub struct IntegrateArgs {
     /// has been seen. 1 (the default) runs one filter. Not with --smooth.
     #[arg(long, default_value_t = 1)]
     pub bias_hypotheses: usize,
+    /// Do not level the start and take the gyro biases from the platform standing still at
+    /// the record's start (by default done when the fixes stay put for 5 s or more before the
+    /// alignment fix; the run's report says so).
+    #[arg(long)]
+    pub no_static_alignment: bool,
     /// Ignore dual-antenna headings.
     #[arg(long)]
     pub no_heading: bool,

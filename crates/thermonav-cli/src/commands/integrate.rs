@@ -42,8 +42,27 @@ fn in_words(choice: impl serde::Serialize) -> String {
     name.trim_matches('"').replace('_', " ")
 }
 
-/// Where the initial state came from, in words, with the course baseline when there is one.
+/// Where the initial state came from, in words, with the course baseline when there is one
+/// and the still span that levelled it.
 fn initial_state_text(s: &RunReport) -> String {
+    let heading = heading_text(s);
+    match &s.still_start {
+        Some(still) => format!(
+            "{heading}; levelled still over {:.1} s (roll {:.2} deg, pitch {:.2} deg, gyro biases {} deg/h)",
+            still.duration_s,
+            still.roll_rad.to_degrees(),
+            still.pitch_rad.to_degrees(),
+            still
+                .gyro_bias_rad_s
+                .map(|b| format!("{:.0}", b.to_degrees() * 3600.0))
+                .join(", ")
+        ),
+        None => heading,
+    }
+}
+
+/// Where the initial heading came from, in words, with the course baseline when there is one.
+fn heading_text(s: &RunReport) -> String {
     let source = in_words(s.initial);
     match &s.course_baseline {
         Some(c) => format!(
@@ -62,7 +81,13 @@ fn initial_bias_text(s: &RunReport) -> String {
     let b = &s.initial_bias_sd;
     let [g, a] =
         [b.gyro_deg_h, b.accel_mg].map(|v| format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2]));
-    format!("gyro {g} deg/h, accel {a} mg ({})", in_words(b.source))
+    match b.gyro_from_still_start {
+        true => format!(
+            "gyro {g} deg/h (still start), accel {a} mg ({})",
+            in_words(b.source)
+        ),
+        false => format!("gyro {g} deg/h, accel {a} mg ({})", in_words(b.source)),
+    }
 }
 
 /// The filter, and the Gaussian sum it runs as when there is one.

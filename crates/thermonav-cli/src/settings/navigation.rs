@@ -13,6 +13,7 @@ use thermonav::nav::gaussian_sum::{BiasHypotheses, split_prior};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
+use thermonav::nav::static_alignment::StaticAlignment;
 use thermonav::nav::time_offset::TimeOffsetSearch;
 use thermonav::stoch::bank::GaussMarkovSource;
 use thermonav_io::ImuOptions;
@@ -263,6 +264,10 @@ fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
         max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         smooth: args.smooth,
         bias_hypotheses: bias_hypotheses(args.bias_hypotheses, args.smooth)?,
+        static_alignment: match args.no_static_alignment {
+            true => StaticAlignment::Off,
+            false => StaticAlignment::WhenStill,
+        },
         ..EngineSettings::default()
     })
 }

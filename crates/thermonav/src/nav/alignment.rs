@@ -121,7 +121,8 @@ pub struct Alignment {
     pub heading_source: HeadingSource,
 }
 
-fn geodetic(fix: &GnssFix) -> Geodetic {
+/// The fix's position.
+pub(crate) fn geodetic_of(fix: &GnssFix) -> Geodetic {
     Geodetic {
         latitude_rad: fix.latitude_rad,
         longitude_rad: fix.longitude_rad,
@@ -163,7 +164,9 @@ pub fn align_from_gnss(
     }
     let course_of = |w: &[GnssFix]| {
         let dt = w[1].time.since(w[0].time).as_seconds();
-        geodetic(&w[1]).ned_from(&geodetic(&w[0])).scale(1.0 / dt)
+        geodetic_of(&w[1])
+            .ned_from(&geodetic_of(&w[0]))
+            .scale(1.0 / dt)
     };
     let speed = |w: &[GnssFix]| {
         let c = course_of(w);
@@ -193,7 +196,7 @@ pub fn align_from_gnss(
         .fold(Vector::<Body>::zeros(), |acc, i| acc + i.delta_velocity)
         .scale(1.0 / total_dt.as_seconds());
     let (roll, pitch) = level(mean_force.to_array());
-    let p0 = geodetic(first);
+    let p0 = geodetic_of(first);
     let (yaw, heading_source, course) = match heading_from {
         HeadingFrom::Antenna(h) => {
             let b = geometry.baseline_body;
@@ -246,14 +249,14 @@ pub fn course_baseline(fixes: &[GnssFix]) -> Option<CourseBaseline> {
     let first = fixes.first()?;
     let sd = horizontal_sd_m(first);
     let needed = MIN_COURSE_BASELINE_M.max(COURSE_BASELINE_IN_SD * sd);
-    let origin = geodetic(first);
+    let origin = geodetic_of(first);
     let mut points = Vec::new();
     for fix in fixes {
         let t = fix.time.since(first.time).as_seconds();
         if t > MAX_COURSE_BASELINE_S {
             return None;
         }
-        let offset = geodetic(fix).ned_from(&origin).to_array();
+        let offset = geodetic_of(fix).ned_from(&origin).to_array();
         points.push((t, offset));
         let distance = offset[0].hypot(offset[1]);
         if distance >= needed {
@@ -267,7 +270,7 @@ pub fn course_baseline(fixes: &[GnssFix]) -> Option<CourseBaseline> {
 }
 
 /// The larger of a fix's stated north and east sds, or [`UNSTATED_POSITION_SD_M`].
-fn horizontal_sd_m(fix: &GnssFix) -> f64 {
+pub(crate) fn horizontal_sd_m(fix: &GnssFix) -> f64 {
     fix.position_sd_ned_m
         .map(|[n, e, _]| n.max(e))
         .filter(|sd| sd.is_finite() && *sd > 0.0)

@@ -133,6 +133,9 @@ pub struct EngineSettings {
     /// ([`super::gaussian_sum`]): for runs in which nothing observes the heading directly
     /// (position-only GNSS). `None` runs one filter.
     pub bias_hypotheses: Option<BiasHypotheses>,
+    /// Level the start and take the gyro biases from a still platform at the record's start
+    /// ([`super::static_alignment`]); used by the runs that align from GNSS.
+    pub static_alignment: super::static_alignment::StaticAlignment,
 }
 
 impl Default for EngineSettings {
@@ -160,6 +163,7 @@ impl Default for EngineSettings {
             max_imu_gap_s: 1.0,
             smooth: false,
             bias_hypotheses: None,
+            static_alignment: super::static_alignment::StaticAlignment::default(),
         }
     }
 }
@@ -424,6 +428,8 @@ impl Window {
 pub(crate) struct Run<'a, 's> {
     estimate: Estimate,
     core: ChosenFilter,
+    /// What stands in `core` while the filter is moved out by value for a prediction.
+    stand_in: Option<ChosenFilter>,
     window: Window,
     previous: Increment,
     last_raw_rate: Vector3<f64>,
@@ -650,6 +656,7 @@ impl<'a, 's> Run<'a, 's> {
         let mut run = Self {
             estimate: initial,
             core,
+            stand_in: Some(ChosenFilter::stand_in()),
             window: Window::at(initial),
             previous: Window::at(initial).raw,
             last_raw_rate: Vector3::zeros(),
@@ -818,11 +825,14 @@ impl<'a, 's> Run<'a, 's> {
         let start = self.window.start;
         let model = self.schedule.model_at(start.nav.time);
         let step = ProcessStep::new(&start, &self.window.raw, model);
-        // Taken out by value (a run whose prediction fails stops, so the placeholder is never
-        // used).
-        let core = std::mem::replace(&mut self.core, ChosenFilter::placeholder());
+        // Taken out by value, the stand-in holding its place (a run whose prediction fails
+        // stops, so the stand-in is never used as a filter).
+        let Some(stand_in) = self.stand_in.take() else {
+            return Err(self.diverged("a failed prediction was not the end of the run"));
+        };
+        let core = std::mem::replace(&mut self.core, stand_in);
         let predicted = core.predict(&step).map_err(|e| self.diverged(e))?;
-        self.core = predicted.filter;
+        self.stand_in = Some(std::mem::replace(&mut self.core, predicted.filter));
         if let (Some(history), ChosenFilter::Ekf(ekf)) = (&mut self.history, &self.core) {
             history.end(
                 step.transition().to_matrix(),

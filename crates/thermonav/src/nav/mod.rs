@@ -42,5 +42,6 @@ pub mod schedule;
 pub mod sensor_model;
 pub mod smoother;
 pub mod solution;
+pub mod static_alignment;
 pub mod stream;
 pub mod time_offset;

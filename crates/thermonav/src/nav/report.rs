@@ -45,6 +45,9 @@ pub struct ModelJson {
 pub struct InitialBiasJson {
     /// Where they came from.
     pub source: InitialBiasSource,
+    /// True when the gyro sds are instead the still span's ([`Self::source`] then holds for
+    /// the accelerometers only): see `still_start`.
+    pub gyro_from_still_start: bool,
     /// Gyro x, y, z, deg/h.
     pub gyro_deg_h: [f64; 3],
     /// Accelerometer x, y, z, mg.
@@ -148,6 +151,10 @@ pub struct RunReport {
     /// course sd), when the heading was a course over ground.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub course_baseline: Option<CourseBaseline>,
+    /// The still span at the record's start that levelled the start and gave the gyro biases
+    /// (absent: the platform was not still, or static alignment was off).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub still_start: Option<super::static_alignment::StillStart>,
     /// The initial bias standard deviations and where they came from.
     pub initial_bias_sd: InitialBiasJson,
     /// The Gaussian sum the z-gyro bias prior was split into (absent: one filter).
@@ -192,8 +199,10 @@ impl RunReport {
             compensation: run.compensation.clone(),
             initial: run.initial,
             course_baseline: run.course_baseline,
+            still_start: run.still_start,
             initial_bias_sd: InitialBiasJson {
                 source: run.bias_source,
+                gyro_from_still_start: run.still_start.is_some(),
                 gyro_deg_h: run
                     .uncertainty
                     .gyro_bias_sd_rad_s

@@ -21,6 +21,7 @@ use super::alignment::{
 };
 use super::engine::{EngineSettings, NavError, increments_from_series, run_scheduled};
 use super::error_state::Estimate;
+use super::measurement::AntennaGeometry;
 use super::outage::{OutageError, OutageSpec};
 use super::schedule::{
     Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,
@@ -28,9 +29,11 @@ use super::schedule::{
 };
 use super::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError};
 use super::solution::Solution;
+use super::static_alignment::{StaticAlignment, StillStart, attitude_at, still_start};
+use crate::frames::{Body, Vector};
 use crate::gnss::GnssFix;
 use crate::imu::{Channel, ImuSeries};
-use crate::ins::state::Increment;
+use crate::ins::state::{Increment, NavState};
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use crate::stoch::thermal::ThermalCalibration;
@@ -450,9 +453,7 @@ pub struct PreparedRun {
     increments: Vec<Increment>,
     gnss: Vec<GnssFix>,
     engine: EngineSettings,
-    initial: Estimate,
-    initial_source: InitialSource,
-    course_baseline: Option<CourseBaseline>,
+    start: StartFound,
     uncertainty: InitialUncertainty,
     bias_source: InitialBiasSource,
     /// What the caller may want to tell the user (e.g. no temp_c: one model for the run).
@@ -476,20 +477,18 @@ pub fn prepare(
         notes.push(NO_TEMPERATURE_NOTE.to_string());
     }
     let compensation = compensate_record(&mut series, noise.thermal(), settings.compensation);
-    let (uncertainty, bias_source) = initial_uncertainty(noise, &compensation, &models.model);
+    let (prior, bias_source) = initial_uncertainty(noise, &compensation, &models.model);
     let increments = increments_of(&series)?;
     let engine = with_outages(&settings.engine, &settings.outages, &increments)?;
-    let (initial, initial_source, course_baseline) =
-        initial_estimate(start, &increments, &gnss, &engine)?;
+    let start = initial_estimate(start, &increments, &gnss, &engine)?;
+    let uncertainty = start.uncertainty(prior);
     Ok(PreparedRun {
         models,
         compensation,
         increments,
         gnss,
         engine,
-        initial,
-        initial_source,
-        course_baseline,
+        start,
         uncertainty,
         bias_source,
         notes,
@@ -561,22 +560,56 @@ pub(super) fn initial_uncertainty(
 /// The IMU record after the alignment fix that levels the start, s.
 pub(super) const LEVELLING_S: f64 = 1.0;
 
-/// The start: aligned from GNSS (with the course baseline when the heading came from one), or
-/// the reference point at the first fix.
+/// The start a run found: the initial estimate, where it came from and what aligned it.
+#[derive(Debug, Clone, Copy)]
+pub struct StartFound {
+    /// The initial estimate (with the still span's gyro biases as its sensor correction).
+    pub initial: Estimate,
+    /// Where it came from.
+    pub source: InitialSource,
+    /// The straight stretch of fixes the initial heading came from, when it was a course.
+    pub course_baseline: Option<CourseBaseline>,
+    /// The still span that levelled the start and gave the gyro biases, if there was one.
+    pub still_start: Option<StillStart>,
+}
+
+impl StartFound {
+    /// The initial uncertainty of a run from `prior`: tightened by the still span, if any.
+    pub fn uncertainty(&self, prior: InitialUncertainty) -> InitialUncertainty {
+        self.still_start.map_or(prior, |s| s.tightened(prior))
+    }
+}
+
+/// The start: aligned from GNSS (with the course baseline when the heading came from one,
+/// levelled from the still span at the record's start when there is one), or the reference
+/// point at the first fix.
 pub(super) fn initial_estimate(
     start: Start,
     increments: &[Increment],
     gnss: &[GnssFix],
     engine: &EngineSettings,
-) -> Result<(Estimate, InitialSource, Option<CourseBaseline>), RunError> {
+) -> Result<StartFound, RunError> {
     let Start::Reference(points) = start else {
         let alignment = align_from_gnss(increments, gnss, &engine.geometry, LEVELLING_S)
             .map_err(RunError::Alignment)?;
-        let (source, baseline) = match alignment.heading_source {
+        let (source, course_baseline) = match alignment.heading_source {
             HeadingSource::DualAntenna => (InitialSource::DualAntennaHeading, None),
             HeadingSource::Course(c) => (InitialSource::CourseOverGround, Some(c)),
         };
-        return Ok((uncorrected(alignment.nav), source, baseline));
+        let still_start = match engine.static_alignment {
+            StaticAlignment::WhenStill => still_start(increments, gnss, alignment.nav.time),
+            StaticAlignment::Off => None,
+        };
+        let initial = match &still_start {
+            Some(still) => levelled_start(&alignment.nav, still, increments, &engine.geometry),
+            None => uncorrected(alignment.nav),
+        };
+        return Ok(StartFound {
+            initial,
+            source,
+            course_baseline,
+            still_start,
+        });
     };
     let first = increments.first().map(|i| i.time);
     let at = gnss.first().map(|f| f.time).or(first);
@@ -584,11 +617,34 @@ pub(super) fn initial_estimate(
         .find(|p| at.is_some_and(|t| p.time <= t))
         .or(points.first())
         .ok_or(RunError::NoReferencePoint)?;
-    Ok((
-        uncorrected(point.nav_state()),
-        InitialSource::Reference,
-        None,
-    ))
+    Ok(StartFound {
+        initial: uncorrected(point.nav_state()),
+        source: InitialSource::Reference,
+        course_baseline: None,
+        still_start: None,
+    })
+}
+
+/// The GNSS-aligned start `nav` with roll and pitch from the still span carried to its time,
+/// its heading kept, the position at the IMU moved with the new attitude's lever arm, and the
+/// span's gyro biases as the sensor correction.
+fn levelled_start(
+    nav: &NavState,
+    still: &StillStart,
+    increments: &[Increment],
+    geometry: &AntennaGeometry,
+) -> Estimate {
+    let (_, _, yaw) = nav.attitude.euler_zyx();
+    let attitude = attitude_at(still, increments, nav.time, yaw);
+    let lever = Vector::<Body>::from_array(geometry.lever_arm_body_m);
+    let moved = nav.attitude * lever - attitude * lever;
+    let mut estimate = uncorrected(NavState {
+        attitude,
+        position: nav.position.displaced(&moved),
+        ..*nav
+    });
+    estimate.sensors.gyro_bias_rad_s = still.gyro_bias_rad_s;
+    estimate
 }
 
 impl PreparedRun {
@@ -611,7 +667,7 @@ impl PreparedRun {
         let solution = run_scheduled(
             &self.increments,
             &self.gnss,
-            self.initial,
+            self.start.initial,
             self.uncertainty.covariance(),
             self.models.schedule(),
             &self.engine,
@@ -624,8 +680,9 @@ impl PreparedRun {
             compensation: self.compensation,
             engine: self.engine,
             solution,
-            initial: self.initial_source,
-            course_baseline: self.course_baseline,
+            initial: self.start.source,
+            course_baseline: self.start.course_baseline,
+            still_start: self.start.still_start,
             uncertainty: self.uncertainty,
             bias_source: self.bias_source,
         })
@@ -647,6 +704,8 @@ pub struct RunOutcome {
     pub initial: InitialSource,
     /// The straight stretch of fixes the initial heading came from, when it was a course.
     pub course_baseline: Option<CourseBaseline>,
+    /// The still span that levelled the start and gave the gyro biases, if any.
+    pub still_start: Option<StillStart>,
     /// The initial standard deviations of the error states.
     pub uncertainty: InitialUncertainty,
     /// Where the initial bias sds came from.

@@ -17,12 +17,11 @@
 //! [`is_streamable`] says when a run needs it, and the caller then reads the record whole.
 
 use super::alignment::AlignmentError;
-use super::alignment::{CourseBaseline, InitialBiasSource, InitialUncertainty};
+use super::alignment::{InitialBiasSource, InitialUncertainty};
 use super::engine::{EngineSettings, Filtering, StreamError, run_streaming};
-use super::error_state::Estimate;
 use super::run::{
-    InitialSource, LEVELLING_S, NO_TEMPERATURE_NOTE, NoiseModel, RunError, RunModels, RunOutcome,
-    RunSettings, Start, initial_estimate, initial_uncertainty, with_outages_over,
+    LEVELLING_S, NO_TEMPERATURE_NOTE, NoiseModel, RunError, RunModels, RunOutcome, RunSettings,
+    Start, StartFound, initial_estimate, initial_uncertainty, with_outages_over,
 };
 use super::schedule::{
     Compensation, CompensationOutcome, ScheduleError, Scheduling, TemperatureTrack,
@@ -169,8 +168,6 @@ pub struct PreparedStream {
     pub notes: Vec<String>,
 }
 
-type StartFound = (Estimate, InitialSource, Option<CourseBaseline>);
-
 /// [`super::run::prepare`] of a record surveyed by `survey` whose increments are read from
 /// `increments` (only as far as the start needs; [`PreparedStream::run`] takes the rest).
 /// Not for a run [`is_streamable`] refuses: its compensation would be skipped.
@@ -197,10 +194,11 @@ pub fn prepare_stream<E>(
     // temperatures (compensation off, no calibration, or none to apply it by).
     let mut no_samples = ImuSeries::new(survey.kind);
     let compensation = compensate_record(&mut no_samples, noise.thermal(), settings.compensation);
-    let (uncertainty, bias_source) = initial_uncertainty(noise, &compensation, &models.model);
+    let (prior, bias_source) = initial_uncertainty(noise, &compensation, &models.model);
     let span = survey.increment_span().ok_or(RunError::TooShort)?;
     let engine = with_outages_over(&settings.engine, &settings.outages, span)?;
     let (head, start) = head_and_start(start, increments, &gnss, &engine)?;
+    let uncertainty = start.uncertainty(prior);
     Ok(PreparedStream {
         models,
         compensation,
@@ -232,7 +230,8 @@ fn head_and_start<E>(
         let levelled = |f: &StartFound| match start {
             Start::Reference(_) => true,
             Start::Align => (head.last()).is_some_and(|l| {
-                l.time > f.0.nav.time && l.time.since(f.0.nav.time).as_seconds() > LEVELLING_S
+                l.time > f.initial.nav.time
+                    && l.time.since(f.initial.nav.time).as_seconds() > LEVELLING_S
             }),
         };
         match found {
@@ -297,9 +296,8 @@ impl PreparedStream {
         progress: &mut dyn FnMut(usize),
     ) -> Result<StreamOutcome, StreamRunError<E>> {
         let started = Instant::now();
-        let (initial, initial_source, course_baseline) = self.start;
         let filtering = Filtering {
-            initial,
+            initial: self.start.initial,
             p0: self.uncertainty.covariance(),
             schedule: self.models.schedule(),
             settings: &self.engine,
@@ -331,8 +329,9 @@ impl PreparedStream {
             compensation: self.compensation,
             engine: self.engine,
             solution,
-            initial: initial_source,
-            course_baseline,
+            initial: self.start.source,
+            course_baseline: self.start.course_baseline,
+            still_start: self.start.still_start,
             uncertainty: self.uncertainty,
             bias_source: self.bias_source,
         };
