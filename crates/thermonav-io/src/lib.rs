@@ -78,6 +78,7 @@ pub mod atomic;
 pub mod bank;
 pub mod dataflash;
 pub mod error;
+mod fast_row;
 pub mod finite;
 mod fixed;
 pub mod gmwm;

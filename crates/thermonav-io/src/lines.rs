@@ -75,6 +75,14 @@ impl<R: BufRead> Lines<R> {
         &self.buffer[self.start..self.end]
     }
 
+    /// The current line without its line end, followed by whatever the buffer holds after it
+    /// (its line end, later lines): room for word loads that run past the line's last field.
+    /// The line is the first [`Lines::current`]`().len()` bytes.
+    #[inline]
+    pub(crate) fn current_and_after(&self) -> &[u8] {
+        &self.buffer[self.start..self.filled]
+    }
+
     /// 1-based number of the current line (0 before the first).
     pub(crate) fn number(&self) -> u64 {
         self.number

@@ -166,13 +166,26 @@ impl<R: BufRead> Rows<R> {
             };
         }
         self.state = State::InRows;
-        let time = decode_line(
-            self.lines.current(),
+        // The common shape in one pass; any other line (or a bad one) by the general decoder,
+        // which gives the same values or the error.
+        let fast = crate::fast_row::decode_line(
+            self.lines.current_and_after(),
+            self.lines.current().len(),
             &self.layout,
-            self.strictness,
+            self.strictness == Strictness::Strict,
+            MAX_MAGNITUDE,
             &mut self.values,
-        )
-        .map_err(|kind| self.lines.error_here(kind))?;
+        );
+        let time = match fast {
+            Some(time) => time,
+            None => decode_line(
+                self.lines.current(),
+                &self.layout,
+                self.strictness,
+                &mut self.values,
+            )
+            .map_err(|kind| self.lines.error_here(kind))?,
+        };
         let time = match self.times {
             RowTimes::Column => time,
             RowTimes::Rate { rate_hz } => time_at_rate(self.rows, rate_hz),
@@ -192,7 +205,7 @@ impl<R: BufRead> Rows<R> {
 
 /// Splits `line` into the layout's fields, parses each into `values` (SI) and returns the time.
 /// A wrong number of fields is reported before any bad field.
-fn decode_line(
+pub(crate) fn decode_line(
     line: &[u8],
     layout: &Layout,
     strictness: Strictness,
@@ -302,7 +315,7 @@ fn count_fields(line: &[u8]) -> usize {
 /// The largest magnitude a strict reader accepts (in SI, after the unit conversion): far beyond any physical
 /// reading of these files, and small enough that the squares and sums of a day of samples stay
 /// finite in every estimator (a single 1e300 made the Allan deviation infinite).
-const MAX_MAGNITUDE: f64 = 1e15;
+pub(crate) const MAX_MAGNITUDE: f64 = 1e15;
 
 fn non_finite_error(field: &[u8], column: &str) -> ReadErrorKind {
     ReadErrorKind::NonFinite {
