@@ -17,16 +17,11 @@
 //! only when the general parser would read the same numbers from it.
 
 use crate::layout::{Layout, MAX_SLOTS, Target};
+use crate::short_decimal::{
+    EXACT_POWERS_OF_TEN, MAX_DIGITS, MAX_EXACT_MANTISSA, MAX_EXPONENT_DIGITS, digits_value,
+    leading_digits,
+};
 use thermonav::time::{NANOS_PER_SECOND, Timestamp};
-
-/// One in each byte of a word.
-const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
-
-/// 10^0 ..= 10^22: the powers of ten an `f64` holds exactly.
-const EXACT_POWERS_OF_TEN: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
 
 /// 10^0 ..= 10^9 as integers (digit-run scales).
 const INTEGER_POWERS_OF_TEN: [u64; 10] = [
@@ -42,52 +37,12 @@ const INTEGER_POWERS_OF_TEN: [u64; 10] = [
     1_000_000_000,
 ];
 
-/// Largest mantissa Clinger's fast path takes (every integer up to it is exact in an `f64`).
-const MAX_EXACT_MANTISSA: u64 = 1 << 53;
-
-/// Most decimal digits a `u64` mantissa holds without overflow.
-const MAX_MANTISSA_DIGITS: usize = 19;
-
-/// Most exponent digits taken (an exponent beyond 22 leaves the fast path anyway).
-const MAX_EXPONENT_DIGITS: usize = 3;
-
 /// The eight bytes at `text[at..]` as a little-endian word (the first byte lowest); `None` when
 /// fewer than eight bytes are left.
 #[inline(always)]
 fn word_at(text: &[u8], at: usize) -> Option<u64> {
     let bytes: [u8; 8] = text.get(at..at + 8)?.try_into().ok()?;
     Some(u64::from_le_bytes(bytes))
-}
-
-/// How many of the eight bytes of `word`, from the first (lowest), are ASCII digits before the
-/// first byte that is not (0 ..= 8).
-///
-/// A byte's top bit is set in `below` when it is under `'0'` (the subtraction borrows) or at
-/// least 0xB0, and in `above` when it is over `'9'` and under 0xBA (adding 0x46 reaches 0x80);
-/// a digit sets neither. A borrow or carry moves only towards later bytes, so every byte up to
-/// and including the first non-digit is flagged exactly; later flags do not matter.
-#[inline(always)]
-fn leading_digits(word: u64) -> usize {
-    let below = word.wrapping_sub(0x30 * EACH_BYTE);
-    let above = word.wrapping_add(0x46 * EACH_BYTE);
-    let flags = (below | above) & (0x80 * EACH_BYTE);
-    (flags.trailing_zeros() / 8) as usize
-}
-
-/// The value of the first `count` (1 ..= 8) bytes of `word`, which are ASCII digits, the first
-/// the most significant.
-///
-/// The digits become byte lanes of 0 ..= 9 (no borrow reaches them: every byte before them is a
-/// digit), are shifted to the top of the word (the bytes after them fall out; zero lanes come in
-/// as leading zeros), and are combined as pairs, then quadruples, then all eight, each by one
-/// multiply of packed lanes (no lane overflows: 99, 9999 and 99999999 fit their lanes).
-#[inline(always)]
-fn digits_value(word: u64, count: usize) -> u64 {
-    debug_assert!((1..=8).contains(&count));
-    let lanes = word.wrapping_sub(0x30 * EACH_BYTE) << (8 * (8 - count));
-    let pairs = (lanes * 10 + (lanes >> 8)) & 0x00FF_00FF_00FF_00FF;
-    let quads = (pairs * 100 + (pairs >> 16)) & 0x0000_FFFF_0000_FFFF;
-    (quads * 10_000 + (quads >> 32)) & 0xFFFF_FFFF
 }
 
 /// A run of one to seven digits at `text[at..]`: its value and length. `None` for no digit, for
@@ -139,7 +94,7 @@ pub(crate) fn value_at(text: &[u8], at: usize) -> Option<(f64, usize)> {
     let mut fraction = 0;
     if text.get(position) == Some(&b'.') {
         let (digits, count) = long_run(text, position + 1)?;
-        if whole + count > MAX_MANTISSA_DIGITS {
+        if whole + count > MAX_DIGITS {
             return None;
         }
         // At most 19 digits in all: no overflow.

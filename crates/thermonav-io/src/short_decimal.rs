@@ -11,19 +11,22 @@
 //! [`fast_float2`], which is exact too and accepts the same grammar.
 
 /// 10^0 ..= 10^22: the powers of ten an `f64` holds exactly.
-const EXACT_POWERS_OF_TEN: [f64; 23] = [
+pub(crate) const EXACT_POWERS_OF_TEN: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
 /// Largest integer below which every integer is exact in an `f64`.
-const MAX_EXACT_MANTISSA: u64 = 1 << 53;
+pub(crate) const MAX_EXACT_MANTISSA: u64 = 1 << 53;
 
 /// Most decimal digits a `u64` accumulates without overflow.
-const MAX_DIGITS: usize = 19;
+pub(crate) const MAX_DIGITS: usize = 19;
 
 /// Most exponent digits taken on the fast path (an exponent beyond 22 falls back anyway).
-const MAX_EXPONENT_DIGITS: usize = 3;
+pub(crate) const MAX_EXPONENT_DIGITS: usize = 3;
+
+/// One in each byte of a word.
+const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
 
 /// Parses the number at the start of `text` (`-1.5`, `2e-3`, `nan`, `inf`): its value and how
 /// many bytes it takes, exactly as [`fast_float2::parse_partial`] (and, for the bytes taken,
@@ -75,12 +78,12 @@ fn take_digits(text: &[u8], position: &mut usize, mantissa: &mut u64) -> usize {
     let start = *position;
     while let Some(chunk) = text.get(*position..*position + 8) {
         let word = u64::from_le_bytes(chunk.try_into().expect("eight bytes"));
-        if !all_eight_digits(word) {
+        if leading_digits(word) < 8 {
             break;
         }
         *mantissa = mantissa
             .wrapping_mul(100_000_000)
-            .wrapping_add(eight_digits_value(word));
+            .wrapping_add(digits_value(word, 8));
         *position += 8;
     }
     while let Some(digit) = text.get(*position).map(|b| b.wrapping_sub(b'0')) {
@@ -93,27 +96,34 @@ fn take_digits(text: &[u8], position: &mut usize, mantissa: &mut u64) -> usize {
     *position - start
 }
 
-/// Whether all eight bytes of `word` are ASCII digits: no byte below `'0'` (subtracting 0x30
-/// borrows into its top bit) and none above `'9'` (adding 0x46 carries into it).
-#[inline]
-fn all_eight_digits(word: u64) -> bool {
-    const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
+/// How many of the eight bytes of `word`, from the first (lowest), are ASCII digits before the
+/// first byte that is not (0 ..= 8).
+///
+/// A byte's top bit is set in `below` when it is under `'0'` (the subtraction borrows) or at
+/// least 0xB0, and in `above` when it is over `'9'` and under 0xBA (adding 0x46 reaches 0x80);
+/// a digit sets neither. A borrow or carry moves only towards later bytes, so every byte up to
+/// and including the first non-digit is flagged exactly; later flags do not matter.
+#[inline(always)]
+pub(crate) fn leading_digits(word: u64) -> usize {
     let below = word.wrapping_sub(0x30 * EACH_BYTE);
     let above = word.wrapping_add(0x46 * EACH_BYTE);
-    (below | above) & (0x80 * EACH_BYTE) == 0
+    let flags = (below | above) & (0x80 * EACH_BYTE);
+    (flags.trailing_zeros() / 8) as usize
 }
 
-/// The value of eight ASCII digits loaded little-endian (the first digit in the lowest byte):
-/// pairs, then quadruples, then the eight, each by one multiply of packed lanes.
-#[inline]
-fn eight_digits_value(word: u64) -> u64 {
-    const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
-    let digits = word - 0x30 * EACH_BYTE;
-    // Each 16-bit lane: 10 × first + second.
-    let pairs = (digits * 10 + (digits >> 8)) & 0x00FF_00FF_00FF_00FF;
-    // Each 32-bit lane: 100 × first pair + second pair.
+/// The value of the first `count` (1 ..= 8) bytes of `word`, which are ASCII digits, the first
+/// the most significant.
+///
+/// The digits become byte lanes of 0 ..= 9 (no borrow reaches them: every byte before them is a
+/// digit), are shifted to the top of the word (the bytes after them fall out; zero lanes come in
+/// as leading zeros), and are combined as pairs, then quadruples, then all eight, each by one
+/// multiply of packed lanes (no lane overflows: 99, 9999 and 99999999 fit their lanes).
+#[inline(always)]
+pub(crate) fn digits_value(word: u64, count: usize) -> u64 {
+    debug_assert!((1..=8).contains(&count));
+    let lanes = word.wrapping_sub(0x30 * EACH_BYTE) << (8 * (8 - count));
+    let pairs = (lanes * 10 + (lanes >> 8)) & 0x00FF_00FF_00FF_00FF;
     let quads = (pairs * 100 + (pairs >> 16)) & 0x0000_FFFF_0000_FFFF;
-    // 10^4 × first quadruple + second quadruple.
     (quads * 10_000 + (quads >> 32)) & 0xFFFF_FFFF
 }
 
@@ -324,16 +334,16 @@ mod tests {
     fn eight_digit_words_are_recognised_and_valued() {
         for text in [*b"00000000", *b"12345678", *b"99999999", *b"90817263"] {
             let word = u64::from_le_bytes(text);
-            assert!(all_eight_digits(word));
+            assert_eq!(leading_digits(word), 8);
             let expected: u64 = std::str::from_utf8(&text).unwrap().parse().unwrap();
-            assert_eq!(eight_digits_value(word), expected);
+            assert_eq!(digits_value(word, 8), expected);
         }
         for byte in (0..=255_u8).filter(|b| !b.is_ascii_digit()) {
             for place in 0..8 {
                 let mut text = *b"12345678";
                 text[place] = byte;
                 assert!(
-                    !all_eight_digits(u64::from_le_bytes(text)),
+                    leading_digits(u64::from_le_bytes(text)) < 8,
                     "{byte} at {place}"
                 );
             }
