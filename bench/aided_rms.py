@@ -1,34 +1,22 @@
 """Horizontal RMS distance of a solution's antenna point from the GNSS (RTK) fixes, all fixes
-from 5 s after the solution's start; the solution (output at 100 Hz) interpolated to each
-fix. The computation of bench/drive_gating.sh, as a script of its own.
+from 5 s after the solution's start; the solution interpolated to each fix (the computation of
+bench/kf_gins_side_by_side.py's car-drive rows, on a solution CSV of `integrate`).
 Usage: python3 bench/aided_rms.py SOL.csv GNSS.csv [LEVER_RIGHT_M]"""
-import bisect
 import csv
-import math
 import sys
 
+from kf_gins_side_by_side import aided_rms_m
 
-def aided_rms_m(solution_path, fixes_path, lever_right_m):
-    sol = list(csv.DictReader(open(solution_path)))
-    fixes = list(csv.DictReader(open(fixes_path)))
-    t = [float(r["t_s"]) for r in sol]
-    errors = []
-    for f in fixes:
-        time = float(f["t_s"])
-        k = bisect.bisect_left(t, time)
-        if time < t[0] + 5 or k == 0 or k == len(t):
-            continue
-        a, b = sol[k - 1], sol[k]
-        w = (time - t[k - 1]) / (t[k] - t[k - 1])
-        lat, lon = (float(a[key]) + w * (float(b[key]) - float(a[key])) for key in ("lat_deg", "lon_deg"))
-        yaw = math.radians(float(a["yaw_deg"]))
-        north = math.radians(lat - float(f["lat_deg"])) * 6378137 - lever_right_m * math.sin(yaw)
-        east = math.radians(lon - float(f["lon_deg"])) * 6378137 * math.cos(math.radians(lat)) + lever_right_m * math.cos(yaw)
-        errors.append(math.hypot(north, east))
-    return math.sqrt(sum(e * e for e in errors) / len(errors)), len(errors)
+
+def track_of(solution_path):
+    """(t_s, lat_deg, lon_deg, yaw_deg) rows of a solution CSV."""
+    with open(solution_path) as f:
+        return [tuple(float(r[k]) for k in ("t_s", "lat_deg", "lon_deg", "yaw_deg"))
+                for r in csv.DictReader(f)]
 
 
 if __name__ == "__main__":
     lever = float(sys.argv[3]) if len(sys.argv) > 3 else -0.05
-    rms, n = aided_rms_m(sys.argv[1], sys.argv[2], lever)
-    print(f"{rms:.4f} m over {n} fixes")
+    with open(sys.argv[2]) as f:
+        fixes = list(csv.DictReader(f))
+    print(f"{aided_rms_m(track_of(sys.argv[1]), fixes, lever):.4f} m")

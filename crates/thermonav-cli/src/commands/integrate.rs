@@ -81,13 +81,14 @@ fn initial_bias_text(s: &RunReport) -> String {
     let b = &s.initial_bias_sd;
     let [g, a] =
         [b.gyro_deg_h, b.accel_mg].map(|v| format!("{:.1}, {:.1}, {:.1}", v[0], v[1], v[2]));
-    match b.gyro_from_still_start {
-        true => format!(
-            "gyro {g} deg/h (still start), accel {a} mg ({})",
-            in_words(b.source)
-        ),
-        false => format!("gyro {g} deg/h, accel {a} mg ({})", in_words(b.source)),
-    }
+    let gyro_source = match b.gyro_from_still_start {
+        true => " (still start)",
+        false => "",
+    };
+    format!(
+        "gyro {g} deg/h{gyro_source}, accel {a} mg ({})",
+        in_words(b.source)
+    )
 }
 
 /// The filter, and the Gaussian sum it runs as when there is one.

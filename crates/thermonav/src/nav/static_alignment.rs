@@ -52,9 +52,6 @@ pub enum StaticAlignment {
 /// What the still span at the start gave.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StillStart {
-    /// First IMU time of the span.
-    #[serde(skip)]
-    pub start: Timestamp,
     /// Last IMU time of the span.
     #[serde(skip)]
     pub end: Timestamp,
@@ -156,7 +153,10 @@ pub fn still_fixes_until(gnss: &[GnssFix], from: Timestamp) -> Option<(Timestamp
 fn windows_in(imu: &[Increment], from: Timestamp, to: Timestamp) -> Vec<Window> {
     let mut windows = Vec::new();
     let mut current = Window::default();
-    for i in imu.iter().filter(|i| i.time > from && i.time <= to) {
+    for i in (imu.iter())
+        .skip_while(|i| i.time <= from)
+        .take_while(|i| i.time <= to)
+    {
         current.add(i);
         if current.dt_s >= STILL_WINDOW_S {
             windows.push(current);
@@ -230,9 +230,7 @@ pub fn still_start(imu: &[Increment], gnss: &[GnssFix], until: Timestamp) -> Opt
     // ω_ie^n = Ω (cos L, 0, −sin L): its down part is −Ω sin L whatever the heading.
     let vertical_earth_rate = -EARTH_RATE_RAD_S * latitude_rad.sin();
     let horizontal_earth_rate = EARTH_RATE_RAD_S * latitude_rad.cos();
-    let start = windows.first()?.end?;
     Some(StillStart {
-        start,
         end: windows.last()?.end?,
         duration_s,
         windows: windows.len(),
@@ -254,7 +252,10 @@ pub fn attitude_at(
     yaw_rad: f64,
 ) -> Rotation<Body, Ned> {
     let mut attitude = Rotation::<Body, Ned>::from_euler_zyx(still.roll_rad, still.pitch_rad, 0.0);
-    for i in imu.iter().filter(|i| i.time > still.end && i.time <= time) {
+    for i in (imu.iter())
+        .skip_while(|i| i.time <= still.end)
+        .take_while(|i| i.time <= time)
+    {
         let dt_s = i.dt_s();
         let angle = i.delta_angle.to_array();
         let phi: [f64; 3] = std::array::from_fn(|k| angle[k] - still.gyro_bias_rad_s[k] * dt_s);

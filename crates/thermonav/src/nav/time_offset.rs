@@ -13,7 +13,7 @@
 //! cost is one run per evaluation (about 16 for a ±0.5 s bracket to 2 ms, and 2 more for the
 //! curvature).
 
-use super::run::{NoiseModel, PreparedRun, RunError, RunSettings, Start, prepare};
+use super::run::{NoiseModel, RunError, RunSettings, Start, prepare};
 use super::solution::InnovationRecord;
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
@@ -118,24 +118,6 @@ pub fn shifted(series: &ImuSeries, offset_s: f64) -> ImuSeries {
     out
 }
 
-/// One run with the IMU times shifted by `offset_s`, prepared.
-fn prepared_at(
-    series: &ImuSeries,
-    gnss: &[GnssFix],
-    noise: NoiseModel,
-    start: Start,
-    settings: &RunSettings,
-    offset_s: f64,
-) -> Result<PreparedRun, RunError> {
-    prepare(
-        shifted(series, offset_s),
-        gnss.to_vec(),
-        noise,
-        start,
-        settings,
-    )
-}
-
 /// The innovations' log-likelihood of the run with the IMU times shifted by `offset_s`.
 ///
 /// # Errors
@@ -150,7 +132,14 @@ pub fn log_likelihood_at(
 ) -> Result<f64, RunError> {
     let mut quiet = settings.clone();
     quiet.engine.smooth = false;
-    let outcome = prepared_at(series, gnss, noise, start, &quiet, offset_s)?.run(&mut |_| {})?;
+    let prepared = prepare(
+        shifted(series, offset_s),
+        gnss.to_vec(),
+        noise,
+        start,
+        &quiet,
+    )?;
+    let outcome = prepared.run(&mut |_| {})?;
     Ok(innovation_log_likelihood(&outcome.solution.innovations))
 }
 
