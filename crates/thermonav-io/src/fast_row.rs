@@ -5,22 +5,21 @@
 //! The fields are walked in the header's order straight from the line buffer, each number read
 //! with word-at-a-time (SWAR) digit scans: eight bytes are loaded at once, the run of leading
 //! digits is found from a bit mask (no branch per digit, so no mispredicted branch on the
-//! varying digit counts), and its value is formed by three multiplies of packed lanes. Values
-//! then take Clinger's fast path (see [`crate::short_decimal`]): a mantissa of at most 2^53 and
-//! a power of ten of at most 10^22, one correctly rounded multiply or divide, so each value is
-//! the correctly rounded `f64` of its decimal, as `str::parse::<f64>` gives.
+//! varying digit counts), and its value is formed by three multiplies of packed lanes. The
+//! digits, read as an integer, and the power of ten then go to [`crate::decimal_value`]'s exact
+//! routes (Clinger's fast path for up to 2^53 and 10^±22, Eisel-Lemire for the 17-digit values
+//! of shortest round-trip printing), so each value is the correctly rounded `f64` of its
+//! decimal, as `str::parse::<f64>` gives.
 //!
-//! Anything else (blanks, `+`, a long mantissa, a large exponent, `nan`, a wrong field count, a
+//! Anything else (blanks, `+`, digits past `u64`, a large exponent, `nan`, a wrong field count, a
 //! value a strict reader refuses, too few bytes left in the buffer for a word load) makes the
 //! line's decoding give up, and the caller decodes the line with the general parser, which gives
 //! the same values or the error naming the line and what was expected. A line is accepted here
 //! only when the general parser would read the same numbers from it.
 
+use crate::decimal_value::decimal_value;
 use crate::layout::{Layout, MAX_SLOTS, Target};
-use crate::short_decimal::{
-    EXACT_POWERS_OF_TEN, MAX_DIGITS, MAX_EXACT_MANTISSA, MAX_EXPONENT_DIGITS, digits_value,
-    leading_digits,
-};
+use crate::short_decimal::{MAX_EXPONENT_DIGITS, digits_value, leading_digits};
 use thermonav::time::{NANOS_PER_SECOND, Timestamp};
 
 /// 10^0 ..= 10^9 as integers (digit-run scales).
@@ -82,9 +81,38 @@ fn long_run(text: &[u8], at: usize) -> Option<(u64, usize)> {
     }
 }
 
-/// The number `-?D+(.D+)?([eE][+-]?D{1,3})?` at `text[at..]` when it is on Clinger's fast path
-/// (at most 19 mantissa digits, of at most 7 before the point and 15 after, a mantissa of at most
-/// 2^53, a power of ten of at most 22): its value, correctly rounded, and where it ends.
+/// The digits at `text[at..]` appended to `mantissa` (decimal shift and add, eight digits a
+/// word), and how many there were; `None` for no digit, more than [`MAX_FRACTION_DIGITS`], a
+/// value past `u64`, or too few bytes left for a word load.
+#[inline(always)]
+fn appended_digits(text: &[u8], at: usize, mantissa: u64) -> Option<(u64, usize)> {
+    let (mut mantissa, mut count) = (mantissa, 0);
+    loop {
+        let word = word_at(text, at + count)?;
+        let run = leading_digits(word);
+        if run == 0 {
+            break;
+        }
+        mantissa = mantissa
+            .checked_mul(INTEGER_POWERS_OF_TEN[run])?
+            .checked_add(digits_value(word, run))?;
+        count += run;
+        if run < 8 {
+            break;
+        }
+        if count >= MAX_FRACTION_DIGITS {
+            return None;
+        }
+    }
+    (count > 0).then_some((mantissa, count))
+}
+
+/// Most fraction digits taken here: 17 significant digits after a few leading zeros.
+const MAX_FRACTION_DIGITS: usize = 24;
+
+/// The number `-?D{1,7}(.D+)?([eE][+-]?D{1,3})?` at `text[at..]` when its digits, read as an
+/// integer, fit a `u64` and its value is within reach of [`decimal_value`]'s exact routes: its
+/// value, correctly rounded, and where it ends.
 #[inline(always)]
 pub(crate) fn value_at(text: &[u8], at: usize) -> Option<(f64, usize)> {
     let negative = text.get(at) == Some(&b'-');
@@ -93,30 +121,18 @@ pub(crate) fn value_at(text: &[u8], at: usize) -> Option<(f64, usize)> {
     position += whole;
     let mut fraction = 0;
     if text.get(position) == Some(&b'.') {
-        let (digits, count) = long_run(text, position + 1)?;
-        if whole + count > MAX_DIGITS {
-            return None;
-        }
-        // At most 19 digits in all: no overflow.
-        mantissa = mantissa * 10_u64.pow(count as u32) + digits;
+        let count;
+        (mantissa, count) = appended_digits(text, position + 1, mantissa)?;
         fraction = count;
         position += 1 + count;
     }
-    let mut exponent = -(fraction as i64);
+    let mut exponent = -(fraction as i32);
     if matches!(text.get(position), Some(b'e' | b'E')) {
         let (power, end) = exponent_at(text, position + 1)?;
-        exponent += power;
+        exponent += power as i32;
         position = end;
     }
-    if mantissa > MAX_EXACT_MANTISSA {
-        return None;
-    }
-    let magnitude = mantissa as f64;
-    let value = match exponent {
-        -22..=-1 => magnitude / EXACT_POWERS_OF_TEN[exponent.unsigned_abs() as usize],
-        0..=22 => magnitude * EXACT_POWERS_OF_TEN[exponent as usize],
-        _ => return None,
-    };
+    let value = decimal_value(mantissa, exponent)?;
     // The sign set without a branch (the value is +0 or more): a branch on it, taken at random
     // from field to field, is mispredicted half the time, which cost a fifth of the decoding.
     let signed = f64::from_bits(value.to_bits() | (u64::from(negative) << 63));

@@ -77,6 +77,7 @@
 pub mod atomic;
 pub mod bank;
 pub mod dataflash;
+mod decimal_value;
 pub mod error;
 mod fast_row;
 pub mod finite;

@@ -1,23 +1,14 @@
 //! Exact parsing of the short decimals that fill sensor CSVs (`-0.00686996749`, `20.0000007`,
 //! `1.23456789e-05`), several times faster than a general parser.
 //!
-//! A decimal of at most 19 significant digits whose digits, read as an integer m, satisfy
-//! m ≤ 2^53, and whose power of ten e satisfies |e| ≤ 22, is m·10^e with both m and 10^|e|
-//! exact in `f64`; one IEEE division (e < 0) or multiplication (e ≥ 0) then rounds the exact
-//! quotient or product once, to nearest even: the correctly rounded value, which is what
-//! `str::parse::<f64>` gives (Clinger's fast path, W. D. Clinger, *How to Read Floating Point
-//! Numbers Accurately*, PLDI 1990). Digits are taken eight at a time from one 64-bit load.
-//! Everything else (more digits, larger exponents, `.5`, `5.`, `inf`, `nan`) is left to
-//! [`fast_float2`], which is exact too and accepts the same grammar.
+//! A decimal of at most 19 digits is an integer m (its digits) times a power of ten e, which
+//! [`crate::decimal_value`] turns into the correctly rounded `f64` when e is small enough
+//! (Clinger's fast path, or Eisel-Lemire for m past 2^53): the value `str::parse::<f64>` gives.
+//! Digits are taken eight at a time from one 64-bit load. Everything else (more digits, larger
+//! exponents, `.5`, `5.`, `inf`, `nan`) is left to [`fast_float2`], which is exact too and
+//! accepts the same grammar.
 
-/// 10^0 ..= 10^22: the powers of ten an `f64` holds exactly.
-pub(crate) const EXACT_POWERS_OF_TEN: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
-/// Largest integer below which every integer is exact in an `f64`.
-pub(crate) const MAX_EXACT_MANTISSA: u64 = 1 << 53;
+use crate::decimal_value::decimal_value;
 
 /// Most decimal digits a `u64` accumulates without overflow.
 pub(crate) const MAX_DIGITS: usize = 19;
@@ -58,16 +49,11 @@ fn short_decimal_prefix(text: &[u8]) -> Option<(f64, usize)> {
             return None;
         }
     }
-    if whole_digits + fraction_digits > MAX_DIGITS || mantissa > MAX_EXACT_MANTISSA {
+    if whole_digits + fraction_digits > MAX_DIGITS {
         return None;
     }
     let exponent = exponent_suffix(text, &mut position)? - fraction_digits as i64;
-    let magnitude = mantissa as f64;
-    let value = match exponent {
-        -22..=-1 => magnitude / EXACT_POWERS_OF_TEN[exponent.unsigned_abs() as usize],
-        0..=22 => magnitude * EXACT_POWERS_OF_TEN[exponent as usize],
-        _ => return None,
-    };
+    let value = decimal_value(mantissa, i32::try_from(exponent).ok()?)?;
     Some((if negative { -value } else { value }, position))
 }
 
