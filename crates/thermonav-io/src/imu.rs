@@ -241,10 +241,7 @@ impl<R: BufRead> Iterator for ImuReader<R> {
     type Item = Result<ImuSample, ReadError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        let first = match self.kind {
-            SampleKind::Rates => RATE_SLOT,
-            SampleKind::Increments => INCREMENT_SLOT,
-        };
+        let first = self.first_channel_slot();
         let (temperature, mounting) = (self.temperature, self.mounting);
         let sample = self.rows.next_row()?.map(|(time, values)| {
             let sample = ImuSample {
@@ -265,6 +262,41 @@ impl<R: BufRead> Iterator for ImuReader<R> {
                 .row_error(crate::temperature_out_of_range("temp_c", t))),
             other => other,
         })
+    }
+}
+
+impl<R: BufRead> ImuReader<R> {
+    /// The slot of the first of the six channels of the file's kind.
+    fn first_channel_slot(&self) -> usize {
+        match self.kind {
+            SampleKind::Rates => RATE_SLOT,
+            SampleKind::Increments => INCREMENT_SLOT,
+        }
+    }
+
+    /// Appends every remaining row to `series` column by column: the samples [`Iterator::next`]
+    /// gives, for a file read without a mounting, without building each one. `series` holds
+    /// the first sample already (so its temperature column is there when the file has one).
+    fn append_unrotated_rows(&mut self, series: &mut ImuSeries) -> Result<(), ReadError> {
+        debug_assert!(self.mounting.is_none());
+        let first = self.first_channel_slot();
+        let strict = self.rows.strictness() == Strictness::Strict;
+        while let Some(row) = self.rows.next_row() {
+            let (time, values) = row?;
+            series.time.push(time);
+            for (column, &value) in series.channels.iter_mut().zip(&values[first..first + 6]) {
+                column.push(value);
+            }
+            let temperature_c = values[TEMPERATURE_SLOT];
+            if let Some(column) = series.temperature_c.as_mut().filter(|_| self.temperature) {
+                if strict && !crate::is_sensor_temperature(temperature_c) {
+                    let kind = crate::temperature_out_of_range("temp_c", temperature_c);
+                    return Err(self.rows.row_error(kind));
+                }
+                column.push(temperature_c);
+            }
+        }
+        Ok(())
     }
 }
 
@@ -584,8 +616,13 @@ fn collect_series<R: BufRead>(
     if let Some(bytes) = input_bytes {
         reserve_rows(&mut series, bytes / reader.rows.line_bytes().max(1));
     }
-    for sample in reader {
-        series.push(&sample?);
+    match reader.mounting {
+        Some(_) => {
+            for sample in reader {
+                series.push(&sample?);
+            }
+        }
+        None => reader.append_unrotated_rows(&mut series)?,
     }
     series.keep_channels(&present);
     Ok(series)

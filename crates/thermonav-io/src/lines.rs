@@ -11,10 +11,12 @@ use std::io::{BufRead, ErrorKind};
 /// input is not a text file.
 pub(crate) const MAX_LINE_BYTES: u64 = 1 << 20;
 
-/// Bytes asked of the reader at a time (and the buffer's size unless a longer line needs
-/// more): large enough that a `BufReader` of the same or smaller capacity is bypassed and the
-/// per-read cost vanishes, small enough to stay in the L2 cache.
-const BLOCK_BYTES: usize = 1 << 18;
+/// The buffer's size unless a longer line needs more: twice the capacity of the `BufReader`s
+/// the files are opened with, so that each read, into the buffer's free part after
+/// the unconsumed bytes are moved to its front, asks for at least a whole `BufReader` buffer,
+/// and `BufReader` then reads straight into ours instead of copying every byte through its own;
+/// small enough to stay in the L2 cache.
+const BLOCK_BYTES: usize = 2 * crate::FILE_BUFFER_BYTES;
 
 /// Buffer size to start with: small inputs (a test's string, a fuzz case) never pay for a
 /// whole block.
