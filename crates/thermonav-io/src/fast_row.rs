@@ -206,10 +206,46 @@ pub(crate) fn decode_line(
     text: &[u8],
     line_len: usize,
     layout: &Layout,
-    strict: bool,
-    max_magnitude: f64,
+    (strict, max_magnitude): (bool, f64),
     values: &mut [f64; MAX_SLOTS],
 ) -> Option<Timestamp> {
+    let (time, end) = decode_fields(text, line_len, layout, (strict, max_magnitude), values)?;
+    (end == line_len).then_some(time)
+}
+
+/// Decodes the line that starts `text` (unread bytes of the buffer, the line's end not yet
+/// looked for) as [`decode_line`] does, finding its end on the way: the time, the length of
+/// the line's content and the bytes it takes with its `\n` or `\r\n`. `None` as for
+/// [`decode_line`], and when no line end follows the last field inside `text`, so that a line
+/// cut by the buffer's end is never taken.
+#[inline(always)]
+pub(crate) fn decode_next_line(
+    text: &[u8],
+    layout: &Layout,
+    (strict, max_magnitude): (bool, f64),
+    values: &mut [f64; MAX_SLOTS],
+) -> Option<(Timestamp, usize, usize)> {
+    let (time, end) = decode_fields(text, usize::MAX, layout, (strict, max_magnitude), values)?;
+    match text.get(end..end + 2) {
+        Some([b'\n', _]) => Some((time, end, end + 1)),
+        Some([b'\r', b'\n']) => Some((time, end, end + 2)),
+        // The last line, its newline the buffer's last byte.
+        _ if text.get(end) == Some(&b'\n') => Some((time, end, end + 1)),
+        _ => None,
+    }
+}
+
+/// The fields of the line starting `text`, in the layout's order, separated by commas before
+/// `limit`: the time and where the last field's number ends (what follows it is the caller's
+/// to check).
+#[inline(always)]
+fn decode_fields(
+    text: &[u8],
+    limit: usize,
+    layout: &Layout,
+    (strict, max_magnitude): (bool, f64),
+    values: &mut [f64; MAX_SLOTS],
+) -> Option<(Timestamp, usize)> {
     let mut time = 0;
     let mut position = 0;
     let last = layout.targets.len().checked_sub(1)?;
@@ -231,19 +267,16 @@ pub(crate) fn decode_line(
                 end
             }
         };
-        // The number must end at a comma, or the last one at the line's end.
         if column == last {
-            if end != line_len {
-                return None;
-            }
-        } else {
-            if end >= line_len || text[end] != b',' {
-                return None;
-            }
-            position = end + 1;
+            return Some((Timestamp::from_nanos(time), end));
         }
+        // Every number but the last ends at a comma within the line.
+        if end >= limit || text.get(end) != Some(&b',') {
+            return None;
+        }
+        position = end + 1;
     }
-    Some(Timestamp::from_nanos(time))
+    None
 }
 
 #[cfg(test)]
@@ -472,15 +505,26 @@ mod tests {
             let text = format!("{line}{PAD}");
             for strictness in [crate::Strictness::Strict, crate::Strictness::Lenient] {
                 let strict = strictness == crate::Strictness::Strict;
+                let bound = (strict, crate::rows::MAX_MAGNITUDE);
                 let mut ours = [0.0; MAX_SLOTS];
-                let Some(time) = decode_line(
-                    text.as_bytes(),
-                    line.len(),
-                    &layout,
-                    strict,
-                    crate::rows::MAX_MAGNITUDE,
-                    &mut ours,
-                ) else {
+                let decoded = decode_line(text.as_bytes(), line.len(), &layout, bound, &mut ours);
+                // Found in the unread bytes, the same line decodes to the same numbers and
+                // takes its line end; cut anywhere before its line end, it is never taken.
+                let line_end = ["\n", "\r\n"][case % 2];
+                let unread = format!("{line}{line_end}{line}{PAD}");
+                let mut found = [0.0; MAX_SLOTS];
+                let next = decode_next_line(unread.as_bytes(), &layout, bound, &mut found);
+                let expected = decoded.map(|t| (t, line.len(), line.len() + line_end.len()));
+                assert_eq!(next, expected, "{line:?}");
+                assert_eq!(ours.map(f64::to_bits), found.map(f64::to_bits), "{line:?}");
+                let cut =
+                    &unread.as_bytes()[..rng.random_range(0..=line.len() + line_end.len() - 1)];
+                assert_eq!(
+                    decode_next_line(cut, &layout, bound, &mut found),
+                    None,
+                    "{line:?}"
+                );
+                let Some(time) = decoded else {
                     continue;
                 };
                 fast += 1;

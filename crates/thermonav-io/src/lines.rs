@@ -85,6 +85,22 @@ impl<R: BufRead> Lines<R> {
         &self.buffer[self.start..self.filled]
     }
 
+    /// The bytes read and not yet taken as lines: the next line's start, possibly without its
+    /// end (for a decoder that finds the line end itself).
+    #[inline]
+    pub(crate) fn unread(&self) -> &[u8] {
+        &self.buffer[self.next..self.filled]
+    }
+
+    /// Makes the first `content` bytes of [`Lines::unread`] the current line, `taken` bytes
+    /// (its content and its line end, which the caller has seen) consumed: what
+    /// [`Lines::advance`] does for a non-blank line, without the search for its end.
+    #[inline]
+    pub(crate) fn take_decoded_line(&mut self, content: usize, taken: usize) {
+        debug_assert!(content < taken && self.next + taken <= self.filled);
+        self.take_line(content, taken);
+    }
+
     /// 1-based number of the current line (0 before the first).
     pub(crate) fn number(&self) -> u64 {
         self.number

@@ -157,6 +157,40 @@ impl<R: BufRead> Rows<R> {
     }
 
     fn advance_and_decode(&mut self) -> Result<Option<Timestamp>, ReadError> {
+        // The common shape straight from the unread bytes, its line end found by the decoder
+        // (no separate search for it); any other line by the line-at-a-time path.
+        let bound = (self.strictness == Strictness::Strict, MAX_MAGNITUDE);
+        let in_place = match self.state {
+            State::InRows => crate::fast_row::decode_next_line(
+                self.lines.unread(),
+                &self.layout,
+                bound,
+                &mut self.values,
+            ),
+            _ => None,
+        };
+        let time = match in_place {
+            Some((time, content, taken)) => {
+                self.lines.take_decoded_line(content, taken);
+                time
+            }
+            None => match self.advance_and_decode_line()? {
+                Some(time) => time,
+                None => return Ok(None),
+            },
+        };
+        let time = match self.times {
+            RowTimes::Column => time,
+            RowTimes::Rate { rate_hz } => time_at_rate(self.rows, rate_hz),
+        };
+        self.rows += 1;
+        self.check_time_order(time)?;
+        Ok(Some(time))
+    }
+
+    /// The next non-blank line found and decoded (the one-pass decoder, then the general one);
+    /// `None` at the end of the input.
+    fn advance_and_decode_line(&mut self) -> Result<Option<Timestamp>, ReadError> {
         if !self.lines.advance()? {
             let first = self.state == State::BeforeFirstRow;
             self.state = State::Done;
@@ -172,8 +206,7 @@ impl<R: BufRead> Rows<R> {
             self.lines.current_and_after(),
             self.lines.current().len(),
             &self.layout,
-            self.strictness == Strictness::Strict,
-            MAX_MAGNITUDE,
+            (self.strictness == Strictness::Strict, MAX_MAGNITUDE),
             &mut self.values,
         );
         let time = match fast {
@@ -186,12 +219,6 @@ impl<R: BufRead> Rows<R> {
             )
             .map_err(|kind| self.lines.error_here(kind))?,
         };
-        let time = match self.times {
-            RowTimes::Column => time,
-            RowTimes::Rate { rate_hz } => time_at_rate(self.rows, rate_hz),
-        };
-        self.rows += 1;
-        self.check_time_order(time)?;
         Ok(Some(time))
     }
 
