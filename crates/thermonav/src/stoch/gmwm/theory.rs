@@ -60,10 +60,12 @@ fn f_of(x: f64) -> f64 {
         return 2.0 * x - 3.0 + 4.0 * (-x).exp() - (-2.0 * x).exp();
     }
     let mut power_over_factorial = x * x / 2.0; // x^k/k! at k = 2
+    let mut two_to_k = 4.0; // 2^k at k = 2, doubled exactly
     let mut sum = 0.0;
     for k in 3..40 {
-        power_over_factorial *= x / k as f64;
-        let term = (4.0 - 2f64.powi(k)) * power_over_factorial;
+        power_over_factorial *= x / f64::from(k);
+        two_to_k *= 2.0;
+        let term = (4.0 - two_to_k) * power_over_factorial;
         sum += if k % 2 == 0 { term } else { -term };
         if term.abs() < 1e-17 * sum.abs() {
             break;
