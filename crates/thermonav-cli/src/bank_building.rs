@@ -11,7 +11,7 @@ use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
-use thermonav_io::{ImuOptions, write_json_atomically};
+use thermonav_io::{FileSplit, ImuOptions, write_json_atomically};
 
 /// The temperature of a record: given, or the mean of its temp_c column.
 fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
@@ -116,13 +116,22 @@ pub fn build_bank_reading(
 ) -> Result<ModelBank, Failure> {
     use rayon::prelude::*;
     let (files, temperatures) = (inputs.files, inputs.temperatures);
+    // Several records are read side by side on the pool, each in one pass; one record alone
+    // in two halves at once.
+    let imu = ImuOptions {
+        split: match files.len() {
+            0 | 1 => FileSplit::TwoHalves,
+            _ => FileSplit::OnePass,
+        },
+        ..inputs.thermal.imu
+    };
     let progress = crate::progress::bar(files.len(), "characterising static records");
     let entries: Vec<Result<TemperatureEntry, Failure>> = files
         .par_iter()
         .enumerate()
         .map(|(k, path)| {
             let given = temperatures.get(k).copied();
-            let entry = characterize_file(path, given, settings, (reading, &inputs.thermal.imu));
+            let entry = characterize_file(path, given, settings, (reading, &imu));
             progress.inc(1);
             entry
         })

@@ -109,6 +109,21 @@ pub struct ImuOptions {
     pub rate_hz: Option<f64>,
     /// Which of the six channel columns the file must have.
     pub channels: ChannelRule,
+    /// Whether a large file is parsed as two halves on two threads.
+    pub split: FileSplit,
+}
+
+/// Whether [`read_imu_file_with`] parses a large file (8 MiB or more, uncompressed, timed by
+/// `t_s`) as two halves on two threads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FileSplit {
+    /// Two halves at once: the fastest read of one file when the cores are otherwise idle.
+    #[default]
+    TwoHalves,
+    /// One pass on the calling thread: for files read side by side (a campaign's records on a
+    /// thread pool), where the halves would only make the threads queue for the cores and
+    /// fill memory twice (each half's columns, then the joined ones).
+    OnePass,
 }
 
 /// Which of the six channel columns (gx..az, or their increments) an IMU file must have.
@@ -408,7 +423,7 @@ pub fn read_imu_file_with(
     // be counted from it: those are read in one pass. The compression is looked at only for
     // a large file, never for a pipe (of length 0), whose first bytes a look would consume.
     let halves = file_bytes
-        .filter(|&b| b >= PARALLEL_MIN_BYTES)
+        .filter(|&b| b >= PARALLEL_MIN_BYTES && options.split == FileSplit::TwoHalves)
         .filter(|_| options.rate_hz.is_none() && !crate::is_compressed(path))
         .and_then(|b| split_point(path, b))
         .and_then(|(header, boundary, bytes)| {

@@ -118,8 +118,8 @@ pub use gnss::{
     GnssReader, keep_common_groups, read_gnss, read_gnss_file, write_gnss, write_gnss_file,
 };
 pub use imu::{
-    ChannelRule, GravityCheck, ImuOptions, ImuReader, ImuWriter, TemperatureColumn, read_imu,
-    read_imu_file, read_imu_file_with, write_imu, write_imu_file,
+    ChannelRule, FileSplit, GravityCheck, ImuOptions, ImuReader, ImuWriter, TemperatureColumn,
+    read_imu, read_imu_file, read_imu_file_with, write_imu, write_imu_file,
 };
 pub use trajectory::{
     TrajectoryReader, read_trajectory, read_trajectory_file, trajectory_column_names,
