@@ -117,7 +117,11 @@ const MAX_FRACTION_DIGITS: usize = 24;
 pub(crate) fn value_at(text: &[u8], at: usize) -> Option<(f64, usize)> {
     let negative = text.get(at) == Some(&b'-');
     let mut position = at + usize::from(negative);
-    let (mut mantissa, whole) = short_run(text, position)?;
+    // One digit before the point (`-0.0123`, `9.80665`), the commonest shape, without a word.
+    let (mut mantissa, whole) = match (text.get(position), text.get(position + 1)) {
+        (Some(&digit @ b'0'..=b'9'), Some(b'.')) => (u64::from(digit - b'0'), 1),
+        _ => short_run(text, position)?,
+    };
     position += whole;
     let mut fraction = 0;
     if text.get(position) == Some(&b'.') {
