@@ -496,6 +496,40 @@ def cpu_model():
     return names[0] if names else platform.machine()
 
 
+def pandas_read(paths):
+    """Wall and CPU time of pandas.read_csv of every file, one after the other; the row count."""
+    cpu0, t0 = time.process_time(), time.perf_counter()
+    rows = sum(len(pd.read_csv(p)) for p in paths)
+    return time.perf_counter() - t0, time.process_time() - cpu0, rows
+
+
+def read_ratio(args):
+    """`thermonav characterize` against pandas reading the same files, the two alternating so
+    that both see the same machine; every run printed, then the ratio of the bests."""
+    with tempfile.TemporaryDirectory(dir=os.environ.get("WORKFLOW_TMP")) as tmp:
+        if args.files:
+            paths = args.files
+        else:
+            temperatures = [float(t) for t in args.temperatures_c.split(",")]
+            paths = simulate_campaign(os.path.join(tmp, "campaign"), temperatures, args.duration_s, args.rate_hz)
+        megabytes = sum(os.path.getsize(p) for p in paths) / 1e6
+        load_before = os.getloadavg()
+        reads, ours = [], []
+        for _ in range(args.repeats):
+            reads.append(pandas_read(paths))
+            ours.append(run_thermonav(paths, os.path.join(tmp, "bank.json"))[:2])
+        load_after = os.getloadavg()
+    print(f"machine: {cpu_model()}, {os.cpu_count()} cores; load average (1 min) {load_before[0]:.1f} at start, "
+          f"{load_after[0]:.1f} at end; pandas {pd.__version__}")
+    print(f"campaign: {len(paths)} files, {reads[0][2]} rows, {megabytes:.0f} MB of CSV")
+    for k, ((read_s, read_cpu_s, _), (ours_s, ours_cpu_s)) in enumerate(zip(reads, ours)):
+        print(f"run {k + 1}: pandas.read_csv {read_s:.2f} s wall ({read_cpu_s:.2f} s CPU); "
+              f"thermonav characterize {ours_s:.2f} s wall ({ours_cpu_s:.2f} s CPU); ratio {ours_s / read_s:.2f}")
+    best_read, best_ours = min(r[0] for r in reads), min(o[0] for o in ours)
+    print(f"best of {args.repeats}: thermonav characterize / pandas read alone: {best_ours / best_read:.2f} "
+          f"(issue 21 target <= 1.5)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--temperatures-c", default="-40,-20,0,20,40,60",
@@ -504,8 +538,15 @@ def main():
     parser.add_argument("--rate-hz", type=float, default=200)
     parser.add_argument("--processes", type=int, default=0,
                         help="also time the Python workflow with this many worker processes (files in parallel)")
+    parser.add_argument("--read-only", action="store_true",
+                        help="time only pandas.read_csv of the files against thermonav characterize, alternating, "
+                             "best of --repeats each (issue 21's read ratio; no Python workflow, no agreement check)")
+    parser.add_argument("--repeats", type=int, default=3, help="runs of each side with --read-only")
     parser.add_argument("files", nargs="*", help="IMU CSV files instead of a simulated campaign")
     args = parser.parse_args()
+    if args.read_only:
+        read_ratio(args)
+        return
     with tempfile.TemporaryDirectory(dir=os.environ.get("WORKFLOW_TMP")) as tmp:
         if args.files:
             paths = args.files
