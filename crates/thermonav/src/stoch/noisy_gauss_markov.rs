@@ -467,11 +467,6 @@ fn concentrated_value(record: &Record, (weighted, log_det): (f64, f64)) -> f64 {
     -0.5 * n * ((2.0 * std::f64::consts::PI).ln() + 1.0 + scale.ln()) - 0.5 * log_det
 }
 
-/// The scale σ² = (1/n) Σ v²/S at a point.
-fn scale_at(record: &Record, p: [f64; 2]) -> f64 {
-    innovations(record, p[0].exp(), p[1].exp()).0 / record.values.len() as f64
-}
-
 /// Best point of a 13 × 9 grid over the search box (cell centres, all inside it). Each column
 /// of 9 ρ shares one Tc: one [`transition_table`] and one 9-lane [`kalman_pass`].
 fn grid_start(record: &Record, bounds: &Bounds) -> [f64; 2] {
@@ -596,21 +591,27 @@ fn outcome(record: &Record, bounds: &Bounds, best: [f64; 2]) -> NoisyGaussMarkov
             reason: reason.to_string(),
         };
     }
-    let ratio = 2.0 * (concentrated(record, bounds, best) - white_only_log_likelihood(record));
+    let (weighted, log_det) = innovations(record, best[0].exp(), best[1].exp());
+    let log_likelihood = if bounds.contains(best) {
+        concentrated_value(record, (weighted, log_det))
+    } else {
+        f64::NEG_INFINITY
+    };
+    let ratio = 2.0 * (log_likelihood - white_only_log_likelihood(record));
     if ratio < SIGNIFICANCE_LR {
         let reason = format!(
             "the Gauss-Markov part is not significant: likelihood ratio {ratio:.2} against white noise alone is below {SIGNIFICANCE_LR:.2} (chi-square, 2 dof, 0.99)"
         );
         return NoisyGaussMarkovOutcome::NoEquivalent { reason };
     }
-    let scale = scale_at(record, best);
+    let scale = weighted / record.values.len() as f64;
     let tc = best[0].exp();
     NoisyGaussMarkovOutcome::Model(NoisyGaussMarkovFit {
         correlation_time_s: tc,
         sigma: scale.sqrt(),
         white_noise_density: (best[1].exp() * scale).sqrt(),
         ci95_correlation_time_s: likelihood_ratio_interval(record, bounds, best),
-        log_likelihood: concentrated(record, bounds, best),
+        log_likelihood,
         n_samples: record.values.len(),
     })
 }
@@ -719,45 +720,47 @@ pub fn brent_maximum(f: impl Fn(f64) -> f64, bracket: [f64; 2], tolerance: f64) 
 /// (short records, Tc comparable to the record). An upper side that never falls within the
 /// search box is `None` (unbounded); a lower side that never falls is the smallest Tc searched.
 fn likelihood_ratio_interval(record: &Record, bounds: &Bounds, best: [f64; 2]) -> [Option<f64>; 2] {
-    let target = concentrated(record, bounds, best) - LR_DROP_95;
+    let maximum = concentrated(record, bounds, best);
+    let target = maximum - LR_DROP_95;
     let side = |direction: f64| -> Option<f64> {
-        let (mut inside, mut rho, mut step) = (best[0], best[1], 0.3);
+        let mut inside = [best[0], maximum];
+        let (mut rho, mut step) = (best[1], 0.3);
         loop {
-            let candidate = inside + direction * step;
+            let candidate = inside[0] + direction * step;
             if !(bounds.ln_tc[0]..=bounds.ln_tc[1]).contains(&candidate) {
                 return None;
             }
             let (value, r) = profile(record, bounds, candidate, rho);
+            let outside = [candidate, value];
             if value < target {
-                return Some(bisect(record, bounds, inside, candidate, r, target).exp());
+                return Some(bisect(record, bounds, inside, outside, r, target).exp());
             }
-            (inside, rho, step) = (candidate, r, step * 1.5);
+            (inside, rho, step) = (outside, r, step * 1.5);
         }
     };
     [side(-1.0).or(Some(bounds.ln_tc[0].exp())), side(1.0)]
 }
 
-/// The ln Tc between `inside` (profile above `target`) and `outside` (below) where the profile
-/// crosses `target`: false position with the Illinois modification (the end that stays has its
+/// The ln Tc between `inside` (profile above `target`) and `outside` (below), each given as
+/// [ln Tc, profile value] (the values the step-out already has), where the profile crosses
+/// `target`, starting the profiles' searches at `rho` (the ln ρ of the last one): false position with the Illinois modification (the end that stays has its
 /// value halved, so both ends move), stopped when the bracket is below 2e-3 in ln Tc (0.2 % of
 /// Tc) or the profile is within 0.005 of the target (0.3 % of the 1.92 drop). About 4 profiles
 /// where bisection to 2e-3 needed 8-10.
 fn bisect(
     record: &Record,
     bounds: &Bounds,
-    inside: f64,
-    outside: f64,
-    rho: f64,
+    inside: [f64; 2],
+    outside: [f64; 2],
+    mut rho: f64,
     target: f64,
 ) -> f64 {
     let g = |x: f64, r: f64| {
         let (value, r) = profile(record, bounds, x, r);
         (value - target, r)
     };
-    let (mut a, mut b) = (inside, outside);
-    let (mut ga, r) = g(a, rho);
-    let (mut gb, _) = g(b, r);
-    let mut rho = r;
+    let (mut a, mut ga) = (inside[0], inside[1] - target);
+    let (mut b, mut gb) = (outside[0], outside[1] - target);
     let mut kept_side = 0i8;
     for _ in 0..60 {
         if (b - a).abs() <= 2e-3 {
