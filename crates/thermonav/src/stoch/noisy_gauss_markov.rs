@@ -103,6 +103,9 @@ struct Record {
     /// The first interval: the one most of a sampled record's intervals are close to, about
     /// which the transitions are expanded ([`Transitions`]).
     nominal_dt_s: f64,
+    /// dt_k − dt₀, s (exactly the difference [`Transitions::at`] takes), and its largest size.
+    offset_s: Vec<f64>,
+    max_abs_offset_s: f64,
     values: Vec<f64>,
 }
 
@@ -169,6 +172,7 @@ fn prepare(times_s: &[f64], values: &[f64]) -> Result<Record, NoisyGaussMarkovEr
     let mut dt_s: Vec<f64> = times_s.windows(2).map(|w| w[1] - w[0]).collect();
     dt_s.insert(0, dt_s[0]);
     let inverse_average_per_s: Vec<f64> = dt_s.iter().map(|d| 1.0 / d).collect();
+    let offset_s: Vec<f64> = dt_s.iter().map(|d| d - dt_s[0]).collect();
     Ok(Record {
         min_inverse_average_per_s: inverse_average_per_s
             .iter()
@@ -178,6 +182,8 @@ fn prepare(times_s: &[f64], values: &[f64]) -> Result<Record, NoisyGaussMarkovEr
         inverse_average_per_s,
         average_s: dt_s.clone(),
         nominal_dt_s: dt_s[0],
+        max_abs_offset_s: offset_s.iter().fold(0.0, |m, o| o.abs().max(m)),
+        offset_s,
         dt_s,
         values: centred,
     })
@@ -221,7 +227,12 @@ fn near_bound(value: f64, bound: f64) -> bool {
 /// Unit-scale Kalman pass: Σ v²/S and Σ ln S for Tc = `tc_s`, ρ = `rho_s`.
 fn innovations(record: &Record, tc_s: f64, rho_s: f64) -> (f64, f64) {
     let transitions = Transitions::new(record.nominal_dt_s, tc_s);
-    let [out] = kalman_pass(record, [rho_s], |k| transitions.at(record.dt_s[k]));
+    let [out] = if transitions.all_near_nominal(record) {
+        let offsets = &record.offset_s[..record.values.len()];
+        kalman_pass(record, [rho_s], |k| transitions.near_nominal(offsets[k]))
+    } else {
+        kalman_pass(record, [rho_s], |k| transitions.at(record.dt_s[k]))
+    };
     out
 }
 
@@ -230,7 +241,13 @@ fn innovations(record: &Record, tc_s: f64, rho_s: f64) -> (f64, f64) {
 /// profile. Element 0 (the first sample, no transition) is unused.
 fn transition_table(record: &Record, tc_s: f64) -> Vec<f64> {
     let transitions = Transitions::new(record.nominal_dt_s, tc_s);
-    record.dt_s.iter().map(|&dt| transitions.at(dt)).collect()
+    if transitions.all_near_nominal(record) {
+        (record.offset_s.iter())
+            .map(|&offset| transitions.near_nominal(offset))
+            .collect()
+    } else {
+        record.dt_s.iter().map(|&dt| transitions.at(dt)).collect()
+    }
 }
 
 /// The Kalman pass of [`innovations`] for `N` values of ρ at once (lanes that share the
@@ -373,13 +390,36 @@ impl Transitions {
         }
     }
 
+    #[inline(always)]
     fn at(&self, dt_s: f64) -> f64 {
         let u = (dt_s - self.nominal_dt_s) * self.inverse_tc_per_s;
-        if u.abs() < 1e-3 {
-            self.nominal * (1.0 - u * (1.0 - u * (0.5 - u * (1.0 / 6.0 - u / 24.0))))
+        if u.abs() < Self::NEAR {
+            self.nominal * Self::polynomial(u)
         } else {
             (-dt_s * self.inverse_tc_per_s).exp()
         }
+    }
+
+    /// |u| below which the polynomial serves.
+    const NEAR: f64 = 1e-3;
+
+    /// exp(−u) to rounding for |u| < [`Self::NEAR`].
+    #[inline(always)]
+    fn polynomial(u: f64) -> f64 {
+        1.0 - u * (1.0 - u * (0.5 - u * (1.0 / 6.0 - u / 24.0)))
+    }
+
+    /// Whether every interval of `record` takes the polynomial in [`Self::at`]: the largest
+    /// |dt − dt₀| over Tc below [`Self::NEAR`] (rounding is monotone, so then every |u| is).
+    fn all_near_nominal(&self, record: &Record) -> bool {
+        record.max_abs_offset_s * self.inverse_tc_per_s < Self::NEAR
+    }
+
+    /// [`Self::at`] for an interval dt₀ + `offset_s` known to take the polynomial
+    /// ([`Self::all_near_nominal`]): the same value without the test.
+    #[inline(always)]
+    fn near_nominal(&self, offset_s: f64) -> f64 {
+        self.nominal * Self::polynomial(offset_s * self.inverse_tc_per_s)
     }
 }
 
@@ -873,8 +913,9 @@ mod tests {
     }
 
     // The blocked, multi-lane pass does the reference's arithmetic in the reference's order, so
-    // the results are equal bit for bit: one lane with transitions computed on the fly, nine
-    // lanes from a table, lengths that are and are not multiples of the 8-step block, and ρ so
+    // the results are equal bit for bit: one lane with transitions computed on the fly (with and
+    // without the per-step test of the interval: Tc 400 s is far above the intervals' spread,
+    // 30 ms below it), nine lanes from a table, lengths that are and are not multiples of the 8-step block, and ρ so
     // large (1e32) that the factors leave the log product's range (the per-factor path).
     #[test]
     fn the_kalman_pass_is_the_reference_pass_bit_for_bit() {
@@ -883,6 +924,8 @@ mod tests {
             let record = prepare(&times, &values).unwrap();
             let rho = [1e-9, 1e-5, 1e-3, 0.01, 0.1, 1.0, 10.0, 1e3, 1e8];
             for tc in [0.03, 0.7, 5.0, 400.0] {
+                let near = Transitions::new(record.nominal_dt_s, tc).all_near_nominal(&record);
+                assert_eq!(near, tc > 100.0, "Tc {tc}");
                 let table = transition_table(&record, tc);
                 let lanes = kalman_pass(&record, rho, |k| table[k]);
                 for (&r, lane) in rho.iter().zip(lanes) {
