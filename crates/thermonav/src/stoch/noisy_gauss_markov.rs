@@ -97,9 +97,15 @@ struct Record {
     average_s: Vec<f64>,
     /// 1/d_k, 1/s.
     inverse_average_per_s: Vec<f64>,
+    /// The smallest and largest 1/d_k.
+    min_inverse_average_per_s: f64,
+    max_inverse_average_per_s: f64,
     /// The first interval: the one most of a sampled record's intervals are close to, about
     /// which the transitions are expanded ([`Transitions`]).
     nominal_dt_s: f64,
+    /// dt_k − dt₀, s (exactly the difference [`Transitions::at`] takes), and its largest size.
+    offset_s: Vec<f64>,
+    max_abs_offset_s: f64,
     values: Vec<f64>,
 }
 
@@ -165,10 +171,19 @@ fn prepare(times_s: &[f64], values: &[f64]) -> Result<Record, NoisyGaussMarkovEr
     }
     let mut dt_s: Vec<f64> = times_s.windows(2).map(|w| w[1] - w[0]).collect();
     dt_s.insert(0, dt_s[0]);
+    let inverse_average_per_s: Vec<f64> = dt_s.iter().map(|d| 1.0 / d).collect();
+    let offset_s: Vec<f64> = dt_s.iter().map(|d| d - dt_s[0]).collect();
     Ok(Record {
-        inverse_average_per_s: dt_s.iter().map(|d| 1.0 / d).collect(),
+        min_inverse_average_per_s: inverse_average_per_s
+            .iter()
+            .copied()
+            .fold(f64::MAX, f64::min),
+        max_inverse_average_per_s: inverse_average_per_s.iter().copied().fold(0.0, f64::max),
+        inverse_average_per_s,
         average_s: dt_s.clone(),
         nominal_dt_s: dt_s[0],
+        max_abs_offset_s: offset_s.iter().fold(0.0, |m, o| o.abs().max(m)),
+        offset_s,
         dt_s,
         values: centred,
     })
@@ -209,34 +224,149 @@ fn near_bound(value: f64, bound: f64) -> bool {
     (value - bound).abs() < 0.05
 }
 
-/// Unit-scale Kalman pass: Σ v²/S and Σ ln S for Tc = e^{p0}, ρ = e^{p1}.
+/// Unit-scale Kalman pass: Σ v²/S and Σ ln S for Tc = `tc_s`, ρ = `rho_s`.
 fn innovations(record: &Record, tc_s: f64, rho_s: f64) -> (f64, f64) {
     let transitions = Transitions::new(record.nominal_dt_s, tc_s);
-    let (mut x, mut p) = (0.0_f64, 1.0_f64);
-    let mut weighted = 0.0_f64;
-    let mut log_det = LogProduct::default();
-    for (k, ((&dt, &inverse_d), &y)) in record
-        .dt_s
-        .iter()
-        .zip(&record.inverse_average_per_s)
-        .zip(&record.values)
-        .enumerate()
-    {
-        if k > 0 {
-            let phi = transitions.at(dt);
-            x *= phi;
-            p = phi * phi * p + (1.0 - phi * phi);
-        }
-        let s = p + rho_s * inverse_d;
-        let inverse_s = 1.0 / s;
-        let v = y - x;
-        weighted += v * v * inverse_s;
-        log_det.multiply(s);
-        let gain = p * inverse_s;
-        x += gain * v;
-        p -= gain * p;
+    let [out] = if transitions.all_near_nominal(record) {
+        let offsets = &record.offset_s[..record.values.len()];
+        kalman_pass(record, [rho_s], |k| transitions.near_nominal(offsets[k]))
+    } else {
+        kalman_pass(record, [rho_s], |k| transitions.at(record.dt_s[k]))
+    };
+    out
+}
+
+/// φ_k = exp(−dt_k/Tc) of every step of a record at one Tc ([`Transitions::at`], so the same
+/// values), for the passes that share a Tc: a column of the grid, the Brent search of a
+/// profile. Element 0 (the first sample, no transition) is unused.
+fn transition_table(record: &Record, tc_s: f64) -> Vec<f64> {
+    let transitions = Transitions::new(record.nominal_dt_s, tc_s);
+    if transitions.all_near_nominal(record) {
+        (record.offset_s.iter())
+            .map(|&offset| transitions.near_nominal(offset))
+            .collect()
+    } else {
+        record.dt_s.iter().map(|&dt| transitions.at(dt)).collect()
     }
-    (weighted, log_det.ln())
+}
+
+/// The Kalman pass of [`innovations`] for `N` values of ρ at once (lanes that share the
+/// transitions `phi_at(k)`, k ≥ 1, and the loads of the record), each lane doing exactly the
+/// arithmetic of the one-lane pass, so the results are those of `N` separate passes.
+///
+/// Σ ln S is the [`LogProduct`] of the factors, renormalised every 8 steps; when every factor
+/// is known beforehand to lie in the product's range (S = p + ρ/d_k with 0 ≤ p ≤ 1, so
+/// ρ min(1/d) ≥ 1e-30 and 2 + ρ max(1/d) ≤ 1e30 suffice) the range test leaves the loop, and
+/// the loop runs in blocks of 8 steps with the renormalisation between blocks: the same
+/// products in the same order as [`LogProduct::multiply`]. Otherwise each lane runs with
+/// [`LogProduct::multiply`] itself.
+#[inline(always)]
+fn kalman_pass<const N: usize>(
+    record: &Record,
+    rho_s: [f64; N],
+    phi_at: impl Fn(usize) -> f64,
+) -> [(f64, f64); N] {
+    let n = record.values.len();
+    let values = &record.values[..n];
+    let inverse_d = &record.inverse_average_per_s[..n];
+    let in_range = rho_s.iter().all(|&rho| {
+        rho * record.min_inverse_average_per_s >= LogProduct::MIN_FACTOR
+            && 2.0 + rho * record.max_inverse_average_per_s <= LogProduct::MAX_FACTOR
+    });
+    if !in_range {
+        return rho_s.map(|rho| {
+            let mut lanes = Lanes::new();
+            let mut log_det = LogProduct::default();
+            for k in 0..n {
+                if k > 0 {
+                    lanes.predict(phi_at(k));
+                }
+                let s = lanes.update(&[rho], inverse_d[k], values[k]);
+                log_det.multiply(s[0]);
+            }
+            (lanes.weighted[0], log_det.ln())
+        });
+    }
+    let mut lanes = Lanes::<N>::new();
+    let mut product = [1.0_f64; N];
+    let mut exponent = [0_i64; N];
+    let multiply = |product: &mut [f64; N], s: [f64; N]| {
+        for (m, s) in product.iter_mut().zip(s) {
+            *m *= s;
+        }
+    };
+    let block = LogProduct::RENORMALISE_EVERY;
+    multiply(&mut product, lanes.update(&rho_s, inverse_d[0], values[0]));
+    let mut start = 1;
+    while start < n {
+        let end = (start / block + 1) * block;
+        if end <= n {
+            for k in start..end {
+                lanes.predict(phi_at(k));
+                multiply(&mut product, lanes.update(&rho_s, inverse_d[k], values[k]));
+            }
+            for (m, e) in product.iter_mut().zip(&mut exponent) {
+                *e += split_exponent(m);
+            }
+        } else {
+            for k in start..n {
+                lanes.predict(phi_at(k));
+                multiply(&mut product, lanes.update(&rho_s, inverse_d[k], values[k]));
+            }
+        }
+        start = end;
+    }
+    std::array::from_fn(|j| {
+        (
+            lanes.weighted[j],
+            product[j].ln() + exponent[j] as f64 * std::f64::consts::LN_2,
+        )
+    })
+}
+
+/// The state of `N` unit-scale Kalman filters over one record: bias estimate x, its variance p,
+/// and Σ v²/S so far.
+struct Lanes<const N: usize> {
+    x: [f64; N],
+    p: [f64; N],
+    weighted: [f64; N],
+}
+
+impl<const N: usize> Lanes<N> {
+    fn new() -> Self {
+        Self {
+            x: [0.0; N],
+            p: [1.0; N],
+            weighted: [0.0; N],
+        }
+    }
+
+    /// b_k = φ b_{k−1} + w_k, var(w_k) = 1 − φ².
+    #[inline(always)]
+    fn predict(&mut self, phi: f64) {
+        for (x, p) in self.x.iter_mut().zip(&mut self.p) {
+            *x *= phi;
+            *p = phi * phi * *p + (1.0 - phi * phi);
+        }
+    }
+
+    /// The measurement y with variance ρ/d: returns the innovation variances S.
+    #[inline(always)]
+    fn update(&mut self, rho_s: &[f64; N], inverse_d: f64, y: f64) -> [f64; N] {
+        let mut out = [0.0; N];
+        for j in 0..N {
+            let (x, p) = (&mut self.x[j], &mut self.p[j]);
+            let s = *p + rho_s[j] * inverse_d;
+            let inverse_s = 1.0 / s;
+            let v = y - *x;
+            self.weighted[j] += v * v * inverse_s;
+            let gain = *p * inverse_s;
+            *x += gain * v;
+            *p -= gain * *p;
+            out[j] = s;
+        }
+        out
+    }
 }
 
 /// exp(−dt/Tc) for the intervals of a record: one `exp` per likelihood for the nominal
@@ -260,13 +390,36 @@ impl Transitions {
         }
     }
 
+    #[inline(always)]
     fn at(&self, dt_s: f64) -> f64 {
         let u = (dt_s - self.nominal_dt_s) * self.inverse_tc_per_s;
-        if u.abs() < 1e-3 {
-            self.nominal * (1.0 - u * (1.0 - u * (0.5 - u * (1.0 / 6.0 - u / 24.0))))
+        if u.abs() < Self::NEAR {
+            self.nominal * Self::polynomial(u)
         } else {
             (-dt_s * self.inverse_tc_per_s).exp()
         }
+    }
+
+    /// |u| below which the polynomial serves.
+    const NEAR: f64 = 1e-3;
+
+    /// exp(−u) to rounding for |u| < [`Self::NEAR`].
+    #[inline(always)]
+    fn polynomial(u: f64) -> f64 {
+        1.0 - u * (1.0 - u * (0.5 - u * (1.0 / 6.0 - u / 24.0)))
+    }
+
+    /// Whether every interval of `record` takes the polynomial in [`Self::at`]: the largest
+    /// |dt − dt₀| over Tc below [`Self::NEAR`] (rounding is monotone, so then every |u| is).
+    fn all_near_nominal(&self, record: &Record) -> bool {
+        record.max_abs_offset_s * self.inverse_tc_per_s < Self::NEAR
+    }
+
+    /// [`Self::at`] for an interval dt₀ + `offset_s` known to take the polynomial
+    /// ([`Self::all_near_nominal`]): the same value without the test.
+    #[inline(always)]
+    fn near_nominal(&self, offset_s: f64) -> f64 {
+        self.nominal * Self::polynomial(offset_s * self.inverse_tc_per_s)
     }
 }
 
@@ -278,7 +431,7 @@ impl Transitions {
 struct LogProduct {
     mantissa: f64,
     exponent: i64,
-    pending: u32,
+    pending: usize,
     /// Σ ln sₖ directly, once a factor left the range the product can hold.
     fallback: Option<f64>,
 }
@@ -295,14 +448,16 @@ impl Default for LogProduct {
 }
 
 impl LogProduct {
-    const RENORMALISE_EVERY: u32 = 8;
+    const RENORMALISE_EVERY: usize = 8;
+    const MIN_FACTOR: f64 = 1e-30;
+    const MAX_FACTOR: f64 = 1e30;
 
     fn multiply(&mut self, factor: f64) {
         if let Some(sum) = &mut self.fallback {
             *sum += factor.ln();
             return;
         }
-        if !(1e-30..=1e30).contains(&factor) {
+        if !(Self::MIN_FACTOR..=Self::MAX_FACTOR).contains(&factor) {
             self.fallback = Some(self.ln() + factor.ln());
             return;
         }
@@ -315,10 +470,7 @@ impl LogProduct {
 
     /// Moves the mantissa's binary exponent into `exponent`, leaving it in [1, 2).
     fn renormalise(&mut self) {
-        const EXPONENT_BITS: u64 = 0x7ff << 52;
-        let bits = self.mantissa.to_bits();
-        self.exponent += ((bits & EXPONENT_BITS) >> 52) as i64 - 1023;
-        self.mantissa = f64::from_bits((bits & !EXPONENT_BITS) | (1023 << 52));
+        self.exponent += split_exponent(&mut self.mantissa);
         self.pending = 0;
     }
 
@@ -330,32 +482,53 @@ impl LogProduct {
     }
 }
 
+/// Sets a positive normal `mantissa`'s binary exponent to 0 (the value to [1, 2)) and returns
+/// the exponent it had.
+#[inline(always)]
+fn split_exponent(mantissa: &mut f64) -> i64 {
+    const EXPONENT_BITS: u64 = 0x7ff << 52;
+    let bits = mantissa.to_bits();
+    *mantissa = f64::from_bits((bits & !EXPONENT_BITS) | (1023 << 52));
+    ((bits & EXPONENT_BITS) >> 52) as i64 - 1023
+}
+
 /// Concentrated log-likelihood; −∞ outside the search box.
 fn concentrated(record: &Record, bounds: &Bounds, p: [f64; 2]) -> f64 {
     if !bounds.contains(p) {
         return f64::NEG_INFINITY;
     }
+    concentrated_value(record, innovations(record, p[0].exp(), p[1].exp()))
+}
+
+/// The concentrated log-likelihood from a pass's Σ v²/S and Σ ln S.
+fn concentrated_value(record: &Record, (weighted, log_det): (f64, f64)) -> f64 {
     let n = record.values.len() as f64;
-    let (weighted, log_det) = innovations(record, p[0].exp(), p[1].exp());
     let scale = weighted / n;
     -0.5 * n * ((2.0 * std::f64::consts::PI).ln() + 1.0 + scale.ln()) - 0.5 * log_det
 }
 
-/// The scale σ² = (1/n) Σ v²/S at a point.
-fn scale_at(record: &Record, p: [f64; 2]) -> f64 {
-    innovations(record, p[0].exp(), p[1].exp()).0 / record.values.len() as f64
-}
-
-/// Best point of a 13 × 9 grid over the search box.
+/// Best point of a 13 × 9 grid over the search box (cell centres, all inside it). Each column
+/// of 9 ρ shares one Tc: one [`transition_table`] for its multi-lane [`kalman_pass`]es.
 fn grid_start(record: &Record, bounds: &Bounds) -> [f64; 2] {
     let lerp = |b: [f64; 2], k: usize, n: usize| b[0] + (b[1] - b[0]) * (k as f64 + 0.5) / n as f64;
+    let ln_rho: [f64; 9] = std::array::from_fn(|j| lerp(bounds.ln_rho, j, 9));
+    let rho = ln_rho.map(f64::exp);
     let mut best = ([0.0, 0.0], f64::NEG_INFINITY);
     for i in 0..13 {
-        for j in 0..9 {
-            let p = [lerp(bounds.ln_tc, i, 13), lerp(bounds.ln_rho, j, 9)];
-            let value = concentrated(record, bounds, p);
+        let ln_tc = lerp(bounds.ln_tc, i, 13);
+        let table = transition_table(record, ln_tc.exp());
+        // 4 + 4 + 1 lanes: nine at once spill the filters' state out of the 16 SSE registers
+        // (callgrind: 4 + 4 + 1 take 6 % fewer instructions than 9, and 3 × 3 or 2 × 4 + 1 more).
+        let mut passes = [(0.0, 0.0); 9];
+        for c in 0..2 {
+            let lanes: [f64; 4] = std::array::from_fn(|j| rho[4 * c + j]);
+            passes[4 * c..4 * c + 4].copy_from_slice(&kalman_pass(record, lanes, |k| table[k]));
+        }
+        passes[8] = kalman_pass(record, [rho[8]], |k| table[k])[0];
+        for (&r, pass) in ln_rho.iter().zip(passes) {
+            let value = concentrated_value(record, pass);
             if value > best.1 {
-                best = (p, value);
+                best = ([ln_tc, r], value);
             }
         }
     }
@@ -465,21 +638,27 @@ fn outcome(record: &Record, bounds: &Bounds, best: [f64; 2]) -> NoisyGaussMarkov
             reason: reason.to_string(),
         };
     }
-    let ratio = 2.0 * (concentrated(record, bounds, best) - white_only_log_likelihood(record));
+    let (weighted, log_det) = innovations(record, best[0].exp(), best[1].exp());
+    let log_likelihood = if bounds.contains(best) {
+        concentrated_value(record, (weighted, log_det))
+    } else {
+        f64::NEG_INFINITY
+    };
+    let ratio = 2.0 * (log_likelihood - white_only_log_likelihood(record));
     if ratio < SIGNIFICANCE_LR {
         let reason = format!(
             "the Gauss-Markov part is not significant: likelihood ratio {ratio:.2} against white noise alone is below {SIGNIFICANCE_LR:.2} (chi-square, 2 dof, 0.99)"
         );
         return NoisyGaussMarkovOutcome::NoEquivalent { reason };
     }
-    let scale = scale_at(record, best);
+    let scale = weighted / record.values.len() as f64;
     let tc = best[0].exp();
     NoisyGaussMarkovOutcome::Model(NoisyGaussMarkovFit {
         correlation_time_s: tc,
         sigma: scale.sqrt(),
         white_noise_density: (best[1].exp() * scale).sqrt(),
         ci95_correlation_time_s: likelihood_ratio_interval(record, bounds, best),
-        log_likelihood: concentrated(record, bounds, best),
+        log_likelihood,
         n_samples: record.values.len(),
     })
 }
@@ -495,7 +674,15 @@ fn profile(record: &Record, bounds: &Bounds, ln_tc: f64, rho_hint: f64) -> (f64,
         (rho_hint - 3.0).max(bounds.ln_rho[0]),
         (rho_hint + 3.0).min(bounds.ln_rho[1]),
     ];
-    let (r, value) = brent_maximum(|r| concentrated(record, bounds, [ln_tc, r]), bracket, 1e-4);
+    let table = transition_table(record, ln_tc.exp());
+    let at = |r: f64| {
+        if bounds.contains([ln_tc, r]) {
+            concentrated_value(record, kalman_pass(record, [r.exp()], |k| table[k])[0])
+        } else {
+            f64::NEG_INFINITY
+        }
+    };
+    let (r, value) = brent_maximum(at, bracket, 1e-4);
     (value, r)
 }
 
@@ -576,75 +763,101 @@ pub fn brent_maximum(f: impl Fn(f64) -> f64, bracket: [f64; 2], tolerance: f64) 
 
 /// 95 % likelihood-ratio interval of Tc: where the profile log-likelihood of ln Tc falls
 /// [`LR_DROP_95`] below its maximum (Venzon & Moolgavkar 1988), found by stepping out from the
-/// estimate and bisecting. Asymmetric where the likelihood is, which the Wald interval is not
-/// (short records, Tc comparable to the record). An upper side that never falls within the
-/// search box is `None` (unbounded); a lower side that never falls is the smallest Tc searched.
+/// estimate and then by false position. Asymmetric where the likelihood is, which the Wald
+/// interval is not (short records, Tc comparable to the record). An upper side that never falls
+/// within the search box is `None` (unbounded); a lower side that never falls is the smallest
+/// Tc searched.
+///
+/// The step-out extrapolates the signed root √(2·drop), which is close to linear in ln Tc
+/// (exactly so for a quadratic profile, and much closer to it than the drop on a skewed one):
+/// the next distance from the estimate is 1.2 times the one where the root through the last
+/// profile reaches √(2·1.92), at least 1.5 and at most 8 times the last distance, and at most
+/// the edge of the box (which is itself profiled before a side is declared unbounded).
 fn likelihood_ratio_interval(record: &Record, bounds: &Bounds, best: [f64; 2]) -> [Option<f64>; 2] {
-    let target = concentrated(record, bounds, best) - LR_DROP_95;
+    let maximum = concentrated(record, bounds, best);
     let side = |direction: f64| -> Option<f64> {
-        let (mut inside, mut rho, mut step) = (best[0], best[1], 0.3);
+        let edge = if direction > 0.0 {
+            bounds.ln_tc[1]
+        } else {
+            bounds.ln_tc[0]
+        };
+        let mut inside = [best[0], maximum];
+        let (mut rho, mut distance) = (best[1], 0.3);
         loop {
-            let candidate = inside + direction * step;
-            if !(bounds.ln_tc[0]..=bounds.ln_tc[1]).contains(&candidate) {
+            let candidate = best[0] + direction * distance;
+            let candidate = if (candidate - edge) * direction > 0.0 {
+                edge
+            } else {
+                candidate
+            };
+            if candidate == inside[0] {
                 return None;
             }
             let (value, r) = profile(record, bounds, candidate, rho);
-            if value < target {
-                return Some(bisect(record, bounds, inside, candidate, r, target).exp());
+            let outside = [candidate, value];
+            if value < maximum - LR_DROP_95 {
+                return Some(bisect(record, bounds, inside, outside, r, maximum).exp());
             }
-            (inside, rho, step) = (candidate, r, step * 1.5);
+            let drop = maximum - value;
+            let growth = if drop > 0.0 {
+                1.2 * (LR_DROP_95 / drop).sqrt()
+            } else {
+                f64::INFINITY
+            };
+            distance *= growth.clamp(1.5, 8.0);
+            (inside, rho) = (outside, r);
         }
     };
     [side(-1.0).or(Some(bounds.ln_tc[0].exp())), side(1.0)]
 }
 
-/// The ln Tc between `inside` (profile above `target`) and `outside` (below) where the profile
-/// crosses `target`: false position with the Illinois modification (the end that stays has its
+/// The ln Tc between `inside` (profile above `maximum` − [`LR_DROP_95`]) and `outside` (below),
+/// each given as [ln Tc, profile value] (the values the step-out already has), where the profile
+/// crosses that level, starting the profiles' searches at `rho` (the ln ρ of the last one):
+/// false position on the signed root √(2·drop) − √(2·1.92) (nearly linear, see
+/// [`likelihood_ratio_interval`]) with the Illinois modification (the end that stays has its
 /// value halved, so both ends move), stopped when the bracket is below 2e-3 in ln Tc (0.2 % of
-/// Tc) or the profile is within 0.005 of the target (0.3 % of the 1.92 drop). About 4 profiles
-/// where bisection to 2e-3 needed 8-10.
+/// Tc) or the profile is within 0.005 of the level (0.3 % of the 1.92 drop).
 fn bisect(
     record: &Record,
     bounds: &Bounds,
-    inside: f64,
-    outside: f64,
-    rho: f64,
-    target: f64,
+    inside: [f64; 2],
+    outside: [f64; 2],
+    mut rho: f64,
+    maximum: f64,
 ) -> f64 {
-    let g = |x: f64, r: f64| {
-        let (value, r) = profile(record, bounds, x, r);
-        (value - target, r)
-    };
-    let (mut a, mut b) = (inside, outside);
-    let (mut ga, r) = g(a, rho);
-    let (mut gb, _) = g(b, r);
-    let mut rho = r;
+    let target = maximum - LR_DROP_95;
+    // > 0 inside, < 0 outside, 0 at the level.
+    let root = |value: f64| LR_DROP_95.sqrt() - (maximum - value).max(0.0).sqrt();
+    let (mut a, mut ra) = (inside[0], root(inside[1]));
+    let (mut b, mut rb) = (outside[0], root(outside[1]));
     let mut kept_side = 0i8;
     for _ in 0..60 {
         if (b - a).abs() <= 2e-3 {
             break;
         }
-        let c = (a * gb - b * ga) / (gb - ga);
+        let c = (a * rb - b * ra) / (rb - ra);
         let c = if c.is_finite() && (c - a) * (c - b) < 0.0 {
             c
         } else {
             0.5 * (a + b)
         };
-        let (gc, r) = g(c, rho);
+        let (value, r) = profile(record, bounds, c, rho);
         rho = r;
-        if gc.abs() < 0.005 {
+        if (value - target).abs() < 0.005 {
             return c;
         }
-        if gc >= 0.0 {
-            (a, ga) = (c, gc);
+        let rc = root(value);
+        if value >= target {
+            (a, ra) = (c, rc);
             if kept_side == 1 {
-                gb *= 0.5;
+                rb *= 0.5;
             }
             kept_side = 1;
         } else {
-            (b, gb) = (c, gc);
+            (b, rb) = (c, rc);
             if kept_side == -1 {
-                ga *= 0.5;
+                ra *= 0.5;
             }
             kept_side = -1;
         }
@@ -696,6 +909,76 @@ mod tests {
         let log_det: f64 = 2.0 * chol.l().diagonal().iter().map(|v| v.ln()).sum::<f64>();
         let s2 = quad / n as f64;
         -0.5 * n as f64 * ((2.0 * std::f64::consts::PI).ln() + 1.0 + s2.ln()) - 0.5 * log_det
+    }
+
+    /// The Kalman pass as first written: one filter, one step at a time, Σ ln S through
+    /// [`LogProduct::multiply`] with its range test at every factor. The reference for
+    /// [`kalman_pass`].
+    fn innovations_reference(record: &Record, tc_s: f64, rho_s: f64) -> (f64, f64) {
+        let transitions = Transitions::new(record.nominal_dt_s, tc_s);
+        let (mut x, mut p) = (0.0_f64, 1.0_f64);
+        let mut weighted = 0.0_f64;
+        let mut log_det = LogProduct::default();
+        for (k, ((&dt, &inverse_d), &y)) in record
+            .dt_s
+            .iter()
+            .zip(&record.inverse_average_per_s)
+            .zip(&record.values)
+            .enumerate()
+        {
+            if k > 0 {
+                let phi = transitions.at(dt);
+                x *= phi;
+                p = phi * phi * p + (1.0 - phi * phi);
+            }
+            let s = p + rho_s * inverse_d;
+            let inverse_s = 1.0 / s;
+            let v = y - x;
+            weighted += v * v * inverse_s;
+            log_det.multiply(s);
+            let gain = p * inverse_s;
+            x += gain * v;
+            p -= gain * p;
+        }
+        (weighted, log_det.ln())
+    }
+
+    // The blocked, multi-lane pass does the reference's arithmetic in the reference's order, so
+    // the results are equal bit for bit: one lane with transitions computed on the fly (with and
+    // without the per-step test of the interval: Tc 400 s is far above the intervals' spread,
+    // 30 ms below it), nine and four lanes from a table, lengths that are and are not multiples of the 8-step block, and ρ so
+    // large (1e32) that the factors leave the log product's range (the per-factor path).
+    #[test]
+    fn the_kalman_pass_is_the_reference_pass_bit_for_bit() {
+        for n in [20, 64, 1003] {
+            let (times, values) = simulate(n, 2.0, 1.0, 0.3, 3);
+            let record = prepare(&times, &values).unwrap();
+            let rho = [1e-9, 1e-5, 1e-3, 0.01, 0.1, 1.0, 10.0, 1e3, 1e8];
+            for tc in [0.03, 0.7, 5.0, 400.0] {
+                let near = Transitions::new(record.nominal_dt_s, tc).all_near_nominal(&record);
+                assert_eq!(near, tc > 100.0, "Tc {tc}");
+                let table = transition_table(&record, tc);
+                let lanes = kalman_pass(&record, rho, |k| table[k]);
+                let four = kalman_pass(&record, [rho[1], rho[3], rho[5], rho[7]], |k| table[k]);
+                for (&r, lane) in rho.iter().zip(lanes) {
+                    let reference = innovations_reference(&record, tc, r);
+                    assert_eq!(lane, reference, "n {n} Tc {tc} rho {r}");
+                    assert_eq!(
+                        innovations(&record, tc, r),
+                        reference,
+                        "n {n} Tc {tc} rho {r}"
+                    );
+                }
+                for (j, lane) in four.into_iter().enumerate() {
+                    let reference = innovations_reference(&record, tc, rho[2 * j + 1]);
+                    assert_eq!(lane, reference, "n {n} Tc {tc} four lanes");
+                }
+                let reference = innovations_reference(&record, tc, 1e32);
+                assert_eq!(innovations(&record, tc, 1e32), reference, "n {n} Tc {tc}");
+                let [with_table] = kalman_pass(&record, [1e32], |k| table[k]);
+                assert_eq!(with_table, reference, "n {n} Tc {tc}");
+            }
+        }
     }
 
     #[test]
