@@ -814,10 +814,12 @@ fn likelihood_ratio_interval(record: &Record, bounds: &Bounds, best: [f64; 2]) -
 /// The ln Tc between `inside` (profile above `maximum` − [`LR_DROP_95`]) and `outside` (below),
 /// each given as [ln Tc, profile value] (the values the step-out already has), where the profile
 /// crosses that level, starting the profiles' searches at `rho` (the ln ρ of the last one):
-/// false position on the signed root √(2·drop) − √(2·1.92) (nearly linear, see
+/// false position on √1.92 − √drop (the signed root, nearly linear, see
 /// [`likelihood_ratio_interval`]) with the Illinois modification (the end that stays has its
 /// value halved, so both ends move), stopped when the bracket is below 2e-3 in ln Tc (0.2 % of
-/// Tc) or the profile is within 0.005 of the level (0.3 % of the 1.92 drop).
+/// Tc) or the profile is within 0.002 of the level (0.1 % of the 1.92 drop). On the flat upper
+/// sides of hour-long records a level tolerance of 0.005 left the ends up to 0.4 % from the
+/// crossing (the profile falls by ~1 per unit of ln Tc there); 0.002 leaves under 0.05 %.
 fn bisect(
     record: &Record,
     bounds: &Bounds,
@@ -844,7 +846,7 @@ fn bisect(
         };
         let (value, r) = profile(record, bounds, c, rho);
         rho = r;
-        if (value - target).abs() < 0.005 {
+        if (value - target).abs() < 0.002 {
             return c;
         }
         let rc = root(value);
@@ -1170,7 +1172,7 @@ mod tests {
 
     // The 95 % likelihood-ratio interval against a brute-force profile: at 0.4 % of Tc inside
     // each end the slow profile is above max − 1.92, at 0.4 % outside below it (the search
-    // stops within 0.2 % in ln Tc or 0.005 of the level). A 200 Hz-like record with clock
+    // stops within 0.2 % in ln Tc or 0.002 of the level). A 200 Hz-like record with clock
     // jitter, so that both branches of the transitions are used.
     #[test]
     fn the_likelihood_ratio_interval_ends_where_the_profile_drops_by_the_chi_square_level() {
