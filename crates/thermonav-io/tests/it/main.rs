@@ -1,6 +1,7 @@
 //! Integration tests of the thermonav-io file formats: readers, writers and atomic output.
 
 mod atomic;
+mod chunked;
 mod dataflash;
 mod fuzz_corpus;
 mod gnss;
