@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::GmwmError;
 use super::levenberg_marquardt::{LmSettings, minimise};
-use super::model::{ModelSpec, Term, composite_wavelet_variance};
+use super::model::{ModelSpec, Term, composite_wavelet_variances};
 use crate::stoch::wavelet_variance::WaveletVariance;
 
 /// The empirical moments a fit matches: scales τ_j (samples), ν̂²_j and their standard
@@ -39,16 +39,18 @@ impl Moments {
 
     /// The same moments with sd_j = √(2/η_j) ν²_j(θ): the weights of the second step.
     pub fn reweighted(&self, terms: &[Term]) -> Moments {
+        let implied = composite_wavelet_variances(terms, &self.tau);
         let sd = (0..self.tau.len())
-            .map(|j| self.sd[j] / self.nu[j] * composite_wavelet_variance(terms, self.tau[j]))
+            .map(|j| self.sd[j] / self.nu[j] * implied[j])
             .collect();
         Moments { sd, ..self.clone() }
     }
 
     /// (ν̂²_j − ν²_j(θ)) / sd_j.
     pub fn residuals(&self, terms: &[Term]) -> Vec<f64> {
+        let implied = composite_wavelet_variances(terms, &self.tau);
         (0..self.tau.len())
-            .map(|j| (self.nu[j] - composite_wavelet_variance(terms, self.tau[j])) / self.sd[j])
+            .map(|j| (self.nu[j] - implied[j]) / self.sd[j])
             .collect()
     }
 
@@ -132,11 +134,7 @@ fn fit_of(wv: &WaveletVariance, model: ModelSpec, moments: &Moments, terms: Vec<
         objective: moments.objective(&terms),
         moment_sd: moments.sd.clone(),
         scale_samples: wv.scale_samples.clone(),
-        implied_variance: moments
-            .tau
-            .iter()
-            .map(|&t| composite_wavelet_variance(&terms, t))
-            .collect(),
+        implied_variance: composite_wavelet_variances(&terms, &moments.tau),
         terms,
         dt_s: wv.dt_s,
     }

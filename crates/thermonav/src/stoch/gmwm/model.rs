@@ -296,6 +296,35 @@ pub fn composite_wavelet_variance(terms: &[Term], tau: f64) -> f64 {
     terms.iter().map(|t| t.wavelet_variance(tau)).sum()
 }
 
+/// [`composite_wavelet_variance`] at every scale of `taus`, each term's scale-free factors
+/// computed once (the same values, bit for bit: the same arithmetic, summed in the same order).
+pub fn composite_wavelet_variances(terms: &[Term], taus: &[f64]) -> Vec<f64> {
+    let curves: Vec<Option<theory::GaussMarkovCurve>> = terms
+        .iter()
+        .map(|t| match *t {
+            Term::GaussMarkov {
+                correlation_samples,
+                ..
+            } => Some(theory::GaussMarkovCurve::new(correlation_samples)),
+            _ => None,
+        })
+        .collect();
+    let value =
+        |term: &Term, curve: &Option<theory::GaussMarkovCurve>, tau: f64| match (term, curve) {
+            (Term::GaussMarkov { variance, .. }, Some(curve)) => curve.at(*variance, tau),
+            _ => term.wavelet_variance(tau),
+        };
+    taus.iter()
+        .map(|&tau| {
+            terms
+                .iter()
+                .zip(&curves)
+                .map(|(term, curve)| value(term, curve, tau))
+                .sum()
+        })
+        .collect()
+}
+
 /// The physical parameters of a composite, Gauss-Markov processes numbered from 1 in order.
 pub fn physical_parameters(terms: &[Term], dt_s: f64) -> Vec<PhysicalParameter> {
     let mut gm = 0;
@@ -416,6 +445,33 @@ fn gauss_markov_part(name: &str) -> Option<(usize, GmPart)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wavelet_variances_at_all_scales_are_the_per_scale_sums_bit_for_bit() {
+        let terms = [
+            Term::White { variance: 2.5e-5 },
+            Term::GaussMarkov {
+                correlation_samples: 0.6,
+                variance: 1e-7,
+            },
+            Term::GaussMarkov {
+                correlation_samples: 37_000.0,
+                variance: 3e-9,
+            },
+            Term::Quantisation { variance: 1e-10 },
+            Term::RandomWalk { variance: 1e-14 },
+            Term::Drift { slope: 2e-9 },
+        ];
+        let taus: Vec<f64> = (1..=22).map(|j| f64::from(1_u32 << j)).collect();
+        let all = composite_wavelet_variances(&terms, &taus);
+        for (&tau, value) in taus.iter().zip(all) {
+            assert_eq!(
+                value.to_bits(),
+                composite_wavelet_variance(&terms, tau).to_bits(),
+                "tau {tau}"
+            );
+        }
+    }
 
     // IEEE Std 952's closed forms: white noise σ²_A = N²/τ exactly; a random walk
     // σ²_A = K²τ/3 as τ grows (the discrete form is K²τ/3 · (1 + 1/(2m²))).

@@ -41,17 +41,45 @@ pub fn drift(slope: f64, tau: f64) -> f64 {
 /// ν² of a Gauss-Markov process with correlation time `correlation_samples` (samples) and
 /// stationary variance `variance` at scale `tau` samples.
 pub fn gauss_markov(correlation_samples: f64, variance: f64, tau: f64) -> f64 {
-    let a = 1.0 / correlation_samples;
-    let phi = (-a).exp();
-    let one_minus_phi = -(-a).exp_m1();
-    let m = tau / 2.0;
-    // φ·2m(sinh a − a) = m(1 − φ²) − 2maφ, the form that cannot overflow at large a.
-    let phi_bracket = if a < 1.0 {
-        phi * (f_of(m * a) + 2.0 * m * sinh_minus_identity(a))
-    } else {
-        phi * f_of(m * a) + m * (1.0 - phi * phi) - 2.0 * m * a * phi
-    };
-    2.0 * variance * phi_bracket / (tau * one_minus_phi).powi(2)
+    GaussMarkovCurve::new(correlation_samples).at(variance, tau)
+}
+
+/// [`gauss_markov`] at many scales for one correlation time: the factors that depend on Tc
+/// alone (two exponentials and sinh a − a) computed once, the same arithmetic at each scale.
+#[derive(Debug, Clone, Copy)]
+pub struct GaussMarkovCurve {
+    /// a = 1/Tc, 1/samples.
+    a: f64,
+    phi: f64,
+    one_minus_phi: f64,
+    /// sinh a − a, for a < 1 (unused otherwise).
+    sinh_minus_a: f64,
+}
+
+impl GaussMarkovCurve {
+    /// The curve of a Gauss-Markov process with correlation time `correlation_samples`.
+    pub fn new(correlation_samples: f64) -> Self {
+        let a = 1.0 / correlation_samples;
+        Self {
+            a,
+            phi: (-a).exp(),
+            one_minus_phi: -(-a).exp_m1(),
+            sinh_minus_a: if a < 1.0 { sinh_minus_identity(a) } else { 0.0 },
+        }
+    }
+
+    /// ν² at scale `tau` samples for stationary variance `variance`.
+    pub fn at(&self, variance: f64, tau: f64) -> f64 {
+        let (a, phi) = (self.a, self.phi);
+        let m = tau / 2.0;
+        // φ·2m(sinh a − a) = m(1 − φ²) − 2maφ, the form that cannot overflow at large a.
+        let phi_bracket = if a < 1.0 {
+            phi * (f_of(m * a) + 2.0 * m * self.sinh_minus_a)
+        } else {
+            phi * f_of(m * a) + m * (1.0 - phi * phi) - 2.0 * m * a * phi
+        };
+        2.0 * variance * phi_bracket / (tau * self.one_minus_phi).powi(2)
+    }
 }
 
 /// F(x) = 2x − 3 + 4e^{−x} − e^{−2x} = Σ_{k≥3} (−1)^k (4 − 2^k) x^k / k!.
