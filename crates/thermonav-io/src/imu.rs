@@ -267,14 +267,14 @@ impl<R: BufRead> Iterator for ImuReader<R> {
             };
             mounting.map_or(sample, |m| m.sample_to_body(sample))
         });
-        let strict = self.rows.strictness() == Strictness::Strict;
         Some(match sample {
             Ok(ImuSample {
                 temperature_c: Some(t),
                 ..
-            }) if strict && !crate::is_sensor_temperature(t) => Err(self
-                .rows
-                .row_error(crate::temperature_out_of_range("temp_c", t))),
+            }) => match self.refused_temperature(t) {
+                Some(error) => Err(error),
+                None => sample,
+            },
             other => other,
         })
     }
@@ -295,7 +295,6 @@ impl<R: BufRead> ImuReader<R> {
     fn append_unrotated_rows(&mut self, series: &mut ImuSeries) -> Result<(), ReadError> {
         debug_assert!(self.mounting.is_none());
         let first = self.first_channel_slot();
-        let strict = self.rows.strictness() == Strictness::Strict;
         while let Some(row) = self.rows.next_row() {
             let (time, values) = row?;
             series.time.push(time);
@@ -303,15 +302,25 @@ impl<R: BufRead> ImuReader<R> {
                 column.push(value);
             }
             let temperature_c = values[TEMPERATURE_SLOT];
-            if let Some(column) = series.temperature_c.as_mut().filter(|_| self.temperature) {
-                if strict && !crate::is_sensor_temperature(temperature_c) {
-                    let kind = crate::temperature_out_of_range("temp_c", temperature_c);
-                    return Err(self.rows.row_error(kind));
+            // The column is there exactly when the file has `temp_c` (the first sample made it).
+            if let Some(column) = series.temperature_c.as_mut() {
+                if let Some(error) = self.refused_temperature(temperature_c) {
+                    return Err(error);
                 }
                 column.push(temperature_c);
             }
         }
         Ok(())
+    }
+
+    /// Under strict reading, the error for the current row's temperature when no sensor reads
+    /// it (reading then ends); `None` otherwise.
+    fn refused_temperature(&mut self, temperature_c: f64) -> Option<ReadError> {
+        let strict = self.rows.strictness() == Strictness::Strict;
+        (strict && !crate::is_sensor_temperature(temperature_c)).then(|| {
+            let kind = crate::temperature_out_of_range(TEMPERATURE_NAME, temperature_c);
+            self.rows.row_error(kind)
+        })
     }
 }
 

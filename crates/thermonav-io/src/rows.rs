@@ -159,7 +159,7 @@ impl<R: BufRead> Rows<R> {
     fn advance_and_decode(&mut self) -> Result<Option<Timestamp>, ReadError> {
         // The common shape straight from the unread bytes, its line end found by the decoder
         // (no separate search for it); any other line by the line-at-a-time path.
-        let bound = (self.strictness == Strictness::Strict, MAX_MAGNITUDE);
+        let bound = self.fast_bound();
         let in_place = match self.state {
             State::InRows => crate::fast_row::decode_next_line(
                 self.lines.unread(),
@@ -206,7 +206,7 @@ impl<R: BufRead> Rows<R> {
             self.lines.current_and_after(),
             self.lines.current().len(),
             &self.layout,
-            (self.strictness == Strictness::Strict, MAX_MAGNITUDE),
+            self.fast_bound(),
             &mut self.values,
         );
         let time = match fast {
@@ -220,6 +220,12 @@ impl<R: BufRead> Rows<R> {
             .map_err(|kind| self.lines.error_here(kind))?,
         };
         Ok(Some(time))
+    }
+
+    /// What the one-pass decoder refuses: whether reading is strict, and the strict reader's
+    /// largest magnitude.
+    fn fast_bound(&self) -> (bool, f64) {
+        (self.strictness == Strictness::Strict, MAX_MAGNITUDE)
     }
 
     /// Under [`Strictness::Strict`], times must increase strictly from row to row.
