@@ -496,6 +496,14 @@ def cpu_model():
     return names[0] if names else platform.machine()
 
 
+def campaign_paths(args, tmp):
+    """The files given, or a campaign simulated into `tmp` as the options say."""
+    if args.files:
+        return args.files
+    temperatures = [float(t) for t in args.temperatures_c.split(",")]
+    return simulate_campaign(os.path.join(tmp, "campaign"), temperatures, args.duration_s, args.rate_hz)
+
+
 def pandas_read(paths):
     """Wall and CPU time of pandas.read_csv of every file, one after the other; the row count."""
     cpu0, t0 = time.process_time(), time.perf_counter()
@@ -507,11 +515,7 @@ def read_ratio(args):
     """`thermonav characterize` against pandas reading the same files, the two alternating so
     that both see the same machine; every run printed, then the ratio of the bests."""
     with tempfile.TemporaryDirectory(dir=os.environ.get("WORKFLOW_TMP")) as tmp:
-        if args.files:
-            paths = args.files
-        else:
-            temperatures = [float(t) for t in args.temperatures_c.split(",")]
-            paths = simulate_campaign(os.path.join(tmp, "campaign"), temperatures, args.duration_s, args.rate_hz)
+        paths = campaign_paths(args, tmp)
         megabytes = sum(os.path.getsize(p) for p in paths) / 1e6
         load_before = os.getloadavg()
         reads, ours = [], []
@@ -548,16 +552,10 @@ def main():
         read_ratio(args)
         return
     with tempfile.TemporaryDirectory(dir=os.environ.get("WORKFLOW_TMP")) as tmp:
-        if args.files:
-            paths = args.files
-        else:
-            temperatures = [float(t) for t in args.temperatures_c.split(",")]
-            paths = simulate_campaign(os.path.join(tmp, "campaign"), temperatures, args.duration_s, args.rate_hz)
+        paths = campaign_paths(args, tmp)
         megabytes = sum(os.path.getsize(p) for p in paths) / 1e6
         load_before = os.getloadavg()
-        cpu0, t0 = time.process_time(), time.perf_counter()
-        rows = sum(len(pd.read_csv(p)) for p in paths)
-        read_s, read_cpu_s = time.perf_counter() - t0, time.process_time() - cpu0
+        read_s, read_cpu_s, rows = pandas_read(paths)
         python_s, python_cpu_s, entries = timed_python_workflow(paths, 1)
         parallel = timed_python_workflow(paths, args.processes) if args.processes > 1 else None
         ours_s, ours_cpu_s, bank = run_thermonav(paths, os.path.join(tmp, "bank.json"))
