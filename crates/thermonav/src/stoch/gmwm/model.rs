@@ -299,29 +299,33 @@ pub fn composite_wavelet_variance(terms: &[Term], tau: f64) -> f64 {
 /// [`composite_wavelet_variance`] at every scale of `taus`, each term's scale-free factors
 /// computed once (the same values, bit for bit: the same arithmetic, summed in the same order).
 pub fn composite_wavelet_variances(terms: &[Term], taus: &[f64]) -> Vec<f64> {
-    let curves: Vec<Option<theory::GaussMarkovCurve>> = terms
+    let each: Vec<Vec<f64>> = terms
         .iter()
-        .map(|t| match *t {
-            Term::GaussMarkov {
-                correlation_samples,
-                ..
-            } => Some(theory::GaussMarkovCurve::new(correlation_samples)),
-            _ => None,
-        })
+        .map(|t| term_wavelet_variances(t, taus))
         .collect();
-    let value =
-        |term: &Term, curve: &Option<theory::GaussMarkovCurve>, tau: f64| match (term, curve) {
-            (Term::GaussMarkov { variance, .. }, Some(curve)) => curve.at(*variance, tau),
-            _ => term.wavelet_variance(tau),
-        };
-    taus.iter()
-        .map(|&tau| {
-            terms
-                .iter()
-                .zip(&curves)
-                .map(|(term, curve)| value(term, curve, tau))
-                .sum()
-        })
+    sum_over_terms(&each, taus.len())
+}
+
+/// One term's wavelet variance at every scale of `taus`, its scale-free factors computed once:
+/// the values [`Term::wavelet_variance`] gives.
+pub fn term_wavelet_variances(term: &Term, taus: &[f64]) -> Vec<f64> {
+    match *term {
+        Term::GaussMarkov {
+            correlation_samples,
+            variance,
+        } => {
+            let curve = theory::GaussMarkovCurve::new(correlation_samples);
+            taus.iter().map(|&tau| curve.at(variance, tau)).collect()
+        }
+        _ => taus.iter().map(|&tau| term.wavelet_variance(tau)).collect(),
+    }
+}
+
+/// Σ over terms of their wavelet variances (`each[term][scale]`), term by term in order at each
+/// scale, as [`composite_wavelet_variance`] sums.
+pub fn sum_over_terms(each: &[Vec<f64>], n_scales: usize) -> Vec<f64> {
+    (0..n_scales)
+        .map(|j| each.iter().map(|term| term[j]).sum())
         .collect()
 }
 
