@@ -7,8 +7,10 @@ use serde::Serialize;
 use super::GmwmError;
 use super::levenberg_marquardt::{LeastSquares, LmSettings, central_differences, minimise};
 use super::model::{
-    ModelSpec, Term, composite_wavelet_variances, sum_over_terms, term_wavelet_variances,
+    ModelSpec, Term, composite_wavelet_variances, gauss_markov_factors, sum_over_terms,
+    term_wavelet_variances,
 };
+use super::theory::ScaleFactors;
 use crate::stoch::wavelet_variance::WaveletVariance;
 
 /// The empirical moments a fit matches: scales τ_j (samples), ν̂²_j and their standard
@@ -64,6 +66,16 @@ impl Moments {
     pub fn objective(&self, terms: &[Term]) -> f64 {
         self.residuals(terms).iter().map(|r| r * r).sum()
     }
+
+    /// [`Self::objective`] with the Gauss-Markov curves taken from `table` where it has them.
+    fn objective_with(&self, terms: &[Term], table: &CurveTable) -> f64 {
+        let each: Vec<Vec<f64>> = terms.iter().map(|t| table.wavelet_variances(t)).collect();
+        let implied = sum_over_terms(&each, self.tau.len());
+        self.residuals_of_implied(&implied)
+            .iter()
+            .map(|r| r * r)
+            .sum()
+    }
 }
 
 /// A composite fitted by GMWM.
@@ -104,10 +116,11 @@ pub fn fit_gmwm(wv: &WaveletVariance, model: ModelSpec) -> Result<GmwmFit, GmwmE
             parameters: model.n_parameters(),
         });
     }
+    let table = CurveTable::new(candidate_correlation_times(&moments.tau), &moments.tau);
     let mut starts: Vec<(f64, Vec<Term>)> = correlation_tuples(&moments.tau, model.gauss_markov)
         .iter()
-        .map(|tcs| linear_start(&moments, model, tcs))
-        .map(|terms| (moments.objective(&terms), terms))
+        .map(|tcs| linear_start(&moments, model, tcs, &table))
+        .map(|terms| (moments.objective_with(&terms, &table), terms))
         .collect();
     starts.sort_by(|a, b| a.0.total_cmp(&b.0));
     let best = starts
@@ -196,16 +209,15 @@ impl LeastSquares for MomentProblem<'_> {
     }
 
     /// A coordinate moves one term: the other terms' wavelet variances are computed once at x
-    /// and only the moved term's again at x ± h, then summed over the terms in the same order
-    /// as at a whole evaluation, so the values are those of the generic Jacobian, bit for bit,
-    /// for about 1/(number of terms) of its curve evaluations.
+    /// and only the moved term's again at x ± h (from the curve at x when the coordinate is a
+    /// Gauss-Markov variance), then summed over the terms in the same order as at a whole
+    /// evaluation, so the values are those of the generic Jacobian, bit for bit, for a fraction
+    /// of its curve evaluations.
     fn jacobian(&self, x: &[f64], n_residuals: usize, step: f64) -> DMatrix<f64> {
         let tau = &self.moments.tau;
         let terms = with_coordinates(self.template, x);
-        let mut each: Vec<Vec<f64>> = terms
-            .iter()
-            .map(|t| term_wavelet_variances(t, tau))
-            .collect();
+        let table = CurveTable::new(terms.iter().filter_map(correlation_samples), tau);
+        let mut each: Vec<Vec<f64>> = terms.iter().map(|t| table.wavelet_variances(t)).collect();
         let spans = coordinate_spans(self.template);
         let mut probe = x.to_vec();
         central_differences(x, n_residuals, step, |k, h| {
@@ -213,7 +225,7 @@ impl LeastSquares for MomentProblem<'_> {
             probe[k] = x[k] + h;
             let moved = self.template[i].with_coordinates(&probe[spans[i].clone()]);
             probe[k] = x[k];
-            let kept = std::mem::replace(&mut each[i], term_wavelet_variances(&moved, tau));
+            let kept = std::mem::replace(&mut each[i], table.wavelet_variances(&moved));
             let residuals = self
                 .moments
                 .residuals_of_implied(&sum_over_terms(&each, tau.len()));
@@ -223,16 +235,54 @@ impl LeastSquares for MomentProblem<'_> {
     }
 }
 
-/// The Gauss-Markov processes by increasing correlation time (their labels are otherwise
-/// interchangeable, and the intervals need one labelling).
-pub(super) fn sorted(mut terms: Vec<Term>) -> Vec<Term> {
-    let tc = |t: &Term| match t {
+/// Gauss-Markov curves at the scales `tau` for some correlation times, computed once for all the
+/// evaluations that use them (the starts' tuples draw from a few correlation times; a
+/// Jacobian's variance coordinates keep theirs).
+struct CurveTable<'a> {
+    tau: &'a [f64],
+    curves: Vec<(f64, Vec<ScaleFactors>)>,
+}
+
+impl<'a> CurveTable<'a> {
+    fn new(correlation_samples: impl Iterator<Item = f64>, tau: &'a [f64]) -> Self {
+        let curves = correlation_samples
+            .map(|tc| (tc, gauss_markov_factors(tc, tau)))
+            .collect();
+        Self { tau, curves }
+    }
+
+    /// `term`'s wavelet variance at every scale, the values [`term_wavelet_variances`] gives:
+    /// from the table's curve when it has the term's correlation time.
+    fn wavelet_variances(&self, term: &Term) -> Vec<f64> {
+        let curve = correlation_samples(term).and_then(|tc| {
+            self.curves
+                .iter()
+                .find(|(known, _)| known.to_bits() == tc.to_bits())
+        });
+        match (term, curve) {
+            (Term::GaussMarkov { variance, .. }, Some((_, factors))) => {
+                factors.iter().map(|f| f.at(*variance)).collect()
+            }
+            _ => term_wavelet_variances(term, self.tau),
+        }
+    }
+}
+
+/// A Gauss-Markov term's correlation time, samples.
+fn correlation_samples(term: &Term) -> Option<f64> {
+    match *term {
         Term::GaussMarkov {
             correlation_samples,
             ..
-        } => *correlation_samples,
-        _ => 0.0,
-    };
+        } => Some(correlation_samples),
+        _ => None,
+    }
+}
+
+/// The Gauss-Markov processes by increasing correlation time (their labels are otherwise
+/// interchangeable, and the intervals need one labelling).
+pub(super) fn sorted(mut terms: Vec<Term>) -> Vec<Term> {
+    let tc = |t: &Term| correlation_samples(t).unwrap_or(0.0);
     let first_gm = terms
         .iter()
         .position(|t| matches!(t, Term::GaussMarkov { .. }))
@@ -241,10 +291,15 @@ pub(super) fn sorted(mut terms: Vec<Term>) -> Vec<Term> {
     terms
 }
 
+/// The correlation times (samples) the starts draw from: the scales τ_j/2.
+fn candidate_correlation_times(tau: &[f64]) -> impl Iterator<Item = f64> + '_ {
+    tau.iter().map(|t| t / 2.0)
+}
+
 /// Increasing k-tuples of candidate correlation times (samples): the scales τ_j/2, every
 /// second one when there are too many tuples.
 fn correlation_tuples(tau: &[f64], k: usize) -> Vec<Vec<f64>> {
-    let mut candidates: Vec<f64> = tau.iter().map(|t| t / 2.0).collect();
+    let mut candidates: Vec<f64> = candidate_correlation_times(tau).collect();
     while k > 1 && n_choose(candidates.len(), k) > 3000 {
         candidates = candidates.iter().step_by(2).copied().collect();
     }
@@ -291,10 +346,11 @@ fn unit_terms(model: ModelSpec, tcs: &[f64]) -> Vec<Term> {
 /// Variances by weighted non-negative least squares with the Tc's fixed (every ν²_j is linear
 /// in them; ω² for the drift), a variance at zero raised to 1 % of the largest value that
 /// process could have alone.
-fn linear_start(moments: &Moments, model: ModelSpec, tcs: &[f64]) -> Vec<Term> {
+fn linear_start(moments: &Moments, model: ModelSpec, tcs: &[f64], table: &CurveTable) -> Vec<Term> {
     let basis = unit_terms(model, tcs);
+    let columns: Vec<Vec<f64>> = basis.iter().map(|t| table.wavelet_variances(t)).collect();
     let design = DMatrix::from_fn(moments.tau.len(), basis.len(), |j, i| {
-        basis[i].wavelet_variance(moments.tau[j]) / moments.sd[j]
+        columns[i][j] / moments.sd[j]
     });
     let target = DVector::from_fn(moments.tau.len(), |j, _| moments.nu[j] / moments.sd[j]);
     let coefficients = non_negative_least_squares(&design, &target);

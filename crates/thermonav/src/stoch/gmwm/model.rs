@@ -313,12 +313,18 @@ pub fn term_wavelet_variances(term: &Term, taus: &[f64]) -> Vec<f64> {
         Term::GaussMarkov {
             correlation_samples,
             variance,
-        } => {
-            let curve = theory::GaussMarkovCurve::new(correlation_samples);
-            taus.iter().map(|&tau| curve.at(variance, tau)).collect()
-        }
+        } => (gauss_markov_factors(correlation_samples, taus).iter())
+            .map(|f| f.at(variance))
+            .collect(),
         _ => taus.iter().map(|&tau| term.wavelet_variance(tau)).collect(),
     }
+}
+
+/// The Gauss-Markov curve of correlation time `correlation_samples` at every scale of `taus`,
+/// as the factors any variance takes ([`theory::ScaleFactors`]).
+pub fn gauss_markov_factors(correlation_samples: f64, taus: &[f64]) -> Vec<theory::ScaleFactors> {
+    let curve = theory::GaussMarkovCurve::new(correlation_samples);
+    taus.iter().map(|&tau| curve.factors(tau)).collect()
 }
 
 /// Σ over terms of their wavelet variances (`each[term][scale]`), term by term in order at each

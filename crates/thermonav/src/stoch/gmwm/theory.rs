@@ -70,6 +70,11 @@ impl GaussMarkovCurve {
 
     /// ν² at scale `tau` samples for stationary variance `variance`.
     pub fn at(&self, variance: f64, tau: f64) -> f64 {
+        self.factors(tau).at(variance)
+    }
+
+    /// The curve's factors at scale `tau` samples, which ν² takes for any variance.
+    pub fn factors(&self, tau: f64) -> ScaleFactors {
         let (a, phi) = (self.a, self.phi);
         let m = tau / 2.0;
         // φ·2m(sinh a − a) = m(1 − φ²) − 2maφ, the form that cannot overflow at large a.
@@ -78,7 +83,26 @@ impl GaussMarkovCurve {
         } else {
             phi * f_of(m * a) + m * (1.0 - phi * phi) - 2.0 * m * a * phi
         };
-        2.0 * variance * phi_bracket / (tau * self.one_minus_phi).powi(2)
+        ScaleFactors {
+            phi_bracket,
+            denominator: (tau * self.one_minus_phi).powi(2),
+        }
+    }
+}
+
+/// A Gauss-Markov curve at one scale: ν² = 2 s² φ[F(m a) + 2m (sinh a − a)] / (τ (1 − φ))², the
+/// bracket (times φ) and the denominator kept, so that every variance s² costs two products and
+/// a division (the same arithmetic as [`GaussMarkovCurve::at`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScaleFactors {
+    phi_bracket: f64,
+    denominator: f64,
+}
+
+impl ScaleFactors {
+    /// ν² for stationary variance `variance`.
+    pub fn at(self, variance: f64) -> f64 {
+        2.0 * variance * self.phi_bracket / self.denominator
     }
 }
 
