@@ -41,7 +41,7 @@ pub fn characterize_file(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    (reading, imu): (ReadingArg, &ImuOptions),
+    (reading, imu, spares): (ReadingArg, &ImuOptions, &SpareSeries),
 ) -> Result<TemperatureEntry, Failure> {
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
@@ -50,7 +50,7 @@ pub fn characterize_file(
     let whole = crate::inputs::is_whole_log(path);
     let mut entry = match !whole && streams(path, reading) {
         true => characterize_streaming(path, given, settings, (&name, imu))?,
-        false => characterize_in_memory(path, given, settings, (&name, imu))?,
+        false => characterize_in_memory(path, given, settings, (&name, imu, spares))?,
     };
     entry.imu_rotation = crate::settings::imu::rotation_text(imu);
     Ok(entry)
@@ -61,14 +61,34 @@ fn characterize_in_memory(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    (name, imu): (&str, &ImuOptions),
+    (name, imu, spares): (&str, &ImuOptions, &SpareSeries),
 ) -> Result<TemperatureEntry, Failure> {
-    let series = crate::inputs::read_imu_input(path, imu)?;
+    let series = crate::inputs::read_imu_input_into(path, imu, spares.take())?;
     let temperature_c = temperature_of(path, &series, given)?;
     let (entry, _) = characterize(&series, temperature_c, name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()?;
+    spares.give(series);
     Ok(entry)
+}
+
+/// The series of records already characterised, kept for the next records to be read into
+/// (at most one per record in flight: as many as the pool has threads).
+#[derive(Debug, Default)]
+pub struct SpareSeries(std::sync::Mutex<Vec<ImuSeries>>);
+
+impl SpareSeries {
+    /// A series done with, if any.
+    fn take(&self) -> Option<ImuSeries> {
+        self.0.lock().ok()?.pop()
+    }
+
+    /// Keeps `series` for a later record.
+    fn give(&self, series: ImuSeries) {
+        if let Ok(mut spares) = self.0.lock() {
+            spares.push(series);
+        }
+    }
 }
 
 /// Builds the bank of a job and writes it atomically.
@@ -126,12 +146,13 @@ pub fn build_bank_reading(
         ..inputs.thermal.imu
     };
     let progress = crate::progress::bar(files.len(), "characterising static records");
+    let spares = SpareSeries::default();
     let entries: Vec<Result<TemperatureEntry, Failure>> = files
         .par_iter()
         .enumerate()
         .map(|(k, path)| {
             let given = temperatures.get(k).copied();
-            let entry = characterize_file(path, given, settings, (reading, &imu));
+            let entry = characterize_file(path, given, settings, (reading, &imu, &spares));
             progress.inc(1);
             entry
         })

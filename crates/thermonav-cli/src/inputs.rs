@@ -10,7 +10,7 @@ use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav_io::ros::BagFormat;
 use thermonav_io::ros::extract::{TopicChoice, imu_series};
-use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
+use thermonav_io::{ImuOptions, Strictness, read_imu_file_into};
 
 /// Reads and validates a bank file.
 pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
@@ -86,6 +86,16 @@ pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
 /// temperature topic. A bag carries its own times and axes: a mounting or a rate for it is
 /// refused (convert the bag, then rotate the CSV).
 pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Failure> {
+    read_imu_input_into(path, options, None)
+}
+
+/// [`read_imu_input`], a CSV into the columns of `spare` (a series done with; see
+/// [`thermonav_io::read_imu_file_into`]).
+pub fn read_imu_input_into(
+    path: &Path,
+    options: &ImuOptions,
+    spare: Option<ImuSeries>,
+) -> Result<ImuSeries, Failure> {
     if is_dataflash(path) {
         return read_dataflash_imu(path, options);
     }
@@ -97,7 +107,7 @@ pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Fa
             )))
         }
         Some(format) => read_bag_imu(path, format),
-        None => read_imu_file_with(path, Strictness::Strict, options).data(),
+        None => read_imu_file_into(path, Strictness::Strict, options, spare).data(),
     }
 }
 

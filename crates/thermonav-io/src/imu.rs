@@ -402,7 +402,11 @@ pub fn read_imu(
     strictness: Strictness,
 ) -> Result<ImuSeries, ReadError> {
     let input = input.into();
-    let series = collect_series(ImuReader::new(reader, input.clone(), strictness)?, None)?;
+    let series = collect_series(
+        ImuReader::new(reader, input.clone(), strictness)?,
+        None,
+        None,
+    )?;
     check_gravity_magnitude(series, &input, strictness)
 }
 
@@ -426,6 +430,21 @@ pub fn read_imu_file_with(
     strictness: Strictness,
     options: &ImuOptions,
 ) -> Result<ImuSeries, ReadError> {
+    read_imu_file_into(path, strictness, options, None)
+}
+
+/// [`read_imu_file_with`] into the columns of `spare`, a series done with ([`ImuSeries::emptied`]),
+/// when the file is read in one pass: the same series, without faulting in new memory for it.
+/// A reader of many records in turn passes each one's series on to the next.
+///
+/// # Errors
+/// As [`read_imu_file_with`].
+pub fn read_imu_file_into(
+    path: impl AsRef<Path>,
+    strictness: Strictness,
+    options: &ImuOptions,
+    spare: Option<ImuSeries>,
+) -> Result<ImuSeries, ReadError> {
     let path = path.as_ref();
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).ok();
     // A compressed file cannot be entered in the middle, nor can rows timed by their index
@@ -442,7 +461,10 @@ pub fn read_imu_file_with(
         Some(series) => series,
         // Small files, and any file on which a half failed: one pass, which also gives the
         // exact error (line numbers counted from the top).
-        None => collect_series(ImuReader::open_with(path, strictness, options)?, file_bytes)?,
+        None => {
+            let reader = ImuReader::open_with(path, strictness, options)?;
+            collect_series(reader, file_bytes, spare)?
+        }
     };
     check_gravity_magnitude(series, &path.display().to_string(), strictness)
 }
@@ -584,7 +606,7 @@ fn read_halves(
                 options,
             )
             .ok()?;
-            collect_series(reader, Some(boundary)).ok()
+            collect_series(reader, Some(boundary), None).ok()
         });
         let second = scope.spawn(|| {
             let mut file = File::open(path).ok()?;
@@ -597,7 +619,7 @@ fn read_halves(
                 options,
             )
             .ok()?;
-            collect_series(reader, Some(bytes - boundary)).ok()
+            collect_series(reader, Some(bytes - boundary), None).ok()
         });
         (first.join().ok().flatten(), second.join().ok().flatten())
     });
@@ -626,15 +648,21 @@ fn append_series(first: &mut ImuSeries, second: ImuSeries) {
     };
 }
 
-/// Collects samples; with the input's size, reserves room for all rows once the first is read.
+/// Collects samples, into `spare`'s columns when given; with the input's size, reserves room
+/// for all rows once the first is read.
 fn collect_series<R: BufRead>(
     mut reader: ImuReader<R>,
     input_bytes: Option<u64>,
+    spare: Option<ImuSeries>,
 ) -> Result<ImuSeries, ReadError> {
-    let mut series = ImuSeries::new(reader.kind());
+    let kind = reader.kind();
     let present = reader.present_channels().to_vec();
     let Some(first) = reader.next() else {
-        return Ok(series);
+        return Ok(ImuSeries::new(kind));
+    };
+    let mut series = match spare {
+        Some(spare) => spare.emptied(kind),
+        None => ImuSeries::new(kind),
     };
     series.push(&first?);
     if let Some(bytes) = input_bytes {

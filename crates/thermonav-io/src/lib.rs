@@ -119,7 +119,7 @@ pub use gnss::{
 };
 pub use imu::{
     ChannelRule, FileSplit, GravityCheck, ImuOptions, ImuReader, ImuWriter, TemperatureColumn,
-    read_imu, read_imu_file, read_imu_file_with, write_imu, write_imu_file,
+    read_imu, read_imu_file, read_imu_file_into, read_imu_file_with, write_imu, write_imu_file,
 };
 pub use trajectory::{
     TrajectoryReader, read_trajectory, read_trajectory_file, trajectory_column_names,

@@ -231,6 +231,18 @@ impl ImuSeries {
         &self.channels[channel.index()]
     }
 
+    /// This series with every column emptied and its room kept, ready for a series of `kind`:
+    /// reading the next record into it writes over memory already mapped, where a new series
+    /// would fault in (and have the kernel zero) every page of its columns again.
+    pub fn emptied(mut self, kind: SampleKind) -> Self {
+        self.time.clear();
+        for column in self.channels.iter_mut().chain(&mut self.temperature_c) {
+            column.clear();
+        }
+        self.kind = Some(kind);
+        self
+    }
+
     /// Appends one sample. A temperature column is kept only while every sample has one.
     pub fn push(&mut self, sample: &ImuSample) {
         let first = self.time.is_empty();
@@ -243,7 +255,13 @@ impl ImuSeries {
             column.push(*value);
         }
         match (sample.temperature_c, first) {
-            (Some(t), true) => self.temperature_c = Some(vec![t]),
+            (Some(t), true) => {
+                // An emptied series' temperature column is reused.
+                let mut column = self.temperature_c.take().unwrap_or_default();
+                column.clear();
+                column.push(t);
+                self.temperature_c = Some(column);
+            }
             (Some(t), false) => {
                 if let Some(column) = self.temperature_c.as_mut() {
                     column.push(t);

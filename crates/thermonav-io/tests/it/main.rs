@@ -16,6 +16,7 @@ mod raw_imu;
 mod ros;
 mod round_trip;
 mod rtklib_pos;
+mod spare;
 mod support;
 mod thermal_parameters;
 mod trajectory;
