@@ -2,17 +2,18 @@
 //!
 //! Usage: `imu_csv_timing FILE OUT_PREFIX`. Prints one JSON line with the file size and the
 //! best-of-3 times of [`read_imu_file`] (large files in two halves on two threads, `_s`) and of
-//! [`read_imu`] on one thread (`_1t_s`), the least CPU time of that thread over the three
+//! the same read in one pass on one thread (`_1t_s`, [`FileSplit::OnePass`], as `characterize`
+//! reads each record of a campaign), the least CPU time of that thread over the three
 //! runs (`read_1t_cpu_s`, from Linux's `/proc/thread-self/schedstat`; absent elsewhere), which
 //! gives the speed per core when other work shares the cores, and writes OUT_PREFIX.f64: t_s, the six channels and
 //! temp_c as they were read, one column after the other in little-endian f64, so that the script
 //! can compare them with pandas value by value.
 
-use std::fs::File;
-use std::io::BufReader;
 use std::time::Instant;
 use thermonav::imu::ImuSeries;
-use thermonav_io::{ReadError, ReadErrorKind, Strictness, read_imu, read_imu_file};
+use thermonav_io::{
+    FileSplit, ImuOptions, ReadError, Strictness, read_imu_file, read_imu_file_with,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -25,13 +26,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let cpu_s = std::cell::Cell::new(f64::INFINITY);
     let (best_1t, _) = best_of_3(|| {
         let start = thread_cpu_s();
-        let file = File::open(path)
-            .map_err(|e| ReadError::new(path.as_str(), None, ReadErrorKind::Open(e)))?;
-        let series = read_imu(
-            BufReader::with_capacity(1 << 18, file),
-            path.as_str(),
-            Strictness::Strict,
-        );
+        let one_pass = ImuOptions {
+            split: FileSplit::OnePass,
+            ..ImuOptions::default()
+        };
+        let series = read_imu_file_with(path, Strictness::Strict, &one_pass);
         if let (Some(start), Some(end)) = (start, thread_cpu_s()) {
             cpu_s.set(cpu_s.get().min(end - start));
         }

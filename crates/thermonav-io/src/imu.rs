@@ -606,7 +606,8 @@ fn read_halves(
                 options,
             )
             .ok()?;
-            collect_series(reader, Some(boundary), None).ok()
+            // Room for the whole file's rows, so that the second half appends without a move.
+            collect_series(reader, Some(bytes), None).ok()
         });
         let second = scope.spawn(|| {
             let mut file = File::open(path).ok()?;
