@@ -77,6 +77,23 @@ pub(crate) enum Target {
     },
 }
 
+/// The value slots of `targets` in order when the first is the time and every other a value in
+/// SI ([`Layout::si_value_slots`]).
+fn si_value_slots(targets: &[Target]) -> Option<Vec<usize>> {
+    let (Target::Time, values) = targets.split_first()? else {
+        return None;
+    };
+    (values.iter())
+        .map(|target| match *target {
+            Target::Value {
+                slot,
+                unit: Unit::Si,
+            } => Some(slot),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The columns of one file, in file order.
 #[derive(Debug, Clone)]
 pub(crate) struct Layout {
@@ -88,6 +105,10 @@ pub(crate) struct Layout {
     pub(crate) targets: Vec<Target>,
     /// For each slot, the file column that fills it.
     slot_columns: [Option<usize>; MAX_SLOTS],
+    /// When the time comes first and every other column holds a value already in SI (the
+    /// canonical files), the slots of those values in file order: the row decoder then walks
+    /// them without looking at each column's target and unit.
+    pub(crate) si_value_slots: Option<Vec<usize>>,
 }
 
 impl Layout {
@@ -104,6 +125,7 @@ impl Layout {
             names: Vec::new(),
             targets: Vec::new(),
             slot_columns: [None; MAX_SLOTS],
+            si_value_slots: None,
         };
         let mut time_column = None;
         for name in header.split(',').map(str::trim) {
@@ -122,6 +144,7 @@ impl Layout {
             layout.names.push(name.to_owned());
             layout.targets.push(target);
         }
+        layout.si_value_slots = si_value_slots(&layout.targets);
         match (time_column, rate_hz) {
             (None, None) => Err(missing(TIME_COLUMN, schema.time_alternatives)),
             (Some(_), Some(rate_hz)) => Err(ReadErrorKind::TimeColumnWithRate { rate_hz }),
