@@ -434,8 +434,10 @@ pub fn read_imu_file_with(
 }
 
 /// [`read_imu_file_with`] into the columns of `spare`, a series done with ([`ImuSeries::emptied`]),
-/// when the file is read in one pass: the same series, without faulting in new memory for it.
-/// A reader of many records in turn passes each one's series on to the next.
+/// when the file is read in one pass: the same series, with no new memory faulted in as far as
+/// the spare's room goes. A reader of many records in turn passes each one's series on to the
+/// next. The spare is dropped unused when the file is read in two halves, holds no rows, or
+/// fails to read.
 ///
 /// # Errors
 /// As [`read_imu_file_with`].

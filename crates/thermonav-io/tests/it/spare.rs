@@ -28,18 +28,30 @@ fn record(header: &str, rows: usize, seed: f64) -> String {
     text
 }
 
-// A long record with temperatures, then a shorter one without, then one with again, then a
-// header-only file: each read into the previous one's series equals its fresh read (columns,
-// present channels, temperature column and kind).
+// Records read in turn, each into the previous one's series: with temperatures twice (a
+// campaign's case: the temperature column reused), without, with again, one whose row 700
+// is not a number (an error: the same error as a fresh read, the spare dropped), and a
+// header-only file. Each equals its fresh read (columns, present channels, temperature column
+// and kind).
 #[test]
 fn a_record_read_into_a_spare_series_is_its_fresh_read() {
     let dir = tempfile::tempdir().unwrap();
+    let broken: String = (record(HEADER_WITH_TEMPERATURE, 1000, 4.0).lines())
+        .enumerate()
+        .map(|(k, line)| match k {
+            700 => format!("{line}x\n"),
+            _ => format!("{line}\n"),
+        })
+        .collect();
     let files = [
         record(HEADER_WITH_TEMPERATURE, 5000, 1.0),
+        record(HEADER_WITH_TEMPERATURE, 4000, 5.0),
         record(HEADER_RATES_ONLY, 1200, 2.0),
         record(HEADER_WITH_TEMPERATURE, 3000, 3.0),
+        broken,
         format!("{HEADER_WITH_TEMPERATURE}\n"),
     ];
+    let mut errors = 0;
     let options = ImuOptions {
         split: FileSplit::OnePass,
         ..ImuOptions::default()
@@ -55,8 +67,12 @@ fn a_record_read_into_a_spare_series_is_its_fresh_read() {
                 assert_eq!(reused, fresh, "file {k}");
                 spare = Some(reused);
             }
-            (Err(fresh), Err(reused)) => assert_eq!(reused.to_string(), fresh.to_string()),
+            (Err(fresh), Err(reused)) => {
+                assert_eq!(reused.to_string(), fresh.to_string());
+                errors += 1;
+            }
             (fresh, reused) => panic!("file {k}: {fresh:?} / {reused:?}"),
         }
     }
+    assert!(errors >= 1, "the broken record is refused");
 }

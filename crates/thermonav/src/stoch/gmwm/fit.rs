@@ -64,18 +64,20 @@ impl Moments {
 
     /// The GMWM objective (ν̂ − ν(θ))ᵀ Ω (ν̂ − ν(θ)).
     pub fn objective(&self, terms: &[Term]) -> f64 {
-        self.residuals(terms).iter().map(|r| r * r).sum()
+        sum_of_squares(&self.residuals(terms))
     }
 
     /// [`Self::objective`] with the Gauss-Markov curves taken from `table` where it has them.
     fn objective_with(&self, terms: &[Term], table: &CurveTable) -> f64 {
         let each: Vec<Vec<f64>> = terms.iter().map(|t| table.wavelet_variances(t)).collect();
         let implied = sum_over_terms(&each, self.tau.len());
-        self.residuals_of_implied(&implied)
-            .iter()
-            .map(|r| r * r)
-            .sum()
+        sum_of_squares(&self.residuals_of_implied(&implied))
     }
+}
+
+/// Σ r².
+fn sum_of_squares(r: &[f64]) -> f64 {
+    r.iter().map(|r| r * r).sum()
 }
 
 /// A composite fitted by GMWM.
@@ -412,6 +414,41 @@ fn non_negative_least_squares(a: &DMatrix<f64>, b: &DVector<f64>) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // The starts' table against the terms' own curves: for composites whose Gauss-Markov
+    // terms take the table's correlation times, every term's wavelet variances, the objective
+    // and the linear start equal those computed without the table, bit for bit.
+    #[test]
+    fn the_curve_table_gives_the_terms_own_curves() {
+        let tau: Vec<f64> = (0..14).map(|j| f64::from(1 << j)).collect();
+        let nu: Vec<f64> = (tau.iter()).map(|t| 1e-3 / t + 1e-6 * t).collect();
+        let moments = Moments {
+            sd: nu.iter().map(|v| 0.2 * v).collect(),
+            tau: tau.clone(),
+            nu,
+        };
+        let table = CurveTable::new(candidate_correlation_times(&tau), &tau);
+        let untabled = CurveTable::new(std::iter::empty(), &tau);
+        let model: ModelSpec = "WN+2GM+RW".parse().unwrap();
+        for tcs in [[0.5, 8.0], [4.0, 4096.0], [16.0, 1024.0]] {
+            let start = linear_start(&moments, model, &tcs, &table);
+            assert_eq!(
+                start,
+                linear_start(&moments, model, &tcs, &untabled),
+                "{tcs:?}"
+            );
+            for term in &start {
+                let tabled = table.wavelet_variances(term);
+                assert_eq!(tabled, term_wavelet_variances(term, &tau), "{term:?}");
+                let one_by_one: Vec<f64> = tau.iter().map(|&t| term.wavelet_variance(t)).collect();
+                assert_eq!(tabled, one_by_one, "{term:?}");
+            }
+            assert_eq!(
+                moments.objective_with(&start, &table).to_bits(),
+                moments.objective(&start).to_bits()
+            );
+        }
+    }
 
     // The term-wise Jacobian against the generic one (every term evaluated at x ± h): equal
     // bit for bit at several points of a four-term composite, Gauss-Markov curves on both
