@@ -226,18 +226,34 @@ fn near_bound(value: f64, bound: f64) -> bool {
 
 /// Unit-scale Kalman pass: Σ v²/S and Σ ln S for Tc = `tc_s`, ρ = `rho_s`.
 fn innovations(record: &Record, tc_s: f64, rho_s: f64) -> (f64, f64) {
-    let transitions = Transitions::new(record.nominal_dt_s, tc_s);
-    let [out] = if transitions.all_near_nominal(record) {
-        let offsets = &record.offset_s[..record.values.len()];
-        kalman_pass(record, [rho_s], |k| [transitions.near_nominal(offsets[k])])
-    } else {
-        kalman_pass(record, [rho_s], |k| [transitions.at(record.dt_s[k])])
-    };
+    let [out] = passes_at(record, [[tc_s, rho_s]]);
     out
 }
 
+/// [`innovations`] at `N` points (Tc, ρ) in one multi-lane pass, bit for bit: with the
+/// near-nominal transitions when every lane takes them (the sampled records' case), otherwise
+/// with [`Transitions::at`] in every lane (which gives the near-nominal value wherever that
+/// applies).
+fn passes_at<const N: usize>(record: &Record, points: [[f64; 2]; N]) -> [(f64, f64); N] {
+    let transitions = points.map(|[tc_s, _]| Transitions::new(record.nominal_dt_s, tc_s));
+    let rho_s = points.map(|[_, rho_s]| rho_s);
+    let n = record.values.len();
+    if transitions.iter().all(|t| t.all_near_nominal(record)) {
+        let offsets = &record.offset_s[..n];
+        kalman_pass(record, rho_s, |k| {
+            std::array::from_fn(|j| transitions[j].near_nominal(offsets[k]))
+        })
+    } else {
+        let dt_s = &record.dt_s[..n];
+        kalman_pass(record, rho_s, |k| {
+            std::array::from_fn(|j| transitions[j].at(dt_s[k]))
+        })
+    }
+}
+
 /// φ_k = exp(−dt_k/Tc) of every step of a record at one Tc ([`Transitions::at`], so the same
-/// values), for the passes that share a Tc: a column of the grid, the search of a profile. Element 0 (the first sample, no transition) is unused.
+/// values), for the passes that share a Tc: a column of the grid, the search of a profile.
+/// Element 0 (the first sample, no transition) is unused.
 fn transition_table(record: &Record, tc_s: f64) -> Vec<f64> {
     let transitions = Transitions::new(record.nominal_dt_s, tc_s);
     if transitions.all_near_nominal(record) {
@@ -502,11 +518,9 @@ fn concentrated(record: &Record, bounds: &Bounds, p: [f64; 2]) -> f64 {
     concentrated_value(record, innovations(record, p[0].exp(), p[1].exp()))
 }
 
-/// [`concentrated`] at `N` points, bit for bit, in one multi-lane pass: with the near-nominal
-/// transitions when every point takes them (the sampled records' case), otherwise with
-/// [`Transitions::at`] in every lane (which gives the near-nominal value wherever that applies).
-/// Lanes of points outside the box run a point inside it, their results dropped, so that the
-/// pass keeps its fast path.
+/// [`concentrated`] at `N` points, bit for bit, in one multi-lane pass ([`passes_at`]). Lanes
+/// of points outside the box run a point inside it, their results dropped, so that the pass
+/// keeps its fast path.
 fn concentrated_at<const N: usize>(
     record: &Record,
     bounds: &Bounds,
@@ -516,18 +530,7 @@ fn concentrated_at<const N: usize>(
         return [f64::NEG_INFINITY; N];
     };
     let lanes = points.map(|p| if bounds.contains(p) { p } else { stand_in });
-    let transitions = lanes.map(|p| Transitions::new(record.nominal_dt_s, p[0].exp()));
-    let passes = if transitions.iter().all(|t| t.all_near_nominal(record)) {
-        let offsets = &record.offset_s[..record.values.len()];
-        kalman_pass(record, lanes.map(|p| p[1].exp()), |k| {
-            std::array::from_fn(|j| transitions[j].near_nominal(offsets[k]))
-        })
-    } else {
-        let dt_s = &record.dt_s[..record.values.len()];
-        kalman_pass(record, lanes.map(|p| p[1].exp()), |k| {
-            std::array::from_fn(|j| transitions[j].at(dt_s[k]))
-        })
-    };
+    let passes = passes_at(record, lanes.map(|p| p.map(f64::exp)));
     std::array::from_fn(|j| match bounds.contains(points[j]) {
         true => concentrated_value(record, passes[j]),
         false => f64::NEG_INFINITY,
@@ -552,28 +555,24 @@ fn concentrated_value(record: &Record, (weighted, log_det): (f64, f64)) -> f64 {
 }
 
 /// Best point of a 13 × 9 grid over the search box (cell centres, all inside it). Each column
-/// of 9 ρ shares one Tc: one [`transition_table`] for its multi-lane [`kalman_pass`]es.
+/// of 9 ρ shares one Tc: one [`AtTc`] for its multi-lane passes.
 fn grid_start(record: &Record, bounds: &Bounds) -> [f64; 2] {
     let lerp = |b: [f64; 2], k: usize, n: usize| b[0] + (b[1] - b[0]) * (k as f64 + 0.5) / n as f64;
     let ln_rho: [f64; 9] = std::array::from_fn(|j| lerp(bounds.ln_rho, j, 9));
-    let rho = ln_rho.map(f64::exp);
     let mut best = ([0.0, 0.0], f64::NEG_INFINITY);
     for i in 0..13 {
-        let ln_tc = lerp(bounds.ln_tc, i, 13);
-        let table = transition_table(record, ln_tc.exp());
+        let column = AtTc::new(record, bounds, lerp(bounds.ln_tc, i, 13));
         // 4 + 4 + 1 lanes: nine at once spill the filters' state out of the 16 SSE registers
         // (callgrind: 4 + 4 + 1 take 6 % fewer instructions than 9, and 3 × 3 or 2 × 4 + 1 more).
-        let mut passes = [(0.0, 0.0); 9];
+        let mut values = [0.0; 9];
         for c in 0..2 {
-            let lanes: [f64; 4] = std::array::from_fn(|j| rho[4 * c + j]);
-            passes[4 * c..4 * c + 4]
-                .copy_from_slice(&kalman_pass(record, lanes, |k| [table[k]; 4]));
+            let lanes: [f64; 4] = std::array::from_fn(|j| ln_rho[4 * c + j]);
+            values[4 * c..4 * c + 4].copy_from_slice(&column.at(lanes));
         }
-        passes[8] = kalman_pass(record, [rho[8]], |k| [table[k]])[0];
-        for (&r, pass) in ln_rho.iter().zip(passes) {
-            let value = concentrated_value(record, pass);
+        [values[8]] = column.at([ln_rho[8]]);
+        for (&r, value) in ln_rho.iter().zip(values) {
             if value > best.1 {
-                best = ([ln_tc, r], value);
+                best = ([column.ln_tc, r], value);
             }
         }
     }
@@ -618,19 +617,10 @@ pub fn nelder_mead(
     let mut values = f.values(simplex);
     for _ in 0..max_iter {
         order(&mut simplex, &mut values);
-        if (values[2] - values[0]).abs() <= 1e-10 * values[0].abs().max(1.0) {
+        if settled(&values) {
             break;
         }
-        let centroid = [
-            (simplex[0][0] + simplex[1][0]) / 2.0,
-            (simplex[0][1] + simplex[1][1]) / 2.0,
-        ];
-        let along = |t: f64| {
-            [
-                centroid[0] + t * (simplex[2][0] - centroid[0]),
-                centroid[1] + t * (simplex[2][1] - centroid[1]),
-            ]
-        };
+        let along = |t: f64| along_worst(&simplex, t);
         let candidates = [along(-1.0), along(-2.0), along(-0.5), along(0.5)];
         let [fr, fe, f_outside, f_inside] = f.values(candidates);
         let [reflected, expanded, outside, inside] = candidates;
@@ -667,15 +657,38 @@ fn order(simplex: &mut [[f64; 2]; 3], values: &mut [f64; 3]) {
 }
 
 fn shrink(simplex: &mut [[f64; 2]; 3], values: &mut [f64; 3], f: &impl Objective) {
+    let shrunk = shrunk(simplex);
+    [values[1], values[2]] = f.values(shrunk);
+    [simplex[1], simplex[2]] = shrunk;
+}
+
+/// Whether an ordered simplex's values agree to 1e-10 relative (Nelder-Mead's stop).
+fn settled(values: &[f64; 3]) -> bool {
+    (values[2] - values[0]).abs() <= 1e-10 * values[0].abs().max(1.0)
+}
+
+/// The point at `t` along the line from the centroid of an ordered simplex's two best points
+/// through its worst (t = −1 the reflection, −2 the expansion, ∓½ the contractions).
+fn along_worst(simplex: &[[f64; 2]; 3], t: f64) -> [f64; 2] {
+    let centroid = [
+        (simplex[0][0] + simplex[1][0]) / 2.0,
+        (simplex[0][1] + simplex[1][1]) / 2.0,
+    ];
+    [
+        centroid[0] + t * (simplex[2][0] - centroid[0]),
+        centroid[1] + t * (simplex[2][1] - centroid[1]),
+    ]
+}
+
+/// The two other points of an ordered simplex moved halfway to the best.
+fn shrunk(simplex: &[[f64; 2]; 3]) -> [[f64; 2]; 2] {
     let towards_best = |k: usize| {
         [
             (simplex[0][0] + simplex[k][0]) / 2.0,
             (simplex[0][1] + simplex[k][1]) / 2.0,
         ]
     };
-    let shrunk = [towards_best(1), towards_best(2)];
-    [values[1], values[2]] = f.values(shrunk);
-    [simplex[1], simplex[2]] = shrunk;
+    [towards_best(1), towards_best(2)]
 }
 
 /// Likelihood-ratio threshold for keeping the Gauss-Markov part: the 0.99 quantile of χ² with
@@ -739,12 +752,7 @@ pub const LR_DROP_95: f64 = 1.920_729_410_347_062;
 /// pass, to [`PROFILE_TOLERANCE`] of the maximum, or where its steps are not trusted by
 /// [`brent_maximum`] to 1e-4 in ln ρ.
 fn profile(record: &Record, bounds: &Bounds, ln_tc: f64, rho_hint: f64) -> (f64, f64) {
-    let at_tc = AtTc {
-        record,
-        bounds,
-        ln_tc,
-        table: transition_table(record, ln_tc.exp()),
-    };
+    let at_tc = AtTc::new(record, bounds, ln_tc);
     at_tc
         .newton_profile(rho_hint)
         .unwrap_or_else(|| at_tc.brent_profile(rho_hint))
@@ -758,7 +766,16 @@ struct AtTc<'a> {
     table: Vec<f64>,
 }
 
-impl AtTc<'_> {
+impl<'a> AtTc<'a> {
+    fn new(record: &'a Record, bounds: &'a Bounds, ln_tc: f64) -> Self {
+        Self {
+            record,
+            bounds,
+            ln_tc,
+            table: transition_table(record, ln_tc.exp()),
+        }
+    }
+
     /// The ln ρ searched: ±3 around the hint, inside the box.
     fn bracket(&self, rho_hint: f64) -> [f64; 2] {
         [
@@ -1120,8 +1137,9 @@ mod tests {
     // The blocked, multi-lane pass does the reference's arithmetic in the reference's order, so
     // the results are equal bit for bit: one lane with transitions computed on the fly (with and
     // without the per-step test of the interval: Tc 400 s is far above the intervals' spread,
-    // 30 ms below it), nine and four lanes from a table, lengths that are and are not multiples of the 8-step block, and ρ so
-    // large (1e32) that the factors leave the log product's range (the per-factor path).
+    // 30 ms below it), nine and four lanes from a table, lengths that are and are not multiples
+    // of the 8-step block, and ρ so large (1e32) that the factors leave the log product's range
+    // (the per-factor path).
     #[test]
     fn the_kalman_pass_is_the_reference_pass_bit_for_bit() {
         for n in [20, 64, 1003] {
@@ -1206,19 +1224,10 @@ mod tests {
         let mut values = simplex.map(&f);
         for _ in 0..400 {
             order(&mut simplex, &mut values);
-            if (values[2] - values[0]).abs() <= 1e-10 * values[0].abs().max(1.0) {
+            if settled(&values) {
                 break;
             }
-            let centroid = [
-                (simplex[0][0] + simplex[1][0]) / 2.0,
-                (simplex[0][1] + simplex[1][1]) / 2.0,
-            ];
-            let along = |t: f64| {
-                [
-                    centroid[0] + t * (simplex[2][0] - centroid[0]),
-                    centroid[1] + t * (simplex[2][1] - centroid[1]),
-                ]
-            };
+            let along = |t: f64| along_worst(&simplex, t);
             let reflected = along(-1.0);
             let fr = f(reflected);
             if fr < values[0] {
@@ -1245,13 +1254,9 @@ mod tests {
                     (simplex[2], values[2]) = (contracted, fc);
                 } else {
                     steps[4] += 1;
-                    for k in 1..3 {
-                        simplex[k] = [
-                            (simplex[0][0] + simplex[k][0]) / 2.0,
-                            (simplex[0][1] + simplex[k][1]) / 2.0,
-                        ];
-                        values[k] = f(simplex[k]);
-                    }
+                    [simplex[1], simplex[2]] = shrunk(&simplex);
+                    values[1] = f(simplex[1]);
+                    values[2] = f(simplex[2]);
                 }
             }
         }
@@ -1552,12 +1557,7 @@ mod tests {
         for factor in [0.1, 0.5, 0.9, 1.0, 2.0, 10.0] {
             let ln_tc = best[0] + f64::ln(factor);
             let (value, r) = profile(&record, &bounds, ln_tc, best[1] + 0.8);
-            let at_tc = AtTc {
-                record: &record,
-                bounds: &bounds,
-                ln_tc,
-                table: transition_table(&record, ln_tc.exp()),
-            };
+            let at_tc = AtTc::new(&record, &bounds, ln_tc);
             // Newton's steps served (Brent, the fallback, is tested on its own).
             assert_eq!(
                 at_tc.newton_profile(best[1] + 0.8),
