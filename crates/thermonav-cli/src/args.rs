@@ -1,7 +1,7 @@
 //! Raw command-line arguments (clap). They are resolved into validated settings by each command.
 
 use crate::thermal_calibration::{
-    DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG, DEFAULT_SWEEP_BLOCK_S,
+    DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG,
 };
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -523,7 +523,7 @@ pub struct CharacterizeArgs {
     /// Static IMU CSVs, one per temperature point; or ROS bags (.mcap, .db3, .bag: the only
     /// sensor_msgs/Imu topic, in FRD, temp_c from the only sensor_msgs/Temperature topic); or
     /// ArduPilot DataFlash logs (.bin: the only IMU instance, temp_c from its T).
-    #[arg(required_unless_present = "manifest", conflicts_with = "manifest")]
+    #[arg(required_unless_present_any = ["manifest", "sweep"], conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
@@ -579,13 +579,17 @@ pub struct CharacterizeArgs {
     #[arg(long, conflicts_with = "manifest")]
     pub power_on: Vec<PowerOnFiles>,
     /// A temperature sweep of the same unit (a static log with temp_c while it warms or
-    /// cools, or a PX4 ULog: its raw sensor_gyro and sensor_accel with their temperature and
-    /// device ids), fitted by block means; repeat for more.
+    /// cools, in any orientation: a CSV, a bag, a DataFlash log, or a PX4 ULog: its raw
+    /// sensor_gyro and sensor_accel with their temperature and device ids), fitted by block
+    /// means; comma-separated files are pieces of one power-on; repeat for more power-ons.
+    /// Sweeps alone (no static records) give a bank of the thermal calibration only, its
+    /// model chosen on held-out legs, with a thermal-lag term where it predicts better.
     #[arg(long, conflicts_with = "manifest")]
-    pub sweep: Vec<PathBuf>,
-    /// Block length of a sweep's block means, s (longer than the bias's correlation time).
-    #[arg(long, default_value_t = DEFAULT_SWEEP_BLOCK_S)]
-    pub sweep_block_s: f64,
+    pub sweep: Vec<SweepFiles>,
+    /// Block length of a sweep's block means, s (default: the shorter of 300 s and the time
+    /// the temperature takes to move 1 °C, at least 10 samples).
+    #[arg(long)]
+    pub sweep_block_s: Option<f64>,
     /// Which IMU of a PX4 ULog sweep: the instance (multi_id) of its raw sensor_gyro and
     /// sensor_accel topics.
     #[arg(long, default_value_t = 0)]
@@ -600,6 +604,21 @@ pub struct CharacterizeArgs {
     /// Print one JSON document (a summary) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// The pieces of one temperature sweep (one power-on), comma-separated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepFiles(pub Vec<PathBuf>);
+
+impl std::str::FromStr for SweepFiles {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let files: PowerOnFiles = text
+            .parse()
+            .map_err(|_| "give the sweep's files, comma-separated".to_string())?;
+        Ok(Self(files.0))
+    }
 }
 
 /// The static records of one power-on, comma-separated.

@@ -136,6 +136,12 @@ pub fn build_bank_reading(
 ) -> Result<ModelBank, Failure> {
     use rayon::prelude::*;
     let (files, temperatures) = (inputs.files, inputs.temperatures);
+    if files.is_empty() {
+        let calibration = crate::thermal_sweeps::calibrate_sweeps_alone(inputs.thermal)?;
+        let bank = ModelBank::thermal_only(calibration);
+        write_json_atomically(out, &bank).data()?;
+        return Ok(bank);
+    }
     // Several records are read side by side on the pool, each in one pass; one record alone
     // in two halves at once.
     let imu = ImuOptions {

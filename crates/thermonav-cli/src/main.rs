@@ -22,6 +22,7 @@ mod report;
 mod settings;
 mod thermal_calibration;
 mod thermal_scenarios;
+mod thermal_sweeps;
 mod tournament_files;
 mod tournament_shards;
 

@@ -16,11 +16,8 @@ use thermonav::stoch::thermal::{
 };
 use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
 use thermonav_io::ulog::read_ulog_file;
+use thermonav::stoch::thermal::sweep_model::default_block_s;
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
-
-/// Block length of a sweep's block means, s: five minutes, longer than most of a MEMS bias's
-/// correlation times, so that neighbouring blocks are nearly independent.
-pub const DEFAULT_SWEEP_BLOCK_S: f64 = 300.0;
 
 pub use thermonav::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 
@@ -36,10 +33,11 @@ fn default_site() -> Site {
 pub struct ThermalInputs {
     /// Further power-ons, each a list of static records.
     pub power_ons: Vec<Vec<PathBuf>>,
-    /// Temperature sweeps, each its own power-on.
-    pub sweeps: Vec<PathBuf>,
-    /// Block length of a sweep's block means, s.
-    pub sweep_block_s: f64,
+    /// Temperature sweeps, each its own power-on: the files (pieces) of each.
+    pub sweeps: Vec<Vec<PathBuf>>,
+    /// Block length of a sweep's block means, s; `None`: each piece's default
+    /// ([`thermonav::stoch::thermal::sweep_model::default_block_s`]).
+    pub sweep_block_s: Option<f64>,
     /// The IMU instance of a ULog sweep.
     pub sweep_instance: u8,
     /// Where the chamber stands: latitude (rad) and height (m), for the gravity a level unit's
@@ -54,7 +52,7 @@ impl Default for ThermalInputs {
         Self {
             power_ons: Vec::new(),
             sweeps: Vec::new(),
-            sweep_block_s: DEFAULT_SWEEP_BLOCK_S,
+            sweep_block_s: None,
             sweep_instance: 0,
             site: default_site(),
             imu: ImuOptions::default(),
@@ -87,18 +85,21 @@ pub fn calibrate_bank(
     }
     let first_sweep = inputs.power_ons.len() as u32 + 2;
     let mut devices = Vec::new();
-    for (k, file) in inputs.sweeps.iter().enumerate() {
-        let sweep = sweep_series(file, inputs.sweep_instance, &inputs.imu)?;
-        devices.extend(sweep.devices);
-        parts.push(sweep_of(
-            &sweep.series,
-            file,
-            first_sweep + k as u32,
-            inputs,
-        )?);
+    for (k, files) in inputs.sweeps.iter().enumerate() {
+        for file in files {
+            let sweep = sweep_series(file, inputs.sweep_instance, &inputs.imu)?;
+            devices.extend(sweep.devices);
+            parts.push(sweep_of(
+                &sweep.series,
+                file,
+                first_sweep + k as u32,
+                inputs,
+            )?);
+        }
     }
     let gravity = normal_gravity_m_s2(inputs.site.latitude_rad, inputs.site.height_m);
-    let devices = common_devices(&devices, &inputs.sweeps)?;
+    let sweep_files: Vec<PathBuf> = inputs.sweeps.iter().flatten().cloned().collect();
+    let devices = common_devices(&devices, &sweep_files)?;
     Ok(fit(parts, gravity, inputs.given())?.map(|mut c| {
         c.devices = devices;
         c
@@ -106,16 +107,19 @@ pub fn calibrate_bank(
 }
 
 /// A sweep's samples and, from a ULog, the sensors they came from.
-struct Sweep {
-    series: ImuSeries,
-    devices: Option<SensorDevices>,
+pub struct Sweep {
+    /// The samples, body axes.
+    pub series: ImuSeries,
+    /// The ULog's sensors.
+    pub devices: Option<SensorDevices>,
 }
 
-/// The sweep in `path`: an IMU CSV, or a PX4 ULog's raw sensors of `instance`.
-fn sweep_series(path: &Path, instance: u8, imu: &ImuOptions) -> Result<Sweep, Failure> {
+/// The sweep in `path`: an IMU CSV, a bag or a DataFlash log, or a PX4 ULog's raw sensors of
+/// `instance`.
+pub fn sweep_series(path: &Path, instance: u8, imu: &ImuOptions) -> Result<Sweep, Failure> {
     crate::inputs::readable_twice(path, "characterize --sweep")?;
     if !is_ulog(path) {
-        let series = read_imu_file_with(path, Strictness::Strict, imu).data()?;
+        let series = crate::inputs::read_imu_input(path, imu)?;
         return Ok(Sweep {
             series,
             devices: None,
@@ -155,7 +159,7 @@ fn devices_text(d: &SensorDevices) -> String {
 }
 
 /// The sensors of the ULog sweeps, which must all be the same ones.
-fn common_devices(
+pub fn common_devices(
     devices: &[SensorDevices],
     sweeps: &[PathBuf],
 ) -> Result<Option<SensorDevices>, Failure> {
@@ -230,7 +234,15 @@ fn sweep_of(
     power_on: u32,
     inputs: &ThermalInputs,
 ) -> Result<BTreeMap<Channel, Vec<PowerOnRecord>>, Failure> {
-    sweep_records(power_on, series, inputs.sweep_block_s)
+    let block_s = match inputs.sweep_block_s {
+        Some(b) => b,
+        None => {
+            let time: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
+            let temperatures = series.temperature_c.as_deref().unwrap_or_default();
+            default_block_s(&time, temperatures)
+        }
+    };
+    sweep_records(power_on, series, block_s)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()
 }

@@ -187,6 +187,19 @@ impl ImuSeries {
         channels: &[Channel],
         error: impl Fn(Channel, f64) -> (f64, f64),
     ) -> Result<(), TemperatureColumnError> {
+        self.remove_thermal_error_at(channels, |c, _, t| error(c, t))
+    }
+
+    /// [`ImuSeries::remove_thermal_error`] with the sample's index given to `error` as well
+    /// (for an error that depends on more than the temperature, such as its rate).
+    ///
+    /// # Errors
+    /// As [`ImuSeries::remove_thermal_error`].
+    pub fn remove_thermal_error_at(
+        &mut self,
+        channels: &[Channel],
+        error: impl Fn(Channel, usize, f64) -> (f64, f64),
+    ) -> Result<(), TemperatureColumnError> {
         let intervals = self.increment_intervals_s();
         let temperatures = self
             .temperature_c
@@ -198,7 +211,7 @@ impl ImuSeries {
         for &channel in channels {
             let column = &mut self.channels[channel.index()];
             for (k, value) in column.iter_mut().enumerate() {
-                let (bias, scale) = error(channel, temperatures[k]);
+                let (bias, scale) = error(channel, k, temperatures[k]);
                 let dt = intervals.as_ref().map_or(1.0, |dt| dt[k]);
                 *value = (*value - bias * dt) / (1.0 + scale);
             }

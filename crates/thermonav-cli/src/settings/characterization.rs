@@ -107,10 +107,16 @@ fn bank_job(
         ..thermal_inputs(args)?
     };
     let further: Vec<PathBuf> = thermal.power_ons.iter().flatten().cloned().collect();
+    let sweeps: Vec<PathBuf> = thermal.sweeps.iter().flatten().cloned().collect();
+    if args.files.is_empty() && !args.temperature_c.is_empty() {
+        return Err(Failure::Usage(anyhow!(
+            "--temperature-c gives the temperatures of static records, and none is given (a sweep's temperatures are its temp_c column)"
+        )));
+    }
     Io::new()
         .inputs("a record", &args.files)
         .inputs("a --power-on record", &further)
-        .inputs("a --sweep record", &thermal.sweeps)
+        .inputs("a --sweep record", &sweeps)
         .output("bank", &args.out)
         .check()?;
     Ok(BankJob {
@@ -127,8 +133,11 @@ fn bank_job(
 fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
     Ok(ThermalInputs {
         power_ons: args.power_on.iter().map(|p| p.0.clone()).collect(),
-        sweeps: args.sweep.clone(),
-        sweep_block_s: super::positive("--sweep-block-s", args.sweep_block_s)?,
+        sweeps: args.sweep.iter().map(|s| s.0.clone()).collect(),
+        sweep_block_s: args
+            .sweep_block_s
+            .map(|b| super::positive("--sweep-block-s", b))
+            .transpose()?,
         sweep_instance: args.sweep_instance,
         site: chamber_site(args)?,
         imu: ImuOptions::default(),

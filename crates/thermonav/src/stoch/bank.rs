@@ -297,7 +297,9 @@ pub struct SelectedModel {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BankError {
     /// The bank has no entry.
-    #[error("the model bank has no temperature entry")]
+    #[error(
+        "the model bank has no temperature entry (a bank calibrated from sweeps alone holds only a thermal calibration: characterize static records for a noise model)"
+    )]
     Empty,
     /// Written by a newer thermonav.
     #[error(
@@ -384,6 +386,9 @@ impl ModelBank {
     /// # Errors
     /// The first [`BankError`] found.
     pub fn validate(&self) -> Result<(), BankError> {
+        if self.entries.is_empty() && self.thermal.is_some() {
+            return self.check_version();
+        }
         self.check_layout()?;
         self.entries
             .iter()
@@ -397,11 +402,7 @@ impl ModelBank {
     /// # Errors
     /// The first [`BankError`] found.
     pub fn check_layout(&self) -> Result<(), BankError> {
-        if !(OLDEST_READABLE_BANK_VERSION..=BANK_VERSION).contains(&self.version) {
-            return Err(BankError::Version {
-                found: self.version,
-            });
-        }
+        self.check_version()?;
         if self.entries.is_empty() {
             return Err(BankError::Empty);
         }
@@ -421,6 +422,26 @@ impl ModelBank {
             });
         }
         Ok(())
+    }
+
+    /// A readable version.
+    fn check_version(&self) -> Result<(), BankError> {
+        if !(OLDEST_READABLE_BANK_VERSION..=BANK_VERSION).contains(&self.version) {
+            return Err(BankError::Version {
+                found: self.version,
+            });
+        }
+        Ok(())
+    }
+
+    /// A bank that holds only a thermal calibration (from temperature sweeps alone): no
+    /// temperature entry, so no noise model to select.
+    pub fn thermal_only(calibration: ThermalCalibration) -> Self {
+        Self {
+            version: BANK_VERSION,
+            entries: Vec::new(),
+            thermal: Some(calibration),
+        }
     }
 
     /// Temperatures of the entries, °C, increasing.

@@ -18,6 +18,7 @@
 //! b(T) + g · s(T)). The calibration says so ([`ScaleFactorCalibration::NotIdentifiable`]);
 //! the vertical accelerometer's curve holds both.
 
+use super::sweep_model::{HeldOutSelection, LaggedBias, SweepBlock, SweepLeg};
 use super::{
     FitSettings, PowerOnFit, PowerOnOffset, PowerOnRecord, TemperaturePoint, ThermalCurve,
     ThermalError, fit_bias_curve, fit_bias_curve_with_power_ons,
@@ -39,6 +40,16 @@ pub enum ScaleFactorCalibration {
 }
 
 impl ScaleFactorCalibration {
+    /// The verdict for static sweeps in one orientation each.
+    pub fn static_sweeps() -> Self {
+        Self::NotIdentifiable {
+            reason: "static sweeps: the gyros read only Earth rate and each accelerometer a \
+                     fixed share of gravity, so a scale factor's change with temperature is \
+                     read as a bias change"
+                .into(),
+        }
+    }
+
     /// The verdict for static records of a level unit.
     pub fn static_level_unit() -> Self {
         Self::NotIdentifiable {
@@ -60,6 +71,15 @@ pub struct ChannelCalibration {
     pub power_on_offsets: Vec<PowerOnOffset>,
     /// σ̂_b, the spread between power-ons, channel unit, when separated.
     pub between_power_on_sd: Option<f64>,
+    /// From sweeps, when the chosen model holds a thermal lag: that model, which compensation
+    /// uses; [`ChannelCalibration::bias`] is then the best curve in T alone (what the
+    /// autopilots' cubic can hold).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lagged: Option<LaggedBias>,
+    /// From sweeps: how the model was chosen on held-out legs, with the spread its band
+    /// carries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub selection: Option<HeldOutSelection>,
 }
 
 /// The thermal calibration of a unit.
@@ -81,6 +101,12 @@ pub struct ThermalCalibration {
     /// The sensors it was fitted to, as the autopilot names them (from a ULog sweep).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub devices: Option<SensorDevices>,
+    /// From sweeps alone: the legs found, numbered as the blocks name them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub legs: Vec<SweepLeg>,
+    /// From sweeps alone: the block means fitted (before any offset), for checks and plots.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sweep_blocks: Vec<SweepBlock>,
 }
 
 /// The autopilot's identity of the sensors a calibration was fitted to: the topic instance
@@ -159,10 +185,12 @@ pub fn calibrate(
         removed_signal: BTreeMap::new(),
         observations: observations.clone(),
         devices: None,
+        legs: Vec::new(),
+        sweep_blocks: Vec::new(),
     })
 }
 
-fn calibrate_channel(
+pub(super) fn calibrate_channel(
     channel: Channel,
     records: &[PowerOnRecord],
     settings: FitSettings,
@@ -181,6 +209,8 @@ fn calibrate_channel(
                 bias: fit_bias_curve(channel, &points, settings)?,
                 power_on_offsets: Vec::new(),
                 between_power_on_sd: None,
+                lagged: None,
+                selection: None,
             })
         }
         Err(e) => Err(e),
@@ -201,6 +231,8 @@ fn with_offsets(fit: PowerOnFit) -> ChannelCalibration {
         bias,
         power_on_offsets: fit.offsets,
         between_power_on_sd: Some(sd),
+        lagged: None,
+        selection: None,
     }
 }
 
@@ -211,6 +243,29 @@ impl ThermalCalibration {
         let curve = &self.channels.get(&channel)?.bias;
         let [low, high] = curve.temperature_range_c;
         Some(curve.value_at(temperature_c.clamp(low, high)))
+    }
+
+    /// The repeatable bias of `channel` at `temperature_c` and its rate (°C/s): the lag model
+    /// where one was chosen, else [`ThermalCalibration::bias_at`].
+    pub fn bias_at_rate(&self, channel: Channel, temperature_c: f64, rate_c_per_s: f64) -> Option<f64> {
+        let calibration = self.channels.get(&channel)?;
+        Some(calibration.bias_at_rate(temperature_c, rate_c_per_s).0)
+    }
+
+    /// True when some channel's model holds a thermal lag.
+    pub fn has_lag(&self) -> bool {
+        self.channels.values().any(|c| c.lagged.is_some())
+    }
+
+    /// The least-squares temperature rate of every sample (°C/s, the window of
+    /// [`super::legs::RATE_WINDOW_S`]) when some channel needs it; `None` otherwise or without
+    /// a temperature column.
+    pub fn sample_rates(&self, series: &ImuSeries) -> Option<Vec<f64>> {
+        let temperatures = series.temperature_c.as_deref()?;
+        self.has_lag().then(|| {
+            let time: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
+            super::legs::temperature_rates(&time, temperatures, super::legs::RATE_WINDOW_S)
+        })
     }
 
     /// True when `temperature_c` lies outside some channel's fitted range.
@@ -232,8 +287,12 @@ impl ThermalCalibration {
         series: &mut ImuSeries,
     ) -> Result<CompensationSummary, CompensationError> {
         let channels: Vec<Channel> = self.channels.keys().copied().collect();
+        let rates = self.sample_rates(series);
         series
-            .remove_thermal_error(&channels, |c, t| (self.bias_at(c, t).unwrap_or(0.0), 0.0))
+            .remove_thermal_error_at(&channels, |c, k, t| {
+                let rate = rates.as_ref().map_or(0.0, |r| r[k]);
+                (self.bias_at_rate(c, t, rate).unwrap_or(0.0), 0.0)
+            })
             .map_err(|e| match e {
                 TemperatureColumnError::Missing => CompensationError::NoTemperature,
                 TemperatureColumnError::NonFinite { index } => {

@@ -64,10 +64,12 @@
 
 mod bank_calibration;
 mod calibration;
+pub mod legs;
 mod observations;
 mod power_on;
 mod solve;
 mod summary;
+pub mod sweep_model;
 
 use crate::imu::{Channel, SampleKind};
 use nalgebra::{DMatrix, DVector};
