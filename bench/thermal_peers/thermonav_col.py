@@ -82,14 +82,16 @@ def score(doc, channel, block_start_t_s, block_s, observed, scale):
     its t_s falls in [start, start + block_s). With a one-to-one match covering all our blocks,
     r_b = our observed - thermonav's predicted; otherwise thermonav's own blocks are used
     (its observed - predicted) and the note says so. Coverage: fraction of blocks with
-    |r_b - mean r| <= band_half_width."""
+    |r_b - mean r| <= band_half_width_offset_removed (the band of the shape: without the
+    offset's part, which the shape takes off)."""
     try:
         ch = doc["channels"][channel]
         blocks = ch["blocks"]
         t = np.array([b["t_s"] for b in blocks], dtype=float)
         pred = np.array([b["predicted"] for b in blocks], dtype=float)
         obs_tn = np.array([b["observed"] for b in blocks], dtype=float)
-        half = np.array([b["band_half_width"] for b in blocks], dtype=float)
+        half = np.array([b.get("band_half_width_offset_removed", b["band_half_width"])
+                         for b in blocks], dtype=float)
     except (KeyError, TypeError) as e:
         raise ThermonavFailure("bank check JSON lacks %s for %s" % (e, channel))
     if len(blocks) == 0:

@@ -1,8 +1,6 @@
 //! Raw command-line arguments (clap). They are resolved into validated settings by each command.
 
-use crate::thermal_calibration::{
-    DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG,
-};
+use crate::thermal_calibration::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use thermonav::mounting::Mounting;
@@ -117,6 +115,32 @@ pub enum Command {
     Report(ReportArgs),
     /// Draw a figure as SVG (or PNG, by the --out extension) from a file thermonav wrote.
     Plot(PlotArgs),
+    /// Take a bank's thermal calibration (bias(T, dT/dt) and the power-on offset) off every
+    /// sample of a record, gravity kept; writes the canonical IMU CSV and OUT.csv.json.
+    Compensate(CompensateArgs),
+}
+
+/// Arguments of `compensate`.
+#[derive(Debug, Args)]
+pub struct CompensateArgs {
+    /// The record: an IMU CSV with temp_c, a ROS bag, a DataFlash log or a PX4 ULog.
+    pub record: PathBuf,
+    /// The bank whose thermal calibration is taken off.
+    #[arg(long)]
+    pub bank: PathBuf,
+    /// The bank's power-on the record belongs to (its fitted offset is taken off); default:
+    /// the bank's only power-on, else the mean offset.
+    #[arg(long)]
+    pub power_on: Option<u32>,
+    /// Which IMU of a ULog record (the instance of its raw sensor topics).
+    #[arg(long, default_value_t = 0)]
+    pub instance: u8,
+    /// The compensated record (canonical IMU CSV); OUT.csv.json says what was taken off.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print the sidecar as one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Which filters a tournament runs.
@@ -669,6 +693,31 @@ pub enum BankAction {
     /// parameters (px4-tc, ardupilot-tcal), or its noise model at a temperature as a filter's
     /// or simulator's noise block (the other formats; see the README's table).
     Export(BankExportArgs),
+    /// Check the bank's thermal calibration against a record (block means against the
+    /// prediction and its 95 % band): how much it removes, and whether its band holds.
+    Check(BankCheckArgs),
+}
+
+/// Arguments of `bank check`.
+#[derive(Debug, Args)]
+pub struct BankCheckArgs {
+    /// The bank (JSON) with a thermal calibration.
+    pub bank: PathBuf,
+    /// The record: an IMU CSV with temp_c, a ROS bag, a DataFlash log or a PX4 ULog.
+    pub record: PathBuf,
+    /// Block length of the block means, s (each block's t_s is its middle).
+    #[arg(long, default_value_t = thermonav::stoch::thermal::check::DEFAULT_CHECK_BLOCK_S)]
+    pub block_s: f64,
+    /// The bank's power-on the record belongs to; default: the bank's only power-on, else a
+    /// new power-on (the mean offset, the band with the spread between power-ons).
+    #[arg(long)]
+    pub power_on: Option<u32>,
+    /// Which IMU of a ULog record (the instance of its raw sensor topics).
+    #[arg(long, default_value_t = 0)]
+    pub instance: u8,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Export formats.

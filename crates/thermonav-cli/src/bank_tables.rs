@@ -3,7 +3,10 @@
 
 use thermonav::imu::{Channel, SampleKind, Sensor};
 use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
-use thermonav::stoch::thermal::{CalibrationSummary, ScaleFactorCalibration, ThermalCalibration};
+use thermonav::stoch::thermal::sweep_model::{ChoiceRule, HeldOutSelection};
+use thermonav::stoch::thermal::{
+    CalibrationSummary, ChannelCalibration, ScaleFactorCalibration, ThermalCalibration,
+};
 use thermonav_plot::figures::DisplayUnits;
 
 /// Width of a rate column of the thermal table, characters.
@@ -64,8 +67,90 @@ pub fn print_thermal_table(calibration: &ThermalCalibration) {
     for sensor in [Sensor::Gyro, Sensor::Accelerometer] {
         print_sensor_rows(calibration, sensor);
     }
+    print_held_out_choice(calibration);
     println!("{}", scale_factor_note(&calibration.scale_factor));
     print_removed_signal(calibration);
+}
+
+/// For a calibration from sweeps: per channel the model chosen on held-out legs, its lag, and
+/// the spread its band carries (deg/h or mg); the table above shows the best curve in T alone.
+fn print_held_out_choice(calibration: &ThermalCalibration) {
+    let chosen: Vec<_> = Channel::ALL
+        .into_iter()
+        .filter_map(|c| Some((c, calibration.channels.get(&c)?)))
+        .filter_map(|(c, cal)| Some((c, cal, cal.selection.as_ref()?)))
+        .collect();
+    if chosen.is_empty() {
+        return;
+    }
+    println!(
+        "model chosen on held-out data ({} legs; the table shows the best curve in T alone):",
+        calibration.legs.len()
+    );
+    for (channel, cal, selection) in chosen {
+        println!("  {}", held_out_line(channel, cal, selection));
+    }
+}
+
+/// One channel's chosen model, its held-out RMS against order 0, and its band's spread.
+fn held_out_line(
+    channel: Channel,
+    cal: &ChannelCalibration,
+    selection: &HeldOutSelection,
+) -> String {
+    let unit = DisplayUnits::Navigation.rate_unit(channel.sensor());
+    let show = |si: f64| DisplayUnits::Navigation.rate(channel.sensor(), si);
+    let rms = |order: usize, lag: bool| {
+        selection
+            .scores
+            .iter()
+            .find(|s| s.candidate.order == order && s.candidate.lag == lag)
+            .and_then(|s| s.held_out_rms)
+    };
+    let scores = match (
+        rms(0, false),
+        rms(selection.chosen.order, selection.chosen.lag),
+    ) {
+        (Some(none), Some(this)) => format!(
+            "held-out rms {:.3} {unit} (order 0: {:.3})",
+            show(this),
+            show(none)
+        ),
+        _ => String::new(),
+    };
+    let level = (selection.spread.level_sd).map_or(String::new(), |l| {
+        format!(", level sd {:.3} {unit}", show(l))
+    });
+    let rule = match selection.rule {
+        ChoiceRule::LeaveOneLegOut => "leave one leg out",
+        ChoiceRule::LeaveOneSegmentOut => "one leg: leave one fifth out",
+    };
+    format!(
+        "{}: {}; {scores}; band: shape sd {:.3} {unit}{level} ({rule})",
+        channel.name(),
+        chosen_model(cal, selection.chosen.order),
+        show(selection.spread.shape_sd),
+    )
+}
+
+/// The chosen model in words.
+fn chosen_model(cal: &ChannelCalibration, order: usize) -> String {
+    match (&cal.lagged, order) {
+        (Some(l), order) => {
+            let side = |v: Option<f64>| v.map_or("open".to_string(), |v| format!("{v:.0}"));
+            let [lo, hi] = l.lag.tau_interval_s;
+            format!(
+                "b(T + tau dT/dt) of order {order}, tau {:.0} s [95 %: {}, {}]",
+                l.lag.tau_s,
+                side(lo),
+                side(hi)
+            )
+        }
+        (None, 0) => {
+            "order 0: no thermal term predicts held-out data better, left uncompensated".into()
+        }
+        (None, order) => format!("b(T) of order {order}"),
+    }
 }
 
 /// The static signal taken off each channel before the fit (az's gravity).
@@ -73,7 +158,7 @@ fn print_removed_signal(calibration: &ThermalCalibration) {
     for (channel, signal) in &calibration.removed_signal {
         let unit = channel.si_unit(SampleKind::Rates);
         println!(
-            "{}: {signal:.5} {unit} (the site's gravity) taken off before the fit",
+            "{}: {signal:.5} {unit} (the site's gravity along the record's specific force) taken off before the fit",
             channel.name()
         );
     }

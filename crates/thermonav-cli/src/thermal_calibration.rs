@@ -10,13 +10,13 @@ use thermonav::imu::Channel;
 use thermonav::imu::ImuSeries;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::bank::ModelBank;
+use thermonav::stoch::thermal::sweep_model::default_block_s;
 use thermonav::stoch::thermal::{
     FitSettings, PowerOnRecord, RecordMean, SensorDevices, ThermalCalibration, bank_power_on,
     calibrate, calibrate_level_unit, merge_records, power_on_records, record_mean, sweep_records,
 };
 use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
 use thermonav_io::ulog::read_ulog_file;
-use thermonav::stoch::thermal::sweep_model::default_block_s;
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
 
 pub use thermonav::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};

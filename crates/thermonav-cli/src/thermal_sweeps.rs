@@ -8,11 +8,12 @@ use anyhow::anyhow;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use thermonav::geo::gravity::normal_gravity_m_s2;
-use thermonav::imu::{Channel, ImuSeries, SampleKind, Sensor};
+use thermonav::imu::{Channel, ImuSeries, SampleKind};
+use thermonav::stoch::thermal::check::gravity_signal;
 use thermonav::stoch::thermal::sweep_model::{
     SweepBlock, SweepLeg, SweepPiece, calibrate_from_sweeps, default_block_s, sweep_blocks,
 };
-use thermonav::stoch::thermal::{ScaleFactorCalibration, ThermalCalibration, PowerOnRecord};
+use thermonav::stoch::thermal::{PowerOnRecord, ScaleFactorCalibration, ThermalCalibration};
 
 /// The calibration of `inputs.sweeps`, each sweep a power-on numbered from 1.
 ///
@@ -73,46 +74,19 @@ fn read_sweep(path: &Path, inputs: &ThermalInputs) -> Result<Sweep, Failure> {
         )));
     }
     if sweep.series.len() < 2 {
-        return Err(Failure::Data(anyhow!("{}: fewer than two samples", path.display())));
+        return Err(Failure::Data(anyhow!(
+            "{}: fewer than two samples",
+            path.display()
+        )));
     }
     Ok(sweep)
 }
 
 /// Per accelerometer channel, the gravity a still unit reads along its mean specific force
-/// over every piece of one sweep: g · f̄_c / |f̄| (any orientation, not only level).
-pub fn gravity_along_specific_force(sweeps: &[Sweep], gravity_m_s2: f64) -> BTreeMap<Channel, f64> {
-    let accelerometers: Vec<Channel> = Channel::ALL
-        .into_iter()
-        .filter(|c| c.sensor() == Sensor::Accelerometer)
-        .collect();
-    let series = sweeps.iter().map(|s| &s.series);
-    specific_force_signal(series, &accelerometers, gravity_m_s2)
-}
-
-/// g · f̄ / |f̄| per channel of `channels` over the samples of `series`; empty when a channel
-/// is absent or the mean is zero.
-pub fn specific_force_signal<'a>(
-    series: impl Iterator<Item = &'a ImuSeries> + Clone,
-    channels: &[Channel],
-    gravity_m_s2: f64,
-) -> BTreeMap<Channel, f64> {
-    let samples: usize = series.clone().map(|s| s.len()).sum();
-    let mut mean = BTreeMap::new();
-    for &c in channels {
-        let columns: Vec<&[f64]> = series.clone().map(|s| s.channel(c)).collect();
-        if samples == 0 || columns.iter().zip(series.clone()).any(|(col, s)| col.len() != s.len()) {
-            return BTreeMap::new();
-        }
-        let sum: f64 = columns.iter().map(|col| col.iter().sum::<f64>()).sum();
-        mean.insert(c, sum / samples as f64);
-    }
-    let norm = mean.values().map(|v| v * v).sum::<f64>().sqrt();
-    if !(norm > 0.0) {
-        return BTreeMap::new();
-    }
-    mean.into_iter()
-        .map(|(c, f)| (c, gravity_m_s2 * f / norm))
-        .collect()
+/// over every piece of one sweep (any orientation, not only level).
+fn gravity_along_specific_force(sweeps: &[Sweep], gravity_m_s2: f64) -> BTreeMap<Channel, f64> {
+    let series: Vec<&ImuSeries> = sweeps.iter().map(|s| &s.series).collect();
+    gravity_signal(&series, gravity_m_s2)
 }
 
 /// The blocks and legs of one piece; errors name the file.

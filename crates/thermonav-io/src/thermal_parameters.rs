@@ -401,7 +401,9 @@ pub fn px4_parameters(
         parameters.extend(px4_sensor_parameters(&export, target)?);
         sensors.push(export);
     }
-    let comments = px4_comments(&sensors, target);
+    let mut comments = px4_comments(&sensors, target);
+    let at = comments.len() - 2;
+    comments.splice(at..at, held_out_comments(calibration));
     Ok(ParameterFile {
         target: ParameterTarget::Px4Tc,
         parameters,
@@ -456,6 +458,45 @@ fn px4_comments(sensors: &[SensorExport], target: ExportTarget) -> Vec<String> {
     lines
 }
 
+/// For a calibration from sweeps: which channels were left at order 0 by their held-out
+/// legs, and what each chosen lag term would have added beyond the curve in T alone that the
+/// file holds (the largest difference over the fitted blocks, in the channel's SI unit).
+fn held_out_comments(calibration: &ThermalCalibration) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (channel, cal) in &calibration.channels {
+        let Some(selection) = &cal.selection else {
+            continue;
+        };
+        let unit = channel.si_unit(thermonav::imu::SampleKind::Rates);
+        if cal.bias.order == 0 {
+            lines.push(format!(
+                "{}: order 0 on held-out data (no thermal curve predicted unseen data better): its coefficients beyond the constant are 0",
+                channel.name()
+            ));
+        }
+        let Some(lagged) = &cal.lagged else {
+            continue;
+        };
+        let added = calibration
+            .sweep_blocks
+            .iter()
+            .map(|b| {
+                let with_lag = cal.bias_at_rate(b.temperature_c, b.rate_c_per_s).0;
+                let [low, high] = cal.bias.temperature_range_c;
+                (with_lag - cal.bias.value_at(b.temperature_c.clamp(low, high))).abs()
+            })
+            .fold(0.0_f64, f64::max);
+        lines.push(format!(
+            "{}: the model chosen on held-out legs is b(T + tau dT/dt) of order {} with tau {:.1} s; this file holds the best curve in T alone (order {}), which differs from it by up to {added:.3e} {unit} on the sweeps",
+            channel.name(),
+            selection.chosen.order,
+            lagged.lag.tau_s,
+            cal.bias.order
+        ));
+    }
+    lines
+}
+
 fn narrowing_comments(sensors: &[SensorExport]) -> Vec<String> {
     sensors
         .iter()
@@ -501,7 +542,8 @@ pub fn ardupilot_parameters(
         sensors.push(export);
     }
     sensors.reverse();
-    let comments = ardupilot_comments(&sensors, &prefix);
+    let mut comments = ardupilot_comments(&sensors, &prefix);
+    comments.extend(held_out_comments(calibration));
     Ok(ParameterFile {
         target: ParameterTarget::ArdupilotTcal,
         parameters,

@@ -30,6 +30,7 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
     match &args.action {
         BankAction::Show(show) => run_show(show),
         BankAction::Export(export) => run_export(export),
+        BankAction::Check(check) => super::thermal_check::run(check),
     }
 }
 

@@ -4,6 +4,7 @@ mod allan;
 mod ar;
 mod bank;
 mod characterize;
+mod compensate;
 mod convert;
 mod demo;
 mod evaluate;
@@ -16,6 +17,7 @@ mod lot;
 mod plot;
 mod report;
 mod simulate;
+mod thermal_check;
 
 use crate::args::{Cli, Command};
 use crate::failure::Failure;
@@ -39,5 +41,6 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Convert(args) => convert::run(&args),
         Command::Plot(args) => plot::run(&args),
         Command::Report(args) => report::run(&args),
+        Command::Compensate(args) => compensate::run(&args),
     }
 }

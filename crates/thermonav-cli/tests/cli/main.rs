@@ -22,6 +22,7 @@ mod shards;
 mod streaming;
 mod streaming_integrate;
 mod thermal;
+mod thermal_sweeps;
 mod thermal_ulog;
 #[path = "../../../thermonav-io/tests/it/ulog_writer.rs"]
 mod ulog_writer;

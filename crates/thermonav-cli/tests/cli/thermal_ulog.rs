@@ -29,7 +29,7 @@ fn raw_record(boot_us: u64, id: u32, v: [f64; 3], temperature_c: f64) -> Vec<u8>
 }
 
 /// The IMU CSV at `csv` as a ULog of instance `instance` at `out`.
-fn write_sweep_ulog(csv: &Path, out: &Path, instance: u8) {
+pub fn write_sweep_ulog(csv: &Path, out: &Path, instance: u8) {
     write_sweep_ulog_of(csv, out, instance, GYRO_ID);
 }
 

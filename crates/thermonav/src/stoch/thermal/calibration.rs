@@ -247,7 +247,12 @@ impl ThermalCalibration {
 
     /// The repeatable bias of `channel` at `temperature_c` and its rate (°C/s): the lag model
     /// where one was chosen, else [`ThermalCalibration::bias_at`].
-    pub fn bias_at_rate(&self, channel: Channel, temperature_c: f64, rate_c_per_s: f64) -> Option<f64> {
+    pub fn bias_at_rate(
+        &self,
+        channel: Channel,
+        temperature_c: f64,
+        rate_c_per_s: f64,
+    ) -> Option<f64> {
         let calibration = self.channels.get(&channel)?;
         Some(calibration.bias_at_rate(temperature_c, rate_c_per_s).0)
     }

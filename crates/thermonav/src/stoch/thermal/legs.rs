@@ -91,6 +91,8 @@ fn prefix_sums(values: impl Iterator<Item = f64>) -> Vec<f64> {
 /// The least-squares rate of the temperature at every sample (module docs, "Rate"), °C/s; zero
 /// where the window holds one distinct time.
 pub fn temperature_rates(time_s: &[f64], temperature_c: &[f64], window_s: f64) -> Vec<f64> {
+    let n = time_s.len().min(temperature_c.len());
+    let (time_s, temperature_c) = (&time_s[..n], &temperature_c[..n]);
     let Some(&t0) = time_s.first() else {
         return Vec::new();
     };
@@ -224,7 +226,11 @@ fn merge_short_legs(smooth: &[f64], bounds: &mut Vec<usize>) {
             _ => false,
         };
         // Joining leg j with leg j−1 drops bound j; with leg j+1, bound j+1.
-        bounds.remove(if into_previous { shortest } else { shortest + 1 });
+        bounds.remove(if into_previous {
+            shortest
+        } else {
+            shortest + 1
+        });
     }
 }
 
@@ -290,7 +296,8 @@ mod tests {
     #[test]
     fn a_cool_heat_cool_cycle_has_three_legs_at_its_knots() {
         // Knots far apart compared with the 60 s smoothing: turning points at the knots.
-        let (time, temp) = piecewise(&[(0.0, 20.0), (3000.0, 5.0), (9000.0, 35.0), (12000.0, 25.0)]);
+        let (time, temp) =
+            piecewise(&[(0.0, 20.0), (3000.0, 5.0), (9000.0, 35.0), (12000.0, 25.0)]);
         let legs = find_legs(&time, &temp);
         assert_eq!(legs.len(), 3);
         assert_eq!(legs[0].direction, LegDirection::Cooling);
@@ -302,7 +309,11 @@ mod tests {
         let shift = |a: f64, b: f64| 30.0 * (a - b) / (a + b);
         assert!((legs[0].end as f64 - 3000.0 - shift(5.0, 5.0)).abs() <= 1.0);
         let second = 9000.0 + shift(5.0, 10.0 / 3.0);
-        assert!((legs[1].end as f64 - second).abs() <= 1.0, "{}", legs[1].end);
+        assert!(
+            (legs[1].end as f64 - second).abs() <= 1.0,
+            "{}",
+            legs[1].end
+        );
         assert_eq!(legs[2].end, time.len());
         assert!((legs[1].span_c - 30.0).abs() < 0.1);
     }
@@ -329,7 +340,9 @@ mod tests {
     fn rates_of_a_line_are_its_slope() {
         // Closed form: the least-squares slope of an exact line is the line's slope, also at
         // the ends and on irregular times.
-        let time: Vec<f64> = (0..500).map(|k| k as f64 * 0.5 + (k % 3) as f64 * 1e-3).collect();
+        let time: Vec<f64> = (0..500)
+            .map(|k| k as f64 * 0.5 + (k % 3) as f64 * 1e-3)
+            .collect();
         let temp: Vec<f64> = time.iter().map(|t| 3.0 - 0.05 * t).collect();
         for r in temperature_rates(&time, &temp, RATE_WINDOW_S) {
             assert!((r + 0.05).abs() < 1e-9, "{r}");

@@ -64,6 +64,7 @@
 
 mod bank_calibration;
 mod calibration;
+pub mod check;
 pub mod legs;
 mod observations;
 mod power_on;

@@ -20,23 +20,34 @@
 //! [`LAG_GRID_POINTS`] values, then golden-section search about the best).
 //!
 //! # Choice
-//! With two or more legs: leave one leg out. Each candidate is fitted (τ profiled again) on
-//! every leg but one and predicts the blocks of the leg left out; its score is the pooled
-//! mean square of those residuals about each held-out leg's own mean (the shape of the leg,
-//! since a leg's level also holds the power-on's offset). The candidate of the smallest score
-//! is chosen, the simpler one on a tie (order 0 first, then increasing order, T alone before the
-//! lag). So a term that does not predict unseen legs is not used, and a channel where nothing
-//! beats order 0 is left uncompensated. The best candidate in T alone is kept beside it for
-//! the autopilots' parameter files, which hold a cubic in T only. With one leg the lag cannot
-//! be told from the curve: T alone, the order by leave-one-block-out PRESS.
+//! Folds: with two or more legs, the legs; with one (or legs that share no temperature, so
+//! that none can predict another), [`SEGMENTS_OF_ONE_LEG`] contiguous stretches of the
+//! blocks in time (the lag cannot then be told from the curve: T alone). Each fold
+//! is left out in turn: each candidate is fitted (τ profiled again) on the other folds and
+//! predicts the left-out blocks that lie within their temperature range (outside it every
+//! method clamps to the range's end, and the score would measure the range, not the model).
+//! A fold's score is the mean square of those residuals about their own mean (the shape,
+//! since a leg's level also holds the power-on's offset); a candidate's score is the mean over
+//! folds. The choice follows the one-standard-error rule, paired across folds: the simplest
+//! candidate (fewest terms: order, plus one for the lag; T alone first on a tie) whose mean
+//! excess over the best candidate's fold scores is within the standard error of that excess,
+//! or within [`MIN_RELATIVE_GAIN`] of the best score. So a term that does not predict
+//! unseen legs is not used, and a channel where nothing clearly beats order 0 is left
+//! uncompensated. A lag whose fit to every block runs to the search limit is not identified,
+//! and the choice is made again without it. The best candidate in T alone, by the same rule,
+//! is kept beside it for the autopilots' parameter files, which hold a cubic in T only.
+//!
+//! Leave-one-block-out PRESS, which the static fits use, is not used here: neighbouring
+//! blocks of a sweep share its slow drift, so leaving one out hides little, and on the CATS
+//! record it chose curves that made unseen legs worse than no compensation.
 //!
 //! # Band
-//! A prediction's 95 % band is ±1.96·sqrt(s_shape² + s_level² + se(T)² + s_offset²): s_shape
-//! the held-out residuals' sd about their legs' means (with one leg, PRESS's deletion residuals,
-//! which do not know other legs), s_level the sd of the held-out legs' mean residuals from their
+//! A prediction's 95 % band is ±1.96·sqrt(s_shape² + s_level² + se(T)² + s_offset² + s_n²): s_shape
+//! the held-out residuals' sd about their folds' means, s_level the sd of the held-out legs' mean residuals from their
 //! power-on's fitted offset (where that power-on kept other legs), se(T) the fitted curve's
 //! standard error, s_offset the uncertainty of the power-on's offset (its own sd, or the spread
-//! between power-ons for a new one). The band with the offset removed drops s_level and
+//! between power-ons for a new one), s_n the noise of the observed mean itself (its samples'
+//! variance over their count, from the record checked). The band with the offset removed drops s_level and
 //! s_offset. Outside the fitted range the prediction is the range's end value and the band is
 //! widened by |b′(end)|·distance, what a straight continuation would have added.
 //!
@@ -85,6 +96,9 @@ pub struct SweepBlock {
     pub t_s: f64,
     /// Mean temperature, °C.
     pub temperature_c: f64,
+    /// Coldest and warmest sample of the block, °C.
+    #[serde(default)]
+    pub sample_range_c: [f64; 2],
     /// Mean rate of the temperature, °C/s.
     pub rate_c_per_s: f64,
     /// Samples averaged.
@@ -173,6 +187,9 @@ pub enum SweepError {
 
 /// The default block of a piece (module docs, "Blocks"), s.
 pub fn default_block_s(time_s: &[f64], temperature_c: &[f64]) -> f64 {
+    if time_s.len() != temperature_c.len() || time_s.is_empty() {
+        return MAX_DEFAULT_BLOCK_S;
+    }
     let rates = temperature_rates(time_s, temperature_c, RATE_WINDOW_S);
     let mut speeds: Vec<f64> = rates.iter().map(|r| r.abs()).collect();
     speeds.sort_by(f64::total_cmp);
@@ -206,7 +223,8 @@ pub fn sweep_blocks(
         return Err(SweepError::BadBlock(block_s));
     }
     check_temperatures(piece.temperature_c)?;
-    if let Some(k) = (1..piece.time_s.len()).find(|&k| piece.time_s[k] - piece.time_s[k - 1] > block_s)
+    if let Some(k) =
+        (1..piece.time_s.len()).find(|&k| piece.time_s[k] - piece.time_s[k - 1] > block_s)
     {
         return Err(SweepError::Gap {
             at_s: piece.time_s[k - 1],
@@ -227,6 +245,10 @@ pub fn sweep_blocks(
                 leg: first_leg + leg as u32,
                 t_s: (piece.time_s[a] + piece.time_s[b - 1]) / 2.0,
                 temperature_c: mean(&piece.temperature_c[a..b]),
+                sample_range_c: {
+                    let (lo, hi) = super::solve::range(piece.temperature_c[a..b].iter().copied());
+                    [lo, hi]
+                },
                 rate_c_per_s: mean(&rates[a..b]),
                 samples: b - a,
                 values: piece
@@ -325,13 +347,14 @@ pub struct CandidateScore {
 }
 
 /// How a channel's model was chosen.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ChoiceRule {
     /// Leave one leg out.
     LeaveOneLegOut,
-    /// One leg: T alone, order by leave-one-block-out PRESS.
-    LeaveOneBlockOut,
+    /// One leg: T alone, leaving out one of [`SEGMENTS_OF_ONE_LEG`] contiguous stretches of
+    /// the leg at a time.
+    LeaveOneSegmentOut,
 }
 
 /// The lag term of a chosen model.
@@ -433,12 +456,26 @@ fn fit_with_tau(
     })
 }
 
-/// The candidate fitted to `blocks` (τ profiled for a lag candidate).
+/// Fewest blocks of each direction (warming and cooling) for a lag to be fitted.
+pub const MIN_BLOCKS_PER_DIRECTION: usize = 2;
+
+/// True when `blocks` hold both warming and cooling blocks: with the temperature moving one
+/// way only, a lag shifts every temperature alike and a polynomial absorbs the shift, so τ is
+/// not identified.
+fn lag_identifiable(blocks: &[&SweepBlock]) -> bool {
+    let warming = blocks.iter().filter(|b| b.rate_c_per_s > 0.0).count();
+    let cooling = blocks.iter().filter(|b| b.rate_c_per_s < 0.0).count();
+    warming >= MIN_BLOCKS_PER_DIRECTION && cooling >= MIN_BLOCKS_PER_DIRECTION
+}
+
+/// The candidate fitted to `blocks` (τ profiled for a lag candidate; τ = 0 where the blocks
+/// cannot identify it, [`lag_identifiable`]).
 fn fit_candidate(blocks: &[&SweepBlock], channel: Channel, c: Candidate) -> Option<Fitted> {
-    if !c.lag {
+    if !c.lag || !lag_identifiable(blocks) {
         return fit_with_tau(blocks, channel, c.order, 0.0);
     }
-    let rss = |tau: f64| fit_with_tau(blocks, channel, c.order, tau).map_or(f64::INFINITY, |f| f.rss);
+    let rss =
+        |tau: f64| fit_with_tau(blocks, channel, c.order, tau).map_or(f64::INFINITY, |f| f.rss);
     let step = 2.0 * LAG_SEARCH_S / (LAG_GRID_POINTS - 1) as f64;
     let grid: Vec<(f64, f64)> = (0..LAG_GRID_POINTS)
         .map(|k| -LAG_SEARCH_S + k as f64 * step)
@@ -458,6 +495,23 @@ fn fit_candidate(blocks: &[&SweepBlock], channel: Channel, c: Candidate) -> Opti
     } else {
         fit_with_tau(blocks, channel, c.order, grid[best].0)?
     })
+}
+
+/// Sets a final curve's fitted range to its blocks' samples (shifted by τ times the block's
+/// rate), not the block means': a record's samples reach the sweep's ends, and the autopilots'
+/// TMIN/TMAX are the extreme samples too.
+fn widen_to_samples(calibration: &mut ChannelCalibration, blocks: &[&SweepBlock], tau_s: f64) {
+    let (lo, hi) = blocks
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), b| {
+            let shift = tau_s * b.rate_c_per_s;
+            (
+                lo.min(b.sample_range_c[0] + shift),
+                hi.max(b.sample_range_c[1] + shift),
+            )
+        });
+    let range = &mut calibration.bias.temperature_range_c;
+    *range = [range[0].min(lo), range[1].max(hi)];
 }
 
 /// Golden-section search for a minimum of `f` on [lo, hi].
@@ -481,66 +535,96 @@ fn golden_minimum(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, steps: usiz
     if fa <= fb { a } else { b }
 }
 
-/// A block's prediction by a fit, without the power-on's offset (shapes need none).
+/// A held-out block's prediction by a fold's fit, without the power-on's offset (shapes need
+/// none). Not clamped: the block lies within the fold's temperature range, and only the lag's
+/// shift τ·dT/dt can carry it a little past the shifted range of the fit.
 fn predict(fit: &Fitted, block: &SweepBlock) -> f64 {
-    let curve = &fit.calibration.bias;
-    let [low, high] = curve.temperature_range_c;
     let t = block.temperature_c + fit.tau_s * block.rate_c_per_s;
-    curve.value_at(t.clamp(low, high))
+    fit.calibration.bias.value_at(t)
 }
 
-/// The held-out residuals of a candidate: per leg, the residuals and the leg's level against
-/// its power-on's offset when that power-on kept other legs.
+/// The held-out residuals of a candidate, fold by fold.
 struct HeldOut {
-    /// Σ (r − r̄_leg)² and the count of residuals.
+    /// Per fold that scored: the mean square of its in-range residuals about their mean.
+    fold_mean_squares: Vec<f64>,
+    /// Σ (r − r̄_fold)² and the count of residuals, over the folds.
     shape_ss: f64,
     residuals: usize,
-    legs: usize,
-    /// r̄_leg − offset of the power-on in the fold's fit.
+    /// r̄_fold − offset of its power-on in the fold's fit, where that power-on kept other
+    /// folds.
     levels: Vec<f64>,
 }
 
-fn held_out(blocks: &[SweepBlock], channel: Channel, c: Candidate) -> Option<HeldOut> {
-    let legs: BTreeSet<u32> = blocks.iter().map(|b| b.leg).collect();
+/// Stretches a single leg is cut into, as folds.
+pub const SEGMENTS_OF_ONE_LEG: usize = 5;
+
+/// The fold of each of `n` blocks in time order: its fifth of the record.
+fn segments(n: usize) -> Vec<u32> {
+    (0..n)
+        .map(|k| (k * SEGMENTS_OF_ONE_LEG / n.max(1)) as u32)
+        .collect()
+}
+
+/// Each fold left out in turn: the candidate fitted on the others predicts the held-out
+/// blocks that lie within the others' temperature range (outside it every method clamps, and
+/// the score would measure the range, not the model).
+fn held_out(
+    blocks: &[&SweepBlock],
+    fold: &[u32],
+    channel: Channel,
+    c: Candidate,
+) -> Option<HeldOut> {
+    let labels: BTreeSet<u32> = fold.iter().copied().collect();
     let mut out = HeldOut {
+        fold_mean_squares: Vec::new(),
         shape_ss: 0.0,
         residuals: 0,
-        legs: legs.len(),
         levels: Vec::new(),
     };
-    for &leg in &legs {
-        let (test, train): (Vec<&SweepBlock>, Vec<&SweepBlock>) =
-            blocks.iter().partition(|b| b.leg == leg);
-        let test: Vec<&SweepBlock> = test.into_iter().filter(|b| b.values.contains_key(&channel)).collect();
-        let fit = fit_candidate(&train, channel, c)?;
-        let r: Vec<f64> = test.iter().map(|b| b.values[&channel] - predict(&fit, b)).collect();
-        if r.is_empty() {
+    for &label in &labels {
+        let mut test = Vec::new();
+        let mut train = Vec::new();
+        for (b, &f) in blocks.iter().zip(fold) {
+            if f == label {
+                test.push(*b)
+            } else {
+                train.push(*b)
+            }
+        }
+        let (low, high) = super::solve::range(train.iter().map(|b| b.temperature_c));
+        test.retain(|b| (low..=high).contains(&b.temperature_c));
+        if test.len() < 2 {
             continue;
         }
+        let fit = fit_candidate(&train, channel, c)?;
+        let r: Vec<f64> = test
+            .iter()
+            .map(|b| b.values[&channel] - predict(&fit, b))
+            .collect();
         let mean = r.iter().sum::<f64>() / r.len() as f64;
-        out.shape_ss += r.iter().map(|x| (x - mean).powi(2)).sum::<f64>();
+        let ss: f64 = r.iter().map(|x| (x - mean).powi(2)).sum();
+        out.fold_mean_squares.push(ss / r.len() as f64);
+        out.shape_ss += ss;
         out.residuals += r.len();
         let power_on = test[0].power_on;
         if train.iter().any(|b| b.power_on == power_on) {
-            out.levels.push(mean - level_of(&fit, power_on, &train));
+            out.levels.push(mean - fit.calibration.offset_of(power_on));
         }
     }
-    Some(out)
-}
-
-/// The fitted constant of `power_on` in a fold: the curve's constant is the mean offset, the
-/// power-on's own offset from it is kept apart when several were fitted.
-fn level_of(fit: &Fitted, power_on: u32, _train: &[&SweepBlock]) -> f64 {
-    fit.calibration.offset_of(power_on)
+    (!out.fold_mean_squares.is_empty()).then_some(out)
 }
 
 impl HeldOut {
-    fn mean_square(&self) -> f64 {
-        self.shape_ss / self.residuals.max(1) as f64
+    /// The mean over folds of their mean squares.
+    fn score(&self) -> f64 {
+        self.fold_mean_squares.iter().sum::<f64>() / self.fold_mean_squares.len() as f64
     }
 
-    fn spread(&self, rule: ChoiceRule) -> PredictionSpread {
-        let dof = self.residuals.saturating_sub(self.legs).max(1);
+    fn spread(&self, rule: ChoiceRule, legs: usize) -> PredictionSpread {
+        let dof = self
+            .residuals
+            .saturating_sub(self.fold_mean_squares.len())
+            .max(1);
         let level_sd = (!self.levels.is_empty()).then(|| {
             (self.levels.iter().map(|l| l * l).sum::<f64>() / self.levels.len() as f64).sqrt()
         });
@@ -548,10 +632,78 @@ impl HeldOut {
             shape_sd: (self.shape_ss / dof as f64).sqrt(),
             level_sd,
             rule,
-            legs: self.legs,
+            legs,
         }
     }
 }
+
+/// Every candidate the rule allows, with its held-out residuals (`None` where no fold
+/// scored).
+fn scored_candidates(
+    all: &[&SweepBlock],
+    channel: Channel,
+    rule: ChoiceRule,
+) -> Vec<(Candidate, Option<HeldOut>)> {
+    let fold = match rule {
+        ChoiceRule::LeaveOneLegOut => all.iter().map(|b| b.leg).collect(),
+        ChoiceRule::LeaveOneSegmentOut => segments(all.len()),
+    };
+    Candidate::all()
+        .into_iter()
+        .filter(|c| rule == ChoiceRule::LeaveOneLegOut || !c.lag)
+        .map(|c| (c, held_out(all, &fold, channel, c)))
+        .collect()
+}
+
+/// Fitted parameters of a candidate beyond the offsets: its order, plus one for the lag.
+fn complexity(c: Candidate) -> (usize, bool) {
+    (c.order + usize::from(c.lag), c.lag)
+}
+
+/// The one-standard-error rule (Breiman et al. 1984, "Classification and Regression Trees"),
+/// paired across folds: among the candidates `eligible` admits, the simplest whose fold scores
+/// exceed the best candidate's by no more than the standard error of that mean excess (the
+/// folds' differences, so that a fold every candidate predicts equally badly does not hide a
+/// clear difference elsewhere).
+fn one_standard_error_choice(
+    scored: &[(Candidate, Option<HeldOut>)],
+    eligible: impl Fn(Candidate) -> bool,
+) -> Option<usize> {
+    let valid: Vec<(usize, Candidate, &HeldOut)> = scored
+        .iter()
+        .enumerate()
+        .filter_map(|(k, (c, h))| Some((k, *c, h.as_ref()?)))
+        .filter(|(_, c, _)| eligible(*c))
+        .collect();
+    let &(_, _, best) = valid
+        .iter()
+        .min_by(|a, b| a.2.score().total_cmp(&b.2.score()))?;
+    valid
+        .iter()
+        .filter(|(_, _, h)| within_one_standard_error(h, best))
+        .min_by_key(|(_, c, _)| complexity(*c))
+        .map(|(k, _, _)| *k)
+}
+
+/// True when `h`'s mean excess over `best` across the folds is at most its standard error.
+fn within_one_standard_error(h: &HeldOut, best: &HeldOut) -> bool {
+    let d: Vec<f64> = (h.fold_mean_squares.iter())
+        .zip(&best.fold_mean_squares)
+        .map(|(a, b)| a - b)
+        .collect();
+    let f = d.len() as f64;
+    let mean = d.iter().sum::<f64>() / f;
+    let floor = MIN_RELATIVE_GAIN * best.score();
+    if d.len() < 2 {
+        return mean <= floor;
+    }
+    let var = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (f - 1.0);
+    mean <= (var / f).sqrt().max(floor)
+}
+
+/// A more complex candidate must lower the held-out mean square by more than this fraction
+/// of the best score (about 5 % in RMS) as well as by more than the standard error.
+pub const MIN_RELATIVE_GAIN: f64 = 0.1;
 
 /// The sweep calibration of one channel: the chosen model (and the best in T alone), module
 /// docs.
@@ -562,97 +714,89 @@ pub fn calibrate_channel_from_sweeps(
     blocks: &[SweepBlock],
     channel: Channel,
 ) -> Result<ChannelCalibration, ThermalError> {
-    let legs: BTreeSet<u32> = blocks.iter().map(|b| b.leg).collect();
-    let all: Vec<&SweepBlock> = blocks.iter().filter(|b| b.values.contains_key(&channel)).collect();
-    if legs.len() < 2 {
-        return one_leg(&all, channel);
-    }
-    let mut scores = Vec::new();
-    let mut spreads = Vec::new();
-    for c in Candidate::all() {
-        let h = held_out(blocks, channel, c);
-        scores.push(CandidateScore {
-            candidate: c,
-            held_out_rms: h.as_ref().map(|h| h.mean_square().sqrt()),
-        });
-        spreads.push(h);
-    }
-    let best = |lag_allowed: bool| {
-        scores
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| lag_allowed || !s.candidate.lag)
-            .filter_map(|(k, s)| s.held_out_rms.map(|r| (k, r)))
-            .fold(None, |acc: Option<(usize, f64)>, (k, r)| match acc {
-                Some((_, q)) if q <= r => acc,
-                _ => Some((k, r)),
-            })
-            .map(|(k, _)| k)
+    let mut all: Vec<&SweepBlock> = blocks
+        .iter()
+        .filter(|b| b.values.contains_key(&channel))
+        .collect();
+    all.sort_by(|a, b| {
+        (a.power_on, a.t_s)
+            .partial_cmp(&(b.power_on, b.t_s))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let legs = all.iter().map(|b| b.leg).collect::<BTreeSet<u32>>().len();
+    let mut rule = if legs >= 2 {
+        ChoiceRule::LeaveOneLegOut
+    } else {
+        ChoiceRule::LeaveOneSegmentOut
     };
-    let no_valid = ThermalError::NoValidOrder {
+    let mut scored = scored_candidates(&all, channel, rule);
+    if scored.iter().all(|(_, h)| h.is_none()) && rule == ChoiceRule::LeaveOneLegOut {
+        // Legs that share no temperature cannot predict each other: fall back to stretches.
+        rule = ChoiceRule::LeaveOneSegmentOut;
+        scored = scored_candidates(&all, channel, rule);
+    }
+    let no_valid = || ThermalError::NoValidOrder {
         observations: all.len(),
         distinct_temperatures: super::solve::distinct(all.iter().map(|b| b.temperature_c)),
     };
-    let chosen = best(true).ok_or(no_valid.clone())?;
-    let t_only = best(false).ok_or(no_valid)?;
-    let (chosen_c, t_only_c) = (scores[chosen].candidate, scores[t_only].candidate);
-    let spread = spreads[chosen]
-        .as_ref()
-        .expect("a scored candidate")
-        .spread(ChoiceRule::LeaveOneLegOut);
-    let t_fit = fit_candidate(&all, channel, t_only_c).ok_or(ThermalError::NoValidOrder {
-        observations: all.len(),
-        distinct_temperatures: 0,
-    })?;
-    let mut calibration = t_fit.calibration;
-    if chosen_c.lag {
-        let lag_fit = fit_candidate(&all, channel, chosen_c).ok_or(ThermalError::NoValidOrder {
-            observations: all.len(),
-            distinct_temperatures: 0,
-        })?;
-        let interval = tau_interval(&all, channel, chosen_c.order, &lag_fit);
-        calibration.lagged = Some(LaggedBias {
-            lag: ThermalLag {
-                tau_s: lag_fit.tau_s,
-                tau_interval_s: interval,
-                rate_window_s: RATE_WINDOW_S,
-            },
-            fit: Box::new(lag_fit.calibration),
-        });
-    }
-    calibration.selection = Some(HeldOutSelection {
-        rule: ChoiceRule::LeaveOneLegOut,
-        chosen: chosen_c,
-        best_in_temperature_alone: t_only_c,
-        scores,
-        spread,
-    });
-    Ok(calibration)
-}
-
-/// One leg: T alone, order by PRESS, the spread from the deletion residuals.
-fn one_leg(all: &[&SweepBlock], channel: Channel) -> Result<ChannelCalibration, ThermalError> {
-    let records = records_at(all, channel, 0.0);
-    let mut calibration = calibrate_channel(channel, &records, FitSettings::default())?;
-    let order = calibration.bias.order;
-    let press = calibration.bias.order_selection.press[order].unwrap_or(f64::NAN);
-    let shape_sd = if press.is_finite() {
-        (press / records.len().max(1) as f64).sqrt()
-    } else {
-        calibration.bias.residual_sd
+    let t_only = one_standard_error_choice(&scored, |c| !c.lag).ok_or_else(no_valid)?;
+    let t_only_c = scored[t_only].0;
+    let mut calibration = fit_candidate(&all, channel, t_only_c)
+        .ok_or_else(no_valid)?
+        .calibration;
+    widen_to_samples(&mut calibration, &all, 0.0);
+    // A lag whose fit on every block runs to the search limit is not identified: the choice is
+    // made again without that candidate.
+    let mut excluded: Vec<Candidate> = match lag_identifiable(&all) {
+        true => Vec::new(),
+        false => Candidate::all().into_iter().filter(|c| c.lag).collect(),
     };
-    let chosen = Candidate { order, lag: false };
+    let (chosen, lagged) = loop {
+        let k =
+            one_standard_error_choice(&scored, |c| !excluded.contains(&c)).ok_or_else(no_valid)?;
+        let c = scored[k].0;
+        if !c.lag {
+            break (k, None);
+        }
+        let fit = fit_candidate(&all, channel, c).ok_or_else(no_valid)?;
+        if fit.tau_s.abs() >= LAG_SEARCH_S * (1.0 - 1e-6) {
+            excluded.push(c);
+            continue;
+        }
+        let interval = tau_interval(&all, channel, c.order, &fit);
+        let mut fit = fit;
+        widen_to_samples(&mut fit.calibration, &all, fit.tau_s);
+        let lag = ThermalLag {
+            tau_s: fit.tau_s,
+            tau_interval_s: interval,
+            rate_window_s: RATE_WINDOW_S,
+        };
+        break (
+            k,
+            Some(LaggedBias {
+                lag,
+                fit: Box::new(fit.calibration),
+            }),
+        );
+    };
+    let spread = scored[chosen]
+        .1
+        .as_ref()
+        .expect("a chosen candidate is scored")
+        .spread(rule, legs);
+    calibration.lagged = lagged;
     calibration.selection = Some(HeldOutSelection {
-        rule: ChoiceRule::LeaveOneBlockOut,
-        chosen,
-        best_in_temperature_alone: chosen,
-        scores: Vec::new(),
-        spread: PredictionSpread {
-            shape_sd,
-            level_sd: None,
-            rule: ChoiceRule::LeaveOneBlockOut,
-            legs: 1,
-        },
+        rule,
+        chosen: scored[chosen].0,
+        best_in_temperature_alone: t_only_c,
+        scores: scored
+            .iter()
+            .map(|(c, h)| CandidateScore {
+                candidate: *c,
+                held_out_rms: h.as_ref().map(|h| h.score().sqrt()),
+            })
+            .collect(),
+        spread,
     });
     Ok(calibration)
 }
@@ -665,7 +809,11 @@ fn lag_one_autocorrelation(x: &[f64]) -> f64 {
     let mean = x.iter().sum::<f64>() / x.len() as f64;
     let var: f64 = x.iter().map(|v| (v - mean).powi(2)).sum();
     let cov: f64 = x.windows(2).map(|w| (w[0] - mean) * (w[1] - mean)).sum();
-    if var > 0.0 { (cov / var).clamp(0.0, 0.99) } else { 0.0 }
+    if var > 0.0 {
+        (cov / var).clamp(0.0, 0.99)
+    } else {
+        0.0
+    }
 }
 
 /// τ's 95 % profile interval (module docs).
@@ -677,7 +825,11 @@ fn tau_interval(
 ) -> [Option<f64>; 2] {
     let residuals: Vec<f64> = {
         let mut sorted: Vec<&&SweepBlock> = blocks.iter().collect();
-        sorted.sort_by(|a, b| (a.power_on, a.t_s).partial_cmp(&(b.power_on, b.t_s)).unwrap_or(std::cmp::Ordering::Equal));
+        sorted.sort_by(|a, b| {
+            (a.power_on, a.t_s)
+                .partial_cmp(&(b.power_on, b.t_s))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
         sorted
             .iter()
             .map(|b| b.values[&channel] - predict(fit, b) - fit.calibration.offset_of(b.power_on))
@@ -754,12 +906,22 @@ impl ChannelCalibration {
         let curve = &model.bias;
         let [low, high] = curve.temperature_range_c;
         let t = temperature_c + tau * rate_c_per_s;
-        (curve.value_at(t.clamp(low, high)), !(low..=high).contains(&t))
+        (
+            curve.value_at(t.clamp(low, high)),
+            !(low..=high).contains(&t),
+        )
     }
 
     /// The prediction of a block mean at a temperature and rate (°C, °C/s) for a power-on
-    /// (module docs, "Band").
-    pub fn predict(&self, temperature_c: f64, rate_c_per_s: f64, power_on: PowerOnChoice) -> Prediction {
+    /// (module docs, "Band"); `noise_var` is the variance of the observed mean's own noise
+    /// (its samples' variance over their count, channel unit squared), which the band adds.
+    pub fn predict(
+        &self,
+        temperature_c: f64,
+        rate_c_per_s: f64,
+        power_on: PowerOnChoice,
+        noise_var: f64,
+    ) -> Prediction {
         let (model, tau) = self.compensation_model();
         let curve = &model.bias;
         let [low, high] = curve.temperature_range_c;
@@ -769,11 +931,14 @@ impl ChannelCalibration {
         let (offset, offset_var) = match power_on {
             PowerOnChoice::Known(label) => {
                 let o = model.power_on_offsets.iter().find(|o| o.power_on == label);
-                (o.map_or(0.0, |o| o.offset), o.map_or(0.0, |o| o.offset_sd.powi(2)))
+                (
+                    o.map_or(0.0, |o| o.offset),
+                    o.map_or(0.0, |o| o.offset_sd.powi(2)),
+                )
             }
             PowerOnChoice::New => (0.0, model.between_power_on_sd.map_or(0.0, |s| s * s)),
         };
-        let se2 = curve.standard_error_at(inside).powi(2);
+        let se2 = curve.standard_error_at(inside).powi(2) + noise_var.max(0.0);
         let (shape, level) = match &self.selection {
             Some(s) => (s.spread.shape_sd, s.spread.level_sd.unwrap_or(0.0)),
             None => (curve.residual_sd, 0.0),
@@ -785,7 +950,8 @@ impl ChannelCalibration {
         };
         Prediction {
             value: curve.value_at(inside) + offset,
-            band_half_width: BAND_Z * (shape * shape + level * level + se2 + offset_var).sqrt() + widening,
+            band_half_width: BAND_Z * (shape * shape + level * level + se2 + offset_var).sqrt()
+                + widening,
             band_half_width_offset_removed: BAND_Z * (shape * shape + se2).sqrt() + widening,
             clamped,
         }
@@ -811,9 +977,119 @@ fn derivative(curve: &super::ThermalCurve, temperature_c: f64) -> f64 {
 pub fn calibrate_from_sweeps(
     blocks: &[SweepBlock],
 ) -> Result<BTreeMap<Channel, ChannelCalibration>, ThermalError> {
-    let channels: BTreeSet<Channel> = blocks.iter().flat_map(|b| b.values.keys().copied()).collect();
+    let channels: BTreeSet<Channel> = blocks
+        .iter()
+        .flat_map(|b| b.values.keys().copied())
+        .collect();
     channels
         .into_iter()
         .map(|c| calibrate_channel_from_sweeps(blocks, c).map(|cal| (c, cal)))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Blocks of a noiseless cool-heat-cool program at ±`rate` °C/s (30 s blocks) whose gx
+    /// reads b(T + τ Ṫ) = 2e-4 (T' − 20) + 4e-6 (T' − 20)², T' = T + τ Ṫ.
+    fn program_blocks(tau_s: f64, rate: f64) -> Vec<SweepBlock> {
+        let knots = [(25.0, 5.0), (5.0, 45.0), (45.0, 25.0)];
+        let mut blocks = Vec::new();
+        let mut t0 = 0.0;
+        for (leg, (from, to)) in knots.into_iter().enumerate() {
+            let duration = (to - from) / rate;
+            let duration: f64 = duration.abs();
+            let slope = if to > from { rate } else { -rate };
+            let n = (duration / 30.0) as usize;
+            for k in 0..n {
+                let t = from + slope * (k as f64 + 0.5) * 30.0;
+                let shifted = t + tau_s * slope - 20.0;
+                let value = 2e-4 * shifted + 4e-6 * shifted * shifted;
+                // A tiny alternating error keeps the residual variance positive.
+                let wiggle = if k % 2 == 0 { 1e-9 } else { -1e-9 };
+                blocks.push(SweepBlock {
+                    power_on: 1,
+                    leg: leg as u32 + 1,
+                    t_s: t0 + (k as f64 + 0.5) * 30.0,
+                    temperature_c: t,
+                    sample_range_c: [t - 0.5, t + 0.5],
+                    rate_c_per_s: slope,
+                    samples: 60,
+                    values: BTreeMap::from([(Channel::Gx, value + wiggle)]),
+                });
+            }
+            t0 += duration;
+        }
+        blocks
+    }
+
+    #[test]
+    fn the_lag_of_an_exact_lagging_curve_is_recovered() {
+        // Closed form: the data are exactly the order-2 lag model with τ = −120 s, so its
+        // profile's minimum is at −120 s and its held-out legs are predicted exactly.
+        let blocks = program_blocks(-120.0, 2.0 / 60.0);
+        let all: Vec<&SweepBlock> = blocks.iter().collect();
+        let fit = fit_candidate(
+            &all,
+            Channel::Gx,
+            Candidate {
+                order: 2,
+                lag: true,
+            },
+        )
+        .unwrap();
+        assert!((fit.tau_s + 120.0).abs() < 0.5, "{}", fit.tau_s);
+        let cal = calibrate_channel_from_sweeps(&blocks, Channel::Gx).unwrap();
+        let selection = cal.selection.as_ref().unwrap();
+        assert_eq!(
+            selection.chosen,
+            Candidate {
+                order: 2,
+                lag: true
+            },
+            "{selection:?}"
+        );
+        assert!((cal.lagged.as_ref().unwrap().lag.tau_s + 120.0).abs() < 0.5);
+    }
+
+    #[test]
+    fn without_a_lag_the_curve_in_temperature_alone_is_chosen() {
+        let blocks = program_blocks(0.0, 2.0 / 60.0);
+        let cal = calibrate_channel_from_sweeps(&blocks, Channel::Gx).unwrap();
+        let selection = cal.selection.as_ref().unwrap();
+        assert!(!selection.chosen.lag, "{selection:?}");
+        assert_eq!(selection.chosen.order, 2);
+    }
+
+    #[test]
+    fn a_lag_is_not_fitted_to_legs_that_all_run_one_way() {
+        // Two cooling legs: a lag only shifts every temperature alike.
+        let blocks: Vec<SweepBlock> = program_blocks(-120.0, 2.0 / 60.0)
+            .into_iter()
+            .filter(|b| b.rate_c_per_s < 0.0)
+            .collect();
+        let all: Vec<&SweepBlock> = blocks.iter().collect();
+        assert!(!lag_identifiable(&all));
+        let fit = fit_candidate(
+            &all,
+            Channel::Gx,
+            Candidate {
+                order: 2,
+                lag: true,
+            },
+        )
+        .unwrap();
+        assert_eq!(fit.tau_s, 0.0);
+    }
+
+    #[test]
+    fn blocks_are_whole_blocks_from_the_first_sample() {
+        // 10 samples at 1 s: blocks of 3 s are samples 0-2, 3-5, 6-8; sample 9 starts a
+        // block that does not end.
+        let time: Vec<f64> = (0..10).map(f64::from).collect();
+        assert_eq!(block_ranges(&time, 3.0), vec![(0, 3), (3, 6), (6, 9)]);
+        let time: Vec<f64> = (0..9).map(f64::from).collect();
+        assert_eq!(block_ranges(&time, 3.0), vec![(0, 3), (3, 6)]);
+    }
 }

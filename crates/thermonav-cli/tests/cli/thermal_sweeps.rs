@@ -1,0 +1,391 @@
+//! Thermal calibration from sweeps alone: the legs of a real record against an independent
+//! implementation, a lagging unit on a non-integer, jittered rate, the check against the
+//! compensated record, ULog sweeps, and bad sweeps refused naming the file.
+
+use crate::{arg, outcome, thermonav, write_file};
+use rand::RngExt;
+use serde_json::Value;
+use std::fmt::Write as _;
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+
+/// The CATS record of `shared/data` (see its README, section 1.9).
+fn cats_file() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/cats-tempcal/cats_temperature_calib.csv.gz")
+}
+
+/// The legs found by `bench/thermal_peers/cats.py`, an independent implementation of the
+/// issue's leg rule in Python (`tools/oracles/cats_legs.json`).
+fn cats_oracle() -> Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools/oracles/cats_legs.json");
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// Writes period `from..=to` (t_s) of the CATS record as a canonical IMU CSV (gyros from
+/// mrad/s to rad/s).
+fn write_cats_period(path: &Path, from: f64, to: f64) {
+    let file = std::fs::File::open(cats_file()).expect("shared/ is beside the repository");
+    let lines = BufReader::new(flate2::read::GzDecoder::new(file)).lines();
+    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
+    for line in lines.skip(1) {
+        let line = line.unwrap();
+        let f: Vec<&str> = line.split(',').collect();
+        let t: f64 = f[0].parse().unwrap();
+        if !(from..=to).contains(&t) {
+            continue;
+        }
+        let g = |k: usize| f[k].parse::<f64>().unwrap() * 1e-3;
+        let _ = writeln!(
+            text,
+            "{t},{:e},{:e},{:e},{},{},{},{}",
+            g(4),
+            g(5),
+            g(6),
+            f[1],
+            f[2],
+            f[3],
+            f[11]
+        );
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+fn bank_json(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+// The real record's legs (three periods of a CATS tag, 1 Hz) are those of the Python
+// implementation: the same turning points to the sample (the rule is exact arithmetic on the
+// same samples; 1 s allows for a tie of the smoothed extreme) and spans to 0.01 °C (the oracle
+// rounds to 1e-4, and the two means sum in other orders).
+#[test]
+fn the_legs_of_a_real_chamber_record_are_those_of_an_independent_implementation() {
+    let dir = tempfile::tempdir().unwrap();
+    let oracle = cats_oracle();
+    for (name, period) in oracle["periods"].as_object().unwrap() {
+        let from = period["from_t_s"].as_f64().unwrap();
+        let to = period["to_t_s"].as_f64().unwrap();
+        let csv = dir.path().join(format!("{name}.csv"));
+        write_cats_period(&csv, from, to);
+        let bank = dir.path().join(format!("{name}.json"));
+        let (code, _, err) = outcome(&thermonav(&[
+            "characterize",
+            "--sweep",
+            arg(&csv),
+            "--out",
+            arg(&bank),
+        ]));
+        assert_eq!(code, 0, "{err}");
+        let ours = &bank_json(&bank)["thermal"]["legs"];
+        let theirs = period["legs"].as_array().unwrap();
+        assert_eq!(
+            ours.as_array().unwrap().len(),
+            theirs.len(),
+            "{name}: {ours}"
+        );
+        for (a, b) in ours.as_array().unwrap().iter().zip(theirs) {
+            let start = a["t_s"][0].as_f64().unwrap();
+            let end = a["t_s"][1].as_f64().unwrap();
+            assert!(
+                (start - b["start_t_s"].as_f64().unwrap()).abs() <= 1.0,
+                "{name} {a} {b}"
+            );
+            assert!(
+                (end - b["end_t_s"].as_f64().unwrap()).abs() <= 1.0,
+                "{name} {a} {b}"
+            );
+            let span = a["span_c"].as_f64().unwrap();
+            assert!(
+                (span - b["span_c"].as_f64().unwrap()).abs() < 0.01,
+                "{name} {a} {b}"
+            );
+            let direction = if b["direction"] == "heating" {
+                "warming"
+            } else {
+                "cooling"
+            };
+            assert_eq!(a["direction"], direction, "{name}");
+        }
+    }
+}
+
+/// The chamber program of the lag tests: 25 → 5 → 45 → 25 °C at `rate` °C/min.
+fn program(t_s: f64, rate_c_per_min: f64) -> (f64, f64) {
+    let r = rate_c_per_min / 60.0;
+    let legs = [(25.0, 5.0), (5.0, 45.0), (45.0, 25.0)];
+    let mut start = 0.0;
+    for (from, to) in legs {
+        let duration = (to - from as f64).abs() / r;
+        if t_s <= start + duration {
+            let sign = (to - from as f64).signum();
+            return (from + sign * r * (t_s - start), sign * r);
+        }
+        start += duration;
+    }
+    (25.0, 0.0)
+}
+
+/// The true bias of the lagging unit at sensor temperature T and rate: gx a quadratic read at
+/// T + τ dT/dt, az a line in T alone (no lag), the others flat.
+fn lagging_bias(channel: usize, t: f64, rate_c_per_s: f64, tau_s: f64) -> f64 {
+    let shifted = t + tau_s * rate_c_per_s;
+    match channel {
+        0 => 2e-4 * (shifted - 20.0) + 4e-6 * (shifted - 20.0).powi(2),
+        5 => 1e-3 * (t - 20.0),
+        _ => 0.0,
+    }
+}
+
+/// A sweep of the lagging unit at 1.98 Hz with µs jitter: white noise of `noise` (rad/s and
+/// m/s² alike) from the named generator, a level unit (az reads −9.81 on top).
+fn lagging_sweep(dir: &Path, name: &str, tau_s: f64, seed: u64) -> PathBuf {
+    let rate_hz = 1.98;
+    let mut rng = thermonav::rng::named_rng(seed, "thermal lag sweep noise");
+    let mut normal = || {
+        // Box-Muller from two uniforms.
+        let (u, v): (f64, f64) = (rng.random(), rng.random());
+        (-2.0 * (1.0 - u).ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    };
+    let duration = 20.0 / 2.0 * 60.0 + 40.0 / 2.0 * 60.0 + 20.0 / 2.0 * 60.0;
+    let n = (duration * rate_hz) as usize;
+    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
+    for k in 0..n {
+        let jitter = (normal() * 2e-6).clamp(-5e-6, 5e-6);
+        let t = k as f64 / rate_hz + jitter;
+        let (temp, rate) = program(t, 2.0);
+        let _ = write!(text, "{t:.6}");
+        for c in 0..6 {
+            let gravity = if c == 5 { -9.81 } else { 0.0 };
+            let v = gravity + lagging_bias(c, temp, rate, tau_s) + 1e-4 * normal();
+            let _ = write!(text, ",{v:.9e}");
+        }
+        let _ = writeln!(text, ",{temp:.4}");
+    }
+    write_file(dir, name, &text)
+}
+
+fn characterize_sweeps(sweeps: &[&Path], bank: &Path) -> (i32, String, String) {
+    let mut args = vec!["characterize"];
+    for s in sweeps {
+        args.extend(["--sweep", arg(s)]);
+    }
+    args.extend(["--out", arg(bank)]);
+    outcome(&thermonav(&args))
+}
+
+// A unit whose gx lags its sensor by 120 s, swept at 2 °C/min on a 1.98 Hz log with µs
+// jitter: the lag model is chosen for gx by its held-out legs and τ's interval holds the
+// truth; az, with no lag, keeps its line in T alone; the flat channels are left at order 0.
+#[test]
+fn a_lagging_unit_on_a_jittered_non_integer_rate_gets_its_lag() {
+    let dir = tempfile::tempdir().unwrap();
+    let tau = -120.0;
+    let sweep = lagging_sweep(dir.path(), "cycle.csv", tau, 1);
+    let bank = dir.path().join("bank.json");
+    let (code, out, err) = characterize_sweeps(&[&sweep], &bank);
+    assert_eq!(code, 0, "{out}{err}");
+    let thermal = &bank_json(&bank)["thermal"];
+    assert_eq!(thermal["legs"].as_array().unwrap().len(), 3);
+    let gx = &thermal["channels"]["gx"];
+    assert_eq!(
+        gx["selection"]["chosen"]["lag"], true,
+        "{}",
+        gx["selection"]
+    );
+    let lag = &gx["lagged"]["lag"];
+    let (low, high) = (
+        lag["tau_interval_s"][0].as_f64().unwrap(),
+        lag["tau_interval_s"][1].as_f64().unwrap(),
+    );
+    assert!(low <= tau && tau <= high, "{lag}");
+    assert_eq!(
+        thermal["channels"]["az"]["selection"]["chosen"]["lag"],
+        false
+    );
+    assert!(thermal["channels"]["az"]["bias"]["order"].as_u64().unwrap() >= 1);
+    for flat in ["gy", "gz", "ax", "ay"] {
+        let chosen = &thermal["channels"][flat]["selection"]["chosen"];
+        assert_eq!(
+            chosen["order"], 0,
+            "{flat}: {}",
+            thermal["channels"][flat]["selection"]
+        );
+    }
+}
+
+/// `bank check --json` of `record` against `bank`.
+fn check_json(bank: &Path, record: &Path) -> Value {
+    let (code, out, err) = outcome(&thermonav(&[
+        "bank",
+        "check",
+        arg(bank),
+        arg(record),
+        "--json",
+    ]));
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+// `compensate` and `bank check` take off the same thing: the 30 s block means of the
+// compensated record scatter about their mean as the check's residuals do, within 5 % on every
+// channel (the check evaluates the model at each block's mean temperature and rate, the
+// compensation at every sample's). The lag model also predicts an unseen record of the unit,
+// and its band covers most blocks.
+#[test]
+fn check_and_compensate_agree_and_the_lag_predicts_an_unseen_record() {
+    let dir = tempfile::tempdir().unwrap();
+    let fitted = lagging_sweep(dir.path(), "fitted.csv", -120.0, 1);
+    let unseen = lagging_sweep(dir.path(), "unseen.csv", -120.0, 2);
+    let bank = dir.path().join("bank.json");
+    assert_eq!(characterize_sweeps(&[&fitted], &bank).0, 0);
+    let check = check_json(&bank, &unseen);
+    let out = dir.path().join("compensated.csv");
+    let (code, _, err) = outcome(&thermonav(&[
+        "compensate",
+        arg(&unseen),
+        "--bank",
+        arg(&bank),
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("compensated.csv.json").exists());
+    let compensated = thermonav_io::read_imu_file(&out, thermonav_io::Strictness::Strict).unwrap();
+    let time: Vec<f64> = compensated.time.iter().map(|t| t.as_seconds()).collect();
+    let ranges = thermonav::stoch::thermal::sweep_model::block_ranges(&time, 30.0);
+    for channel in thermonav::imu::Channel::ALL {
+        let c = &check["channels"][channel.name()];
+        let column = compensated.channel(channel);
+        let means: Vec<f64> = ranges
+            .iter()
+            .map(|&(a, b)| column[a..b].iter().sum::<f64>() / (b - a) as f64)
+            .collect();
+        let m = means.iter().sum::<f64>() / means.len() as f64;
+        let rms = (means.iter().map(|x| (x - m).powi(2)).sum::<f64>() / means.len() as f64).sqrt();
+        let expected = c["rms_after_offset_removed"].as_f64().unwrap();
+        assert!(
+            (rms / expected - 1.0).abs() < 0.05,
+            "{}: compensated {rms} against the check's {expected}",
+            channel.name()
+        );
+    }
+    let gx = &check["channels"]["gx"];
+    // The lag model takes off at least 90 % of gx's thermal error on the unseen record (RMS);
+    // what remains sits at the four turns of the program, where the true rate jumps and the
+    // 120 s least-squares rate cannot.
+    let (before, after) = (
+        gx["rms_before"].as_f64().unwrap(),
+        gx["rms_after_offset_removed"].as_f64().unwrap(),
+    );
+    assert!(after < 0.1 * before, "{before} -> {after}");
+    assert!(gx["coverage_offset_removed"].as_f64().unwrap() >= 0.8);
+}
+
+// A PX4 user's one log of the board warming: a ULog sweep alone calibrates as its CSV does.
+#[test]
+fn a_ulog_sweep_alone_calibrates_like_its_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = lagging_sweep(dir.path(), "cycle.csv", -120.0, 3);
+    let ulog = dir.path().join("cycle.ulg");
+    crate::thermal_ulog::write_sweep_ulog(&csv, &ulog, 0);
+    let (from_csv, from_ulog) = (dir.path().join("csv.json"), dir.path().join("ulg.json"));
+    assert_eq!(characterize_sweeps(&[&csv], &from_csv).0, 0);
+    let (code, _, err) = characterize_sweeps(&[&ulog], &from_ulog);
+    assert_eq!(code, 0, "{err}");
+    let (a, b) = (bank_json(&from_csv), bank_json(&from_ulog));
+    assert_eq!(b["thermal"]["devices"]["instance"], 0);
+    for channel in ["gx", "az"] {
+        let (ca, cb) = (
+            &a["thermal"]["channels"][channel],
+            &b["thermal"]["channels"][channel],
+        );
+        assert_eq!(
+            ca["selection"]["chosen"], cb["selection"]["chosen"],
+            "{channel}"
+        );
+        // The log holds binary32 values and whole-µs times: the curves agree to well within
+        // the noise (1e-4 per sample).
+        let (va, vb) = (
+            &ca["bias"]["coefficients"][0],
+            &cb["bias"]["coefficients"][0],
+        );
+        assert!(
+            (va.as_f64().unwrap() - vb.as_f64().unwrap()).abs() < 1e-6,
+            "{va} {vb}"
+        );
+    }
+}
+
+/// A sweep CSV of `rows` samples at 1 Hz with temperatures `temp(k)` and flat channels.
+fn sweep_csv(dir: &Path, name: &str, rows: usize, temp: impl Fn(usize) -> String) -> PathBuf {
+    let mut text = String::from("t_s,gx_rad_s,gy_rad_s,gz_rad_s,ax_m_s2,ay_m_s2,az_m_s2,temp_c\n");
+    for k in 0..rows {
+        let t = if k >= rows / 2 && name.contains("gap") {
+            k as f64 + 5000.0
+        } else {
+            k as f64
+        };
+        let _ = writeln!(text, "{t},0.001,0,0,0,0,-9.81,{}", temp(k));
+    }
+    write_file(dir, name, &text)
+}
+
+// Bad sweeps: each is refused with exit 1, naming the file and what is wrong, and no bank is
+// written.
+#[test]
+fn bad_sweeps_are_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let warming = |k: usize| format!("{:.3}", 10.0 + k as f64 * 0.01);
+    let cases: Vec<(PathBuf, &str)> = vec![
+        (
+            sweep_csv(dir.path(), "narrow.csv", 3000, |k| {
+                format!("{:.3}", 20.0 + k as f64 * 5e-4)
+            }),
+            "must cover at least 2 °C",
+        ),
+        (
+            sweep_csv(dir.path(), "constant.csv", 3000, |_| "20".into()),
+            "must cover at least 2 °C",
+        ),
+        (
+            sweep_csv(dir.path(), "kelvin.csv", 3000, |k| {
+                format!("{:.3}", 293.0 + k as f64 * 0.01)
+            }),
+            "temp_c",
+        ),
+        (
+            sweep_csv(dir.path(), "nan.csv", 3000, |k| {
+                if k == 7 { "nan".into() } else { warming(k) }
+            }),
+            "temp_c",
+        ),
+        (sweep_csv(dir.path(), "gap.csv", 3000, warming), "gap of"),
+        (
+            sweep_csv(dir.path(), "short.csv", 400, |k| {
+                format!("{:.3}", 10.0 + k as f64 * 0.01)
+            }),
+            "at least 3",
+        ),
+    ];
+    for (file, expected) in cases {
+        let bank = dir.path().join("bank.json");
+        let args = [
+            "characterize",
+            "--sweep",
+            arg(&file),
+            "--sweep-block-s",
+            "200",
+            "--out",
+            arg(&bank),
+        ];
+        let (code, _, err) = outcome(&thermonav(&args));
+        assert_eq!(code, 1, "{}: {err}", file.display());
+        assert!(
+            err.contains(file.file_name().unwrap().to_str().unwrap()),
+            "{err}"
+        );
+        assert!(err.contains(expected), "{}: {err}", file.display());
+        assert!(!bank.exists());
+    }
+}
