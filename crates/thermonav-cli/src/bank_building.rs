@@ -24,15 +24,7 @@ fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result
             path.display()
         ))
     })?;
-    recorded_temperature(path, mean)
-}
-
-/// A record's mean temp_c when it is a temperature a sensor is characterised at (else the
-/// column holds something else, or another unit): a data error naming the file.
-pub fn recorded_temperature(path: &Path, mean_c: f64) -> Result<f64, Failure> {
-    let source = format!("{}: the mean of temp_c", path.display());
-    crate::settings::characterization::check_temperature(&source, mean_c)
-        .map_err(|e| Failure::Data(anyhow!("{e}")))
+    crate::inputs::recorded_temperature(path, mean)
 }
 
 /// Characterises one file, read as `imu` says, whole in memory or streamed as `reading` says;

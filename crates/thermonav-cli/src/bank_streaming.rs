@@ -104,7 +104,7 @@ fn check_has_rows(stream: &StreamingCharacterizer, path: &Path) -> Result<(), Fa
 fn temperature_of(given: Option<f64>, mean: Option<f64>, path: &Path) -> Result<f64, Failure> {
     match (given, mean) {
         (Some(t), _) => Ok(t),
-        (None, Some(mean)) => crate::bank_building::recorded_temperature(path, mean),
+        (None, Some(mean)) => crate::inputs::recorded_temperature(path, mean),
         (None, None) => Err(Failure::Usage(anyhow!(
             "{}: no temp_c column; give the temperature with --temperature-c",
             path.display()

@@ -12,6 +12,14 @@ use thermonav_io::ros::BagFormat;
 use thermonav_io::ros::extract::{TopicChoice, imu_series};
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_into};
 
+/// A record's mean temp_c when it is a temperature a sensor is characterised at (else the
+/// column holds something else, or another unit): a data error naming the file.
+pub fn recorded_temperature(path: &Path, mean_c: f64) -> Result<f64, Failure> {
+    let source = format!("{}: the mean of temp_c", path.display());
+    thermonav_io::check_characterization_temperature(&source, mean_c)
+        .map_err(|message| Failure::Data(anyhow!(message)))
+}
+
 /// Reads and validates a bank file.
 pub fn read_bank(path: &Path) -> Result<ModelBank, Failure> {
     thermonav_io::bank::read_bank_file(path).data()

@@ -223,7 +223,7 @@ fn mean_of(path: &Path, imu: &ImuOptions) -> Result<RecordMean, Failure> {
             path.display()
         ))
     })?;
-    crate::bank_building::recorded_temperature(path, temperature_c)?;
+    crate::inputs::recorded_temperature(path, temperature_c)?;
     record_mean(&series, temperature_c)
         .ok_or_else(|| Failure::Data(anyhow!("{}: no IMU sample", path.display())))
 }

@@ -30,8 +30,15 @@ pub fn run(args: &BankArgs) -> Result<(), Failure> {
     match &args.action {
         BankAction::Show(show) => run_show(show),
         BankAction::Export(export) => run_export(export),
-        BankAction::Check(check) => super::thermal_check::run(check),
+        BankAction::Check(_) => unreachable_check(),
     }
+}
+
+/// `bank check` is dispatched to its own command file by `commands::run`.
+fn unreachable_check() -> Result<(), Failure> {
+    Err(Failure::Usage(anyhow!(
+        "bank check is run by its own command"
+    )))
 }
 
 fn run_export(args: &BankExportArgs) -> Result<(), Failure> {

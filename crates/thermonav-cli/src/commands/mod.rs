@@ -19,7 +19,7 @@ mod report;
 mod simulate;
 mod thermal_check;
 
-use crate::args::{Cli, Command};
+use crate::args::{BankAction, Cli, Command};
 use crate::failure::Failure;
 
 /// Runs the chosen subcommand.
@@ -33,7 +33,10 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Ar(args) => ar::run(&args),
         Command::Gmwm(args) => gmwm::run(&args),
         Command::Characterize(args) => characterize::run(&args),
-        Command::Bank(args) => bank::run(&args),
+        Command::Bank(args) => match &args.action {
+            BankAction::Check(check) => thermal_check::run(check),
+            _ => bank::run(&args),
+        },
         Command::Lot(args) => lot::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Integrate(args) => integrate::run(&args),

@@ -389,3 +389,92 @@ fn bad_sweeps_are_refused_naming_the_file() {
         assert!(!bank.exists());
     }
 }
+
+/// A DataFlash record: the header 0xA3 0x95, the type, the packed fields.
+fn dataflash_record(type_id: u8, fields: &[u8]) -> Vec<u8> {
+    let mut out = vec![0xA3, 0x95, type_id];
+    out.extend_from_slice(fields);
+    out
+}
+
+/// A FMT record (format "BBnNZ") defining `type_id`.
+fn dataflash_fmt(type_id: u8, length: u8, name: &str, format: &str, columns: &str) -> Vec<u8> {
+    let padded = |text: &str, width: usize| {
+        let mut bytes = text.as_bytes().to_vec();
+        bytes.resize(width, 0);
+        bytes
+    };
+    let mut fields = vec![type_id, length];
+    fields.extend(padded(name, 4));
+    fields.extend(padded(format, 16));
+    fields.extend(padded(columns, 64));
+    dataflash_record(128, &fields)
+}
+
+/// The samples of an IMU CSV as an ArduPilot DataFlash log of IMU records (format
+/// "QBffffffIIfBBHH", the documented layout; no GPS, so times stay since boot), written from
+/// the format's documentation as `tools/oracles/dataflash.py` does.
+fn write_sweep_dataflash(csv: &Path, out: &Path) {
+    let series = thermonav_io::read_imu_file(csv, thermonav_io::Strictness::Strict).unwrap();
+    let mut log = dataflash_fmt(128, 89, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns");
+    let columns = "TimeUS,I,GyrX,GyrY,GyrZ,AccX,AccY,AccZ,EG,EA,T,GH,AH,GHz,AHz";
+    log.extend(dataflash_fmt(
+        130,
+        3 + 8 + 1 + 24 + 8 + 4 + 2 + 4,
+        "IMU",
+        "QBffffffIIfBBHH",
+        columns,
+    ));
+    let temperature = series.temperature_c.as_ref().unwrap();
+    for (k, time) in series.time.iter().enumerate() {
+        let mut fields = (1_000_000 + (time.as_nanos() / 1_000) as u64)
+            .to_le_bytes()
+            .to_vec();
+        fields.push(0);
+        for channel in thermonav::imu::Channel::ALL {
+            fields.extend((series.channel(channel)[k] as f32).to_le_bytes());
+        }
+        fields.extend([0u8; 8]);
+        fields.extend((temperature[k] as f32).to_le_bytes());
+        fields.extend([1, 1]);
+        fields.extend(100u16.to_le_bytes());
+        fields.extend(100u16.to_le_bytes());
+        log.extend(dataflash_record(130, &fields));
+    }
+    std::fs::write(out, log).unwrap();
+}
+
+// An ArduPilot user's log of the board warming and cooling: a DataFlash sweep alone calibrates
+// as its CSV does (binary32 values, whole-µs times).
+#[test]
+fn a_dataflash_sweep_alone_calibrates_like_its_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = lagging_sweep(dir.path(), "cycle.csv", -120.0, 4);
+    let log = dir.path().join("cycle.bin");
+    write_sweep_dataflash(&csv, &log);
+    let (from_csv, from_log) = (dir.path().join("csv.json"), dir.path().join("bin.json"));
+    assert_eq!(characterize_sweeps(&[&csv], &from_csv).0, 0);
+    let (code, _, err) = characterize_sweeps(&[&log], &from_log);
+    assert_eq!(code, 0, "{err}");
+    let (a, b) = (bank_json(&from_csv), bank_json(&from_log));
+    assert_eq!(a["thermal"]["legs"].as_array().unwrap().len(), 3);
+    assert_eq!(b["thermal"]["legs"].as_array().unwrap().len(), 3);
+    for channel in ["gx", "az"] {
+        let (ca, cb) = (
+            &a["thermal"]["channels"][channel],
+            &b["thermal"]["channels"][channel],
+        );
+        assert_eq!(
+            ca["selection"]["chosen"], cb["selection"]["chosen"],
+            "{channel}"
+        );
+        let (va, vb) = (
+            &ca["bias"]["coefficients"][0],
+            &cb["bias"]["coefficients"][0],
+        );
+        assert!(
+            (va.as_f64().unwrap() - vb.as_f64().unwrap()).abs() < 1e-6,
+            "{va} {vb}"
+        );
+    }
+}

@@ -18,7 +18,7 @@
 //! b(T) + g · s(T)). The calibration says so ([`ScaleFactorCalibration::NotIdentifiable`]);
 //! the vertical accelerometer's curve holds both.
 
-use super::sweep_model::{HeldOutSelection, LaggedBias, SweepBlock, SweepLeg};
+use super::selection::{HeldOutSelection, SweepBlock, SweepLeg, ThermalLag};
 use super::{
     FitSettings, PowerOnFit, PowerOnOffset, PowerOnRecord, TemperaturePoint, ThermalCurve,
     ThermalError, fit_bias_curve, fit_bias_curve_with_power_ons,
@@ -119,6 +119,15 @@ pub struct SensorDevices {
     pub gyro_device_id: Option<u32>,
     /// The accelerometer's device id.
     pub accel_device_id: Option<u32>,
+}
+
+/// The chosen model when it holds a lag term: the curve in the shifted temperature.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LaggedBias {
+    /// The lag.
+    pub lag: ThermalLag,
+    /// The curve, its offsets and spread, with T + τ·dT/dt for T.
+    pub fit: Box<ChannelCalibration>,
 }
 
 /// What a compensation did.

@@ -68,6 +68,7 @@ pub mod check;
 pub mod legs;
 mod observations;
 mod power_on;
+mod selection;
 mod solve;
 mod summary;
 pub mod sweep_model;
@@ -82,7 +83,7 @@ pub use bank_calibration::{
     DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG, bank_power_on, calibrate_level_unit,
 };
 pub use calibration::{
-    ChannelCalibration, CompensationError, CompensationSummary, ScaleFactorCalibration,
+    ChannelCalibration, CompensationError, CompensationSummary, LaggedBias, ScaleFactorCalibration,
     SensorDevices, ThermalCalibration, calibrate, without_signal,
 };
 pub use observations::{

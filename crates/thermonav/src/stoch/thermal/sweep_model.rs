@@ -58,9 +58,15 @@
 
 use super::calibration::calibrate_channel;
 use super::legs::{Leg, RATE_WINDOW_S, find_legs, temperature_rates};
-use super::{ChannelCalibration, FitSettings, OrderChoice, PowerOnRecord, ThermalError};
+pub use super::selection::{
+    Candidate, CandidateScore, ChoiceRule, HeldOutSelection, PredictionSpread, SweepBlock,
+    SweepLeg, ThermalLag,
+};
+use super::{
+    ChannelCalibration, FitSettings, LaggedBias, OrderChoice, PowerOnRecord, ThermalError,
+};
 use crate::imu::Channel;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -84,47 +90,6 @@ pub const MIN_SWEEP_RANGE_C: f64 = 2.0;
 
 /// Two-sided 95 % quantile of the normal distribution: the band's multiple.
 const BAND_Z: f64 = 1.959_963_984_540_054;
-
-/// One block of a sweep.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SweepBlock {
-    /// The power-on (sweep) it belongs to.
-    pub power_on: u32,
-    /// The leg it belongs to, numbered across the calibration from 1.
-    pub leg: u32,
-    /// Time of its middle, s (the record's time axis).
-    pub t_s: f64,
-    /// Mean temperature, °C.
-    pub temperature_c: f64,
-    /// Coldest and warmest sample of the block, °C.
-    #[serde(default)]
-    pub sample_range_c: [f64; 2],
-    /// Mean rate of the temperature, °C/s.
-    pub rate_c_per_s: f64,
-    /// Samples averaged.
-    pub samples: usize,
-    /// Mean of each channel (after the removed signal), rate unit.
-    pub values: BTreeMap<Channel, f64>,
-}
-
-/// A leg of a sweep as the calibration keeps it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SweepLeg {
-    /// Its number, as [`SweepBlock::leg`] names it.
-    pub leg: u32,
-    /// The power-on (sweep).
-    pub power_on: u32,
-    /// The file it was found in.
-    pub source: String,
-    /// Time of its first and last sample, s.
-    pub t_s: [f64; 2],
-    /// Smoothed temperature at its ends, °C.
-    pub temperature_c: [f64; 2],
-    /// Span of the smoothed temperature, °C.
-    pub span_c: f64,
-    /// Which way it runs.
-    pub direction: super::legs::LegDirection,
-}
 
 /// One piece of a sweep, as plain columns: time (s), temperature (°C) and the channels.
 #[derive(Debug, Clone, Copy)]
@@ -308,102 +273,6 @@ pub fn block_ranges(time_s: &[f64], block_s: f64) -> Vec<(usize, usize)> {
         ranges.push((a, time_s.len()));
     }
     ranges
-}
-
-/// A candidate model of one channel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Candidate {
-    /// Polynomial order, 0..=3.
-    pub order: usize,
-    /// True for b(T + τ·dT/dt).
-    pub lag: bool,
-}
-
-impl Candidate {
-    /// Every candidate, simplest first.
-    pub fn all() -> Vec<Candidate> {
-        let mut all = vec![Candidate {
-            order: 0,
-            lag: false,
-        }];
-        for order in 1..=super::MAX_ORDER {
-            all.push(Candidate { order, lag: false });
-        }
-        for order in 1..=super::MAX_ORDER {
-            all.push(Candidate { order, lag: true });
-        }
-        all
-    }
-}
-
-/// How a candidate did on the legs it was not fitted to.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CandidateScore {
-    /// The candidate.
-    pub candidate: Candidate,
-    /// RMS of the held-out residuals about their legs' means, channel unit; `None` when it
-    /// could not be fitted on some fold.
-    pub held_out_rms: Option<f64>,
-}
-
-/// How a channel's model was chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ChoiceRule {
-    /// Leave one leg out.
-    LeaveOneLegOut,
-    /// One leg: T alone, leaving out one of [`SEGMENTS_OF_ONE_LEG`] contiguous stretches of
-    /// the leg at a time.
-    LeaveOneSegmentOut,
-}
-
-/// The lag term of a chosen model.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ThermalLag {
-    /// τ, s: the bias is b(T + τ·dT/dt) with the curve of [`LaggedBias::bias`].
-    pub tau_s: f64,
-    /// The 95 % profile interval of τ, s; `None` for an end at the search limit.
-    pub tau_interval_s: [Option<f64>; 2],
-    /// Window of the least-squares rate dT/dt, s.
-    pub rate_window_s: f64,
-}
-
-/// The chosen model when it holds a lag term: the curve in the shifted temperature.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct LaggedBias {
-    /// The lag.
-    pub lag: ThermalLag,
-    /// The curve, its offsets and spread, with T + τ·dT/dt for T.
-    pub fit: Box<ChannelCalibration>,
-}
-
-/// What a channel's predictions are uncertain by beyond the fitted curve (module docs,
-/// "Band"), channel unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PredictionSpread {
-    /// s_shape.
-    pub shape_sd: f64,
-    /// s_level; `None` when no held-out leg had its power-on's offset fitted without it.
-    pub level_sd: Option<f64>,
-    /// How they were measured.
-    pub rule: ChoiceRule,
-    /// Legs the choice saw.
-    pub legs: usize,
-}
-
-/// The model selection of a channel calibrated from sweeps.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct HeldOutSelection {
-    /// The rule.
-    pub rule: ChoiceRule,
-    /// The chosen candidate.
-    pub chosen: Candidate,
-    /// The best candidate in T alone (what the autopilots' cubic can hold).
-    pub best_in_temperature_alone: Candidate,
-    /// Every candidate's score (empty with one leg).
-    pub scores: Vec<CandidateScore>,
-    /// The spread of its predictions.
-    pub spread: PredictionSpread,
 }
 
 /// A block's record for the fits: its temperature shifted by τ times its rate.
@@ -991,6 +860,11 @@ pub fn calibrate_from_sweeps(
 mod tests {
     use super::*;
 
+    const ORDER_2_LAG: Candidate = Candidate {
+        order: 2,
+        lag: true,
+    };
+
     /// Blocks of a noiseless cool-heat-cool program at ±`rate` °C/s (30 s blocks) whose gx
     /// reads b(T + τ Ṫ) = 2e-4 (T' − 20) + 4e-6 (T' − 20)², T' = T + τ Ṫ.
     fn program_blocks(tau_s: f64, rate: f64) -> Vec<SweepBlock> {
@@ -1030,26 +904,11 @@ mod tests {
         // profile's minimum is at −120 s and its held-out legs are predicted exactly.
         let blocks = program_blocks(-120.0, 2.0 / 60.0);
         let all: Vec<&SweepBlock> = blocks.iter().collect();
-        let fit = fit_candidate(
-            &all,
-            Channel::Gx,
-            Candidate {
-                order: 2,
-                lag: true,
-            },
-        )
-        .unwrap();
+        let fit = fit_candidate(&all, Channel::Gx, ORDER_2_LAG).unwrap();
         assert!((fit.tau_s + 120.0).abs() < 0.5, "{}", fit.tau_s);
         let cal = calibrate_channel_from_sweeps(&blocks, Channel::Gx).unwrap();
         let selection = cal.selection.as_ref().unwrap();
-        assert_eq!(
-            selection.chosen,
-            Candidate {
-                order: 2,
-                lag: true
-            },
-            "{selection:?}"
-        );
+        assert_eq!(selection.chosen, ORDER_2_LAG, "{selection:?}");
         assert!((cal.lagged.as_ref().unwrap().lag.tau_s + 120.0).abs() < 0.5);
     }
 
@@ -1071,15 +930,7 @@ mod tests {
             .collect();
         let all: Vec<&SweepBlock> = blocks.iter().collect();
         assert!(!lag_identifiable(&all));
-        let fit = fit_candidate(
-            &all,
-            Channel::Gx,
-            Candidate {
-                order: 2,
-                lag: true,
-            },
-        )
-        .unwrap();
+        let fit = fit_candidate(&all, Channel::Gx, ORDER_2_LAG).unwrap();
         assert_eq!(fit.tau_s, 0.0);
     }
 
