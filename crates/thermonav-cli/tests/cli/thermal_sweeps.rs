@@ -113,12 +113,12 @@ fn the_legs_of_a_real_chamber_record_are_those_of_an_independent_implementation(
 /// The chamber program of the lag tests: 25 → 5 → 45 → 25 °C at `rate` °C/min.
 fn program(t_s: f64, rate_c_per_min: f64) -> (f64, f64) {
     let r = rate_c_per_min / 60.0;
-    let legs = [(25.0, 5.0), (5.0, 45.0), (45.0, 25.0)];
+    let legs: [(f64, f64); 3] = [(25.0, 5.0), (5.0, 45.0), (45.0, 25.0)];
     let mut start = 0.0;
     for (from, to) in legs {
-        let duration = (to - from as f64).abs() / r;
+        let duration = (to - from).abs() / r;
         if t_s <= start + duration {
-            let sign = (to - from as f64).signum();
+            let sign = (to - from).signum();
             return (from + sign * r * (t_s - start), sign * r);
         }
         start += duration;

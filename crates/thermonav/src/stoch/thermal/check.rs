@@ -141,7 +141,7 @@ pub fn gravity_signal(series: &[&ImuSeries], gravity_m_s2: f64) -> BTreeMap<Chan
         mean.insert(c, sum / samples as f64);
     }
     let norm = mean.values().map(|v| v * v).sum::<f64>().sqrt();
-    if !(norm > 0.0) {
+    if norm.is_nan() || norm <= 0.0 {
         return BTreeMap::new();
     }
     mean.into_iter()

@@ -5,7 +5,7 @@
 //! Each sweep piece is cut into consecutive blocks of `block_s` seconds from its first sample
 //! (a last, shorter block is dropped); a block's observation is the mean of every channel, of
 //! the temperature and of the temperature's rate ([`super::legs`], "Rate") over its samples,
-//! and its leg is the leg ([`super::find_legs`], found within the piece) that holds its middle
+//! and its leg is the leg ([`super::legs::find_legs`], found within the piece) that holds its middle
 //! sample. The default block ([`default_block_s`]) is the shorter of 300 s and the time the
 //! temperature takes to move 1 °C at the piece's median rate, and at least 10 samples.
 //!
@@ -240,7 +240,7 @@ fn check_temperatures(temperature_c: &[f64]) -> Result<(), SweepError> {
     }
     let (low_c, high_c) = super::solve::range(temperature_c.iter().copied());
     let span_c = high_c - low_c;
-    if !(span_c >= MIN_SWEEP_RANGE_C) {
+    if span_c.is_nan() || span_c < MIN_SWEEP_RANGE_C {
         return Err(SweepError::TooNarrow {
             low_c,
             high_c,
