@@ -1324,6 +1324,10 @@ pub enum PlotKind {
     /// Bias against temperature from a bank's thermal calibration: the repeatable curve with
     /// its simultaneous 95 % band and the observations by power-on, offsets removed.
     ThermalBias,
+    /// A bank's thermal calibration against a record (`bank check`): block means, prediction
+    /// and band against time and against temperature (the bank is the input; the record is
+    /// --record).
+    ThermalCheck,
 }
 
 /// The error metric of `plot rms-temperature`.
@@ -1387,6 +1391,13 @@ pub struct PlotArgs {
     /// Figure title (default: one naming the input).
     #[arg(long)]
     pub title: Option<String>,
+    /// thermal-check: the record checked (an IMU CSV with temp_c, a bag, a DataFlash log or a
+    /// ULog).
+    #[arg(long)]
+    pub record: Option<PathBuf>,
+    /// thermal-check: the block length, s.
+    #[arg(long, default_value_t = thermonav::stoch::thermal::check::DEFAULT_CHECK_BLOCK_S)]
+    pub block_s: f64,
 }
 
 /// Arguments of `report`.

@@ -93,6 +93,7 @@ fn figure_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
         PlotKind::RmsTemperature => rms_temperature_svg(args),
         PlotKind::Innovations => innovations_svg(args),
         PlotKind::ThermalBias => thermal_bias_svg(args, units),
+        PlotKind::ThermalCheck => thermal_check_svg(args, units),
     }
 }
 
@@ -315,6 +316,39 @@ fn thermal_bias_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Fail
     let panels = thermal_panels(args)?;
     let title = format!("Bias against temperature, {}", file_name(&args.input));
     Ok(thermal_bias_figure(&title_or(args, title), &panels, units))
+}
+
+/// The bank's calibration checked against `--record`, for `--channel` or every channel.
+fn thermal_check_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
+    let record = args.record.as_ref().ok_or_else(|| {
+        Failure::Usage(anyhow!(
+            "plot thermal-check needs --record RECORD (the record checked)"
+        ))
+    })?;
+    crate::settings::positive("--block-s", args.block_s)?;
+    let bank = read_bank(&args.input)?;
+    let calibration = thermal_calibration_of(&bank, &args.input)?;
+    let series = crate::thermal_calibration::sweep_series(record, 0, &Default::default())?.series;
+    let checks =
+        thermonav::stoch::thermal::check::check_record(calibration, &series, args.block_s, None)
+            .map_err(|e| anyhow!("{}: {e}", record.display()))
+            .data()?;
+    let channel = args.channel.as_deref().map(channel_of).transpose()?;
+    let chosen: Vec<_> = (checks.iter())
+        .filter(|(c, _)| channel.is_none_or(|k| k == **c))
+        .map(|(&c, k)| (c, k))
+        .collect();
+    if chosen.is_empty() {
+        return Err(not_calibrated(&args.input));
+    }
+    let title = format!("{} against {}", file_name(&args.input), file_name(record));
+    Ok(
+        thermonav_plot::figures::thermal_check::thermal_check_figure(
+            &title_or(args, title),
+            &chosen,
+            units,
+        ),
+    )
 }
 
 /// The panels of `--channel`, or of every calibrated channel, of the bank's calibration.

@@ -8,6 +8,7 @@ pub mod autocorrelation;
 pub mod correlation;
 pub mod navigation;
 pub mod thermal;
+pub mod thermal_check;
 
 use crate::palette::{self, Color};
 use thermonav::imu::{Channel, Sensor};
