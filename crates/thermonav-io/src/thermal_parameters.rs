@@ -481,7 +481,9 @@ fn held_out_comments(calibration: &ThermalCalibration) -> Vec<String> {
             .sweep_blocks
             .iter()
             .map(|b| {
-                let with_lag = cal.bias_at_rate(b.temperature_c, b.rate_c_per_s).0;
+                let with_lag = cal
+                    .bias_at_effective(b.effective_temperature_c(cal.lag_s()))
+                    .0;
                 let [low, high] = cal.bias.temperature_range_c;
                 (with_lag - cal.bias.value_at(b.temperature_c.clamp(low, high))).abs()
             })

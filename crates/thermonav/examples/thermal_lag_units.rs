@@ -6,7 +6,7 @@
 //! the turns, logged at 2 Hz. Its structure follows the sensor's temperature through a
 //! first-order lag, dT_s/dt = (T − T_s)/τ_true, with τ_true drawn per channel from 30..300 s (or
 //! 0: no lag), and each channel reads b(T_s) = c1 (T_s − 20) + c2 (T_s − 20)² with c1, c2 drawn
-//! per channel, plus white noise. To first order T_s ≈ T − τ_true dT/dt, so the fitted τ of
+//! per channel (c1 of 0.5..1.5 times a typical sensitivity, either sign), plus white noise. To first order T_s ≈ T − τ_true dT/dt, so the fitted τ of
 //! b(T + τ dT/dt) should be −τ_true.
 //!
 //! For each unit a second cycle (new noise, same unit) is held out: the shape RMS of the
@@ -63,6 +63,7 @@ fn draw_unit(seed: u64, lagging: bool) -> Unit {
     let mut rng = named_rng(seed, "thermal lag unit");
     let tau = Uniform::new(30.0, 300.0).expect("a range");
     let normal = Normal::new(0.0, 1.0).expect("unit normal");
+    let magnitude = Uniform::new(0.5, 1.5).expect("a range");
     let mut unit = Unit {
         tau_s: [0.0; 6],
         c1: [0.0; 6],
@@ -78,7 +79,14 @@ fn draw_unit(seed: u64, lagging: bool) -> Unit {
             Sensor::Accelerometer => (2e-3, 2e-3),
         };
         unit.tau_s[k] = if lagging { tau.sample(&mut rng) } else { 0.0 };
-        unit.c1[k] = slope * normal.sample(&mut rng);
+        // A sensitivity of 0.5..1.5 times the typical slope, either sign: a channel without
+        // one has no lag to find.
+        let sign = if normal.sample(&mut rng) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        unit.c1[k] = sign * slope * magnitude.sample(&mut rng);
         unit.c2[k] = slope / 30.0 * normal.sample(&mut rng);
         unit.noise[k] = noise;
     }
@@ -101,10 +109,15 @@ fn record(unit: &Unit, rate_c_per_min: f64, noise_seed: u64) -> ImuSeries {
         temperatures.push(sensor);
         for c in Channel::ALL {
             let i = c.index();
-            if unit.tau_s[i] > 0.0 {
-                // Exact step of the first-order lag for a sensor temperature held over dt.
-                let a = (-dt / unit.tau_s[i]).exp();
-                structure[i] = sensor + (structure[i] - sensor) * a;
+            if unit.tau_s[i] > 0.0 && k > 0 {
+                // The first-order lag's closed form over an interval where the program's
+                // temperature is linear (it is piecewise linear, with its knots on samples at
+                // the rates used): T_s(dt) = T(dt) − τm + (T_s(0) − T(0) + τm) e^(−dt/τ).
+                let tau = unit.tau_s[i];
+                let before = program(t - dt, rate_c_per_min);
+                let m = (sensor - before) / dt;
+                let a = (-dt / tau).exp();
+                structure[i] = sensor - tau * m + (structure[i] - before + tau * m) * a;
             } else {
                 structure[i] = sensor;
             }

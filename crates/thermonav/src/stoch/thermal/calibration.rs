@@ -254,32 +254,25 @@ impl ThermalCalibration {
         Some(curve.value_at(temperature_c.clamp(low, high)))
     }
 
-    /// The repeatable bias of `channel` at `temperature_c` and its rate (°C/s): the lag model
-    /// where one was chosen, else [`ThermalCalibration::bias_at`].
-    pub fn bias_at_rate(
-        &self,
-        channel: Channel,
-        temperature_c: f64,
-        rate_c_per_s: f64,
-    ) -> Option<f64> {
-        let calibration = self.channels.get(&channel)?;
-        Some(calibration.bias_at_rate(temperature_c, rate_c_per_s).0)
-    }
-
     /// True when some channel's model holds a thermal lag.
     pub fn has_lag(&self) -> bool {
         self.channels.values().any(|c| c.lagged.is_some())
     }
 
-    /// The least-squares temperature rate of every sample (°C/s, the window of
-    /// [`super::legs::RATE_WINDOW_S`]) when some channel needs it; `None` otherwise or without
-    /// a temperature column.
-    pub fn sample_rates(&self, series: &ImuSeries) -> Option<Vec<f64>> {
-        let temperatures = series.temperature_c.as_deref()?;
-        self.has_lag().then(|| {
-            let time: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
-            super::legs::temperature_rates(&time, temperatures, super::legs::RATE_WINDOW_S)
-        })
+    /// Per channel with a lag, the lagged temperature of every sample of `series`
+    /// ([`super::legs::lagged_temperatures`]); empty without a lag or a temperature column.
+    pub fn effective_temperatures(&self, series: &ImuSeries) -> BTreeMap<Channel, Vec<f64>> {
+        let Some(temperatures) = series.temperature_c.as_deref() else {
+            return BTreeMap::new();
+        };
+        let time: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
+        (self.channels.iter())
+            .filter(|(_, c)| c.lagged.is_some())
+            .map(|(&ch, c)| {
+                let lagged = super::legs::lagged_temperatures(&time, temperatures, c.lag_s());
+                (ch, lagged)
+            })
+            .collect()
     }
 
     /// True when `temperature_c` lies outside some channel's fitted range.
@@ -301,11 +294,14 @@ impl ThermalCalibration {
         series: &mut ImuSeries,
     ) -> Result<CompensationSummary, CompensationError> {
         let channels: Vec<Channel> = self.channels.keys().copied().collect();
-        let rates = self.sample_rates(series);
+        let effective = self.effective_temperatures(series);
         series
             .remove_thermal_error_at(&channels, |c, k, t| {
-                let rate = rates.as_ref().map_or(0.0, |r| r[k]);
-                (self.bias_at_rate(c, t, rate).unwrap_or(0.0), 0.0)
+                let Some(calibration) = self.channels.get(&c) else {
+                    return (0.0, 0.0);
+                };
+                let t = effective.get(&c).map_or(t, |e| e[k]);
+                (calibration.bias_at_effective(t).0, 0.0)
             })
             .map_err(|e| match e {
                 TemperatureColumnError::Missing => CompensationError::NoTemperature,

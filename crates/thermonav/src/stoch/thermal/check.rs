@@ -4,8 +4,9 @@
 //! # Check
 //! The record is cut into blocks of `block_s` from its first sample (a last, shorter block is
 //! dropped). A block's `observed` value is the raw mean of each channel (SI); its `predicted`
-//! value is the full expected mean: the bias at the block's mean temperature and rate
-//! ([`ChannelCalibration::predict`]), plus the signal a still unit reads (gravity along the
+//! value is the full expected mean: the bias at the block's mean effective temperature (the
+//! lagged temperature of the channel's model, [`super::legs::lagged_temperatures`];
+//! [`ChannelCalibration::predict`]), plus the signal a still unit reads (gravity along the
 //! record's mean specific force, for the accelerometers; [`gravity_signal`]), plus the offset
 //! of the record's power-on: the bank's fitted offset of power-on K when it is named, that
 //! power-on when the calibration has one, else the mean offset (a new power-on, whose band
@@ -17,7 +18,7 @@
 //! offset part. The band adds the block mean's own noise, from the spread of its samples
 //! (the bank's spread was measured on its own, usually longer, blocks).
 
-use super::legs::{RATE_WINDOW_S, temperature_rates};
+use super::legs::{RATE_WINDOW_S, lagged_temperatures, temperature_rates};
 use super::sweep_model::{PowerOnChoice, block_ranges};
 use super::{ChannelCalibration, ThermalCalibration};
 use crate::geo::gravity::normal_gravity_m_s2;
@@ -228,13 +229,15 @@ pub fn check_record(
         .filter(|(c, _)| present.contains(c))
     {
         let s = signal.get(&channel).copied().unwrap_or(0.0);
+        let effective = lagged_temperatures(&time, temperatures, cal.lag_s());
         let blocks: Vec<BlockCheck> = ranges
             .iter()
             .map(|&(a, b)| {
                 let (t, rate) = (mean(&temperatures[a..b]), mean(&rates[a..b]));
                 let samples = &series.channel(channel)[a..b];
                 let observed = mean(samples);
-                let p = cal.predict(t, rate, choice, mean_noise_variance(samples, observed));
+                let t_eff = mean(&effective[a..b]);
+                let p = cal.predict(t_eff, choice, mean_noise_variance(samples, observed));
                 BlockCheck {
                     t_s: (time[a] + time[b - 1]) / 2.0,
                     temperature_c: t,
@@ -354,7 +357,6 @@ pub fn compensate_record(
     let temperatures = temperatures_of(series)?.to_vec();
     let choice = power_on_of(calibration, power_on)?;
     let time: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
-    let rates = temperature_rates(&time, &temperatures, RATE_WINDOW_S);
     let present = series.present_channels();
     let mut channels = BTreeMap::new();
     let mut clamped = vec![false; temperatures.len()];
@@ -364,6 +366,7 @@ pub fn compensate_record(
         .filter(|(c, _)| present.contains(c))
     {
         let (model, tau) = cal.compensation_model();
+        let effective = lagged_temperatures(&time, &temperatures, tau);
         let offset = match choice {
             PowerOnChoice::Known(k) => model.offset_of(k),
             PowerOnChoice::New => 0.0,
@@ -371,7 +374,7 @@ pub fn compensate_record(
         let column = &mut series.channels[channel.index()];
         let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
         for (k, value) in column.iter_mut().enumerate() {
-            let (bias, out) = cal.bias_at_rate(temperatures[k], rates[k]);
+            let (bias, out) = cal.bias_at_effective(effective[k]);
             clamped[k] |= out;
             let removed = bias + offset;
             *value -= removed;

@@ -128,6 +128,43 @@ pub fn temperature_rates(time_s: &[f64], temperature_c: &[f64], window_s: f64) -
         .collect()
 }
 
+/// The temperature of a structure that follows the sensor's through a first-order lag,
+/// dT_s/dt = (T − T_s)/|τ|, for τ < 0 (the structure lags); for τ > 0 its mirror 2T − T_s (the
+/// structure leads); T itself for τ = 0. T is taken as linear between samples, for which the
+/// step is exact: with m the slope over the interval and a = exp(−dt/|τ|),
+/// T_s,k = T_k − |τ|m + (T_s,k−1 − T_k−1 + |τ|m)·a. The structure starts at the first sample's
+/// temperature (a unit that sat still before the record).
+pub fn lagged_temperatures(time_s: &[f64], temperature_c: &[f64], tau_s: f64) -> Vec<f64> {
+    let n = time_s.len().min(temperature_c.len());
+    if tau_s == 0.0 || n == 0 {
+        return temperature_c[..n].to_vec();
+    }
+    let lag = tau_s.abs();
+    let mut out = Vec::with_capacity(n);
+    let mut s = temperature_c[0];
+    out.push(s);
+    // The decay of the last interval, kept while the interval repeats (a steady rate).
+    let (mut last_dt, mut a) = (f64::NAN, 0.0);
+    for k in 1..n {
+        let dt = time_s[k] - time_s[k - 1];
+        let (t0, t1) = (temperature_c[k - 1], temperature_c[k]);
+        if dt > 0.0 {
+            if dt != last_dt {
+                (last_dt, a) = (dt, (-dt / lag).exp());
+            }
+            let m = (t1 - t0) / dt;
+            s = t1 - lag * m + (s - t0 + lag * m) * a;
+        }
+        out.push(s);
+    }
+    if tau_s > 0.0 {
+        for (s, t) in out.iter_mut().zip(temperature_c) {
+            *s = 2.0 * t - *s;
+        }
+    }
+    out
+}
+
 /// The legs of a sweep (module docs, "Legs"); one leg for a record without a turning point,
 /// none for an empty one.
 pub fn find_legs(time_s: &[f64], temperature_c: &[f64]) -> Vec<Leg> {

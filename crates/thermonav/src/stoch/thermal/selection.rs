@@ -21,12 +21,36 @@ pub struct SweepBlock {
     /// Coldest and warmest sample of the block, °C.
     #[serde(default)]
     pub sample_range_c: [f64; 2],
+    /// Mean of the lagged temperature ([`super::legs::lagged_temperatures`]) at each τ of
+    /// [`super::sweep_model::LAG_GRID_S`], °C; kept while fitting, not in the bank.
+    #[serde(skip)]
+    pub lagged_temperature_c: Vec<f64>,
     /// Mean rate of the temperature, °C/s.
     pub rate_c_per_s: f64,
     /// Samples averaged.
     pub samples: usize,
     /// Mean of each channel (after the removed signal), rate unit.
     pub values: BTreeMap<Channel, f64>,
+}
+
+impl SweepBlock {
+    /// The block's mean lagged temperature at τ (s), °C: interpolated between the grid's
+    /// values while fitting; from a bank (no grid kept), T + τ·dT/dt, its first-order form.
+    pub fn effective_temperature_c(&self, tau_s: f64) -> f64 {
+        let grid = super::sweep_model::LAG_GRID_S;
+        if self.lagged_temperature_c.len() != grid.len() || tau_s == 0.0 {
+            return self.temperature_c + tau_s * self.rate_c_per_s;
+        }
+        let tau = tau_s.clamp(grid[0], grid[grid.len() - 1]);
+        let k = grid.partition_point(|&g| g < tau).clamp(1, grid.len() - 1);
+        let (g0, g1) = (grid[k - 1], grid[k]);
+        let w = (tau - g0) / (g1 - g0);
+        let (y0, y1) = (
+            self.lagged_temperature_c[k - 1],
+            self.lagged_temperature_c[k],
+        );
+        y0 + w * (y1 - y0)
+    }
 }
 
 /// A leg of a sweep as the calibration keeps it.
@@ -98,11 +122,13 @@ pub enum ChoiceRule {
 /// The lag term of a chosen model.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ThermalLag {
-    /// τ, s: the bias is b(T + τ·dT/dt) with the curve of [`super::LaggedBias::fit`].
+    /// τ, s: the bias is b(T_τ), T_τ the sensor's temperature through a first-order lag of
+    /// |τ| ([`super::legs::lagged_temperatures`]; τ < 0: the structure lags), with the curve
+    /// of [`super::LaggedBias::fit`]; to first order T_τ = T + τ·dT/dt.
     pub tau_s: f64,
     /// The 95 % profile interval of τ, s; `None` for an end at the search limit.
     pub tau_interval_s: [Option<f64>; 2],
-    /// Window of the least-squares rate dT/dt, s.
+    /// Window of the least-squares rate dT/dt that checks report beside the blocks, s.
     pub rate_window_s: f64,
 }
 

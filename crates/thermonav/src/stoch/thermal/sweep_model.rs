@@ -7,17 +7,21 @@
 //! the temperature and of the temperature's rate ([`super::legs`], "Rate") over its samples,
 //! and its leg is the leg ([`super::legs::find_legs`], found within the piece) that holds its middle
 //! sample. The default block ([`default_block_s`]) is the shorter of 300 s and the time the
-//! temperature takes to move 1 °C at the piece's median rate, and at least 10 samples.
+//! temperature takes to move 1 °C at the piece's ramp rate (the 90th percentile of |dT/dt|,
+//! since a chamber program dwells at its turns), and at least 10 samples.
 //!
 //! # Candidates
 //! Per channel: order 0 (no thermal term: the channel is left uncompensated but for its
-//! constant), b(T) of order 1..3, and b(T + τ·dT/dt) of order 1..3, the bias read at a
-//! temperature shifted by the rate times a thermal lag τ (s): to first order
-//! b(T) + τ·b′(T)·dT/dt, the loop that a structure lagging its temperature sensor draws. τ < 0
-//! when the structure lags the sensor. For a given τ the fit is linear (the polynomial fit of
-//! [`super::calibrate`] on the shifted temperatures, with one offset per power-on); τ is found
-//! by profiling the residual sum of squares over ±[`LAG_SEARCH_S`] (a grid of
-//! [`LAG_GRID_POINTS`] values, then golden-section search about the best).
+//! constant), b(T) of order 1..3, and b(T_τ) of order 1..3: the bias read at the temperature
+//! of a structure that follows the sensor's through a first-order lag of time constant |τ|
+//! ([`super::legs::lagged_temperatures`]; τ < 0 when the structure lags the sensor, τ > 0 for
+//! the mirror, a structure that leads). To first order T_τ = T + τ·dT/dt, so the model is
+//! b(T) + τ·b′(T)·dT/dt away from the turns, the loop a lagging structure draws; at the turns
+//! the first-order lag is exact where the rate form is not. For a given τ the fit is linear
+//! (the polynomial fit of [`super::calibrate`] on the blocks' mean lagged temperatures, with
+//! one offset per power-on); τ is found by profiling the residual sum of squares over the
+//! grid [`LAG_GRID_S`] (each block's lagged temperature computed from its samples there,
+//! interpolated between), then golden-section search about the best.
 //!
 //! # Choice
 //! Folds: with two or more legs, the legs; with one (or legs that share no temperature, so
@@ -57,7 +61,7 @@
 //! blocks of a sweep are not independent); an end that reaches the search limit is open.
 
 use super::calibration::calibrate_channel;
-use super::legs::{Leg, RATE_WINDOW_S, find_legs, temperature_rates};
+use super::legs::{Leg, RATE_WINDOW_S, find_legs, lagged_temperatures, temperature_rates};
 pub use super::selection::{
     Candidate, CandidateScore, ChoiceRule, HeldOutSelection, PredictionSpread, SweepBlock,
     SweepLeg, ThermalLag,
@@ -73,8 +77,44 @@ use std::collections::{BTreeMap, BTreeSet};
 /// The thermal lag is searched within ±this, s.
 pub const LAG_SEARCH_S: f64 = 3600.0;
 
-/// Points of the lag's profile grid over ±[`LAG_SEARCH_S`].
-pub const LAG_GRID_POINTS: usize = 73;
+/// The lags at which each block's lagged temperature is computed from its samples (s,
+/// increasing, within ±[`LAG_SEARCH_S`]): the profile's grid; between them the block's value is
+/// interpolated.
+pub const LAG_GRID_S: [f64; 2 * LAG_MAGNITUDES.len() + 1] = {
+    let n = LAG_MAGNITUDES.len();
+    let mut grid = [0.0; 2 * LAG_MAGNITUDES.len() + 1];
+    let mut k = 0;
+    while k < n {
+        grid[n - 1 - k] = -LAG_MAGNITUDES[k];
+        grid[n + 1 + k] = LAG_MAGNITUDES[k];
+        k += 1;
+    }
+    grid
+};
+
+/// |τ| of the grid, s: 10 s apart to 300 s, 25 s to 600 s, 100 s to 1200 s, then coarser.
+const LAG_MAGNITUDES: [f64; 53] = {
+    let mut m = [0.0; 53];
+    let mut k = 0;
+    while k < 30 {
+        m[k] = 10.0 * (k + 1) as f64;
+        k += 1;
+    }
+    while k < 42 {
+        m[k] = 300.0 + 25.0 * (k - 29) as f64;
+        k += 1;
+    }
+    while k < 48 {
+        m[k] = 600.0 + 100.0 * (k - 41) as f64;
+        k += 1;
+    }
+    let tail = [1500.0, 1800.0, 2400.0, 3000.0, 3600.0];
+    while k < 53 {
+        m[k] = tail[k - 48];
+        k += 1;
+    }
+    m
+};
 
 /// Longest default block of a sweep, s.
 pub const MAX_DEFAULT_BLOCK_S: f64 = 300.0;
@@ -158,9 +198,10 @@ pub fn default_block_s(time_s: &[f64], temperature_c: &[f64]) -> f64 {
     let rates = temperature_rates(time_s, temperature_c, RATE_WINDOW_S);
     let mut speeds: Vec<f64> = rates.iter().map(|r| r.abs()).collect();
     speeds.sort_by(f64::total_cmp);
-    let median = speeds.get(speeds.len() / 2).copied().unwrap_or(0.0);
-    let one_degree = if median > 0.0 {
-        1.0 / median
+    // The ramps' rate: a chamber program dwells at its turns, where the rate is zero.
+    let ramp = speeds.get(speeds.len() * 9 / 10).copied().unwrap_or(0.0);
+    let one_degree = if ramp > 0.0 {
+        1.0 / ramp
     } else {
         f64::INFINITY
     };
@@ -199,6 +240,10 @@ pub fn sweep_blocks(
     }
     let legs = find_legs(piece.time_s, piece.temperature_c);
     let rates = temperature_rates(piece.time_s, piece.temperature_c, RATE_WINDOW_S);
+    let lagged: Vec<Vec<f64>> = LAG_GRID_S
+        .iter()
+        .map(|&tau| lagged_temperatures(piece.time_s, piece.temperature_c, tau))
+        .collect();
     let mean = |xs: &[f64]| xs.iter().sum::<f64>() / xs.len() as f64;
     let blocks: Vec<SweepBlock> = block_ranges(piece.time_s, block_s)
         .into_iter()
@@ -215,6 +260,7 @@ pub fn sweep_blocks(
                     [lo, hi]
                 },
                 rate_c_per_s: mean(&rates[a..b]),
+                lagged_temperature_c: lagged.iter().map(|l| mean(&l[a..b])).collect(),
                 samples: b - a,
                 values: piece
                     .channels
@@ -275,14 +321,14 @@ pub fn block_ranges(time_s: &[f64], block_s: f64) -> Vec<(usize, usize)> {
     ranges
 }
 
-/// A block's record for the fits: its temperature shifted by τ times its rate.
+/// A block's record for the fits: its lagged temperature at τ.
 fn records_at(blocks: &[&SweepBlock], channel: Channel, tau_s: f64) -> Vec<PowerOnRecord> {
     blocks
         .iter()
         .filter_map(|b| {
             b.values.get(&channel).map(|&value| PowerOnRecord {
                 power_on: b.power_on,
-                temperature_c: b.temperature_c + tau_s * b.rate_c_per_s,
+                temperature_c: b.effective_temperature_c(tau_s),
                 value,
             })
         })
@@ -345,11 +391,7 @@ fn fit_candidate(blocks: &[&SweepBlock], channel: Channel, c: Candidate) -> Opti
     }
     let rss =
         |tau: f64| fit_with_tau(blocks, channel, c.order, tau).map_or(f64::INFINITY, |f| f.rss);
-    let step = 2.0 * LAG_SEARCH_S / (LAG_GRID_POINTS - 1) as f64;
-    let grid: Vec<(f64, f64)> = (0..LAG_GRID_POINTS)
-        .map(|k| -LAG_SEARCH_S + k as f64 * step)
-        .map(|tau| (tau, rss(tau)))
-        .collect();
+    let grid: Vec<(f64, f64)> = LAG_GRID_S.iter().map(|&tau| (tau, rss(tau))).collect();
     let best = grid
         .iter()
         .enumerate()
@@ -373,7 +415,7 @@ fn widen_to_samples(calibration: &mut ChannelCalibration, blocks: &[&SweepBlock]
     let (lo, hi) = blocks
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), b| {
-            let shift = tau_s * b.rate_c_per_s;
+            let shift = b.effective_temperature_c(tau_s) - b.temperature_c;
             (
                 lo.min(b.sample_range_c[0] + shift),
                 hi.max(b.sample_range_c[1] + shift),
@@ -408,8 +450,9 @@ fn golden_minimum(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, steps: usiz
 /// none). Not clamped: the block lies within the fold's temperature range, and only the lag's
 /// shift τ·dT/dt can carry it a little past the shifted range of the fit.
 fn predict(fit: &Fitted, block: &SweepBlock) -> f64 {
-    let t = block.temperature_c + fit.tau_s * block.rate_c_per_s;
-    fit.calibration.bias.value_at(t)
+    fit.calibration
+        .bias
+        .value_at(block.effective_temperature_c(fit.tau_s))
 }
 
 /// The held-out residuals of a candidate, fold by fold.
@@ -768,33 +811,32 @@ impl ChannelCalibration {
         }
     }
 
-    /// The bias at a temperature and rate (°C, °C/s), clamped to the fitted range, without the
-    /// power-on's offset, and whether it was clamped.
-    pub fn bias_at_rate(&self, temperature_c: f64, rate_c_per_s: f64) -> (f64, bool) {
-        let (model, tau) = self.compensation_model();
+    /// The thermal lag of the compensation model, s (0 without one).
+    pub fn lag_s(&self) -> f64 {
+        self.compensation_model().1
+    }
+
+    /// The bias at an effective temperature (°C: the lagged temperature of
+    /// [`super::legs::lagged_temperatures`] at [`ChannelCalibration::lag_s`]), clamped to the
+    /// fitted range, without the power-on's offset, and whether it was clamped.
+    pub fn bias_at_effective(&self, t: f64) -> (f64, bool) {
+        let (model, _) = self.compensation_model();
         let curve = &model.bias;
         let [low, high] = curve.temperature_range_c;
-        let t = temperature_c + tau * rate_c_per_s;
         (
             curve.value_at(t.clamp(low, high)),
             !(low..=high).contains(&t),
         )
     }
 
-    /// The prediction of a block mean at a temperature and rate (°C, °C/s) for a power-on
-    /// (module docs, "Band"); `noise_var` is the variance of the observed mean's own noise
-    /// (its samples' variance over their count, channel unit squared), which the band adds.
-    pub fn predict(
-        &self,
-        temperature_c: f64,
-        rate_c_per_s: f64,
-        power_on: PowerOnChoice,
-        noise_var: f64,
-    ) -> Prediction {
-        let (model, tau) = self.compensation_model();
+    /// The prediction of a block mean at its mean effective temperature `t` (°C, see
+    /// [`ChannelCalibration::bias_at_effective`]) for a power-on (module docs, "Band");
+    /// `noise_var` is the variance of the observed mean's own noise (its samples' variance
+    /// over their count, channel unit squared), which the band adds.
+    pub fn predict(&self, t: f64, power_on: PowerOnChoice, noise_var: f64) -> Prediction {
+        let (model, _) = self.compensation_model();
         let curve = &model.bias;
         let [low, high] = curve.temperature_range_c;
-        let t = temperature_c + tau * rate_c_per_s;
         let inside = t.clamp(low, high);
         let clamped = inside != t;
         let (offset, offset_var) = match power_on {
@@ -889,6 +931,7 @@ mod tests {
                     temperature_c: t,
                     sample_range_c: [t - 0.5, t + 0.5],
                     rate_c_per_s: slope,
+                    lagged_temperature_c: Vec::new(),
                     samples: 60,
                     values: BTreeMap::from([(Channel::Gx, value + wiggle)]),
                 });
