@@ -115,8 +115,9 @@ pub enum Command {
     Report(ReportArgs),
     /// Draw a figure as SVG (or PNG, by the --out extension) from a file thermonav wrote.
     Plot(PlotArgs),
-    /// Take a bank's thermal calibration (bias(T, dT/dt) and the power-on offset) off every
-    /// sample of a record, gravity kept; writes the canonical IMU CSV and OUT.csv.json.
+    /// Take a bank's thermal calibration (the bias at each sample's temperature, through the
+    /// channel's thermal lag where it has one, and the power-on offset) off every sample of a
+    /// record, gravity kept; writes the canonical IMU CSV and OUT.csv.json.
     Compensate(CompensateArgs),
 }
 

@@ -123,7 +123,7 @@ fn held_out_line(
     });
     let rule = match selection.rule {
         ChoiceRule::LeaveOneLegOut => "leave one leg out",
-        ChoiceRule::LeaveOneSegmentOut => "one leg: leave one fifth out",
+        ChoiceRule::LeaveOneSegmentOut => "leave one fifth of the blocks out",
     };
     format!(
         "{}: {}; {scores}; band: shape sd {:.3} {unit}{level} ({rule})",

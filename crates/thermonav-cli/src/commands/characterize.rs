@@ -13,7 +13,8 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
-use thermonav::stoch::thermal::{CalibrationSummary, ThermalCalibration};
+use thermonav::stoch::thermal::sweep_model::ChoiceRule;
+use thermonav::stoch::thermal::{CalibrationSummary, ChannelCalibration, ThermalCalibration};
 
 #[derive(Debug, Serialize)]
 struct Summary<'a> {
@@ -30,6 +31,8 @@ struct Summary<'a> {
 /// The thermal calibration in brief.
 #[derive(Debug, Serialize)]
 struct ThermalSummary {
+    /// Legs found in the sweeps (0 without sweeps alone).
+    legs: usize,
     power_ons: usize,
     channels: BTreeMap<&'static str, ThermalChannelSummary>,
 }
@@ -42,6 +45,23 @@ struct ThermalChannelSummary {
     range_c: [f64; 2],
     #[serde(flatten)]
     max_band_half_width: HalfWidth,
+    /// From sweeps alone: the model chosen on held-out data.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    chosen_on_held_out: Option<HeldOutChoice>,
+}
+
+/// The model chosen on held-out data (sweeps alone): the curve in T of `order` above, or the
+/// lag model; `left_uncompensated` for order 0.
+#[derive(Debug, Serialize)]
+struct HeldOutChoice {
+    rule: ChoiceRule,
+    order: usize,
+    /// τ of b(T_τ), s; null without a lag.
+    thermal_lag_s: Option<f64>,
+    /// Its 95 % interval, s (null ends are open).
+    thermal_lag_interval_s: Option<[Option<f64>; 2]>,
+    left_uncompensated: bool,
+    legs: usize,
 }
 
 /// The largest band half-width over the fitted range, keyed by its SI unit.
@@ -114,9 +134,12 @@ fn thermal_summary(bank: &ModelBank) -> (Option<ThermalSummary>, Option<String>)
 fn thermal_summary_of(calibration: &ThermalCalibration) -> ThermalSummary {
     let channels = Channel::ALL.into_iter().filter_map(|channel| {
         let summary = calibration.summary(channel)?;
-        Some((channel.name(), thermal_channel_summary(channel, &summary)))
+        let mut brief = thermal_channel_summary(channel, &summary);
+        brief.chosen_on_held_out = calibration.channels.get(&channel).and_then(held_out_choice);
+        Some((channel.name(), brief))
     });
     ThermalSummary {
+        legs: calibration.legs.len(),
         power_ons: calibration.power_ons,
         channels: channels.collect(),
     }
@@ -128,7 +151,21 @@ fn thermal_channel_summary(channel: Channel, s: &CalibrationSummary) -> ThermalC
         reference_temperature_c: s.reference_temperature_c,
         range_c: s.temperature_range_c,
         max_band_half_width: HalfWidth::of(channel.sensor(), s.max_band_half_width),
+        chosen_on_held_out: None,
     }
+}
+
+fn held_out_choice(c: &ChannelCalibration) -> Option<HeldOutChoice> {
+    let selection = c.selection.as_ref()?;
+    let lag = c.lagged.as_ref().map(|l| &l.lag);
+    Some(HeldOutChoice {
+        rule: selection.rule,
+        order: selection.chosen.order,
+        thermal_lag_s: lag.map(|l| l.tau_s),
+        thermal_lag_interval_s: lag.map(|l| l.tau_interval_s),
+        left_uncompensated: selection.chosen.order == 0,
+        legs: selection.spread.legs,
+    })
 }
 
 fn summarize<'a>(bank: &'a ModelBank, out: &Path) -> Summary<'a> {

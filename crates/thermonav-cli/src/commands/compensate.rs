@@ -53,7 +53,7 @@ pub fn run(args: &CompensateArgs) -> Result<(), Failure> {
         bank: args.bank.display().to_string(),
         output: args.out.display().to_string(),
         power_on: done.power_on,
-        kept: "gravity and Earth rate (the static signal), the noise, and whatever the calibration does not model",
+        kept: "gravity, the noise and whatever the calibration does not model; a gyro curve's constant holds the Earth rate's projection of the sweeps it was fitted to, and is taken off with the curve",
         samples: series.len(),
         clamped_samples: done.clamped_samples,
         channels: done

@@ -92,6 +92,16 @@ fn bank_job(
     conditioning: CharacterizeSettings,
     imu: ImuOptions,
 ) -> Result<BankJob, Failure> {
+    if args.files.is_empty() && !args.temperature_c.is_empty() {
+        return Err(Failure::Usage(anyhow!(
+            "--temperature-c gives the temperatures of static records, and none is given (a sweep's temperatures are its temp_c column)"
+        )));
+    }
+    if args.files.is_empty() && !args.power_on.is_empty() {
+        return Err(Failure::Usage(anyhow!(
+            "--power-on adds power-ons of static records to a bank of static records, and none is given: give each sweep its own --sweep (comma-separated files are pieces of one power-on)"
+        )));
+    }
     if !args.temperature_c.is_empty() && args.temperature_c.len() != args.files.len() {
         return Err(Failure::Usage(anyhow!(
             "--temperature-c has {} values for {} files",
@@ -108,11 +118,6 @@ fn bank_job(
     };
     let further: Vec<PathBuf> = thermal.power_ons.iter().flatten().cloned().collect();
     let sweeps: Vec<PathBuf> = thermal.sweeps.iter().flatten().cloned().collect();
-    if args.files.is_empty() && !args.temperature_c.is_empty() {
-        return Err(Failure::Usage(anyhow!(
-            "--temperature-c gives the temperatures of static records, and none is given (a sweep's temperatures are its temp_c column)"
-        )));
-    }
     Io::new()
         .inputs("a record", &args.files)
         .inputs("a --power-on record", &further)

@@ -137,8 +137,8 @@ fn lagging_bias(channel: usize, sensor_c: f64, structure_c: f64) -> f64 {
 }
 
 /// A sweep of the lagging unit at 1.98 Hz with µs jitter: its structure follows the program's
-/// temperature through a first-order lag of `lag_s` (dT_s/dt = (T − T_s)/lag; the closed form
-/// over each interval, where the program is linear but at its three turns), white noise of
+/// temperature through a first-order lag of `lag_s` (dT_s/dt = (T − T_s)/lag, integrated
+/// numerically), white noise of
 /// 1e-4 (rad/s and m/s² alike) from the named generator, a level unit (az reads −9.81 on top).
 fn lagging_sweep(dir: &Path, name: &str, lag_s: f64, seed: u64) -> PathBuf {
     let rate_hz = 1.98;
@@ -158,8 +158,13 @@ fn lagging_sweep(dir: &Path, name: &str, lag_s: f64, seed: u64) -> PathBuf {
         let (temp, _) = program(t, 2.0);
         let dt = t - before.0;
         if dt > 0.0 && lag_s > 0.0 {
-            let m = (temp - before.1) / dt;
-            structure = temp - lag_s * m + (structure - before.1 + lag_s * m) * (-dt / lag_s).exp();
+            // Integrated with 100 explicit Euler steps per interval on the program itself (its
+            // own turns included), independent of the product's closed form.
+            let h = dt / 100.0;
+            for j in 0..100 {
+                let sensor = program(before.0 + j as f64 * h, 2.0).0;
+                structure += h * (sensor - structure) / lag_s;
+            }
         }
         before = (t, temp);
         let _ = write!(text, "{t:.6}");
@@ -207,6 +212,21 @@ fn a_lagging_unit_on_a_jittered_non_integer_rate_gets_its_lag() {
         lag["tau_interval_s"][1].as_f64().unwrap(),
     );
     assert!(low <= tau && tau <= high, "{lag}");
+    // `--json` says the same in brief.
+    let again = dir.path().join("again.json");
+    let (code, out, err) = outcome(&thermonav(&[
+        "characterize",
+        "--sweep",
+        arg(&sweep),
+        "--out",
+        arg(&again),
+        "--json",
+    ]));
+    assert_eq!(code, 0, "{err}");
+    let brief: Value = serde_json::from_str(&out).unwrap();
+    let chosen = &brief["thermal"]["channels"]["gx"]["chosen_on_held_out"];
+    assert_eq!(chosen["thermal_lag_s"], lag["tau_s"], "{chosen}");
+    assert_eq!(brief["thermal"]["legs"], 3);
     assert_eq!(
         thermal["channels"]["az"]["selection"]["chosen"]["lag"],
         false

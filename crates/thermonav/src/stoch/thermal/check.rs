@@ -342,9 +342,11 @@ pub struct RecordCompensation {
     pub power_on: Option<u32>,
 }
 
-/// Takes bias(T, dT/dt) and the power-on's offset off every sample of every calibrated
-/// channel of `series` (rates), keeping gravity and Earth rate (what [`check_record`]'s
-/// prediction adds as the signal is not taken off).
+/// Takes the bias (at each sample's lagged temperature, [`ChannelCalibration::bias_at_effective`])
+/// and the power-on's offset off every sample of every calibrated channel of `series` (rates),
+/// keeping gravity (what [`check_record`]'s prediction adds as the signal is not taken off); a
+/// gyro curve's constant holds the Earth rate's projection of the sweeps it was fitted to, and
+/// goes with it.
 ///
 /// # Errors
 /// [`CheckError`] for a record without valid temperatures, of increments, or an unknown

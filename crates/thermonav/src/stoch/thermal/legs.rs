@@ -168,7 +168,9 @@ pub fn lagged_temperatures(time_s: &[f64], temperature_c: &[f64], tau_s: f64) ->
 /// The legs of a sweep (module docs, "Legs"); one leg for a record without a turning point,
 /// none for an empty one.
 pub fn find_legs(time_s: &[f64], temperature_c: &[f64]) -> Vec<Leg> {
-    if temperature_c.is_empty() {
+    let n = time_s.len().min(temperature_c.len());
+    let (time_s, temperature_c) = (&time_s[..n], &temperature_c[..n]);
+    if n == 0 {
         return Vec::new();
     }
     let smooth = centred_mean(time_s, temperature_c, LEG_SMOOTHING_S);

@@ -155,7 +155,7 @@ pub struct HeldOutSelection {
     pub chosen: Candidate,
     /// The best candidate in T alone (what the autopilots' cubic can hold).
     pub best_in_temperature_alone: Candidate,
-    /// Every candidate's score (empty with one leg).
+    /// Every candidate's score (by the rule's folds).
     pub scores: Vec<CandidateScore>,
     /// The spread of its predictions.
     pub spread: PredictionSpread,

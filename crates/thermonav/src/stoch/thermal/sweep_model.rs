@@ -185,6 +185,9 @@ pub enum SweepError {
         /// The block, s.
         block_s: f64,
     },
+    /// Columns of different lengths.
+    #[error("the time, temperature and channel columns differ in length")]
+    Ragged,
     /// The block length is not positive and finite.
     #[error("the block length {0} s is not a positive number")]
     BadBlock(f64),
@@ -227,6 +230,10 @@ pub fn sweep_blocks(
 ) -> Result<(Vec<SweepBlock>, Vec<Leg>), SweepError> {
     if !(block_s.is_finite() && block_s > 0.0) {
         return Err(SweepError::BadBlock(block_s));
+    }
+    let n = piece.time_s.len();
+    if piece.temperature_c.len() != n || piece.channels.iter().any(|c| c.1.len() != n) {
+        return Err(SweepError::Ragged);
     }
     check_temperatures(piece.temperature_c)?;
     if let Some(k) =
@@ -374,9 +381,11 @@ fn fit_with_tau(
 /// Fewest blocks of each direction (warming and cooling) for a lag to be fitted.
 pub const MIN_BLOCKS_PER_DIRECTION: usize = 2;
 
-/// True when `blocks` hold both warming and cooling blocks: with the temperature moving one
-/// way only, a lag shifts every temperature alike and a polynomial absorbs the shift, so τ is
-/// not identified.
+/// True when `blocks` hold both warming and cooling blocks (by the sign of their rate): with
+/// the temperature moving one way at one rate, a lag shifts every temperature alike and a
+/// polynomial absorbs the shift, so τ is not identified. A dwell's blocks, whose rates are
+/// noise about zero, count on either side; with the first-order lag they carry the
+/// structure's relaxation after a ramp, which does tell τ.
 fn lag_identifiable(blocks: &[&SweepBlock]) -> bool {
     let warming = blocks.iter().filter(|b| b.rate_c_per_s > 0.0).count();
     let cooling = blocks.iter().filter(|b| b.rate_c_per_s < 0.0).count();
