@@ -33,6 +33,11 @@ pub fn thermal_calibration_of<'a>(
     bank.thermal.as_ref().ok_or_else(|| no_thermal(path))
 }
 
+/// The thermal calibration of the bank in `path`, or a data error naming the file.
+pub fn read_thermal_calibration(path: &Path) -> Result<ThermalCalibration, Failure> {
+    read_bank(path)?.thermal.ok_or_else(|| no_thermal(path))
+}
+
 /// A bank without a thermal calibration, naming the file.
 fn no_thermal(path: &Path) -> Failure {
     Failure::Data(anyhow!(

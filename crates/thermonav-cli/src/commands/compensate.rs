@@ -2,7 +2,7 @@
 
 use crate::args::CompensateArgs;
 use crate::failure::{Classify, Failure};
-use crate::inputs::{read_bank, thermal_calibration_of};
+use crate::inputs::read_thermal_calibration;
 use crate::report::print_json;
 use crate::settings::analysis::json_sidecar;
 use crate::settings::paths::Io;
@@ -37,15 +37,14 @@ pub fn run(args: &CompensateArgs) -> Result<(), Failure> {
         .output("compensated record", &args.out)
         .output("sidecar", &sidecar_path)
         .check()?;
-    let bank = read_bank(&args.bank)?;
-    let calibration = thermal_calibration_of(&bank, &args.bank)?;
+    let calibration = read_thermal_calibration(&args.bank)?;
     let mut series = crate::thermal_calibration::sweep_series(
         &args.record,
         args.instance,
         &ImuOptions::default(),
     )?
     .series;
-    let done = compensate_record(calibration, &mut series, args.power_on)
+    let done = compensate_record(&calibration, &mut series, args.power_on)
         .map_err(|e| anyhow!("{}: {e}", args.record.display()))
         .data()?;
     let sidecar = Sidecar {

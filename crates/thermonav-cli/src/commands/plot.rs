@@ -326,11 +326,10 @@ fn thermal_check_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Fai
         ))
     })?;
     crate::settings::positive("--block-s", args.block_s)?;
-    let bank = read_bank(&args.input)?;
-    let calibration = thermal_calibration_of(&bank, &args.input)?;
+    let calibration = crate::inputs::read_thermal_calibration(&args.input)?;
     let series = crate::thermal_calibration::sweep_series(record, 0, &Default::default())?.series;
     let checks =
-        thermonav::stoch::thermal::check::check_record(calibration, &series, args.block_s, None)
+        thermonav::stoch::thermal::check::check_record(&calibration, &series, args.block_s, None)
             .map_err(|e| anyhow!("{}: {e}", record.display()))
             .data()?;
     let channel = args.channel.as_deref().map(channel_of).transpose()?;

@@ -2,7 +2,7 @@
 
 use crate::args::BankCheckArgs;
 use crate::failure::{Classify, Failure};
-use crate::inputs::{read_bank, thermal_calibration_of};
+use crate::inputs::read_thermal_calibration;
 use crate::report::print_json;
 use crate::settings::paths::Io;
 use anyhow::anyhow;
@@ -29,14 +29,13 @@ pub fn run(args: &BankCheckArgs) -> Result<(), Failure> {
         .input("BANK", &args.bank)
         .input("RECORD", &args.record)
         .check()?;
-    let bank = read_bank(&args.bank)?;
-    let calibration = thermal_calibration_of(&bank, &args.bank)?;
+    let calibration = read_thermal_calibration(&args.bank)?;
     let record = crate::thermal_calibration::sweep_series(
         &args.record,
         args.instance,
         &ImuOptions::default(),
     )?;
-    let checks = check_record(calibration, &record.series, args.block_s, args.power_on)
+    let checks = check_record(&calibration, &record.series, args.block_s, args.power_on)
         .map_err(|e| anyhow!("{}: {e}", args.record.display()))
         .data()?;
     let document = CheckDocument {

@@ -308,6 +308,30 @@ fn check_and_compensate_agree_and_the_lag_predicts_an_unseen_record() {
     assert!(gx["coverage_offset_removed"].as_f64().unwrap() >= 0.8);
 }
 
+/// Two banks of the same samples, one read from a binary log (binary32 values, whole-µs
+/// times): the same model is chosen for gx and az, and the curves agree to well within the
+/// noise (1e-4 per sample).
+fn assert_same_calibration(a: &Value, b: &Value) {
+    for channel in ["gx", "az"] {
+        let (ca, cb) = (
+            &a["thermal"]["channels"][channel],
+            &b["thermal"]["channels"][channel],
+        );
+        assert_eq!(
+            ca["selection"]["chosen"], cb["selection"]["chosen"],
+            "{channel}"
+        );
+        let (va, vb) = (
+            &ca["bias"]["coefficients"][0],
+            &cb["bias"]["coefficients"][0],
+        );
+        assert!(
+            (va.as_f64().unwrap() - vb.as_f64().unwrap()).abs() < 1e-6,
+            "{va} {vb}"
+        );
+    }
+}
+
 // A PX4 user's one log of the board warming: a ULog sweep alone calibrates as its CSV does.
 #[test]
 fn a_ulog_sweep_alone_calibrates_like_its_csv() {
@@ -321,26 +345,7 @@ fn a_ulog_sweep_alone_calibrates_like_its_csv() {
     assert_eq!(code, 0, "{err}");
     let (a, b) = (bank_json(&from_csv), bank_json(&from_ulog));
     assert_eq!(b["thermal"]["devices"]["instance"], 0);
-    for channel in ["gx", "az"] {
-        let (ca, cb) = (
-            &a["thermal"]["channels"][channel],
-            &b["thermal"]["channels"][channel],
-        );
-        assert_eq!(
-            ca["selection"]["chosen"], cb["selection"]["chosen"],
-            "{channel}"
-        );
-        // The log holds binary32 values and whole-µs times: the curves agree to well within
-        // the noise (1e-4 per sample).
-        let (va, vb) = (
-            &ca["bias"]["coefficients"][0],
-            &cb["bias"]["coefficients"][0],
-        );
-        assert!(
-            (va.as_f64().unwrap() - vb.as_f64().unwrap()).abs() < 1e-6,
-            "{va} {vb}"
-        );
-    }
+    assert_same_calibration(&a, &b);
 }
 
 /// A sweep CSV of `rows` samples at 1 Hz with temperatures `temp(k)` and flat channels.
@@ -485,22 +490,5 @@ fn a_dataflash_sweep_alone_calibrates_like_its_csv() {
     let (a, b) = (bank_json(&from_csv), bank_json(&from_log));
     assert_eq!(a["thermal"]["legs"].as_array().unwrap().len(), 3);
     assert_eq!(b["thermal"]["legs"].as_array().unwrap().len(), 3);
-    for channel in ["gx", "az"] {
-        let (ca, cb) = (
-            &a["thermal"]["channels"][channel],
-            &b["thermal"]["channels"][channel],
-        );
-        assert_eq!(
-            ca["selection"]["chosen"], cb["selection"]["chosen"],
-            "{channel}"
-        );
-        let (va, vb) = (
-            &ca["bias"]["coefficients"][0],
-            &cb["bias"]["coefficients"][0],
-        );
-        assert!(
-            (va.as_f64().unwrap() - vb.as_f64().unwrap()).abs() < 1e-6,
-            "{va} {vb}"
-        );
-    }
+    assert_same_calibration(&a, &b);
 }
