@@ -946,6 +946,17 @@ pub struct ChamberArgs {
     /// -40:80:1), written to imu_ramp.csv in a power-on of its own.
     #[arg(long, allow_hyphen_values = true)]
     pub ramp: Option<String>,
+    /// A chamber program instead of the set points: a CSV with the header `t_s,temp_c`
+    /// (seconds since the start, °C; linear between rows, the end values held), replayed as
+    /// one record, imu_program.csv, as long as its last row (e.g. cool, heat, cool at stated
+    /// rates with dwells at the turns).
+    #[arg(long, conflicts_with_all = ["temperatures_c", "ramp", "power_ons", "duration_s"])]
+    pub temperature_file: Option<PathBuf>,
+    /// Thermal lag of every channel's MEMS structure behind the temperature sensor, s
+    /// (first order; instead of the profile's `thermal_lag_s`). The records' temperature
+    /// column is the sensor's.
+    #[arg(long, allow_negative_numbers = true)]
+    pub thermal_lag_s: Option<f64>,
     /// Serial number of the simulated unit: the same serial is the same unit (the same
     /// repeatable bias curve) in every campaign and survey.
     #[arg(long, default_value_t = DEFAULT_SERIAL)]
@@ -985,6 +996,11 @@ pub struct VesselArgs {
     /// --temperature-c or a warm-up.
     #[arg(long, conflicts_with_all = ["warm_up_from_c", "temperature_c"])]
     pub temperature_file: Option<PathBuf>,
+    /// Thermal lag of every channel's MEMS structure behind the temperature sensor, s
+    /// (first order; instead of the profile's `thermal_lag_s`): give the chamber campaign's
+    /// value, since it is the same unit.
+    #[arg(long, allow_negative_numbers = true)]
+    pub thermal_lag_s: Option<f64>,
     /// Serial number of the simulated unit (the same serial as a chamber campaign's is the
     /// same unit, so its calibration applies).
     #[arg(long, default_value_t = DEFAULT_SERIAL)]

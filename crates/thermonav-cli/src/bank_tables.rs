@@ -39,8 +39,16 @@ pub fn show_estimate(e: &GaussMarkovEstimate) -> String {
     }
 }
 
-/// The bank as a table of correlation times, then its thermal calibration when it has one.
+/// The bank as a table of correlation times (or, for a bank from sweeps alone, a line saying
+/// it has no noise models), then its thermal calibration when it has one.
 pub fn print_bank_table(bank: &ModelBank) {
+    if bank.entries.is_empty() {
+        println!(
+            "no noise models: a thermal calibration alone (from sweeps); `--thermal-from` joins it to another bank's noise models"
+        );
+        bank.thermal.iter().for_each(print_thermal_table);
+        return;
+    }
     println!(
         "{:>7} {:<4} {:>28} {:>28} {:>16}",
         "temp_C", "ch", "Tc exact ML s [95 %]", "Tc AR-based s [95 %]", "Tc ACF fit s"

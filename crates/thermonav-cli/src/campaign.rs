@@ -16,6 +16,7 @@ use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
 };
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::temperature_program::TemperatureProgram;
 use thermonav::sim::unit::RepeatableCurve;
 use thermonav::sim::vessel::{
     GnssSettings, SURVEY_POWER_ON, SurveyTemperature, VesselError, VesselRun, harbour_survey,
@@ -43,6 +44,20 @@ pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
         Some(p) => read_profile(p).data(),
         None => Ok(adis16364_like()),
     }
+}
+
+/// `profile` with every channel's thermal lag set to `lag_s` (none: as it is), checked.
+pub fn with_thermal_lag(
+    mut profile: SensorProfile,
+    lag_s: Option<f64>,
+) -> Result<SensorProfile, Failure> {
+    if let Some(lag_s) = lag_s {
+        for channel in profile.channels.values_mut() {
+            channel.thermal_lag_s = lag_s;
+        }
+    }
+    profile.validate().usage()?;
+    Ok(profile)
 }
 
 /// What `simulate chamber` writes to truth.json.
@@ -91,28 +106,38 @@ pub fn chamber_file_name(temperature_c: f64) -> String {
 
 /// Where a record of `temperature` in `power_on` is written, relative to the campaign folder.
 fn record_path(temperature: &ChamberTemperature, power_on: u32) -> PathBuf {
-    let name = match temperature {
-        ChamberTemperature::SetPoint { temperature_c } => chamber_file_name(*temperature_c),
+    match temperature {
+        ChamberTemperature::SetPoint { temperature_c } if power_on > 1 => {
+            Path::new(&format!("power_on_{power_on}")).join(chamber_file_name(*temperature_c))
+        }
+        ChamberTemperature::SetPoint { temperature_c } => chamber_file_name(*temperature_c).into(),
         ChamberTemperature::Ramp(_) => "imu_ramp.csv".into(),
-    };
-    match (temperature, power_on) {
-        (ChamberTemperature::SetPoint { .. }, 1) | (ChamberTemperature::Ramp(_), _) => name.into(),
-        _ => Path::new(&format!("power_on_{power_on}")).join(name),
+        ChamberTemperature::Program(_) => "imu_program.csv".into(),
     }
 }
 
 /// Every record of a campaign: (chamber temperature, power-on), the first power-on first.
 fn campaign_records(settings: &ChamberSettings) -> Vec<(ChamberTemperature, u32)> {
     let c = &settings.campaign;
-    let mut records: Vec<(ChamberTemperature, u32)> = (1..=c.power_ons.max(1))
+    let set_point_power_ons = if c.temperatures_c.is_empty() {
+        0
+    } else {
+        c.power_ons.max(1)
+    };
+    let mut records: Vec<(ChamberTemperature, u32)> = (1..=set_point_power_ons)
         .flat_map(|p| {
             c.temperatures_c
                 .iter()
                 .map(move |&temperature_c| (ChamberTemperature::SetPoint { temperature_c }, p))
         })
         .collect();
+    let mut next_power_on = set_point_power_ons + 1;
     if let Some(ramp) = c.ramp {
-        records.push((ChamberTemperature::Ramp(ramp), c.power_ons.max(1) + 1));
+        records.push((ChamberTemperature::Ramp(ramp), next_power_on));
+        next_power_on += 1;
+    }
+    if let Some(program) = &c.program {
+        records.push((ChamberTemperature::Program(program.clone()), next_power_on));
     }
     records
 }
@@ -120,14 +145,17 @@ fn campaign_records(settings: &ChamberSettings) -> Vec<(ChamberTemperature, u32)
 /// Simulates and writes the campaign; returns the truth (also written to truth.json).
 pub fn run_chamber(settings: &ChamberSettings) -> Result<ChamberTruth, Failure> {
     use rayon::prelude::*;
-    let profile = load_profile(settings.profile.as_deref())?;
+    let profile = with_thermal_lag(
+        load_profile(settings.profile.as_deref())?,
+        settings.thermal_lag_s,
+    )?;
     create_folder(&settings.out)?;
     let plan = campaign_records(settings);
     let progress = crate::progress::bar(plan.len(), "simulating chamber records");
     let results: Vec<Result<RecordTruth, Failure>> = plan
         .par_iter()
         .map(|(temperature, power_on)| {
-            let record = chamber_record(settings, &profile, *temperature, *power_on);
+            let record = chamber_record(settings, &profile, temperature.clone(), *power_on);
             progress.inc(1);
             record
         })
@@ -164,6 +192,7 @@ fn chamber_record(
     power_on: u32,
 ) -> Result<RecordTruth, Failure> {
     let c = &settings.campaign;
+    let path = settings.out.join(record_path(&temperature, power_on));
     let run = ChamberRun {
         temperature,
         duration_s: match power_on {
@@ -178,7 +207,6 @@ fn chamber_record(
         seed: settings.seed,
     };
     let record = simulate_chamber_run(profile, &run).usage()?;
-    let path = settings.out.join(record_path(&temperature, power_on));
     if let Some(folder) = path.parent() {
         create_folder(folder)?;
     }
@@ -229,7 +257,10 @@ pub struct VesselFiles {
 
 /// The sensor profile and the vessel run that `settings` describe.
 pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun), Failure> {
-    let profile = load_profile(settings.profile.as_deref())?;
+    let profile = with_thermal_lag(
+        load_profile(settings.profile.as_deref())?,
+        settings.thermal_lag_s,
+    )?;
     let survey = &settings.survey;
     let motion = match &settings.motion {
         Some(path) => read_motion(path).data()?,
@@ -238,10 +269,10 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
     let temperature = match &settings.temperature_file {
         Some(path) => {
             let table = read_temperature_table(path).data()?;
-            SurveyTemperature::Table {
+            SurveyTemperature::Table(TemperatureProgram {
                 t_s: table.t_s,
                 temperature_c: table.temperature_c,
-            }
+            })
         }
         None => settings.temperature.clone(),
     };

@@ -13,6 +13,7 @@
 //! bias_tempco2_deg_s_per_c2 = -5e-5  # optional: curvature of bias(T)
 //! scale_factor_tempco_ppm_per_c = 40.0
 //! quantization_deg_s = 0.05
+//! thermal_lag_s = 120.0              # optional: the structure lags the temperature sensor
 //! bias_gauss_markov = [
 //!   { temperature_c = -40.0, correlation_time_s = 40.0, sigma_deg_h = 61.0 },
 //!   { temperature_c = 20.0, correlation_time_s = 150.0, sigma_deg_h = 40.6 },
@@ -108,6 +109,9 @@ struct GyroChannel {
     scale_factor_tempco_ppm_per_c: f64,
     #[serde(default)]
     quantization_deg_s: f64,
+    /// Thermal lag of the structure behind the temperature sensor, s.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    thermal_lag_s: f64,
     bias_gauss_markov: Vec<GyroPoint>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scale_factor_gauss_markov: Option<ScaleFactorGaussMarkov>,
@@ -139,6 +143,9 @@ struct AccelChannel {
     scale_factor_tempco_ppm_per_c: f64,
     #[serde(default)]
     quantization_mg: f64,
+    /// Thermal lag of the structure behind the temperature sensor, s.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    thermal_lag_s: f64,
     bias_gauss_markov: Vec<AccelPoint>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scale_factor_gauss_markov: Option<ScaleFactorGaussMarkov>,
@@ -153,6 +160,11 @@ struct AccelPoint {
 }
 
 const SQRT_H_IN_S: f64 = 60.0;
+
+/// True for a value left out of a written profile (its default).
+fn is_zero(value: &f64) -> bool {
+    *value == 0.0
+}
 
 impl GyroChannel {
     fn to_si(&self) -> ChannelProfile {
@@ -179,6 +191,7 @@ impl GyroChannel {
             scale_factor_temperature_coefficient_ppm_per_c: self.scale_factor_tempco_ppm_per_c,
             scale_factor_gauss_markov: self.scale_factor_gauss_markov,
             quantization_step: deg_to_rad(self.quantization_deg_s),
+            thermal_lag_s: self.thermal_lag_s,
         }
     }
 
@@ -194,6 +207,7 @@ impl GyroChannel {
             bias_tempco2_deg_s_per_c2: rad_to_deg(p.bias_temperature_quadratic_per_c2),
             scale_factor_tempco_ppm_per_c: p.scale_factor_temperature_coefficient_ppm_per_c,
             quantization_deg_s: rad_to_deg(p.quantization_step),
+            thermal_lag_s: p.thermal_lag_s,
             bias_gauss_markov: p
                 .bias_gauss_markov
                 .iter()
@@ -231,6 +245,7 @@ impl AccelChannel {
             scale_factor_temperature_coefficient_ppm_per_c: self.scale_factor_tempco_ppm_per_c,
             scale_factor_gauss_markov: self.scale_factor_gauss_markov,
             quantization_step: mg_to_m_per_s2(self.quantization_mg),
+            thermal_lag_s: self.thermal_lag_s,
         }
     }
 
@@ -246,6 +261,7 @@ impl AccelChannel {
             bias_tempco2_mg_per_c2: m_per_s2_to_mg(p.bias_temperature_quadratic_per_c2),
             scale_factor_tempco_ppm_per_c: p.scale_factor_temperature_coefficient_ppm_per_c,
             quantization_mg: m_per_s2_to_mg(p.quantization_step),
+            thermal_lag_s: p.thermal_lag_s,
             bias_gauss_markov: p
                 .bias_gauss_markov
                 .iter()

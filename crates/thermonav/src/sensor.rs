@@ -134,6 +134,11 @@ pub struct ChannelProfile {
     pub scale_factor_gauss_markov: Option<ScaleFactorGaussMarkov>,
     /// Quantisation step (one LSB), rad/s or m/s²; 0 for none.
     pub quantization_step: f64,
+    /// Thermal lag τ of the MEMS structure behind the temperature sensor, s: the structure's
+    /// temperature follows the sensor's through dT_s/dt = (T − T_s)/τ, and every temperature
+    /// term of the channel acts at T_s (to first order b(T − τ dT/dt)); 0 for none.
+    #[serde(default)]
+    pub thermal_lag_s: f64,
 }
 
 /// A whole sensor profile.
@@ -298,6 +303,7 @@ impl ChannelProfile {
             scale_factor_temperature_coefficient_ppm_per_c: 0.0,
             scale_factor_gauss_markov: None,
             quantization_step: 0.0,
+            thermal_lag_s: 0.0,
         }
     }
 
@@ -321,6 +327,7 @@ impl ChannelProfile {
             false,
         )?;
         check(channel, "quantization_step", self.quantization_step, false)?;
+        check(channel, "thermal_lag_s", self.thermal_lag_s, false)?;
         check(
             channel,
             "power_on_offset_sigma",
@@ -621,6 +628,7 @@ fn default_channel(channel: Channel) -> ChannelProfile {
             scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 40.0,
             scale_factor_gauss_markov: None,
             quantization_step: deg_to_rad(0.05),
+            thermal_lag_s: 0.0,
         },
         Sensor::Accelerometer => ChannelProfile {
             white_noise_density: vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(
@@ -641,6 +649,7 @@ fn default_channel(channel: Channel) -> ChannelProfile {
             scale_factor_temperature_coefficient_ppm_per_c: tempco_sign * 25.0,
             scale_factor_gauss_markov: None,
             quantization_step: mg_to_m_per_s2(1.0),
+            thermal_lag_s: 0.0,
         },
     }
 }

@@ -222,6 +222,7 @@ fn vessel_settings(args: &DemoArgs, p: &Plan) -> VesselSettings {
         },
         unit: SimulatedUnit::default(),
         temperature_file: None,
+        thermal_lag_s: None,
         motion: None,
         profile: None,
         seed: args.seed,

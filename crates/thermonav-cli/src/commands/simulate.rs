@@ -1,14 +1,16 @@
 //! `thermonav simulate`: chamber records, a vessel survey, or the built-in profile as TOML.
 
 use crate::args::{ChamberArgs, ProfileArgs, SimulateArgs, SimulateWhat, VesselArgs};
-use crate::campaign::{ChamberTruth, VesselSummary, run_chamber, simulate_vessel_files};
+use crate::campaign::{
+    ChamberTruth, RecordTruth, VesselSummary, run_chamber, simulate_vessel_files,
+};
 use crate::failure::{Classify, Failure};
 use crate::report::{print_json, print_rows};
 use crate::settings::simulation::{chamber, vessel};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::sensor::adis16364_like;
-use thermonav::sim::chamber::RunTruth;
+use thermonav::sim::chamber::{ChamberTemperature, RunTruth};
 use thermonav_io::profile::profile_to_toml;
 use thermonav_io::write_atomically;
 
@@ -26,16 +28,52 @@ fn report_chamber(args: &ChamberArgs, truth: &ChamberTruth) -> Result<(), Failur
     if args.json {
         return print_json(truth);
     }
-    println!(
-        "{} records of {} s at {} Hz written to {} (profile: {})",
-        truth.files.len(),
-        args.duration_s,
-        args.rate_hz,
-        args.out.display(),
-        truth.profile
-    );
-    print_truth_table(truth);
+    if !truth.files.is_empty() {
+        println!(
+            "{} records of {} s at {} Hz written to {} (profile: {})",
+            truth.files.len(),
+            args.duration_s,
+            args.rate_hz,
+            args.out.display(),
+            truth.profile
+        );
+        print_truth_table(truth);
+    }
+    for record in &truth.further_records {
+        print_further_record(record, args.rate_hz);
+    }
     Ok(())
+}
+
+/// One line on a record beyond the set points: its file, its temperatures and its lag.
+fn print_further_record(record: &RecordTruth, rate_hz: f64) {
+    let lags: Vec<String> = record
+        .truth
+        .channels
+        .iter()
+        .map(|(c, t)| format!("{} {} s", c.name(), t.thermal_lag_s))
+        .collect();
+    println!(
+        "{} ({}, power-on {}, {rate_hz} Hz; thermal lag {})",
+        record.file.display(),
+        chamber_words(&record.truth.chamber),
+        record.truth.power_on,
+        lags.join(", ")
+    );
+}
+
+/// The chamber temperature of a record, in words.
+fn chamber_words(chamber: &ChamberTemperature) -> String {
+    match chamber {
+        ChamberTemperature::SetPoint { temperature_c } => format!("held at {temperature_c} °C"),
+        ChamberTemperature::Ramp(r) => format!(
+            "ramp {} to {} °C at {} °C/min",
+            r.start_c, r.end_c, r.rate_c_per_min
+        ),
+        ChamberTemperature::Program(p) => {
+            format!("program of {} rows over {} s", p.t_s.len(), p.end_s())
+        }
+    }
 }
 
 /// The true correlation time and sigma of every channel at every temperature.

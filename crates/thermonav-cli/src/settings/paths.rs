@@ -28,7 +28,10 @@ impl Io {
     }
 
     /// The files of the optional inputs that were given, each named by its option.
-    pub fn optional_inputs(self, options: [(&'static str, Option<&PathBuf>); 2]) -> Self {
+    pub fn optional_inputs<const N: usize>(
+        self,
+        options: [(&'static str, Option<&PathBuf>); N],
+    ) -> Self {
         options
             .into_iter()
             .filter_map(|(option, path)| Some((option, path?)))

@@ -7,8 +7,10 @@ use anyhow::anyhow;
 use std::path::PathBuf;
 use thermonav::sim::chamber::{CampaignSettings, Ramp};
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::temperature_program::TemperatureProgram;
 use thermonav::sim::unit::SimulatedUnit;
 use thermonav::sim::vessel::{SurveySettings, SurveyTemperature};
+use thermonav_io::temperature_table::read_temperature_table;
 
 /// A chamber campaign to simulate and where to write it.
 #[derive(Debug, Clone)]
@@ -25,12 +27,31 @@ pub struct ChamberSettings {
     pub seed: u64,
     /// The unit in the chamber.
     pub unit: SimulatedUnit,
+    /// Every channel's thermal lag, s, instead of the profile's.
+    pub thermal_lag_s: Option<f64>,
 }
 
 /// Resolves `simulate chamber`.
 pub fn chamber(args: &ChamberArgs) -> Result<ChamberSettings, Failure> {
+    profile_io(args.profile.as_ref())
+        .optional_inputs([("--temperature-file", args.temperature_file.as_ref())])
+        .output_folder("chamber folder", &args.out)
+        .check()?;
+    let program = args
+        .temperature_file
+        .as_ref()
+        .map(|path| read_temperature_table(path).data())
+        .transpose()?
+        .map(|table| TemperatureProgram {
+            t_s: table.t_s,
+            temperature_c: table.temperature_c,
+        });
     let campaign = CampaignSettings {
-        temperatures_c: set_points(&args.temperatures_c)?,
+        temperatures_c: match program {
+            Some(_) => Vec::new(),
+            None => set_points(&args.temperatures_c)?,
+        },
+        program,
         duration_s: args.duration_s,
         rate_hz: args.rate_hz,
         jitter_s: args.jitter_us * 1e-6,
@@ -39,15 +60,28 @@ pub fn chamber(args: &ChamberArgs) -> Result<ChamberSettings, Failure> {
         ramp: args.ramp.as_deref().map(ramp).transpose()?,
         ..CampaignSettings::default()
     };
-    profile_io(args.profile.as_ref())
-        .output_folder("chamber folder", &args.out)
-        .check()?;
     let mut settings =
         chamber_settings(args.out.clone(), campaign, args.profile.clone(), args.seed)?;
     settings.unit = SimulatedUnit {
         serial: args.unit_serial,
     };
+    settings.thermal_lag_s = thermal_lag(args.thermal_lag_s)?;
     Ok(settings)
+}
+
+/// Longest thermal lag `--thermal-lag-s` takes, s (a day: far beyond any MEMS package).
+pub const MAX_THERMAL_LAG_S: f64 = 86_400.0;
+
+/// `--thermal-lag-s`: 0 to [`MAX_THERMAL_LAG_S`] s.
+fn thermal_lag(lag_s: Option<f64>) -> Result<Option<f64>, Failure> {
+    match lag_s {
+        Some(v) if !(v.is_finite() && (0.0..=MAX_THERMAL_LAG_S).contains(&v)) => {
+            Err(Failure::Usage(anyhow!(
+                "--thermal-lag-s {v}: give 0 to {MAX_THERMAL_LAG_S} s"
+            )))
+        }
+        _ => Ok(lag_s),
+    }
 }
 
 /// Most power-ons a campaign repeats (each one repeats every set point).
@@ -119,6 +153,7 @@ pub fn chamber_settings(
         profile,
         seed,
         unit: SimulatedUnit::default(),
+        thermal_lag_s: None,
     })
 }
 
@@ -162,6 +197,8 @@ pub struct VesselSettings {
     pub temperature_file: Option<PathBuf>,
     /// A motion-definition file instead of the harbour survey.
     pub motion: Option<PathBuf>,
+    /// Every channel's thermal lag, s, instead of the profile's.
+    pub thermal_lag_s: Option<f64>,
     /// Sensor profile (TOML); none: the built-in one.
     pub profile: Option<PathBuf>,
     /// Seed of every draw.
@@ -201,6 +238,7 @@ pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
         survey,
         temperature_file: args.temperature_file.clone(),
         motion: args.motion.clone(),
+        thermal_lag_s: thermal_lag(args.thermal_lag_s)?,
         profile: args.profile.clone(),
         seed: args.seed,
     })

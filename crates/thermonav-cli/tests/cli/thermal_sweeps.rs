@@ -492,3 +492,82 @@ fn a_dataflash_sweep_alone_calibrates_like_its_csv() {
     assert_eq!(b["thermal"]["legs"].as_array().unwrap().len(), 3);
     assert_same_calibration(&a, &b);
 }
+
+/// A quiet profile (white noise and a Gauss-Markov bias well below the lag's effect, a linear
+/// bias in T on every channel) as TOML.
+fn quiet_profile_toml() -> String {
+    let mut text = String::from("name = \"quiet\"\nreference_temperature_c = 25.0\n");
+    for c in ["gx", "gy", "gz"] {
+        let _ = write!(
+            text,
+            "[channels.{c}]\nwhite_noise_deg_per_sqrt_h = 0.5\nbias_tempco_deg_s_per_c = 0.01\n\
+             bias_gauss_markov = [{{ temperature_c = 20.0, correlation_time_s = 100.0, sigma_deg_h = 0.5 }}]\n"
+        );
+    }
+    for c in ["ax", "ay", "az"] {
+        let _ = write!(
+            text,
+            "[channels.{c}]\nwhite_noise_m_s_per_sqrt_h = 0.02\nbias_tempco_mg_per_c = 0.05\n\
+             bias_gauss_markov = [{{ temperature_c = 20.0, correlation_time_s = 100.0, sigma_mg = 0.005 }}]\n"
+        );
+    }
+    text
+}
+
+// `simulate chamber --temperature-file` replays a chamber program (cool, heat, cool at
+// 2 °C/min with 10 min dwells) with the unit's structure lagging by `--thermal-lag-s`; the
+// truth says the lag, the record follows the program, and `characterize --sweep` finds the
+// lag of every gyro with an interval that holds the truth (the lag moves a gyro's bias by
+// 36 deg/h per °C × 4 °C, against block noise of about 6 deg/h).
+#[test]
+fn a_replayed_chamber_program_with_a_lagging_unit_gives_its_lag_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = write_file(
+        dir.path(),
+        "program.csv",
+        "t_s,temp_c\n0,25\n900,-5\n1500,-5\n3300,55\n3900,55\n4800,25\n5400,25\n",
+    );
+    let profile = write_file(dir.path(), "quiet.toml", &quiet_profile_toml());
+    let out = dir.path().join("campaign");
+    let (code, stdout, err) = outcome(&thermonav(&[
+        "simulate",
+        "chamber",
+        "--out",
+        arg(&out),
+        "--temperature-file",
+        arg(&program),
+        "--rate-hz",
+        "2",
+        "--thermal-lag-s",
+        "120",
+        "--profile",
+        arg(&profile),
+    ]));
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("imu_program.csv"), "{stdout}");
+    let truth = bank_json(&out.join("truth.json"));
+    let record = &truth["further_records"][0];
+    assert_eq!(record["truth"]["chamber"]["kind"], "program");
+    assert_eq!(record["truth"]["channels"]["az"]["thermal_lag_s"], 120.0);
+    assert!(truth["files"].as_array().unwrap().is_empty());
+    let bank = dir.path().join("bank.json");
+    let (code, stdout, err) = characterize_sweeps(&[&out.join("imu_program.csv")], &bank);
+    assert_eq!(code, 0, "{stdout}{err}");
+    let thermal = &bank_json(&bank)["thermal"];
+    assert_eq!(thermal["legs"].as_array().unwrap().len(), 3);
+    for c in ["gx", "gy", "gz"] {
+        let lag = &thermal["channels"][c]["lagged"]["lag"];
+        let interval = &lag["tau_interval_s"];
+        let (low, high) = (interval[0].as_f64().unwrap(), interval[1].as_f64().unwrap());
+        assert!(low <= -120.0 && -120.0 <= high, "{c}: {lag}");
+    }
+    let refused = |extra: &[&str]| {
+        let mut args = vec!["simulate", "chamber", "--out", arg(&out)];
+        args.extend_from_slice(extra);
+        outcome(&thermonav(&args))
+    };
+    let (code, _, err) = refused(&["--thermal-lag-s", "-1"]);
+    assert!(code == 2 && err.contains("--thermal-lag-s"), "{err}");
+    let (code, _, err) = refused(&["--temperature-file", arg(&program), "--ramp", "0:10:1"]);
+    assert!(code == 2 && err.contains("--ramp"), "{err}");
+}

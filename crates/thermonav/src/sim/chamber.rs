@@ -10,13 +10,15 @@
 //! optional Gauss-Markov term, in ppm), b_unit the unit's fixed bias and b_p the power-on's
 //! offset (`sim::unit`: the same unit in every run, a new offset at each power-on), c₁, c₂ the
 //! bias temperature coefficients, ΔT_k = T_k − T_ref with T_k the chamber temperature (a set
-//! point, or a linear ramp, plus a slow Gauss-Markov wander), b_GM
+//! point, a linear ramp or a replayed program, plus a slow Gauss-Markov wander; where the
+//! profile gives a thermal lag, the structure's first-order lag of it), b_GM
 //! the temperature-dependent Gauss-Markov bias, b_RW a bias random walk and n_k white noise of
 //! density N averaged over the actual interval (variance N²/dt_k). Every process steps with
 //! the actual dt_k of its sample.
 
 use super::clock::{ClockError, SampleClock};
 use super::errors::{ChannelErrors, gauss_markov_step, standard_normal};
+use super::temperature_program::TemperatureProgram;
 use super::unit::SimulatedUnit;
 use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
@@ -70,6 +72,9 @@ pub struct CampaignSettings {
     pub repeat_duration_s: Option<f64>,
     /// A temperature sweep of the same unit after the set points, in a power-on of its own.
     pub ramp: Option<Ramp>,
+    /// A chamber program replayed after the set points (none with the default plan), in a
+    /// power-on of its own.
+    pub program: Option<TemperatureProgram>,
 }
 
 impl Default for CampaignSettings {
@@ -87,6 +92,7 @@ impl Default for CampaignSettings {
             power_ons: 1,
             repeat_duration_s: None,
             ramp: None,
+            program: None,
         }
     }
 }
@@ -118,7 +124,7 @@ impl Ramp {
 }
 
 /// The chamber's temperature during a run.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum ChamberTemperature {
     /// Held at a set point, °C.
@@ -128,6 +134,9 @@ pub enum ChamberTemperature {
     },
     /// Swept linearly.
     Ramp(Ramp),
+    /// A chamber program replayed: linear between its rows, its end values held; the
+    /// record lasts to its last row.
+    Program(TemperatureProgram),
 }
 
 impl ChamberTemperature {
@@ -137,6 +146,15 @@ impl ChamberTemperature {
         match self {
             Self::SetPoint { temperature_c } => *temperature_c,
             Self::Ramp(r) => 0.5 * (r.start_c + r.end_c),
+            Self::Program(p) => {
+                let (low, high) = p
+                    .temperature_c
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                        (lo.min(t), hi.max(t))
+                    });
+                0.5 * (low + high)
+            }
         }
     }
 
@@ -145,6 +163,7 @@ impl ChamberTemperature {
         match self {
             Self::SetPoint { temperature_c } => *temperature_c,
             Self::Ramp(r) => r.temperature_at(t_s),
+            Self::Program(p) => p.at(t_s),
         }
     }
 
@@ -153,6 +172,7 @@ impl ChamberTemperature {
         match self {
             Self::SetPoint { temperature_c } => temperature_c.to_string(),
             Self::Ramp(_) => "ramp".into(),
+            Self::Program(_) => "program".into(),
         }
     }
 }
@@ -202,6 +222,9 @@ pub struct ChannelTruth {
     pub true_signal: f64,
     /// Quantisation step.
     pub quantization_step: f64,
+    /// Thermal lag of the structure behind the temperature sensor, s (the recorded
+    /// temperature is the sensor's; the temperature terms act at the structure's).
+    pub thermal_lag_s: f64,
 }
 
 /// True Gauss-Markov parameters.
@@ -334,24 +357,27 @@ pub fn simulate_chamber_run(
         series,
         truth: RunTruth {
             temperature_c: nominal_c,
-            chamber: run.temperature,
+            chamber: run.temperature.clone(),
             power_on,
             channels,
         },
     })
 }
 
-/// The record's length: the ramp's for a sweep, else the run's.
+/// The record's length: the ramp's for a sweep, the program's to its last row, else the
+/// run's.
 fn run_duration_s(run: &ChamberRun) -> f64 {
-    match run.temperature {
+    match &run.temperature {
         ChamberTemperature::Ramp(r) => r.duration_s(),
+        ChamberTemperature::Program(p) => p.end_s(),
         ChamberTemperature::SetPoint { .. } => run.duration_s,
     }
 }
 
 fn validate_run(run: &ChamberRun) -> Result<(), ChamberError> {
     let w = run.wander;
-    let ramp_ok = match run.temperature {
+    let ramp_ok = match &run.temperature {
+        ChamberTemperature::Program(p) => p.is_valid() && p.end_s() > 0.0,
         ChamberTemperature::Ramp(r) => {
             r.start_c.is_finite()
                 && r.end_c.is_finite()
@@ -444,6 +470,7 @@ fn channel_truth(
         repeatable_bias: constant.unit + temperature_bias,
         true_signal,
         quantization_step: p.quantization_step,
+        thermal_lag_s: p.thermal_lag_s,
     }
 }
 
@@ -571,6 +598,71 @@ mod tests {
                 rho[lag]
             );
         }
+    }
+
+    #[test]
+    fn a_lagging_structure_reads_the_bias_of_the_closed_form_lag_on_a_ramp() {
+        // A noiseless channel with b = c₁ (T_s − T_ref) on a ramp T(t) = T₀ + r t that starts
+        // with the structure at T₀: the first-order lag has the closed form
+        // T_s(t) = T(t) − τ r (1 − e^(−t/τ)). The simulator steps it exactly for a linear T, so
+        // the reading equals the closed form to rounding (1e-12 of a bias of about 6e-3).
+        let tau_s = 150.0;
+        let c1 = 1e-4;
+        let mut profile = bare_profile(0.0, 1.0, 1e-30);
+        for p in profile.channels.values_mut() {
+            p.bias_temperature_coefficient_per_c = c1;
+            p.thermal_lag_s = tau_s;
+        }
+        let ramp = Ramp {
+            start_c: 0.0,
+            end_c: 60.0,
+            rate_c_per_min: 2.0,
+        };
+        let mut chamber = run(4.0, 0.0, 1);
+        chamber.temperature = ChamberTemperature::Ramp(ramp);
+        chamber.wander.sigma_c = 0.0;
+        let rec = simulate_chamber_run(&profile, &chamber).unwrap();
+        let u = static_signal(chamber.site)[0];
+        let start = rec.series.time[0];
+        let r = ramp.rate_c_per_min / 60.0;
+        let mut checked = 0;
+        for (k, &t) in rec.series.time.iter().enumerate().step_by(37) {
+            let t_s = t.since(start).as_seconds();
+            let sensor = ramp.temperature_at(t_s);
+            let structure = sensor - tau_s * r * (1.0 - (-t_s / tau_s).exp());
+            let expected = u + c1 * (structure - profile.reference_temperature_c);
+            let got = rec.series.channel(Channel::Gx)[k];
+            assert!(
+                (got - expected).abs() < 1e-12,
+                "t {t_s}: {got} vs {expected}"
+            );
+            assert!((rec.series.temperature_c.as_ref().unwrap()[k] - sensor).abs() < 1e-9);
+            checked += 1;
+        }
+        assert!(checked > 100);
+        assert_eq!(rec.truth.channels[&Channel::Gx].thermal_lag_s, tau_s);
+    }
+
+    #[test]
+    fn a_program_is_replayed_to_its_last_row() {
+        // Cool 20 → −10 °C in 600 s, dwell 300 s: the record lasts 900 s and its temperature
+        // column (no wander) is the program's piecewise-linear value.
+        let program = TemperatureProgram {
+            t_s: vec![0.0, 600.0, 900.0],
+            temperature_c: vec![20.0, -10.0, -10.0],
+        };
+        let mut chamber = run(2.0, 0.0, 4);
+        chamber.temperature = ChamberTemperature::Program(program.clone());
+        chamber.wander.sigma_c = 0.0;
+        let rec = simulate_chamber_run(&adis16364_like(), &chamber).unwrap();
+        let time = &rec.series.time;
+        let span = time.last().unwrap().since(time[0]).as_seconds();
+        assert!((span - 900.0).abs() <= 0.5, "{span}");
+        for (t, temp) in time.iter().zip(rec.series.temperature_c.as_ref().unwrap()) {
+            let expected = program.at(t.since(time[0]).as_seconds());
+            assert!((temp - expected).abs() < 1e-9, "{temp} vs {expected}");
+        }
+        assert_eq!(rec.truth.temperature_c, 5.0);
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! The error process of one inertial channel, stepped sample by sample with the actual dt.
 //!
 //! y_k = (1 + s_k·1e-6) u_k + b_c + c₁ ΔT_k + c₂ ΔT_k² + b_GM,k + b_RW,k + n_k, then quantised,
-//! where ΔT_k = T_k − T_ref, s_k is the scale-factor error in ppm (temperature term plus an
+//! where ΔT_k = T_k − T_ref with T_k the temperature of the MEMS structure (the sensor's
+//! temperature, or where the profile gives a thermal lag τ its first-order lag, see
+//! `StructureLag`), s_k is the scale-factor error in ppm (temperature term plus an
 //! optional Gauss-Markov term), b_c the constant bias of this power-on (the unit's fixed bias
 //! plus the power-on's offset, `sim::unit`), c₁ and c₂ the bias temperature coefficients, b_GM
 //! the Gauss-Markov bias, whose Tc and σ follow the temperature (re-read from the profile when
@@ -58,7 +60,44 @@ pub struct ChannelErrors<'a> {
     bias_gm: f64,
     bias_rw: f64,
     scale_gm_ppm: f64,
+    lag: StructureLag,
     started: bool,
+}
+
+/// The temperature of the MEMS structure behind a lagging temperature sensor: a first-order
+/// lag dT_s/dt = (T − T_s)/τ, stepped exactly for a temperature linear between samples:
+/// T_s,k = T_k − τ s + (T_s,k−1 − T_k−1 + τ s) e^(−dt/τ) with s = (T_k − T_k−1)/dt.
+#[derive(Debug, Clone, Copy)]
+struct StructureLag {
+    tau_s: f64,
+    sensor_c: f64,
+    structure_c: f64,
+}
+
+impl StructureLag {
+    /// A structure at the sensor's temperature `temperature_c` (a unit switched on at rest).
+    fn settled(tau_s: f64, temperature_c: f64) -> Self {
+        Self {
+            tau_s,
+            sensor_c: temperature_c,
+            structure_c: temperature_c,
+        }
+    }
+
+    /// The structure's temperature after `dt_s` in which the sensor's went linearly to
+    /// `temperature_c`, °C.
+    fn step(&mut self, dt_s: f64, temperature_c: f64) -> f64 {
+        self.structure_c = if self.tau_s > 0.0 && dt_s > 0.0 {
+            let slope = (temperature_c - self.sensor_c) / dt_s;
+            let offset = self.tau_s * slope;
+            let decay = (-dt_s / self.tau_s).exp();
+            temperature_c - offset + (self.structure_c - self.sensor_c + offset) * decay
+        } else {
+            temperature_c
+        };
+        self.sensor_c = temperature_c;
+        self.structure_c
+    }
 }
 
 impl<'a> ChannelErrors<'a> {
@@ -90,6 +129,7 @@ impl<'a> ChannelErrors<'a> {
             bias_gm,
             bias_rw: 0.0,
             scale_gm_ppm,
+            lag: StructureLag::settled(profile.thermal_lag_s, temperature_c),
             started: false,
         }
     }
@@ -104,10 +144,17 @@ impl<'a> ChannelErrors<'a> {
         self.constant_bias
     }
 
-    /// The measurement of true value `u` over an interval of `dt_s` at temperature
-    /// `temperature_c`; the processes step first (except for the very first sample).
-    pub fn measure(&mut self, u: f64, dt_s: f64, temperature_c: f64, rng: &mut impl Rng) -> f64 {
+    /// The measurement of true value `u` over an interval of `dt_s` at the sensor's
+    /// temperature `sensor_c` (the channel's temperature terms act at its structure's, which
+    /// lags by the profile's `thermal_lag_s`); the processes step first (except for the very
+    /// first sample).
+    pub fn measure(&mut self, u: f64, dt_s: f64, sensor_c: f64, rng: &mut impl Rng) -> f64 {
         let p = self.profile;
+        let temperature_c = if self.started {
+            self.lag.step(dt_s, sensor_c)
+        } else {
+            self.lag.structure_c
+        };
         if (temperature_c - self.bias_read_at_c).abs() > BIAS_PARAMETER_STEP_C {
             self.bias = p.bias_at(temperature_c);
             self.bias_read_at_c = temperature_c;

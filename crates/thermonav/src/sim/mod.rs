@@ -16,5 +16,6 @@ pub mod clock;
 pub mod errors;
 pub mod ideal_imu;
 pub mod motion;
+pub mod temperature_program;
 pub mod unit;
 pub mod vessel;

@@ -9,6 +9,7 @@ use super::motion::{
     Harmonic, MotionDefinition, MotionError, MotionSegment, PitchModel, StartPoint, Trajectory,
     WaveMotion, generate_trajectory_at,
 };
+use super::temperature_program::TemperatureProgram;
 use super::unit::SimulatedUnit;
 use crate::frames::{Body, Ned, Vector};
 use crate::gnss::{GnssFix, HeadingObservation};
@@ -205,12 +206,7 @@ pub enum SurveyTemperature {
     },
     /// A table of (time since the start, temperature), interpolated linearly, the end values
     /// held outside it.
-    Table {
-        /// Times since the start, s, strictly increasing.
-        t_s: Vec<f64>,
-        /// Temperatures, °C.
-        temperature_c: Vec<f64>,
-    },
+    Table(TemperatureProgram),
 }
 
 impl SurveyTemperature {
@@ -223,10 +219,7 @@ impl SurveyTemperature {
                 settled_c,
                 time_constant_s,
             } => settled_c + (start_c - settled_c) * (-t_s.max(0.0) / time_constant_s).exp(),
-            Self::Table {
-                t_s: ts,
-                temperature_c,
-            } => table_value(ts, temperature_c, t_s),
+            Self::Table(program) => program.at(t_s),
         }
     }
 
@@ -245,25 +238,7 @@ impl SurveyTemperature {
                     && time_constant_s.is_finite()
                     && *time_constant_s > 0.0
             }
-            Self::Table { t_s, temperature_c } => {
-                !t_s.is_empty()
-                    && t_s.len() == temperature_c.len()
-                    && t_s.iter().chain(temperature_c).all(|v| v.is_finite())
-                    && t_s.windows(2).all(|w| w[0] < w[1])
-            }
-        }
-    }
-}
-
-/// Linear interpolation in a table with increasing `xs`, end values held.
-fn table_value(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let k = xs.partition_point(|&v| v <= x);
-    match k {
-        0 => ys[0],
-        k if k == xs.len() => ys[k - 1],
-        k => {
-            let w = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
-            ys[k - 1] + w * (ys[k] - ys[k - 1])
+            Self::Table(program) => program.is_valid(),
         }
     }
 }
