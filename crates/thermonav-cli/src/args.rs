@@ -183,6 +183,11 @@ pub struct EvaluateArgs {
     /// temperature, and the profile scheduled by temperature.
     #[arg(long, requires = "imu")]
     pub profile: Option<PathBuf>,
+    /// The thermal calibration of this bank (one from `characterize --sweep` alone, say)
+    /// with the noise models of --bank, whose own calibration it replaces; refused when the
+    /// two differ in channels or units.
+    #[arg(long, requires = "imu")]
+    pub thermal_from: Option<PathBuf>,
     /// An outside solution (repeatable) scored with the same outage metrics, as a row of kind
     /// "outside" beside our candidates (not ranked). The scoring assumes that the solution was
     /// computed with GNSS withheld in the same --outages, which must then be given.
@@ -338,6 +343,11 @@ pub struct IntegrateArgs {
     /// sensor without a chamber campaign, from its data sheet or a peer's configuration.
     #[arg(long)]
     pub profile: Option<PathBuf>,
+    /// The thermal calibration of this bank (one from `characterize --sweep` alone, say)
+    /// with the noise model of --bank or --profile: the record is compensated with it; any
+    /// calibration of --bank is replaced. Refused when the two differ in channels or units.
+    #[arg(long)]
+    pub thermal_from: Option<PathBuf>,
     /// Use the bank's model at this temperature, °C (the paper's "model of temperature T").
     #[arg(
         long,

@@ -5,13 +5,13 @@
 
 use crate::campaign::load_profile;
 use crate::failure::{Classify, Failure};
-use crate::inputs::read_bank;
+use crate::inputs::{read_bank, read_thermal_calibration};
 use crate::settings::navigation::{IntegrateSettings, NoiseSource, SolutionFiles};
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::CandidateSource;
-use thermonav::imu::ImuSeries;
+use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::nav::run::{
     NoiseModel, PreparedRun, RunError, RunInput, RunOutcome, RunReport, Start,
     operating_temperature_c, prepare,
@@ -22,6 +22,7 @@ use thermonav::nav::time_offset::{TimeOffsetEstimate, estimate_time_offset, shif
 use thermonav::sensor::SensorProfile;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
+use thermonav::stoch::thermal::join::{ThermalJoinError, check_join};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::solution::{write_innovations_file, write_solution_states_file};
 use thermonav_io::{
@@ -30,7 +31,7 @@ use thermonav_io::{
 
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
-    let noise = load_noise(&settings.noise)?;
+    let noise = load_noise(&settings.noise, settings.thermal_from.as_deref())?;
     // The offset search runs the filter many times on the record read once.
     let survey = match settings.in_memory || settings.time_offset_search.is_some() {
         true => None,
@@ -115,17 +116,49 @@ fn prefix(path: &Path) -> String {
 
 /// The noise model's source, read.
 pub enum LoadedNoise {
-    /// A bank.
+    /// A bank (with the calibration of `--thermal-from`, when given).
     Bank(ModelBank),
     /// A sensor profile.
     Profile(SensorProfile),
+    /// A sensor profile with the calibration of `--thermal-from`.
+    ProfileWithThermal(SensorProfile, ThermalCalibration),
 }
 
-/// Reads the bank or the profile.
-pub fn load_noise(noise: &NoiseSource) -> Result<LoadedNoise, Failure> {
-    match noise {
-        NoiseSource::Bank(path) => Ok(LoadedNoise::Bank(read_bank(path)?)),
-        NoiseSource::Profile(path) => Ok(LoadedNoise::Profile(load_profile(Some(path))?)),
+/// Reads the bank or the profile, and joins the thermal calibration of `thermal_from` to it.
+pub fn load_noise(
+    noise: &NoiseSource,
+    thermal_from: Option<&Path>,
+) -> Result<LoadedNoise, Failure> {
+    let thermal = thermal_from.map(read_thermal_calibration).transpose()?;
+    let refused = |e: ThermalJoinError| {
+        let (option, path) = match noise {
+            NoiseSource::Bank(p) => ("--bank", p),
+            NoiseSource::Profile(p) => ("--profile", p),
+        };
+        let from = thermal_from.map_or_else(String::new, |p| p.display().to_string());
+        Failure::Usage(anyhow!(
+            "--thermal-from {from} cannot join {option} {}: {e}",
+            path.display()
+        ))
+    };
+    match (noise, thermal) {
+        (NoiseSource::Bank(path), None) => Ok(LoadedNoise::Bank(read_bank(path)?)),
+        (NoiseSource::Bank(path), Some(thermal)) => Ok(LoadedNoise::Bank(
+            read_bank(path)?
+                .with_thermal_from(thermal)
+                .map_err(refused)?,
+        )),
+        (NoiseSource::Profile(path), None) => Ok(LoadedNoise::Profile(load_profile(Some(path))?)),
+        (NoiseSource::Profile(path), Some(thermal)) => {
+            let profile = load_profile(Some(path))?;
+            let units = Channel::ALL
+                .iter()
+                .filter(|c| profile.channel(**c).is_some())
+                .map(|&c| (c, c.si_unit(SampleKind::Rates).to_string()))
+                .collect();
+            check_join(&units, &thermal).map_err(refused)?;
+            Ok(LoadedNoise::ProfileWithThermal(profile, thermal))
+        }
     }
 }
 
@@ -134,7 +167,9 @@ impl LoadedNoise {
     pub fn source(&self) -> CandidateSource<'_> {
         match self {
             LoadedNoise::Bank(bank) => CandidateSource::Bank(bank),
-            LoadedNoise::Profile(profile) => CandidateSource::Profile(profile),
+            LoadedNoise::Profile(profile) | LoadedNoise::ProfileWithThermal(profile, _) => {
+                CandidateSource::Profile(profile)
+            }
         }
     }
 
@@ -143,6 +178,9 @@ impl LoadedNoise {
         match self {
             LoadedNoise::Bank(bank) => NoiseModel::Bank(bank),
             LoadedNoise::Profile(profile) => NoiseModel::Profile(profile),
+            LoadedNoise::ProfileWithThermal(profile, thermal) => {
+                NoiseModel::ProfileWithThermal(profile, thermal)
+            }
         }
     }
 
@@ -193,6 +231,9 @@ pub struct Summary {
     gnss: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
+    /// `--thermal-from`: the bank whose thermal calibration compensated the record.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    thermal_from: Option<PathBuf>,
     /// How the IMU record was read: `streamed` (bounded memory, the files written as the
     /// filter went) or `whole` (a bank's thermal compensation, or `--in-memory`).
     pub imu_reading: ImuReading,
@@ -232,6 +273,7 @@ pub(crate) fn summarize(
         gnss: settings.gnss.clone(),
         bank,
         profile,
+        thermal_from: settings.thermal_from.clone(),
         imu_reading,
         time_offset: None,
         run,

@@ -91,6 +91,7 @@ fn fingerprint(s: &EvaluateSettings, run: &FilterRun) -> Result<BTreeMap<String,
         ("--gnss", Some(&run.files.gnss)),
         ("--reference", Some(&run.files.reference)),
         (noise_name, Some(noise)),
+        ("--thermal-from", run.thermal_from.as_ref()),
         ("--truth", s.truth.as_ref()),
         ("--datasheet", s.datasheet.as_ref()),
     ];

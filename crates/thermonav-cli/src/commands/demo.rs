@@ -453,6 +453,7 @@ fn solution_settings(
             process_noise_scale: 1.0,
         },
         initial_from: Some(files.reference.clone()),
+        thermal_from: None,
         outputs: SolutionFiles::beside(&out.join("solution/solution.csv")),
         in_memory: false,
         time_offset_search: None,

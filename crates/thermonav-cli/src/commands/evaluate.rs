@@ -111,7 +111,7 @@ fn run_filters(
 
 /// The tournament of `s` and its main scenario, from the files.
 fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenario), Failure> {
-    let noise = load_noise(&run.noise)?;
+    let noise = load_noise(&run.noise, run.thermal_from.as_deref())?;
     let scale = ScaleFactorPrior::default();
     let truth = read_truth(s.truth.as_deref(), &scale)?;
     let records = RecordPlan {

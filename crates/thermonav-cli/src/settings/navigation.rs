@@ -114,6 +114,8 @@ pub struct IntegrateSettings {
     pub run: RunSettings,
     /// Start from this reference trajectory instead of aligning.
     pub initial_from: Option<PathBuf>,
+    /// `--thermal-from`: the bank whose thermal calibration joins the noise model.
+    pub thermal_from: Option<PathBuf>,
     /// What is written.
     pub outputs: SolutionFiles,
     /// Read the record whole and keep the solution in memory (`--in-memory`) rather than
@@ -139,11 +141,10 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     let io = Io::new()
         .input("--imu", &args.imu)
         .input("--gnss", &args.gnss);
-    let io = with_noise(io, &noise);
-    let io = match &args.initial_from {
-        Some(path) => io.input("--initial-from", path),
-        None => io,
-    };
+    let io = with_noise(io, &noise).optional_inputs([
+        ("--initial-from", args.initial_from.as_ref()),
+        ("--thermal-from", args.thermal_from.as_ref()),
+    ]);
     let io = outputs
         .named()
         .into_iter()
@@ -164,6 +165,7 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
             process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
         },
         initial_from: args.initial_from.clone(),
+        thermal_from: args.thermal_from.clone(),
         outputs,
         in_memory: args.in_memory,
         time_offset_search: time_offset_search(args)?,
@@ -359,6 +361,8 @@ pub struct FilterRun {
     pub files: ScenarioFiles,
     /// The candidates' source: a bank or a sensor profile.
     pub noise: NoiseSource,
+    /// `--thermal-from`: the bank whose thermal calibration joins the noise models.
+    pub thermal_from: Option<PathBuf>,
 }
 
 /// One outside solution to score.
@@ -440,7 +444,16 @@ fn filter_run(args: &EvaluateArgs, reference: &Path) -> Result<Option<FilterRun>
         reference: reference.to_path_buf(),
     };
     let noise = noise_source(&args.bank, &args.profile)?;
-    Ok(Some(FilterRun { files, noise }))
+    if args.thermal_from.is_some() && matches!(noise, NoiseSource::Profile(_)) {
+        return Err(Failure::Usage(anyhow!(
+            "--thermal-from with --profile: the tournament's compensated candidates are a bank's entries; give --bank (integrate takes --profile with --thermal-from)"
+        )));
+    }
+    Ok(Some(FilterRun {
+        files,
+        noise,
+        thermal_from: args.thermal_from.clone(),
+    }))
 }
 
 /// The --solution files with their formats and labels.
@@ -518,6 +531,7 @@ fn evaluate_io(s: &EvaluateSettings) -> Io {
         Some(run) => tournament_io(&run.files, &run.noise, &s.out).optional_inputs([
             ("--datasheet", s.datasheet.as_ref()),
             ("--truth", s.truth.as_ref()),
+            ("--thermal-from", run.thermal_from.as_ref()),
         ]),
         None => Io::new()
             .input("--reference", &s.reference)

@@ -872,3 +872,119 @@ fn integrate_runs_a_gaussian_sum_over_the_gyro_bias_when_asked() {
         assert!(!refused.exists(), "{extra:?}");
     }
 }
+
+/// A thermal calibration from a sweep alone of the unit of [`inputs`] (serial 1): a chamber
+/// program 10 → 30 → 10 °C at 2 °C/min, 10 Hz, through `characterize --sweep`.
+fn sweep_bank(dir: &Path) -> PathBuf {
+    let program = dir.join("program.csv");
+    std::fs::write(&program, "t_s,temp_c\n0,10\n600,30\n900,30\n1500,10\n").unwrap();
+    let cycle = dir.join("cycle");
+    json_of(&[
+        "simulate",
+        "chamber",
+        "--out",
+        arg(&cycle),
+        "--temperature-file",
+        arg(&program),
+        "--rate-hz",
+        "10",
+        "--json",
+    ]);
+    let bank = dir.join("sweep.json");
+    let record = cycle.join("imu_program.csv");
+    json_of(&[
+        "characterize",
+        "--sweep",
+        arg(&record),
+        "--out",
+        arg(&bank),
+        "--json",
+    ]);
+    bank
+}
+
+// Issue 35: `--thermal-from` joins a sweep bank's thermal calibration to the noise model of a
+// bank or a profile. With a bank, the run is the run of that bank with its "thermal" replaced
+// by the sweep bank's (written here by hand), position for position; with a profile, the
+// record is compensated (the profile alone has nothing to compensate with). A calibration
+// whose channels differ from the noise model's is refused naming both files, and `evaluate`
+// refuses it with a profile.
+#[test]
+fn integrate_takes_its_thermal_calibration_from_a_sweep_bank() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let sweep = sweep_bank(dir.path());
+    let read = |p: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    let mut merged = read(&bank);
+    merged["thermal"] = read(&sweep)["thermal"].clone();
+    let merged_bank = dir.path().join("merged.json");
+    std::fs::write(&merged_bank, merged.to_string()).unwrap();
+    let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
+    let joined = json_of(&integrate_args(
+        &vessel,
+        &bank,
+        &a,
+        &["--thermal-from", arg(&sweep)],
+    ));
+    assert_eq!(joined["compensation"]["status"], "applied", "{joined}");
+    assert_eq!(joined["thermal_from"], arg(&sweep));
+    json_of(&integrate_args(&vessel, &merged_bank, &b, &[]));
+    assert_eq!(positions(&a), positions(&b));
+    let plain = dir.path().join("plain.csv");
+    json_of(&integrate_args(
+        &vessel,
+        &bank,
+        &plain,
+        &["--no-compensation"],
+    ));
+    assert_ne!(positions(&a), positions(&plain));
+
+    let profile = dir.path().join("sensor.toml");
+    assert_eq!(
+        outcome(&thermonav(&["simulate", "profile", "--out", arg(&profile)])).0,
+        0
+    );
+    let imu = vessel.join("imu.csv");
+    let noise = ["--profile", arg(&profile)];
+    let c = dir.path().join("c.csv");
+    let extra = ["--thermal-from", arg(&sweep)];
+    let with_profile = json_of(&scheduled_args(&imu, &vessel, noise, &c, &extra));
+    assert_eq!(with_profile["compensation"]["status"], "applied");
+
+    let mut partial = read(&sweep);
+    partial["thermal"]["channels"]
+        .as_object_mut()
+        .unwrap()
+        .remove("az");
+    let partial_bank = dir.path().join("partial.json");
+    std::fs::write(&partial_bank, partial.to_string()).unwrap();
+    let mut args = integrate_args(&vessel, &bank, &c, &["--thermal-from", arg(&partial_bank)]);
+    args.retain(|a| a != "--json");
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, _, err) = outcome(&thermonav(&args));
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("partial.json")
+            && err.contains("bank.json")
+            && err.contains("gx,gy,gz,ax,ay,az"),
+        "{err}"
+    );
+    let (code, _, err) = outcome(&thermonav(&[
+        "evaluate",
+        "--imu",
+        arg(&imu),
+        "--gnss",
+        arg(&vessel.join("gnss.csv")),
+        "--reference",
+        arg(&vessel.join("reference.csv")),
+        "--profile",
+        arg(&profile),
+        "--thermal-from",
+        arg(&sweep),
+        "--out",
+        arg(&dir.path().join("tournament")),
+    ]));
+    assert!(code == 2 && err.contains("--thermal-from"), "{err}");
+}

@@ -95,14 +95,18 @@ pub enum NoiseModel<'a> {
     Bank(&'a ModelBank),
     /// A sensor profile.
     Profile(&'a SensorProfile),
+    /// A sensor profile's noise with a bank's thermal calibration (`--thermal-from`; checked
+    /// to cover the profile's channels with [`crate::stoch::thermal::join::check_join`]).
+    ProfileWithThermal(&'a SensorProfile, &'a ThermalCalibration),
 }
 
 impl<'a> NoiseModel<'a> {
-    /// The bank's thermal calibration, if any.
+    /// The thermal calibration, if any.
     pub fn thermal(self) -> Option<&'a ThermalCalibration> {
         match self {
             NoiseModel::Bank(bank) => bank.thermal.as_ref(),
             NoiseModel::Profile(_) => None,
+            NoiseModel::ProfileWithThermal(_, thermal) => Some(thermal),
         }
     }
 }
@@ -319,7 +323,9 @@ fn scheduled_models(
             let selection = settings.temperature.selection();
             ModelGrid::from_bank(bank, selection, settings.gauss_markov, &scale, range_c)
         }
-        NoiseModel::Profile(profile) => ModelGrid::from_profile(profile, &scale, range_c),
+        NoiseModel::Profile(profile) | NoiseModel::ProfileWithThermal(profile, _) => {
+            ModelGrid::from_profile(profile, &scale, range_c)
+        }
     };
     let mut grid = grid.map_err(RunError::ModelGrid)?;
     grid.scale_white_noise(settings.process_noise_scale);
@@ -336,7 +342,9 @@ fn fixed_model(
     mean_temperature_c: Option<f64>,
 ) -> Result<(ModelResult, BankChoice), RunError> {
     match noise {
-        NoiseModel::Profile(profile) => Ok(profile_model(settings, profile, mean_temperature_c)),
+        NoiseModel::Profile(profile) | NoiseModel::ProfileWithThermal(profile, _) => {
+            Ok(profile_model(settings, profile, mean_temperature_c))
+        }
         NoiseModel::Bank(bank) => {
             let choice = bank_choice(settings, mean_temperature_c)?;
             let model = ImuStochasticModel::from_bank(bank, &choice, &ScaleFactorPrior::default());
@@ -508,8 +516,9 @@ pub(super) fn initial_uncertainty(
         i @ 0..3 => model.gyro[i].bias.sigma,
         i => model.accel[i - 3].bias.sigma,
     };
-    let (stated, source): (Vec<_>, _) = match (noise, compensation) {
-        (NoiseModel::Profile(p), _) => {
+    let applied = matches!(compensation, CompensationOutcome::Applied { .. });
+    let (stated, source): (Vec<_>, _) = match (noise, noise.thermal()) {
+        (NoiseModel::Profile(p) | NoiseModel::ProfileWithThermal(p, _), _) if !applied => {
             let sd = |c: Channel| {
                 let ch = p.channel(c)?;
                 let parts = [
@@ -524,14 +533,18 @@ pub(super) fn initial_uncertainty(
                 InitialBiasSource::ProfileTurnOn,
             )
         }
-        (NoiseModel::Bank(bank), CompensationOutcome::Applied { .. }) => {
+        (_, Some(thermal)) if applied => {
+            // Without a spread between power-ons (a calibration of one), a profile's
+            // power-on sd stands in for it.
+            let profile_spread = |c: Channel| match noise {
+                NoiseModel::ProfileWithThermal(p, _) => Some(p.channel(c)?.power_on_offset_sigma),
+                _ => None,
+            };
             let sd = |c: Channel| {
-                let spread = bank
-                    .thermal
-                    .as_ref()?
-                    .channels
-                    .get(&c)?
-                    .between_power_on_sd?;
+                let calibration = thermal.channels.get(&c)?;
+                let spread = calibration
+                    .between_power_on_sd
+                    .or_else(|| profile_spread(c))?;
                 Some(bias_sd_in_quadrature(&[spread, gauss_markov_sd(c)]))
             };
             (
@@ -539,7 +552,7 @@ pub(super) fn initial_uncertainty(
                 InitialBiasSource::BankPowerOnSpread,
             )
         }
-        (NoiseModel::Bank(_), _) => (vec![None; 6], InitialBiasSource::Default),
+        _ => (vec![None; 6], InitialBiasSource::Default),
     };
     for (c, sd) in Channel::ALL.iter().zip(&stated) {
         let Some(sd) = sd.filter(|sd| sd.is_finite() && *sd > 0.0) else {

@@ -444,6 +444,30 @@ impl ModelBank {
         }
     }
 
+    /// The bank with `thermal` for its thermal calibration (another bank's: `--thermal-from`),
+    /// when it covers the channels of the bank's entries in their units.
+    ///
+    /// # Errors
+    /// [`ThermalJoinError`] naming the channels or the unit that differ.
+    pub fn with_thermal_from(
+        mut self,
+        thermal: ThermalCalibration,
+    ) -> Result<Self, crate::stoch::thermal::join::ThermalJoinError> {
+        let units = self
+            .entries
+            .first()
+            .map(|e| {
+                e.channels
+                    .iter()
+                    .map(|(&c, m)| (c, m.unit.clone()))
+                    .collect()
+            })
+            .unwrap_or_default();
+        crate::stoch::thermal::join::check_join(&units, &thermal)?;
+        self.thermal = Some(thermal);
+        Ok(self)
+    }
+
     /// Temperatures of the entries, °C, increasing.
     pub fn temperatures_c(&self) -> Vec<f64> {
         self.entries.iter().map(|e| e.temperature_c).collect()
