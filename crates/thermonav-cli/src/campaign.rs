@@ -2,6 +2,7 @@
 //! vessel survey (reference, IMU and GNSS CSVs); shared by `simulate` and `demo`.
 
 use crate::failure::{Classify, Failure};
+use crate::inputs::load_profile;
 use crate::settings::simulation::{ChamberSettings, VesselSettings};
 use anyhow::anyhow;
 use serde::Serialize;
@@ -11,7 +12,7 @@ use thermonav::evaluation::oracle::{OracleError, TrueChannelModel, TrueModel, Tr
 use thermonav::imu::Channel;
 use thermonav::imu::ImuSeries;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
-use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
+use thermonav::sensor::SensorProfile;
 use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
 };
@@ -24,27 +25,8 @@ use thermonav::sim::vessel::{
 };
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
-use thermonav_io::profile::read_profile;
 use thermonav_io::temperature_table::read_temperature_table;
 use thermonav_io::{write_gnss_file, write_imu_file, write_json_atomically, write_trajectory_file};
-
-/// The name that selects the built-in temperature-sensitive profile instead of a file.
-pub const TEMPERATURE_SENSITIVE_PROFILE: &str = "builtin:temperature-sensitive";
-
-/// True for the name of a profile built into thermonav.
-pub fn is_builtin_profile(path: &Path) -> bool {
-    path == Path::new(TEMPERATURE_SENSITIVE_PROFILE)
-}
-
-/// The profile of `--profile` (a TOML file, or [`TEMPERATURE_SENSITIVE_PROFILE`]), or the
-/// built-in ADIS16364-like one.
-pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
-    match path {
-        Some(p) if is_builtin_profile(p) => Ok(temperature_sensitive()),
-        Some(p) => read_profile(p).data(),
-        None => Ok(adis16364_like()),
-    }
-}
 
 /// `profile` with every channel's thermal lag set to `lag_s` (none: as it is), checked.
 pub fn with_thermal_lag(

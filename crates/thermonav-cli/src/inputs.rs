@@ -5,9 +5,11 @@ use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::imu::{ImuSeries, SampleKind};
+use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
+use thermonav_io::profile::read_profile;
 use thermonav_io::ros::BagFormat;
 use thermonav_io::ros::extract::{TopicChoice, imu_series};
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_into};
@@ -185,5 +187,23 @@ fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
             "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
              --temperature-topic T2 --out imu.csv)"
         ))),
+    }
+}
+
+/// The name that selects the built-in temperature-sensitive profile instead of a file.
+pub const TEMPERATURE_SENSITIVE_PROFILE: &str = "builtin:temperature-sensitive";
+
+/// True for the name of a profile built into thermonav.
+pub fn is_builtin_profile(path: &Path) -> bool {
+    path == Path::new(TEMPERATURE_SENSITIVE_PROFILE)
+}
+
+/// The profile of `--profile` (a TOML file, or [`TEMPERATURE_SENSITIVE_PROFILE`]), or the
+/// built-in ADIS16364-like one.
+pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
+    match path {
+        Some(p) if is_builtin_profile(p) => Ok(temperature_sensitive()),
+        Some(p) => read_profile(p).data(),
+        None => Ok(adis16364_like()),
     }
 }

@@ -3,8 +3,8 @@
 //! solution trajectory, its state and innovation files, and returns the summary. Shared by
 //! `integrate` and `demo`; the run itself is the library's [`thermonav::nav::run`].
 
-use crate::campaign::load_profile;
 use crate::failure::{Classify, Failure};
+use crate::inputs::load_profile;
 use crate::inputs::{read_bank, read_thermal_calibration};
 use crate::settings::navigation::{IntegrateSettings, NoiseSource, SolutionFiles};
 use anyhow::anyhow;

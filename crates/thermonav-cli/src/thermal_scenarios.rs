@@ -16,10 +16,9 @@
 //! the far ones a paired p of 0.1, so a claim over surveys needs a few dozen replicates.
 
 use crate::bank_building::{BankInputs, build_bank_reading};
-use crate::campaign::{
-    ChamberTruth, TEMPERATURE_SENSITIVE_PROFILE, load_profile, run_chamber, true_model,
-};
+use crate::campaign::{ChamberTruth, run_chamber, true_model};
 use crate::failure::{Classify, Failure};
+use crate::inputs::{TEMPERATURE_SENSITIVE_PROFILE, load_profile};
 use crate::settings::simulation::chamber_settings;
 use crate::thermal_calibration::ThermalInputs;
 use crate::tournament_files::{

@@ -208,7 +208,7 @@ fn noise_option(noise: &NoiseSource) -> &'static str {
 /// `io` reading the noise model's file (none for a built-in profile).
 fn with_noise(io: Io, noise: &NoiseSource) -> Io {
     match noise_path(noise) {
-        p if crate::campaign::is_builtin_profile(p) => io,
+        p if crate::inputs::is_builtin_profile(p) => io,
         p => io.input(noise_option(noise), p),
     }
 }

@@ -176,7 +176,7 @@ fn set_points(temperatures_c: &[f64]) -> Result<Vec<f64>, Failure> {
 }
 
 fn profile_io(profile: Option<&PathBuf>) -> Io {
-    match profile.filter(|p| !crate::campaign::is_builtin_profile(p)) {
+    match profile.filter(|p| !crate::inputs::is_builtin_profile(p)) {
         Some(p) => Io::new().input("--profile", p),
         None => Io::new(),
     }

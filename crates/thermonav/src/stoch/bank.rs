@@ -448,7 +448,7 @@ impl ModelBank {
     /// when it covers the channels of the bank's entries in their units.
     ///
     /// # Errors
-    /// [`ThermalJoinError`] naming the channels or the unit that differ.
+    /// [`ThermalJoinError`](crate::stoch::thermal::join::ThermalJoinError) naming the channels or the unit that differ.
     pub fn with_thermal_from(
         mut self,
         thermal: ThermalCalibration,

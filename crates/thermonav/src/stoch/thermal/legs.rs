@@ -20,6 +20,48 @@
 
 use serde::{Deserialize, Serialize};
 
+/// The thermal lag is searched within ±this, s.
+pub const LAG_SEARCH_S: f64 = 3600.0;
+
+/// The lags at which each block's lagged temperature is computed from its samples (s,
+/// increasing, within ±[`LAG_SEARCH_S`]): the profile's grid; between them the block's value is
+/// interpolated.
+pub const LAG_GRID_S: [f64; 2 * LAG_MAGNITUDES.len() + 1] = {
+    let n = LAG_MAGNITUDES.len();
+    let mut grid = [0.0; 2 * LAG_MAGNITUDES.len() + 1];
+    let mut k = 0;
+    while k < n {
+        grid[n - 1 - k] = -LAG_MAGNITUDES[k];
+        grid[n + 1 + k] = LAG_MAGNITUDES[k];
+        k += 1;
+    }
+    grid
+};
+
+/// |τ| of the grid, s: 10 s apart to 300 s, 25 s to 600 s, 100 s to 1200 s, then coarser.
+const LAG_MAGNITUDES: [f64; 53] = {
+    let mut m = [0.0; 53];
+    let mut k = 0;
+    while k < 30 {
+        m[k] = 10.0 * (k + 1) as f64;
+        k += 1;
+    }
+    while k < 42 {
+        m[k] = 300.0 + 25.0 * (k - 29) as f64;
+        k += 1;
+    }
+    while k < 48 {
+        m[k] = 600.0 + 100.0 * (k - 41) as f64;
+        k += 1;
+    }
+    let tail = [1500.0, 1800.0, 2400.0, 3000.0, 3600.0];
+    while k < 53 {
+        m[k] = tail[k - 48];
+        k += 1;
+    }
+    m
+};
+
 /// Width of the centred moving average the legs are found on, s.
 pub const LEG_SMOOTHING_S: f64 = 60.0;
 

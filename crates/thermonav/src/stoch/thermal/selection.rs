@@ -22,7 +22,7 @@ pub struct SweepBlock {
     #[serde(default)]
     pub sample_range_c: [f64; 2],
     /// Mean of the lagged temperature ([`super::legs::lagged_temperatures`]) at each τ of
-    /// [`super::sweep_model::LAG_GRID_S`], °C; kept while fitting, not in the bank.
+    /// [`super::legs::LAG_GRID_S`], °C; kept while fitting, not in the bank.
     #[serde(skip)]
     pub lagged_temperature_c: Vec<f64>,
     /// Mean rate of the temperature, °C/s.
@@ -37,7 +37,7 @@ impl SweepBlock {
     /// The block's mean lagged temperature at τ (s), °C: interpolated between the grid's
     /// values while fitting; from a bank (no grid kept), T + τ·dT/dt, its first-order form.
     pub fn effective_temperature_c(&self, tau_s: f64) -> f64 {
-        let grid = super::sweep_model::LAG_GRID_S;
+        let grid = super::legs::LAG_GRID_S;
         if self.lagged_temperature_c.len() != grid.len() || tau_s == 0.0 {
             return self.temperature_c + tau_s * self.rate_c_per_s;
         }
