@@ -9,12 +9,12 @@
 //! - (c) a cold start warming up: scheduled plus compensated beats the best fixed model plus
 //!   compensation and every fixed model without it, paired p < 0.01.
 //!
-//! The replicates shift the outages along one simulated survey (as `evaluate --monte-carlo`
-//! does), so the p-values say how surely one model beats another on this survey wherever the
-//! outages fall. New simulations per replicate (new noise, a new power-on offset of the same
-//! unit) vary far more: on scenario (b), 6 of them gave the nearest model's 54-60 m lead over
-//! the far ones a paired p of 0.1, so a claim over surveys needs a few dozen replicates.
-
+//! (b)'s replicates are independent simulations of the survey (new noise and a new power-on
+//! offset of the same unit, seeds `seed + k`), so its p-values say how surely the nearest model
+//! wins on another survey of this unit, not only wherever the outages of one survey fall; each
+//! comparison states the replicates its measured effect needs for p < 0.01 at 80 % power
+//! ([`thermonav::evaluation::significance::pairs_for_power`]). (c) and the matrix shift the
+//! outages along one simulated survey (as `evaluate --monte-carlo` does).
 use crate::bank_building::{BankInputs, build_bank_reading};
 use crate::campaign::{ChamberTruth, run_chamber, true_model};
 use crate::failure::{Classify, Failure};
@@ -32,6 +32,7 @@ use thermonav::evaluation::candidates::{CandidateKind, ThermalOptions};
 use thermonav::evaluation::experiment::{CandidateSource, Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::report::ModelReport;
+use thermonav::evaluation::significance::pairs_for_power;
 use thermonav::evaluation::tournament::{Contrast, Scenario};
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
@@ -103,6 +104,25 @@ pub struct ClaimComparison {
     pub p_value: Option<f64>,
     /// The claim's model is better with p below [`CLAIM_P_VALUE`].
     pub holds: bool,
+    /// Replicates the measured effect (mean over sd of the paired differences) needs for
+    /// p < [`CLAIM_P_VALUE`] with [`CLAIM_POWER`] power; `None` without a test, or beyond
+    /// [`MAX_POWER_REPLICATES`].
+    pub replicates_needed: Option<usize>,
+}
+
+/// The power a claim's comparison is sized for.
+pub const CLAIM_POWER: f64 = 0.8;
+
+/// The most replicates a power statement looks at (`evaluate --monte-carlo`'s limit).
+pub const MAX_POWER_REPLICATES: usize = 1000;
+
+/// How a scenario's replicates differ from its main run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ReplicateKind {
+    /// The outages shifted along the one simulated survey.
+    ShiftedOutages,
+    /// The survey simulated anew (seeds `seed + k`).
+    NewSimulations,
 }
 
 /// A scenario's claim and whether the tournament bears it out.
@@ -193,12 +213,18 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
         plan,
     };
     // At one temperature the scheduled and compensated candidates add nothing to (b)'s claim.
-    let fixed = (Scheduling::Fixed, Compensation::Off, plan.replicates);
+    let fixed = (
+        Scheduling::Fixed,
+        Compensation::Off,
+        plan.replicates,
+        ReplicateKind::NewSimulations,
+    );
     let b = survey.tournament(constant.clone(), fixed, &out.join("temperature_matters"))?;
     let thermal = (
         Scheduling::ByTemperature,
         Compensation::WhenCalibrated,
         plan.warming_replicates,
+        ReplicateKind::ShiftedOutages,
     );
     let c = survey.tournament(warming.clone(), thermal, &out.join("warming_survey"))?;
     let matrix = survey.matrix(&out.join("matrix"))?;
@@ -280,39 +306,54 @@ struct Survey<'a> {
 }
 
 impl Survey<'_> {
-    /// The tournament of the bank's candidates on a survey at `temperature`, replicated by
-    /// new simulations.
+    /// The tournament of the bank's candidates on a survey at `temperature`, replicated as
+    /// `kind` says.
     fn tournament(
         &self,
         temperature: SurveyTemperature,
-        (scheduling, compensation, replicates): (Scheduling, Compensation, u64),
+        (scheduling, compensation, replicates, kind): (
+            Scheduling,
+            Compensation,
+            u64,
+            ReplicateKind,
+        ),
         out: &Path,
     ) -> Result<EvaluationFile, Failure> {
         let operating_c = mean_temperature_c(&temperature, self.plan.survey_s);
         let run = self.run(temperature)?;
-        let with_oracle = scheduling == Scheduling::ByTemperature;
+        // Every scenario carries the oracle, so that each claim says whether the true model
+        // itself could show it.
+        let with_oracle = true;
         let (main, truth) = self
             .scenario(&run, compensation, with_oracle)
             .map_err(|e| anyhow!("{e}"))
             .data()?;
-        let plan = TournamentPlan {
-            oracle: truth.as_ref(),
-            noise: CandidateSource::Bank(self.bank),
-            thermal: ThermalOptions {
-                imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
-                scheduling,
-                compensation,
-            },
-            operating_temperature_c: operating_c,
-            source: GaussMarkovSource::IrregularMl,
-            filters: vec![FilterKind::Ekf],
-            datasheet: None,
-            scale: ScaleFactorPrior::default(),
+        let thermal = ThermalOptions {
+            imu_temperature_range_c: main.temperature.as_ref().map(|t| t.range_c()),
+            scheduling,
+            compensation,
         };
+        let plan = self.tournament_plan(truth.as_ref(), thermal, operating_c);
         let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
-        let replicates = Replicates::ShiftedOutages {
-            extra: replicates.saturating_sub(1) as usize,
-            seed: self.plan.seed,
+        let extra = replicates.saturating_sub(1) as usize;
+        let resimulated = |k: usize| {
+            let run = VesselRun {
+                seed: run.seed.wrapping_add(k as u64),
+                ..run.clone()
+            };
+            self.scenario(&run, compensation, with_oracle)
+                .map(|(s, _)| s)
+        };
+        let replicates = match kind {
+            ReplicateKind::ShiftedOutages => Replicates::ShiftedOutages {
+                extra,
+                seed: self.plan.seed,
+            },
+            ReplicateKind::NewSimulations => Replicates::Made {
+                extra,
+                differ_by: "simulation seeds (new IMU errors, power-on offset and GNSS noise per replicate)",
+                make: &resimulated,
+            },
         };
         run_and_write(
             &tournament,
@@ -321,6 +362,25 @@ impl Survey<'_> {
             &[],
             (out, &Default::default()),
         )
+    }
+
+    /// The plan of a scenario's tournament: the bank's candidates (and the oracle's), EKF.
+    fn tournament_plan<'t>(
+        &'t self,
+        oracle: Option<&'t TrueModel>,
+        thermal: ThermalOptions,
+        operating_temperature_c: f64,
+    ) -> TournamentPlan<'t> {
+        TournamentPlan {
+            oracle,
+            noise: CandidateSource::Bank(self.bank),
+            thermal,
+            operating_temperature_c,
+            source: GaussMarkovSource::IrregularMl,
+            filters: vec![FilterKind::Ekf],
+            datasheet: None,
+            scale: ScaleFactorPrior::default(),
+        }
     }
 
     /// The fixed bank models on a survey at each of the plan's matrix temperatures.
@@ -333,6 +393,7 @@ impl Survey<'_> {
             Scheduling::Fixed,
             Compensation::Off,
             self.plan.matrix_replicates,
+            ReplicateKind::ShiftedOutages,
         );
         let mut rows = Vec::new();
         for &t in temperatures {
@@ -373,8 +434,9 @@ impl Survey<'_> {
             .then(|| true_model(self.profile, run, &record.imu))
             .transpose()
             .map_err(|e| e.to_string())?;
+        // The oracle's compensated record only where compensated candidates run.
         let records = RecordPlan {
-            oracle: truth.as_ref(),
+            oracle: truth.as_ref().filter(|_| compensation != Compensation::Off),
             ..RecordPlan::calibrated(self.bank.thermal.as_ref(), compensation)
         };
         let imu = scenario_imu(&record.imu, records, name).map_err(|e| e.to_string())?;
@@ -417,10 +479,19 @@ fn comparison(contrasts: &[Contrast], better: &str, worse: &str) -> ClaimCompari
         Some(c) => (-c.mean_difference_m, c.test.map(|t| t.p_value)),
         None => (f64::NAN, None),
     };
+    let replicates_needed = found.and_then(|c| c.test).and_then(|t| {
+        pairs_for_power(
+            t.effect_size(),
+            CLAIM_P_VALUE,
+            CLAIM_POWER,
+            MAX_POWER_REPLICATES,
+        )
+    });
     ClaimComparison {
         better: better.to_string(),
         worse: worse.to_string(),
         holds: mean_difference_m > 0.0 && p_value.is_some_and(|p| p < CLAIM_P_VALUE),
+        replicates_needed: replicates_needed.filter(|_| mean_difference_m > 0.0),
         mean_difference_m: if mean_difference_m.is_finite() {
             mean_difference_m
         } else {
@@ -565,6 +636,16 @@ fn nearest_claim(models: &[ModelReport], contrasts: &[Contrast], survey_c: f64) 
         .map(|(m, _)| comparison(contrasts, &nearest.label, &m.label))
         .collect();
     let lowest = best_entry.as_deref() == Some(nearest.label.as_str());
+    // The oracle (the true model, scheduled on the raw record) against the far rival the
+    // nearest model does worst against: when even it does not win, no model can show (b).
+    let hardest = comparisons
+        .iter()
+        .min_by(|a, b| a.mean_difference_m.total_cmp(&b.mean_difference_m))
+        .map(|c| c.worse.clone());
+    let oracle = models
+        .iter()
+        .find(|m| m.candidate == CandidateKind::Oracle)
+        .map(|m| m.label.clone());
     Claim {
         statement: format!(
             "the bank model nearest {survey_c} °C ({nearest_c} °C) has the lowest mean horizontal error among the fixed bank temperatures{} and beats every model {FAR_C} °C or more away with paired p < {CLAIM_P_VALUE}",
@@ -576,7 +657,9 @@ fn nearest_claim(models: &[ModelReport], contrasts: &[Contrast], survey_c: f64) 
         ),
         holds: lowest && !comparisons.is_empty() && comparisons.iter().all(|c| c.holds),
         comparisons,
-        oracle_bound: None,
+        oracle_bound: oracle
+            .zip(hardest)
+            .map(|(oracle, rival)| comparison(contrasts, &oracle, &rival)),
     }
 }
 
@@ -626,12 +709,27 @@ fn unavailable(why: &str) -> Claim {
     }
 }
 
-/// The oracle against the claim's fixed rival plus compensation, and what it means.
+/// What a comparison's power statement says, in words.
+fn replicates_needed_text(needed: Option<usize>) -> String {
+    match needed {
+        Some(n) => format!(
+            "{n} replicates give p < {CLAIM_P_VALUE} with {:.0} % power at this effect",
+            CLAIM_POWER * 100.0
+        ),
+        None => format!("no number of replicates up to {MAX_POWER_REPLICATES} shows this effect"),
+    }
+}
+
+/// The oracle against the claim's hardest rival, and what it means.
 fn print_oracle_bound(o: &ClaimComparison) {
     let p = o.p_value.map_or("n/a".to_string(), |p| format!("{p:.2e}"));
-    let meaning = match o.holds {
-        true => "the true model shows it, so a better model could",
-        false => "not even the true model shows it: no model can on these data",
+    let meaning = match (o.holds, o.mean_difference_m > 0.0) {
+        (true, _) => "the true model shows it, so a better model could".to_string(),
+        (false, true) => format!(
+            "the true model leads but these replicates do not show it ({})",
+            replicates_needed_text(o.replicates_needed)
+        ),
+        (false, false) => "not even the true model leads: no model can on these data".into(),
     };
     let lead = o.mean_difference_m;
     println!(
@@ -657,16 +755,17 @@ pub fn print_thermal_scenarios(s: &ThermalScenarios) {
         for c in &scenario.claim.comparisons {
             let p = c.p_value.map_or("n/a".to_string(), |p| format!("{p:.2e}"));
             println!(
-                "  {} beats {} by {:.2} m (paired p = {p}){}",
+                "  {} beats {} by {:.2} m (paired p = {p}; {}){}",
                 c.better,
                 c.worse,
                 c.mean_difference_m,
+                replicates_needed_text(c.replicates_needed),
                 if c.holds { "" } else { "  <- not shown" }
             );
         }
-    }
-    if let Some(bound) = &s.warming_survey.claim.oracle_bound {
-        print_oracle_bound(bound);
+        if let Some(bound) = &scenario.claim.oracle_bound {
+            print_oracle_bound(bound);
+        }
     }
     if let Some(m) = &s.matrix {
         print_matrix(m);

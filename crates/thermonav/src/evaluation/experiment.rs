@@ -7,8 +7,8 @@
 //! run whatever the number of replicates.
 
 use super::candidates::{
-    Candidate, Excluded, ThermalOptions, oracle_candidates, profile_candidates, thermal_candidates,
-    tournament_candidates,
+    Candidate, CandidateKind, Excluded, ThermalOptions, oracle_candidates, profile_candidates,
+    thermal_candidates, tournament_candidates,
 };
 use super::oracle::TrueModel;
 use super::outside::outage_spans;
@@ -17,6 +17,7 @@ use super::shard::{FrameModel, Shard, ShardFrame, TournamentShard, merge_shards,
 use super::tournament::{ModelResult, Scenario, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
+use crate::nav::schedule::Compensation;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
 use crate::sensor::SensorProfile;
@@ -302,7 +303,13 @@ fn plan_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
                 }],
             ),
         };
-        candidates.extend(more);
+        // With compensation off no candidate runs on a compensated record, the oracle's
+        // neither.
+        let compensates = plan.thermal.compensation != Compensation::Off;
+        candidates.extend(
+            more.into_iter()
+                .filter(|c| compensates || c.kind != CandidateKind::OracleCompensated),
+        );
         excluded.extend(left_out);
     }
     (candidates, excluded)
