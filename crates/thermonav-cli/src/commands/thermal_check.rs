@@ -58,12 +58,13 @@ fn print_table(document: &CheckDocument) {
         document.bank, document.record, document.block_s
     );
     println!(
-        "{:<3} {:>6} {:>6} {:>12} {:>12} {:>16} {:>9} {:>17} {:>8}",
+        "{:<3} {:>6} {:>6} {:>12} {:>12} {:>17} {:>16} {:>9} {:>17} {:>8}",
         "ch",
         "unit",
         "blocks",
         "rms before",
         "rms after",
+        "rms before, shape",
         "rms after, shape",
         "coverage",
         "coverage, shape",
@@ -76,12 +77,13 @@ fn print_table(document: &CheckDocument) {
         let sensor = channel.sensor();
         let show = |si: f64| DisplayUnits::Navigation.rate(sensor, si);
         println!(
-            "{:<3} {:>6} {:>6} {:>12.3} {:>12.3} {:>16.3} {:>8.0}% {:>16.0}% {:>8}",
+            "{:<3} {:>6} {:>6} {:>12.3} {:>12.3} {:>17.3} {:>16.3} {:>8.0}% {:>16.0}% {:>8}",
             name,
             DisplayUnits::Navigation.rate_unit(sensor),
             check.blocks.len(),
             show(check.rms_before),
             show(check.rms_after),
+            show(check.rms_before_offset_removed),
             show(check.rms_after_offset_removed),
             100.0 * check.coverage,
             100.0 * check.coverage_offset_removed,
@@ -91,4 +93,24 @@ fn print_table(document: &CheckDocument) {
     println!(
         "shape: the record's own mean residual taken off (and the band without its offset part); --json for every block"
     );
+    print_unhelpful(document);
+}
+
+/// A line per channel whose compensated shape is worse than the record's own.
+fn print_unhelpful(document: &CheckDocument) {
+    for (&name, check) in &document.channels {
+        let Some(channel) = Channel::ALL.into_iter().find(|c| c.name() == name) else {
+            continue;
+        };
+        if check.makes_worse() {
+            let sensor = channel.sensor();
+            let show = |si: f64| DisplayUnits::Navigation.rate(sensor, si);
+            println!(
+                "{name}: compensation makes this record worse (shape rms {:.3} {unit} after against {:.3} {unit} uncompensated): the calibration does not predict it",
+                show(check.rms_after_offset_removed),
+                show(check.rms_before_offset_removed),
+                unit = DisplayUnits::Navigation.rate_unit(sensor)
+            );
+        }
+    }
 }

@@ -571,3 +571,58 @@ fn a_replayed_chamber_program_with_a_lagging_unit_gives_its_lag_back() {
     let (code, _, err) = refused(&["--temperature-file", arg(&program), "--ramp", "0:10:1"]);
     assert!(code == 2 && err.contains("--ramp"), "{err}");
 }
+
+// `bank check` says when a calibration makes a record worse, on the real record where it does:
+// the CATS tag's first cooling leg (t_s 480..5521, 16 → 4.9 °C) calibrates gx with a slope
+// that its long warming leg (5521..92460) does not follow (the bench's P0 fold: 138.6 deg/h of
+// shape uncompensated, 265.9 compensated; PX4's and ArduPilot's cubics 241 and 262). The
+// uncompensated shape is checked against the RMS of the blocks' observed means about their
+// own mean, computed here.
+#[test]
+fn check_says_when_a_calibration_makes_an_unseen_leg_worse() {
+    let dir = tempfile::tempdir().unwrap();
+    let fitted = dir.path().join("cooling.csv");
+    let unseen = dir.path().join("warming.csv");
+    write_cats_period(&fitted, 480.0, 5521.0);
+    write_cats_period(&unseen, 5521.0, 92460.0);
+    let bank = dir.path().join("bank.json");
+    let (code, _, err) = characterize_sweeps(&[&fitted], &bank);
+    assert_eq!(code, 0, "{err}");
+    let check = check_json(&bank, &unseen);
+    for channel in thermonav::imu::Channel::ALL {
+        let c = &check["channels"][channel.name()];
+        let observed: Vec<f64> = (c["blocks"].as_array().unwrap().iter())
+            .map(|b| b["observed"].as_f64().unwrap())
+            .collect();
+        let m = observed.iter().sum::<f64>() / observed.len() as f64;
+        let shape =
+            (observed.iter().map(|x| (x - m).powi(2)).sum::<f64>() / observed.len() as f64).sqrt();
+        let reported = c["rms_before_offset_removed"].as_f64().unwrap();
+        assert!(
+            (reported / shape - 1.0).abs() < 1e-9,
+            "{channel:?}: {reported} {shape}"
+        );
+    }
+    let gx = &check["channels"]["gx"];
+    let (before, after) = (
+        gx["rms_before_offset_removed"].as_f64().unwrap(),
+        gx["rms_after_offset_removed"].as_f64().unwrap(),
+    );
+    assert!(after > 1.5 * before, "{before} -> {after}");
+    let (code, out, err) = outcome(&thermonav(&["bank", "check", arg(&bank), arg(&unseen)]));
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("gx: compensation makes this record worse"),
+        "{out}"
+    );
+    // A channel left uncompensated (order 0) is not said to be made worse.
+    let bank_doc = bank_json(&bank);
+    for (name, c) in bank_doc["thermal"]["channels"].as_object().unwrap() {
+        if c["selection"]["chosen"]["order"] == 0 {
+            assert!(
+                !out.contains(&format!("{name}: compensation makes")),
+                "{out}"
+            );
+        }
+    }
+}

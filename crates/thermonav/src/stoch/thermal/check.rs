@@ -12,7 +12,8 @@
 //! power-on when the calibration has one, else the mean offset (a new power-on, whose band
 //! carries the spread between power-ons). Per channel: `rms_before`, the RMS of observed minus
 //! the bank's value at its reference temperature (plus the signal and the offset);
-//! `rms_after`, of observed minus predicted; `rms_after_offset_removed`, of that residual
+//! `rms_before_offset_removed`, of observed about its own mean (the record's shape with no
+//! thermal model: what compensation must beat); `rms_after`, of observed minus predicted; `rms_after_offset_removed`, of that residual
 //! about its own mean; `coverage`, the fraction of blocks whose residual lies within the band,
 //! and `coverage_offset_removed`, of the residual about its mean within the band without its
 //! offset part. The band adds the block mean's own noise, from the spread of its samples
@@ -94,6 +95,9 @@ pub struct ChannelCheck {
     pub unit: &'static str,
     /// RMS of observed minus the bank's value at its reference temperature.
     pub rms_before: f64,
+    /// RMS of observed about its own mean: the record's shape uncompensated, which
+    /// `rms_after_offset_removed` must beat for the calibration to help on this record.
+    pub rms_before_offset_removed: f64,
     /// RMS of observed minus predicted.
     pub rms_after: f64,
     /// RMS of that residual about its own mean.
@@ -104,6 +108,16 @@ pub struct ChannelCheck {
     pub coverage_offset_removed: f64,
     /// The blocks.
     pub blocks: Vec<BlockCheck>,
+}
+
+impl ChannelCheck {
+    /// True when the compensated shape is worse than the uncompensated one
+    /// (`rms_after_offset_removed` > `rms_before_offset_removed`): on this record the
+    /// calibration hurts. A channel left uncompensated (order 0) has the two equal but for
+    /// rounding, which the relative margin of 1e-9 absorbs.
+    pub fn makes_worse(&self) -> bool {
+        self.rms_after_offset_removed > self.rms_before_offset_removed * (1.0 + 1e-9)
+    }
 }
 
 /// The gravity a calibration took off (the norm of its removed signal), or the normal gravity
@@ -288,12 +302,14 @@ fn channel_check(channel: Channel, blocks: Vec<BlockCheck>, reference: f64) -> C
     let residuals: Vec<f64> = blocks.iter().map(|b| b.observed - b.predicted).collect();
     let n = residuals.len() as f64;
     let mean = residuals.iter().sum::<f64>() / n;
+    let observed_mean = blocks.iter().map(|b| b.observed).sum::<f64>() / n;
     let within = |pairs: &mut dyn Iterator<Item = (f64, f64)>| {
         pairs.filter(|(r, w)| r.abs() <= *w).count() as f64 / n
     };
     ChannelCheck {
         unit: channel.si_unit(SampleKind::Rates),
         rms_before: rms(blocks.iter().map(|b| b.observed - reference)),
+        rms_before_offset_removed: rms(blocks.iter().map(|b| b.observed - observed_mean)),
         rms_after: rms(residuals.iter().copied()),
         rms_after_offset_removed: rms(residuals.iter().map(|r| r - mean)),
         coverage: within(
