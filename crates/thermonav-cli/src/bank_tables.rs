@@ -12,9 +12,13 @@ use thermonav_plot::figures::DisplayUnits;
 /// Width of a rate column of the thermal table, characters.
 const RATE_WIDTH: usize = 17;
 
-/// The title line of the thermal table.
+/// The title line of the thermal table of static set points.
 const THERMAL_TITLE: &str =
     "thermal calibration: repeatable bias b(T) = Σ b_k (T − T_ref)^k, simultaneous 95 % band";
+
+/// The title line of the thermal table of a calibration from sweeps, whose band is the
+/// held-out one.
+const SWEEP_THERMAL_TITLE: &str = "thermal calibration from sweeps: repeatable bias b(T) = Σ b_k (T − T_ref)^k, 95 % band from the held-out spread (below)";
 
 /// The columns of a thermal row before its rates.
 const CURVE_HEAD: &str = "ch   order   Tref_C         range_C";
@@ -71,7 +75,13 @@ pub fn print_bank_table(bank: &ModelBank) {
 
 /// The thermal calibration: a table per sensor in deg/h or mg, then what it cannot tell.
 pub fn print_thermal_table(calibration: &ThermalCalibration) {
-    println!("\n{THERMAL_TITLE}");
+    let from_sweeps = calibration.channels.values().any(|c| c.selection.is_some());
+    let title = if from_sweeps {
+        SWEEP_THERMAL_TITLE
+    } else {
+        THERMAL_TITLE
+    };
+    println!("\n{title}");
     for sensor in [Sensor::Gyro, Sensor::Accelerometer] {
         print_sensor_rows(calibration, sensor);
     }
@@ -91,14 +101,24 @@ fn print_held_out_choice(calibration: &ThermalCalibration) {
     if chosen.is_empty() {
         return;
     }
+    let legs = calibration.legs.len();
     println!(
-        "model chosen on held-out data ({} legs; the table shows the best curve in T alone):",
-        calibration.legs.len()
+        "model chosen on held-out data ({legs} leg{}; the table shows the best curve in T alone):",
+        if legs == 1 { "" } else { "s" }
     );
+    let within_legs = chosen
+        .iter()
+        .any(|(_, _, s)| s.rule == ChoiceRule::LeaveOneSegmentOut);
     for (channel, cal, selection) in chosen {
         println!("  {}", held_out_line(channel, cal, selection));
     }
+    if within_legs {
+        println!("{WITHIN_LEGS_NOTE}");
+    }
 }
+
+/// What a choice made within one leg cannot see.
+const WITHIN_LEGS_NOTE: &str = "note: where the blocks were left out a fifth at a time (one leg, or legs that share no temperature), the choice and the band see only the spread within those legs: a leg that runs the other way may differ by the loop a thermal lag draws, which one leg cannot show (on the CATS record such bands covered 6-98 % of an unseen leg's 30 s blocks); check the calibration on another record with `thermonav bank check`";
 
 /// One channel's chosen model, its held-out RMS against order 0, and its band's spread.
 fn held_out_line(

@@ -615,6 +615,18 @@ fn check_says_when_a_calibration_makes_an_unseen_leg_worse() {
         out.contains("gx: compensation makes this record worse"),
         "{out}"
     );
+    // `bank show` says the choice saw one leg, and what that cannot show.
+    let (code, shown, err) = outcome(&thermonav(&["bank", "show", arg(&bank)]));
+    assert_eq!(code, 0, "{err}");
+    assert!(shown.contains("(1 leg;"), "{shown}");
+    assert!(
+        shown.contains("95 % band from the held-out spread"),
+        "{shown}"
+    );
+    assert!(
+        shown.contains("note: where the blocks were left out a fifth at a time"),
+        "{shown}"
+    );
     // A channel left uncompensated (order 0) is not said to be made worse.
     let bank_doc = bank_json(&bank);
     for (name, c) in bank_doc["thermal"]["channels"].as_object().unwrap() {
