@@ -83,7 +83,7 @@ pub struct Cli {
 pub enum Command {
     /// Run the main job on built-in simulated data and write everything under --out.
     Demo(DemoArgs),
-    /// Sanity-check a canonical IMU CSV: rate, jitter, gaps, ordering, NaN/inf, channel statistics.
+    /// Sanity-check an IMU, GNSS or reference CSV (chosen by its header): rate, jitter, gaps, ordering, NaN/inf, channel statistics.
     Inspect(InspectArgs),
     /// Design a Kaiser-window FIR low-pass filter (SciPy kaiserord + firwin).
     Fir(FirArgs),

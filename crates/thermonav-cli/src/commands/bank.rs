@@ -202,7 +202,7 @@ fn export_target(devices: Option<&SensorDevices>, args: &BankExportArgs) -> Expo
 
 fn no_thermal_calibration(path: &Path) -> Failure {
     Failure::Data(anyhow!(
-        "{}: the bank has no thermal calibration (no 'thermal' field): calibrate the unit first (thermonav::stoch::thermal::calibrate) and store it in the bank, then export",
+        "{}: the bank has no thermal calibration (no 'thermal' field): calibrate the unit first with `thermonav characterize`, from sweeps alone (`--sweep LOG`: a warm-up or chamber log, CSV, ULog, DataFlash or bag, at any rate), from static records at two or more temperatures (`--temperature-c`), or with further power-ons (`--power-on`), then export that bank",
         path.display()
     ))
 }

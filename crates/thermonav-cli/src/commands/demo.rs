@@ -167,7 +167,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     say(
         args,
         &format!(
-            "3/4 simulating the {} s vessel survey at {} °C ...",
+            "3/5 simulating the {} s vessel survey at {} °C ...",
             p.vessel_s, vessel.survey.temperature_c
         ),
     );
@@ -175,7 +175,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
     say(
         args,
         &format!(
-            "4/4 the tournament: {}, {} outages, {} Monte Carlo replicates ...",
+            "4/5 the tournament: {}, {} outages, {} Monte Carlo replicates ...",
             p.filters
                 .iter()
                 .map(|f| f.name())
@@ -243,7 +243,7 @@ fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBa
     say(
         args,
         &format!(
-            "1/4 simulating {} chamber records of {} s at {} Hz ...",
+            "1/5 simulating {} chamber records of {} s at {} Hz ...",
             chamber.campaign.temperatures_c.len(),
             p.duration_s,
             p.rate_hz
@@ -252,7 +252,7 @@ fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBa
     let truth = run_chamber(&chamber)?;
     say(
         args,
-        "2/4 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
+        "2/5 characterising (Allan, Kaiser + AR, Gauss-Markov three ways) ...",
     );
     let files: Vec<&Path> = truth.files.iter().map(|p| p.as_path()).collect();
     let bank = build_bank(

@@ -603,6 +603,12 @@ fn bank_export_refuses_a_bank_without_thermal_a_bad_format_and_its_input_as_outp
         "{stderr}"
     );
     assert!(stderr.contains("calibrate the unit first"), "{stderr}");
+    // It names the command and options that calibrate, not a library function.
+    assert!(
+        stderr.contains("thermonav characterize") && stderr.contains("--sweep"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("thermonav::"), "{stderr}");
     assert!(!out.exists());
     let (status, _, stderr) = export("px4", &out);
     assert_eq!(status, 2, "{stderr}");
