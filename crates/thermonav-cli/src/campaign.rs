@@ -371,10 +371,14 @@ pub fn true_model(
     imu: &ImuSeries,
 ) -> Result<TrueModel, OracleError> {
     let curves = run.unit.repeatable_curves(profile);
-    TrueModel::new(
+    let lags = (profile.channels.iter())
+        .map(|(c, p)| (*c, p.thermal_lag_s))
+        .collect();
+    Ok(TrueModel::new(
         true_table(profile, &curves, imu),
         &ScaleFactorPrior::default(),
-    )
+    )?
+    .with_thermal_lags(lags))
 }
 
 /// The true model on the truth grid of the samples' temperatures.

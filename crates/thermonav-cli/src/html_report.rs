@@ -36,6 +36,7 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
     }
     if let Some(d) = &demo {
         sections.extend(crate::html_temperature::temperature_sections(d));
+        sections.extend(crate::html_temperature::held_out_check_section(dir, d)?);
     }
     let page = Page {
         title: "thermonav report".into(),

@@ -1,7 +1,10 @@
 //! The demo's scenarios in which temperature matters, on the built-in temperature-sensitive
-//! profile (`thermonav::sensor::temperature_sensitive`): one chamber campaign of one unit
-//! (power-ons repeated so that its thermal calibration separates their offsets), its bank,
-//! and two surveys of the same unit, each with its tournament and the claim it tests:
+//! profile (`thermonav::sensor::temperature_sensitive`) with every channel's MEMS structure
+//! lagging its temperature sensor by [`DEMO_THERMAL_LAG_S`]: one chamber campaign of one unit
+//! (set points at repeated power-ons for the noise models, a chamber program whose sweep gives
+//! the thermal calibration with its lag, and a sweep of another power-on that checks it,
+//! [`HeldOutCheck`]), its bank, and two surveys of the same unit, each with its tournament and
+//! the claim it tests (the oracle reads the true bias at the structure's lagged temperature):
 //!
 //! - (b) a survey at 17 °C: the bank model nearest the survey's temperature has the lowest
 //!   mean horizontal error among the fixed bank temperatures and beats every model 40 °C or
@@ -16,11 +19,12 @@
 //! ([`thermonav::evaluation::significance::pairs_for_power`]). (c) and the matrix shift the
 //! outages along one simulated survey (as `evaluate --monte-carlo` does).
 use crate::bank_building::{BankInputs, build_bank_reading};
-use crate::campaign::{ChamberTruth, run_chamber, true_model};
+use crate::campaign::{ChamberTruth, run_chamber, true_model, with_thermal_lag};
 use crate::failure::{Classify, Failure};
 use crate::inputs::{TEMPERATURE_SENSITIVE_PROFILE, load_profile};
-use crate::settings::simulation::chamber_settings;
+use crate::settings::simulation::{ChamberSettings, chamber_settings};
 use crate::thermal_calibration::ThermalInputs;
+use crate::thermal_sweeps::calibrate_sweeps_alone;
 use crate::tournament_files::{
     EvaluationFile, RecordPlan, run_and_write, scenario_imu, scenario_of,
 };
@@ -34,21 +38,52 @@ use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::report::ModelReport;
 use thermonav::evaluation::significance::pairs_for_power;
 use thermonav::evaluation::tournament::{Contrast, Scenario};
+use thermonav::imu::Channel;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::sensor::SensorProfile;
-use thermonav::sim::chamber::{CampaignSettings, calgary};
+use thermonav::sim::chamber::{CampaignSettings, ChamberTemperature, Ramp, calgary};
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::temperature_program::TemperatureProgram;
 use thermonav::sim::unit::SimulatedUnit;
 use thermonav::sim::vessel::{
     GnssSettings, SurveyTemperature, VesselRun, harbour_survey, simulate_vessel,
 };
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank};
 use thermonav::stoch::characterize::CharacterizeSettings;
+use thermonav::stoch::thermal::check::{ChannelCheck, check_record};
 use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::{write_atomically, write_json_atomically};
+use thermonav_plot::figures::DisplayUnits;
+use thermonav_plot::figures::thermal_check::thermal_check_figure;
+
+/// The time constant by which the demo unit's MEMS structure lags its temperature sensor, s
+/// (every channel): during the warming survey's first minutes the structure is then several
+/// °C behind the sensor, which a calibration in T alone mistakes for bias.
+pub const DEMO_THERMAL_LAG_S: f64 = 120.0;
+
+/// The chamber program the unit's lag is calibrated from, in a power-on of its own: 20 →
+/// −30 → 50 → 20 °C at 3 °C/min with 10-minute dwells at the turns (4400 s).
+fn lag_program() -> TemperatureProgram {
+    TemperatureProgram {
+        t_s: vec![0.0, 1000.0, 1600.0, 3200.0, 3800.0, 4400.0],
+        temperature_c: vec![20.0, -30.0, -30.0, 50.0, 50.0, 20.0],
+    }
+}
+
+/// The sweep the calibration is checked on, never fitted to: another power-on, −30 → 50 °C
+/// at 2 °C/min.
+const HELD_OUT_RAMP: Ramp = Ramp {
+    start_c: -30.0,
+    end_c: 50.0,
+    rate_c_per_min: 2.0,
+};
+
+/// Where the held-out check's figure is written, under the scenarios' folder.
+pub const HELD_OUT_CHECK_SVG: &str = "held_out_check.svg";
 
 /// The p-value a claim's comparisons must stay below.
 pub const CLAIM_P_VALUE: f64 = 0.01;
@@ -89,6 +124,17 @@ pub struct ScenarioPlan {
     pub warm_up_time_constant_s: f64,
     /// Seed of the campaign and the surveys.
     pub seed: u64,
+}
+
+impl ScenarioPlan {
+    /// The warming survey's temperature.
+    fn warming(&self) -> SurveyTemperature {
+        SurveyTemperature::WarmUp {
+            start_c: self.cold_start_c,
+            settled_c: self.settled_c,
+            time_constant_s: self.warm_up_time_constant_s,
+        }
+    }
 }
 
 /// One comparison a claim rests on.
@@ -170,6 +216,39 @@ pub struct ThermalScenarios {
     /// Survey temperature × model temperature (the paper's Figures 13-15 as a full matrix),
     /// when the plan asks for it.
     pub matrix: Option<TemperatureMatrix>,
+    /// The thermal calibration (with its lag, from the chamber program) checked on a sweep
+    /// of another power-on.
+    pub held_out_check: HeldOutCheck,
+}
+
+/// The bank's thermal calibration against a sweep it was not fitted to.
+#[derive(Debug, Serialize)]
+pub struct HeldOutCheck {
+    /// The simulated unit's lag, s (every channel).
+    pub true_lag_s: f64,
+    /// The record checked.
+    pub record: PathBuf,
+    /// The figure (observed, predicted and band against time and temperature), its file
+    /// name beside the bank.
+    pub figure: String,
+    /// Per channel: the lag chosen (s; 0 without one), and the shape RMS of the record's
+    /// 30 s block means before and after compensation, rate unit.
+    pub channels: BTreeMap<String, HeldOutChannel>,
+}
+
+/// One channel of [`HeldOutCheck`].
+#[derive(Debug, Serialize)]
+pub struct HeldOutChannel {
+    /// SI unit of the RMS values.
+    pub unit: &'static str,
+    /// The chosen model's lag τ, s (negative: the structure lags; 0: no lag term).
+    pub tau_s: f64,
+    /// Shape RMS uncompensated.
+    pub rms_before_offset_removed: f64,
+    /// Shape RMS after compensation.
+    pub rms_after_offset_removed: f64,
+    /// Fraction of blocks within the band.
+    pub coverage_offset_removed: f64,
 }
 
 /// Mean horizontal error of every fixed bank model on surveys at several temperatures.
@@ -196,17 +275,14 @@ pub struct TemperatureMatrix {
 /// # Errors
 /// A simulation, characterisation or tournament that fails.
 pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalScenarios, Failure> {
-    let profile = load_profile(Some(Path::new(TEMPERATURE_SENSITIVE_PROFILE)))?;
+    let profile = demo_unit_profile()?;
     let bank_path = out.join("bank.json");
-    let bank = campaign_bank(plan, out, &bank_path)?;
+    let (bank, held_out_record) = campaign_bank(plan, out, &bank_path)?;
+    let held_out_check = held_out_check(&bank, &held_out_record, out)?;
     let constant = SurveyTemperature::Constant {
         temperature_c: 17.0,
     };
-    let warming = SurveyTemperature::WarmUp {
-        start_c: plan.cold_start_c,
-        settled_c: plan.settled_c,
-        time_constant_s: plan.warm_up_time_constant_s,
-    };
+    let warming = plan.warming();
     let survey = Survey {
         profile: &profile,
         bank: &bank,
@@ -252,24 +328,70 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
             tournament: c,
         },
         matrix,
+        held_out_check,
     })
 }
 
-/// The chamber campaign of the unit and its bank with the thermal calibration.
-fn campaign_bank(plan: &ScenarioPlan, out: &Path, bank: &Path) -> Result<ModelBank, Failure> {
+/// The built-in temperature-sensitive profile with every channel's structure lagging by
+/// [`DEMO_THERMAL_LAG_S`].
+fn demo_unit_profile() -> Result<SensorProfile, Failure> {
+    with_thermal_lag(
+        load_profile(Some(Path::new(TEMPERATURE_SENSITIVE_PROFILE)))?,
+        Some(DEMO_THERMAL_LAG_S),
+    )
+}
+
+/// The chamber campaign of the lagging unit, its bank (noise models from the set points, the
+/// thermal calibration with its lag from the chamber program), and the held-out sweep's file.
+fn campaign_bank(
+    plan: &ScenarioPlan,
+    out: &Path,
+    bank: &Path,
+) -> Result<(ModelBank, PathBuf), Failure> {
     let campaign = CampaignSettings {
         duration_s: plan.chamber_duration_s,
         rate_hz: plan.chamber_rate_hz,
         power_ons: plan.power_ons,
         repeat_duration_s: Some(plan.repeat_duration_s),
+        ramp: Some(HELD_OUT_RAMP),
+        program: Some(lag_program()),
         ..CampaignSettings::default()
     };
     let profile = Some(PathBuf::from(TEMPERATURE_SENSITIVE_PROFILE));
-    let chamber = chamber_settings(out.join("chamber"), campaign, profile, plan.seed)?;
+    let mut chamber = chamber_settings(out.join("chamber"), campaign, profile, plan.seed)?;
+    chamber.thermal_lag_s = Some(DEMO_THERMAL_LAG_S);
     let truth = run_chamber(&chamber)?;
+    let sweep = |wanted: fn(&ChamberTemperature) -> bool| {
+        (truth.further_records.iter())
+            .find(|r| wanted(&r.truth.chamber))
+            .map(|r| r.file.clone())
+            .ok_or_else(|| Failure::Data(anyhow!("the campaign wrote no sweep record")))
+    };
+    let program = sweep(|t| matches!(t, ChamberTemperature::Program(_)))?;
+    let ramp = sweep(|t| matches!(t, ChamberTemperature::Ramp(_)))?;
+    let static_bank = set_point_bank(&chamber, &truth, bank)?;
+    let lag = calibrate_sweeps_alone(&ThermalInputs {
+        sweeps: vec![vec![program]],
+        site: calgary(),
+        ..ThermalInputs::default()
+    })?;
+    let joined = static_bank
+        .with_thermal_from(lag)
+        .map_err(|e| anyhow!("the chamber program's calibration: {e}"))
+        .data()?;
+    write_json_atomically(bank, &joined).data()?;
+    Ok((joined, ramp))
+}
+
+/// The bank of the set points (noise models, and their static thermal calibration).
+fn set_point_bank(
+    chamber: &ChamberSettings,
+    truth: &ChamberTruth,
+    bank: &Path,
+) -> Result<ModelBank, Failure> {
     let files: Vec<&Path> = truth.files.iter().map(PathBuf::as_path).collect();
     let thermal = ThermalInputs {
-        power_ons: further_power_ons(&truth),
+        power_ons: further_power_ons(truth),
         site: calgary(),
         ..ThermalInputs::default()
     };
@@ -286,10 +408,13 @@ fn campaign_bank(plan: &ScenarioPlan, out: &Path, bank: &Path) -> Result<ModelBa
     )
 }
 
-/// The records of the power-ons after the first, grouped by power-on.
+/// The set-point records of the power-ons after the first, grouped by power-on (the sweeps
+/// have power-ons of their own).
 fn further_power_ons(truth: &ChamberTruth) -> Vec<Vec<PathBuf>> {
     let mut groups: BTreeMap<u32, Vec<PathBuf>> = BTreeMap::new();
-    for record in &truth.further_records {
+    let set_points = (truth.further_records.iter())
+        .filter(|r| matches!(r.truth.chamber, ChamberTemperature::SetPoint { .. }));
+    for record in set_points {
         groups
             .entry(record.truth.power_on)
             .or_default()
@@ -297,6 +422,52 @@ fn further_power_ons(truth: &ChamberTruth) -> Vec<Vec<PathBuf>> {
     }
     groups.into_values().collect()
 }
+
+/// The bank's thermal calibration checked on the held-out sweep (30 s blocks), with its
+/// figure written beside the bank.
+fn held_out_check(bank: &ModelBank, record: &Path, out: &Path) -> Result<HeldOutCheck, Failure> {
+    let calibration = bank
+        .thermal
+        .as_ref()
+        .ok_or_else(|| Failure::Data(anyhow!("the demo's bank has no thermal calibration")))?;
+    let series = crate::thermal_calibration::sweep_series(record, 0, &Default::default())?.series;
+    let checks = check_record(calibration, &series, HELD_OUT_BLOCK_S, None)
+        .map_err(|e| anyhow!("{}: {e}", record.display()))
+        .data()?;
+    let chosen: Vec<(Channel, &ChannelCheck)> = checks.iter().map(|(&c, k)| (c, k)).collect();
+    let svg = thermal_check_figure(
+        "the demo unit's thermal calibration (with its lag) on a sweep it was not fitted to",
+        &chosen,
+        DisplayUnits::Navigation,
+    );
+    write_atomically(out.join(HELD_OUT_CHECK_SVG), |file| {
+        Ok(std::io::Write::write_all(file, svg.as_bytes())?)
+    })
+    .data()?;
+    let channels = checks
+        .iter()
+        .map(|(c, k)| {
+            let tau_s = calibration.channels.get(c).map_or(0.0, |cal| cal.lag_s());
+            let row = HeldOutChannel {
+                unit: k.unit,
+                tau_s,
+                rms_before_offset_removed: k.rms_before_offset_removed,
+                rms_after_offset_removed: k.rms_after_offset_removed,
+                coverage_offset_removed: k.coverage_offset_removed,
+            };
+            (c.name().to_string(), row)
+        })
+        .collect();
+    Ok(HeldOutCheck {
+        true_lag_s: DEMO_THERMAL_LAG_S,
+        record: record.to_path_buf(),
+        figure: HELD_OUT_CHECK_SVG.into(),
+        channels,
+    })
+}
+
+/// Block length of the held-out check, s.
+const HELD_OUT_BLOCK_S: f64 = 30.0;
 
 /// What the surveys share.
 struct Survey<'a> {
@@ -767,7 +938,33 @@ pub fn print_thermal_scenarios(s: &ThermalScenarios) {
             print_oracle_bound(bound);
         }
     }
+    print_held_out_check(&s.held_out_check);
     if let Some(m) = &s.matrix {
         print_matrix(m);
+    }
+}
+
+/// The calibration on the held-out sweep: per channel the lag chosen and the shape RMS before
+/// and after compensation (deg/h, mg), with the band's coverage.
+fn print_held_out_check(check: &HeldOutCheck) {
+    println!(
+        "\nthe unit's thermal calibration (structure lagging by {} s; lag from a chamber program) on a sweep of another power-on it was not fitted to ({}):",
+        check.true_lag_s,
+        check.record.display()
+    );
+    for (name, c) in &check.channels {
+        let Some(channel) = Channel::ALL.into_iter().find(|k| k.name() == name) else {
+            continue;
+        };
+        let units = DisplayUnits::Navigation;
+        let show = |si: f64| units.rate(channel.sensor(), si);
+        println!(
+            "  {name}: lag chosen {:.0} s; shape rms {:.2} -> {:.2} {}; band covers {:.0} % of the 30 s blocks",
+            c.tau_s,
+            show(c.rms_before_offset_removed),
+            show(c.rms_after_offset_removed),
+            units.rate_unit(channel.sensor()),
+            100.0 * c.coverage_offset_removed
+        );
     }
 }

@@ -19,6 +19,7 @@ use crate::nav::schedule::{ModelGrid, ScheduleError, TemperatureRule};
 use crate::nav::sensor_model::{
     AxisModel, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior, SensorModelError,
 };
+use crate::stoch::thermal::legs::lagged_temperatures;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -108,6 +109,9 @@ pub enum OracleError {
 pub struct TrueModel {
     table: Vec<TrueModelAt>,
     models: Vec<ImuStochasticModel>,
+    /// Per channel, the time constant by which the structure lags the temperature sensor, s
+    /// (none or 0: no lag).
+    thermal_lag_s: BTreeMap<Channel, f64>,
 }
 
 impl TrueModel {
@@ -126,7 +130,19 @@ impl TrueModel {
             .iter()
             .map(|at| model_of(at, scale))
             .collect::<Result<_, _>>()?;
-        Ok(Self { table, models })
+        Ok(Self {
+            table,
+            models,
+            thermal_lag_s: BTreeMap::new(),
+        })
+    }
+
+    /// The model with each channel's structure lagging its temperature sensor by a
+    /// first-order lag of `lags_s` (s; the simulator's `thermal_lag_s`): its repeatable error
+    /// is then read at the structure's temperature ([`TrueModel::compensate`]).
+    pub fn with_thermal_lags(mut self, lags_s: BTreeMap<Channel, f64>) -> Self {
+        self.thermal_lag_s = lags_s;
+        self
     }
 
     /// Coldest and warmest temperature of the table, °C.
@@ -181,20 +197,38 @@ impl TrueModel {
     }
 
     /// Removes the true repeatable bias and thermal scale-factor error at each sample's
-    /// temperature from every channel: u = (y − b(T)) / (1 + s(T)·1e-6) (for increments the
-    /// bias times the sample's interval, the first sample taking the second's).
+    /// structure temperature from every channel: u = (y − b(T)) / (1 + s(T)·1e-6) (for
+    /// increments the bias times the sample's interval, the first sample taking the second's).
+    /// T is the sample's temperature, or for a channel with a thermal lag that temperature
+    /// through the lag ([`crate::stoch::thermal::legs::lagged_temperatures`], which the
+    /// simulator's structure follows exactly for a temperature linear between samples).
     ///
     /// # Errors
     /// [`OracleError::NoTemperature`] for a record without temperatures or with a non-finite
     /// one; the series is then unchanged.
     pub fn compensate(&self, series: &mut ImuSeries) -> Result<(), OracleError> {
-        let error = |c, t| {
+        let structure = self.structure_temperatures(series);
+        let error = |c: Channel, k: usize, t: f64| {
+            let t = structure.get(&c).map_or(t, |lagged| lagged[k]);
             let ppm = self.thermal_scale_factor_ppm_at(c, t);
             (self.repeatable_bias_at(c, t), ppm * 1e-6)
         };
         series
-            .remove_thermal_error(&Channel::ALL, error)
+            .remove_thermal_error_at(&Channel::ALL, error)
             .map_err(|_| OracleError::NoTemperature)
+    }
+
+    /// Per lagging channel, the structure's temperature at each sample of `series` (empty
+    /// without lags or temperatures).
+    fn structure_temperatures(&self, series: &ImuSeries) -> BTreeMap<Channel, Vec<f64>> {
+        let Some(temperature_c) = series.temperature_c.as_deref() else {
+            return BTreeMap::new();
+        };
+        let time_s: Vec<f64> = series.time.iter().map(|t| t.as_seconds()).collect();
+        (self.thermal_lag_s.iter())
+            .filter(|(_, lag)| **lag > 0.0)
+            .map(|(c, lag)| (*c, lagged_temperatures(&time_s, temperature_c, -lag)))
+            .collect()
     }
 
     fn nearest_index(&self, temperature_c: f64) -> usize {
@@ -370,6 +404,35 @@ mod tests {
         }
         series.temperature_c = None;
         assert_eq!(t.compensate(&mut series), Err(OracleError::NoTemperature));
+    }
+
+    // Closed form: the sensor's temperature ramps at m = 0.05 °C/s from 0 °C, so a structure
+    // lagging by τ = 60 s (settled at the start) reads T_s(t) = m·t − τ·m·(1 − exp(−t/τ)); gx's
+    // bias is linear there (0.2 per °C between 0 and 10 °C), so the compensated rate is
+    // 0.5 − (1 + 0.2·T_s). A channel without a lag is read at the sensor's temperature.
+    #[test]
+    fn compensation_with_a_lag_reads_the_structures_temperature() {
+        let lags = BTreeMap::from([(Channel::Gx, 60.0)]);
+        let t = truth().with_thermal_lags(lags);
+        let (m, tau) = (0.05, 60.0);
+        let time_s: Vec<f64> = (0..=100).map(|k| k as f64 * 1.5).collect();
+        let mut series = ImuSeries::new(SampleKind::Rates);
+        series.time = (time_s.iter())
+            .map(|&s| Timestamp::from_seconds(s).unwrap())
+            .collect();
+        series.channels = std::array::from_fn(|_| vec![0.5; time_s.len()]);
+        series.temperature_c = Some(time_s.iter().map(|s| m * s).collect());
+        t.compensate(&mut series).unwrap();
+        for (k, &s) in time_s.iter().enumerate() {
+            let structure = m * s - tau * m * (1.0 - (-s / tau).exp());
+            let want = 0.5 - (1.0 + 0.2 * structure);
+            let got = series.channel(Channel::Gx)[k];
+            assert!((got - want).abs() < 1e-12, "t {s}: {got} against {want}");
+            // ax has no lag: its scale factor is read at the sensor's temperature.
+            let ppm = 1e3 * (1.0 + 0.2 * (m * s));
+            let ax = series.channel(Channel::Ax)[k];
+            assert!((ax - 0.5 / (1.0 + ppm * 1e-6)).abs() < 1e-12, "t {s}: {ax}");
+        }
     }
 
     #[test]
