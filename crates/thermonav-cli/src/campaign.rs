@@ -331,6 +331,10 @@ pub struct SurveyTruth {
     pub temperature: SurveyTemperature,
     /// The true model on a grid of [`TRUTH_GRID_STEP_C`] over the samples' temperatures.
     pub models: Vec<TrueModelAt>,
+    /// Per channel, the time constant by which the structure lags the temperature sensor, s
+    /// (0: none); the oracle of `evaluate --truth` reads the repeatable error at the lagged
+    /// temperature.
+    pub thermal_lag_s: BTreeMap<Channel, f64>,
 }
 
 /// Step of the truth's temperature grid, °C (the simulator re-reads Tc and σ every 0.1 °C).
@@ -349,6 +353,7 @@ fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> Su
         .collect();
     let models = true_table(profile, &curves, imu);
     SurveyTruth {
+        thermal_lag_s: thermal_lags(profile),
         profile: profile.name.clone(),
         unit: UnitTruth {
             serial: run.unit.serial,
@@ -371,14 +376,18 @@ pub fn true_model(
     imu: &ImuSeries,
 ) -> Result<TrueModel, OracleError> {
     let curves = run.unit.repeatable_curves(profile);
-    let lags = (profile.channels.iter())
-        .map(|(c, p)| (*c, p.thermal_lag_s))
-        .collect();
     Ok(TrueModel::new(
         true_table(profile, &curves, imu),
         &ScaleFactorPrior::default(),
     )?
-    .with_thermal_lags(lags))
+    .with_thermal_lags(thermal_lags(profile)))
+}
+
+/// Every channel's structure lag of `profile`, s.
+fn thermal_lags(profile: &SensorProfile) -> BTreeMap<Channel, f64> {
+    (profile.channels.iter())
+        .map(|(c, p)| (*c, p.thermal_lag_s))
+        .collect()
 }
 
 /// The true model on the truth grid of the samples' temperatures.

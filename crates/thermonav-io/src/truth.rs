@@ -1,18 +1,23 @@
 //! A simulated survey's `truth.json` (written by `thermonav simulate vessel`), read for the
-//! oracle candidates of `evaluate --truth`: only its `models` list is used, the true error
-//! model of every channel on a fine temperature grid
-//! ([`thermonav::evaluation::oracle::TrueModelAt`]); the other fields are kept for people.
+//! oracle candidates of `evaluate --truth`: its `models` list, the true error model of every
+//! channel on a fine temperature grid ([`thermonav::evaluation::oracle::TrueModelAt`]), and
+//! `thermal_lag_s`, each channel's structure lag (absent in a file written before lags: none);
+//! the other fields are kept for people.
 
 use crate::error::{ReadError, ReadErrorKind};
 use serde::Deserialize;
+use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::evaluation::oracle::{TrueModel, TrueModelAt};
+use thermonav::imu::Channel;
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 
 /// The part of `truth.json` the oracle reads.
 #[derive(Debug, Deserialize)]
 struct TruthDocument {
     models: Vec<TrueModelAt>,
+    #[serde(default)]
+    thermal_lag_s: BTreeMap<Channel, f64>,
 }
 
 /// Parses and validates a survey truth from the bytes of a JSON file named `input` in errors;
@@ -34,7 +39,17 @@ pub fn parse_truth(
         ));
         ReadError::new(input, line, kind)
     })?;
+    if let Some((channel, lag)) =
+        (document.thermal_lag_s.iter()).find(|(_, l)| !(l.is_finite() && **l >= 0.0))
+    {
+        let why = format!(
+            "thermal_lag_s of {} is {lag}: expected a finite lag of 0 s or more",
+            channel.name()
+        );
+        return Err(ReadError::new(input, None, ReadErrorKind::Unusable(why)));
+    }
     TrueModel::new(document.models, scale)
+        .map(|t| t.with_thermal_lags(document.thermal_lag_s))
         .map_err(|e| ReadError::new(input, None, ReadErrorKind::Unusable(e.to_string())))
 }
 

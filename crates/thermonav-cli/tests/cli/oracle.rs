@@ -199,3 +199,42 @@ fn unusable_truth_files_are_refused_naming_the_file_and_what_was_expected() {
         "{stderr}"
     );
 }
+
+// A lagging unit's truth.json states each channel's lag, and `evaluate --truth` reads it: the
+// oracle's compensation then reads the true bias at the structure's lagged temperature
+// (closed form in the library's oracle tests). A lag that is negative or not a number is
+// refused, naming the channel.
+#[test]
+fn a_lagging_units_truth_states_its_lags_and_bad_lags_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v");
+    let (status, _, stderr) = outcome(&thermonav(&[
+        "simulate",
+        "vessel",
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--duration-s",
+        "120",
+        "--warm-up-from-c=-10",
+        "--thermal-lag-s",
+        "90",
+        "--out",
+        arg(&out),
+    ]));
+    assert_eq!(status, 0, "{stderr}");
+    let text = std::fs::read_to_string(out.join("truth.json")).unwrap();
+    let mut truth: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for channel in ["gx", "gy", "gz", "ax", "ay", "az"] {
+        assert_eq!(truth["thermal_lag_s"][channel], 90.0, "{channel}");
+    }
+    let scale = ScaleFactorPrior::default();
+    assert!(read_truth_file(out.join("truth.json"), &scale).is_ok());
+    truth["thermal_lag_s"]["gy"] = serde_json::json!(-5.0);
+    let bad = write_file(
+        dir.path(),
+        "bad_truth.json",
+        &serde_json::to_string(&truth).unwrap(),
+    );
+    let error = read_truth_file(&bad, &scale).unwrap_err().to_string();
+    assert!(error.contains("thermal_lag_s of gy is -5"), "{error}");
+}
