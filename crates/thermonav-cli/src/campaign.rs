@@ -376,11 +376,11 @@ pub fn true_model(
     imu: &ImuSeries,
 ) -> Result<TrueModel, OracleError> {
     let curves = run.unit.repeatable_curves(profile);
-    Ok(TrueModel::new(
+    TrueModel::new(
         true_table(profile, &curves, imu),
         &ScaleFactorPrior::default(),
     )?
-    .with_thermal_lags(thermal_lags(profile)))
+    .with_thermal_lags(thermal_lags(profile))
 }
 
 /// Every channel's structure lag of `profile`, s.

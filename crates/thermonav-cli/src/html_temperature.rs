@@ -244,10 +244,7 @@ fn held_out_table(check: &Value) -> Table {
 
 fn held_out_row(name: &str, c: &Value) -> Vec<String> {
     let number = |key: &str| c.get(key).and_then(Value::as_f64);
-    let sensor = Channel::ALL
-        .into_iter()
-        .find(|k| k.name() == name)
-        .map(Channel::sensor);
+    let sensor = Channel::from_name(name).map(Channel::sensor);
     let show = |v: Option<f64>| match (v, sensor) {
         (Some(v), Some(s)) => format!("{:.2}", DisplayUnits::Navigation.rate(s, v)),
         _ => "n/a".into(),

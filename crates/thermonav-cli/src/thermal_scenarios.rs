@@ -233,7 +233,7 @@ pub struct HeldOutCheck {
     pub figure: String,
     /// Per channel: the lag chosen (s; 0 without one), and the shape RMS of the record's
     /// 30 s block means before and after compensation, rate unit.
-    pub channels: BTreeMap<String, HeldOutChannel>,
+    pub channels: BTreeMap<Channel, HeldOutChannel>,
 }
 
 /// One channel of [`HeldOutCheck`].
@@ -455,7 +455,7 @@ fn held_out_check(bank: &ModelBank, record: &Path, out: &Path) -> Result<HeldOut
                 rms_after_offset_removed: k.rms_after_offset_removed,
                 coverage_offset_removed: k.coverage_offset_removed,
             };
-            (c.name().to_string(), row)
+            (*c, row)
         })
         .collect();
     Ok(HeldOutCheck {
@@ -492,11 +492,8 @@ impl Survey<'_> {
     ) -> Result<EvaluationFile, Failure> {
         let operating_c = mean_temperature_c(&temperature, self.plan.survey_s);
         let run = self.run(temperature)?;
-        // Every scenario carries the oracle, so that each claim says whether the true model
-        // itself could show it.
-        let with_oracle = true;
         let (main, truth) = self
-            .scenario(&run, compensation, with_oracle)
+            .scenario(&run, compensation)
             .map_err(|e| anyhow!("{e}"))
             .data()?;
         let thermal = ThermalOptions {
@@ -504,7 +501,7 @@ impl Survey<'_> {
             scheduling,
             compensation,
         };
-        let plan = self.tournament_plan(truth.as_ref(), thermal, operating_c);
+        let plan = self.tournament_plan(Some(&truth), thermal, operating_c);
         let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
         let extra = replicates.saturating_sub(1) as usize;
         let resimulated = |k: usize| {
@@ -512,8 +509,7 @@ impl Survey<'_> {
                 seed: run.seed.wrapping_add(k as u64),
                 ..run.clone()
             };
-            self.scenario(&run, compensation, with_oracle)
-                .map(|(s, _)| s)
+            self.scenario(&run, compensation).map(|(s, _)| s)
         };
         let replicates = match kind {
             ReplicateKind::ShiftedOutages => Replicates::ShiftedOutages {
@@ -590,24 +586,20 @@ impl Survey<'_> {
         })
     }
 
-    /// The survey as a scenario (raw and compensated records) and, `with_oracle`, its truth
-    /// with the oracle's record. The compensated record is made only when `compensation`
-    /// lets compensated candidates in.
+    /// The survey as a scenario (raw and compensated records) and its truth, which every
+    /// scenario carries so that each claim says whether the true model itself could show it.
+    /// The compensated records (ours and the oracle's) are made only when `compensation` lets
+    /// compensated candidates in.
     fn scenario(
         &self,
         run: &VesselRun,
         compensation: Compensation,
-        with_oracle: bool,
-    ) -> Result<(Scenario, Option<TrueModel>), String> {
+    ) -> Result<(Scenario, TrueModel), String> {
         let record = simulate_vessel(self.profile, run).map_err(|e| e.to_string())?;
         let name = Path::new("simulated survey");
-        let truth = with_oracle
-            .then(|| true_model(self.profile, run, &record.imu))
-            .transpose()
-            .map_err(|e| e.to_string())?;
-        // The oracle's compensated record only where compensated candidates run.
+        let truth = true_model(self.profile, run, &record.imu).map_err(|e| e.to_string())?;
         let records = RecordPlan {
-            oracle: truth.as_ref().filter(|_| compensation != Compensation::Off),
+            oracle: Some(&truth).filter(|_| compensation != Compensation::Off),
             ..RecordPlan::calibrated(self.bank.thermal.as_ref(), compensation)
         };
         let imu = scenario_imu(&record.imu, records, name).map_err(|e| e.to_string())?;
@@ -952,10 +944,8 @@ fn print_held_out_check(check: &HeldOutCheck) {
         check.true_lag_s,
         check.record.display()
     );
-    for (name, c) in &check.channels {
-        let Some(channel) = Channel::ALL.into_iter().find(|k| k.name() == name) else {
-            continue;
-        };
+    for (channel, c) in &check.channels {
+        let name = channel.name();
         let units = DisplayUnits::Navigation;
         let show = |si: f64| units.rate(channel.sensor(), si);
         println!(

@@ -39,17 +39,8 @@ pub fn parse_truth(
         ));
         ReadError::new(input, line, kind)
     })?;
-    if let Some((channel, lag)) =
-        (document.thermal_lag_s.iter()).find(|(_, l)| !(l.is_finite() && **l >= 0.0))
-    {
-        let why = format!(
-            "thermal_lag_s of {} is {lag}: expected a finite lag of 0 s or more",
-            channel.name()
-        );
-        return Err(ReadError::new(input, None, ReadErrorKind::Unusable(why)));
-    }
     TrueModel::new(document.models, scale)
-        .map(|t| t.with_thermal_lags(document.thermal_lag_s))
+        .and_then(|t| t.with_thermal_lags(document.thermal_lag_s))
         .map_err(|e| ReadError::new(input, None, ReadErrorKind::Unusable(e.to_string())))
 }
 

@@ -71,6 +71,11 @@ impl Channel {
         }
     }
 
+    /// The channel of a short name ([`Channel::name`]); `None` for any other text.
+    pub fn from_name(name: &str) -> Option<Channel> {
+        Channel::ALL.into_iter().find(|c| c.name() == name)
+    }
+
     /// Position in [`Channel::ALL`] (0..6).
     pub fn index(self) -> usize {
         self as usize
@@ -299,6 +304,16 @@ impl ImuSeries {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // Every channel's name reads back as that channel; no other text names one.
+    #[test]
+    fn channel_names_read_back() {
+        for c in Channel::ALL {
+            assert_eq!(Channel::from_name(c.name()), Some(c));
+        }
+        assert_eq!(Channel::from_name("GX"), None);
+        assert_eq!(Channel::from_name("temp_c"), None);
+    }
 
     fn sample(nanos: i64, temperature_c: Option<f64>) -> ImuSample {
         ImuSample {

@@ -76,10 +76,7 @@ fn print_summary(sidecar: &Sidecar) {
         sidecar.input, sidecar.output, sidecar.samples
     );
     for (&name, r) in &sidecar.channels {
-        let sensor = thermonav::imu::Channel::ALL
-            .into_iter()
-            .find(|c| c.name() == name)
-            .map(|c| c.sensor());
+        let sensor = thermonav::imu::Channel::from_name(name).map(|c| c.sensor());
         let Some(sensor) = sensor else { continue };
         let show = |si: f64| DisplayUnits::Navigation.rate(sensor, si);
         let lag = r

@@ -391,9 +391,7 @@ fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, F
 
 /// The channel named by `--channel`.
 fn channel_of(name: &str) -> Result<Channel, Failure> {
-    Channel::ALL
-        .into_iter()
-        .find(|c| c.name() == name)
+    Channel::from_name(name)
         .ok_or_else(|| Failure::Usage(anyhow!("--channel {name}: not one of gx gy gz ax ay az")))
 }
 

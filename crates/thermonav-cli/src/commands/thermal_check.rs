@@ -71,7 +71,7 @@ fn print_table(document: &CheckDocument) {
         "clamped"
     );
     for (&name, check) in &document.channels {
-        let Some(channel) = Channel::ALL.into_iter().find(|c| c.name() == name) else {
+        let Some(channel) = Channel::from_name(name) else {
             continue;
         };
         let sensor = channel.sensor();
@@ -99,7 +99,7 @@ fn print_table(document: &CheckDocument) {
 /// A line per channel whose compensated shape is worse than the record's own.
 fn print_unhelpful(document: &CheckDocument) {
     for (&name, check) in &document.channels {
-        let Some(channel) = Channel::ALL.into_iter().find(|c| c.name() == name) else {
+        let Some(channel) = Channel::from_name(name) else {
             continue;
         };
         if check.makes_worse() {

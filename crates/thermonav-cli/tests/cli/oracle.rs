@@ -9,18 +9,26 @@ use thermonav_io::truth::read_truth_file;
 
 /// A 600 s survey of the temperature-sensitive sensor warming up from −10 °C, in `dir/v`.
 fn warming_survey(dir: &Path) -> PathBuf {
+    simulated_warming(dir, "600", &[])
+}
+
+/// A survey of `duration_s` of the temperature-sensitive sensor warming up from −10 °C, with
+/// `extra` options of `simulate vessel`, in `dir/v`.
+fn simulated_warming(dir: &Path, duration_s: &str, extra: &[&str]) -> PathBuf {
     let out = dir.join("v");
-    let (status, _, stderr) = outcome(&thermonav(&[
+    let mut args = vec![
         "simulate",
         "vessel",
         "--profile",
         "builtin:temperature-sensitive",
         "--duration-s",
-        "600",
+        duration_s,
         "--warm-up-from-c=-10",
         "--out",
         arg(&out),
-    ]));
+    ];
+    args.extend_from_slice(extra);
+    let (status, _, stderr) = outcome(&thermonav(&args));
     assert_eq!(status, 0, "{stderr}");
     out
 }
@@ -207,21 +215,7 @@ fn unusable_truth_files_are_refused_naming_the_file_and_what_was_expected() {
 #[test]
 fn a_lagging_units_truth_states_its_lags_and_bad_lags_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("v");
-    let (status, _, stderr) = outcome(&thermonav(&[
-        "simulate",
-        "vessel",
-        "--profile",
-        "builtin:temperature-sensitive",
-        "--duration-s",
-        "120",
-        "--warm-up-from-c=-10",
-        "--thermal-lag-s",
-        "90",
-        "--out",
-        arg(&out),
-    ]));
-    assert_eq!(status, 0, "{stderr}");
+    let out = simulated_warming(dir.path(), "120", &["--thermal-lag-s", "90"]);
     let text = std::fs::read_to_string(out.join("truth.json")).unwrap();
     let mut truth: serde_json::Value = serde_json::from_str(&text).unwrap();
     for channel in ["gx", "gy", "gz", "ax", "ay", "az"] {

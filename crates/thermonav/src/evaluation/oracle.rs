@@ -102,6 +102,14 @@ pub enum OracleError {
     /// The record has no temperatures, or a non-finite one.
     #[error("the oracle needs the IMU's temp_c at every sample")]
     NoTemperature,
+    /// A structure lag that is negative or not finite.
+    #[error("thermal_lag_s of {channel} is {lag_s}: expected a finite lag of 0 s or more")]
+    ThermalLag {
+        /// The channel's name.
+        channel: &'static str,
+        /// The lag given, s.
+        lag_s: f64,
+    },
 }
 
 /// A validated truth table, increasing in temperature.
@@ -140,9 +148,21 @@ impl TrueModel {
     /// The model with each channel's structure lagging its temperature sensor by a
     /// first-order lag of `lags_s` (s; the simulator's `thermal_lag_s`): its repeatable error
     /// is then read at the structure's temperature ([`TrueModel::compensate`]).
-    pub fn with_thermal_lags(mut self, lags_s: BTreeMap<Channel, f64>) -> Self {
+    ///
+    /// # Errors
+    /// [`OracleError::ThermalLag`] for a lag that is negative or not finite.
+    pub fn with_thermal_lags(
+        mut self,
+        lags_s: BTreeMap<Channel, f64>,
+    ) -> Result<Self, OracleError> {
+        if let Some((c, lag)) = lags_s.iter().find(|(_, l)| !(l.is_finite() && **l >= 0.0)) {
+            return Err(OracleError::ThermalLag {
+                channel: c.name(),
+                lag_s: *lag,
+            });
+        }
         self.thermal_lag_s = lags_s;
-        self
+        Ok(self)
     }
 
     /// Coldest and warmest temperature of the table, °C.
@@ -413,7 +433,14 @@ mod tests {
     #[test]
     fn compensation_with_a_lag_reads_the_structures_temperature() {
         let lags = BTreeMap::from([(Channel::Gx, 60.0)]);
-        let t = truth().with_thermal_lags(lags);
+        let t = truth().with_thermal_lags(lags).unwrap();
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            let refused = truth().with_thermal_lags(BTreeMap::from([(Channel::Gy, bad)]));
+            assert!(
+                matches!(refused, Err(OracleError::ThermalLag { channel: "gy", .. })),
+                "{bad}"
+            );
+        }
         let (m, tau) = (0.05, 60.0);
         let time_s: Vec<f64> = (0..=100).map(|k| k as f64 * 1.5).collect();
         let mut series = ImuSeries::new(SampleKind::Rates);
