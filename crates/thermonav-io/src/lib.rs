@@ -102,6 +102,7 @@ pub mod raw_imu;
 pub mod ros;
 mod rows;
 pub mod rtklib_pos;
+pub mod sample_checks;
 mod short_decimal;
 pub mod solution;
 pub mod temperature_table;
