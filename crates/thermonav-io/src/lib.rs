@@ -279,15 +279,49 @@ pub fn read_document_text(path: &Path) -> std::io::Result<String> {
     })
 }
 
-/// The bytes of the file at `path` (decompressed, see [`open_input`]), with the path as the
-/// input's name; a missing or
-/// forbidden file is [`ReadErrorKind::Open`], a failure part-way [`ReadErrorKind::Read`].
+/// How many times its compressed size a gzip log may expand to, beyond
+/// [`DOCUMENT_LIMIT_BYTES`]: binary inertial logs compress two to ten times, so a file that
+/// expands further is a decompression bomb, refused before it exhausts memory.
+pub const MAX_GZIP_EXPANSION: u64 = 32;
+
+/// The most bytes a file of `stored_bytes` may decompress to when read whole.
+fn whole_file_limit(stored_bytes: u64) -> u64 {
+    DOCUMENT_LIMIT_BYTES.saturating_add(stored_bytes.saturating_mul(MAX_GZIP_EXPANSION))
+}
+
+/// The bytes of `file` (compressed when `file.is_compressed()`), at most
+/// [`whole_file_limit`] of `stored_bytes` for a compressed one.
+fn read_bounded(mut file: InputFile, stored_bytes: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    if !file.is_compressed() {
+        file.read_to_end(&mut bytes)?;
+        return Ok(bytes);
+    }
+    let limit = whole_file_limit(stored_bytes);
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
+    match bytes.len() as u64 > limit {
+        true => Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "the gzip stream of {stored_bytes} bytes expands beyond {} MiB ({}x its size plus {} MiB, more than any log compresses): refused as a decompression bomb (decompress it with gunzip first if it is genuine)",
+                limit >> 20,
+                MAX_GZIP_EXPANSION,
+                DOCUMENT_LIMIT_BYTES >> 20
+            ),
+        )),
+        false => Ok(bytes),
+    }
+}
+
+/// The bytes of the file at `path` (decompressed, see [`open_input`], at most
+/// [`MAX_GZIP_EXPANSION`] times the stored size plus [`DOCUMENT_LIMIT_BYTES`]), with the path
+/// as the input's name; a missing or forbidden file is [`ReadErrorKind::Open`], a failure
+/// part-way [`ReadErrorKind::Read`].
 fn read_whole_file(path: &Path) -> Result<(Vec<u8>, String), ReadError> {
     let input = path.display().to_string();
-    let read = open_input(path).and_then(|mut file| {
-        let mut bytes = Vec::new();
-        std::io::Read::read_to_end(&mut file, &mut bytes).map(|_| bytes)
-    });
+    let stored_bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+    let read = open_input(path).and_then(|file| read_bounded(file, stored_bytes));
     match read {
         Ok(bytes) => Ok((bytes, input)),
         Err(e) => {

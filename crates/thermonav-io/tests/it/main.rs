@@ -5,6 +5,7 @@ mod chunked;
 mod dataflash;
 mod fuzz_corpus;
 mod gnss;
+mod gzip_bounds;
 mod imu_errors;
 mod imu_units;
 mod kf_gins;
