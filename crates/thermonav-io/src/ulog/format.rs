@@ -237,18 +237,13 @@ fn append_fields(
         .get(name)
         .ok_or_else(|| format!("no format definition for type {name}"))?;
     for field in &format.fields {
-        let names: Vec<String> = match field.array_len {
-            None => vec![format!("{prefix}{}", field.name)],
-            Some(n) => (0..n)
-                .map(|i| format!("{prefix}{}[{i}]", field.name))
-                .collect(),
-        };
-        for element in names {
+        for index in 0..field.array_len.unwrap_or(1) {
             if offset > MAX_RECORD_BYTES {
                 return Err(format!(
                     "type {name} is larger than a ULog message can hold ({MAX_RECORD_BYTES} bytes)"
                 ));
             }
+            let element = element_path(prefix, field, index)?;
             offset = match Primitive::from_name(&field.type_name) {
                 Some(primitive) => {
                     if !field.is_padding() {
@@ -284,6 +279,28 @@ fn append_fields(
         }
     }
     Ok(offset)
+}
+
+/// The longest path of a flattened field, bytes: PX4's deepest nested names are under a
+/// hundred; a longer one is a corrupt or hostile definition, whose names, repeated for every
+/// array element, would otherwise take gigabytes.
+pub const MAX_FIELD_PATH_BYTES: usize = 256;
+
+/// The path of element `index` of `field` under `prefix` (`esc[2].esc_rpm`; no index for a
+/// scalar), at most [`MAX_FIELD_PATH_BYTES`] long.
+fn element_path(prefix: &str, field: &FieldDefinition, index: usize) -> Result<String, String> {
+    // The index adds at most 7 bytes (`[65535]`): checked before anything is built.
+    if prefix.len() + field.name.len() + 7 > MAX_FIELD_PATH_BYTES {
+        return Err(format!(
+            "field {prefix}{} has a name of {} bytes, longer than the {MAX_FIELD_PATH_BYTES} a ULog field name takes",
+            field.name.chars().take(40).collect::<String>(),
+            prefix.len() + field.name.len()
+        ));
+    }
+    Ok(match field.array_len {
+        None => format!("{prefix}{}", field.name),
+        Some(_) => format!("{prefix}{}[{index}]", field.name),
+    })
 }
 
 /// Bytes of padding at the end of a top-level format (only primitive padding fields).

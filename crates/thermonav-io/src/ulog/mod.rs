@@ -227,7 +227,7 @@ struct Decoder<'a> {
 /// Most fields the layouts of all subscriptions may hold together: each 'A' message flattens
 /// its format again, so a small file of many subscriptions to a wide format could otherwise
 /// ask for gigabytes.
-const MAX_LAYOUT_FIELDS: usize = 1 << 20;
+const MAX_LAYOUT_FIELDS: usize = 1 << 18;
 
 /// Little-endian u64 at `offset` (the caller checked the length).
 fn u64_at(bytes: &[u8], offset: usize) -> u64 {
@@ -399,7 +399,8 @@ impl Decoder<'_> {
                 self.input,
                 offset,
                 format!(
-                    "the subscriptions so far lay out more than {MAX_LAYOUT_FIELDS} fields in                      all (a PX4 log has a few thousand): a corrupt file?"
+                    "the subscriptions so far lay out more than {MAX_LAYOUT_FIELDS} fields in \
+                     all (a PX4 log has a few thousand): a corrupt file?"
                 ),
             ));
         }

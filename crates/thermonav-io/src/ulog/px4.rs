@@ -29,6 +29,7 @@ use super::format::FlatField;
 use super::{Topic, Ulog};
 use crate::error::{ReadError, ReadErrorKind};
 use crate::gpst::GPST_MINUS_UTC_S;
+use crate::sample_checks::{imu_sample_problem, inertial_values_problem, temperature_problem};
 use serde::Serialize;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::{ImuSample, ImuSeries, SampleKind};
@@ -155,7 +156,7 @@ pub fn imu_series(log: &Ulog, input: &str, scale: TimeScale) -> Result<ImuExtrac
             format!("topic {} has no usable sample", extract.topic),
         ));
     }
-    if let Some((name, times, values)) = temperature_records(log, scale) {
+    if let Some((name, times, values)) = temperature_records(log, input, scale)? {
         let column = nearest_values(&extract.series.time, &times, &values);
         extract.series.temperature_c = Some(column);
         extract.temperature_source = Some(name);
@@ -242,10 +243,10 @@ impl SeriesBuilder<'_> {
                     format!("at byte {at}: {name} record {index} has no usable timestamp"),
                 )
             })?;
-        if gyro.iter().chain(&accel).any(|v| !v.is_finite()) {
+        if let Some(problem) = imu_sample_problem(gyro, accel, None) {
             return Err(topic_error(
                 self.input,
-                format!("at byte {at}: {name} record {index} holds a NaN or infinite value"),
+                format!("at byte {at}: {name} record {index}: {problem}"),
             ));
         }
         let previous = self.series.time.last().copied();
@@ -328,30 +329,60 @@ fn increments_from_vehicle_imu(
     Ok(builder.finish(0, 0))
 }
 
-/// Temperature records (name, times, °C) from the first topic that has them.
-fn temperature_records(log: &Ulog, scale: TimeScale) -> Option<(String, Vec<Timestamp>, Vec<f64>)> {
+/// Temperature records (name, times, °C) from the first topic that has them. A NaN
+/// temperature is PX4's "not measured" and is left out; a finite one outside the sensor range
+/// (kelvin, a corrupt value) is refused, naming the record.
+fn temperature_records(
+    log: &Ulog,
+    input: &str,
+    scale: TimeScale,
+) -> Result<Option<TemperatureRecords>, ReadError> {
     let sources = [
         ("sensor_accel", "temperature"),
         ("vehicle_imu_status", "temperature_accel"),
         ("sensor_gyro", "temperature"),
     ];
-    sources.iter().find_map(|&(topic_name, field_name)| {
-        let topic = log.topic(topic_name, 0)?;
-        let field = topic.field(field_name)?;
-        let stamp = topic.field("timestamp")?;
-        let mut records: Vec<(Timestamp, f64)> = (0..topic.len())
-            .filter_map(|i| {
-                let value = topic.real(field, i);
-                let boot_us = u64::try_from(topic.integer(stamp, i)?).ok()?;
-                value.is_finite().then_some((scale.at(boot_us)?, value))
-            })
-            .collect();
+    for &(topic_name, field_name) in &sources {
+        let Some(topic) = log.topic(topic_name, 0) else {
+            continue;
+        };
+        let (Some(field), Some(stamp)) = (topic.field(field_name), topic.field("timestamp")) else {
+            continue;
+        };
+        let mut records = Vec::new();
+        for i in 0..topic.len() {
+            let value = topic.real(field, i);
+            if let Some(problem) = value
+                .is_finite()
+                .then(|| temperature_problem(value))
+                .flatten()
+            {
+                let at = topic.file_offset(i);
+                return Err(topic_error(
+                    input,
+                    format!("at byte {at}: {topic_name} record {i}: {field_name}: {problem}"),
+                ));
+            }
+            let boot_us = topic.integer(stamp, i).and_then(|v| u64::try_from(v).ok());
+            if let Some(time) = boot_us
+                .and_then(|us| scale.at(us))
+                .filter(|_| value.is_finite())
+            {
+                records.push((time, value));
+            }
+        }
         // In time order for the nearest-record lookup (a log may hold them otherwise).
         records.sort_by_key(|&(time, _)| time);
         let (times, values): (Vec<_>, Vec<_>) = records.into_iter().unzip();
-        (!times.is_empty()).then(|| (format!("{topic_name}.{field_name}"), times, values))
-    })
+        if !times.is_empty() {
+            return Ok(Some((format!("{topic_name}.{field_name}"), times, values)));
+        }
+    }
+    Ok(None)
 }
+
+/// A temperature source's name (`sensor_accel.temperature`), its record times and values, °C.
+type TemperatureRecords = (String, Vec<Timestamp>, Vec<f64>);
 
 /// For each of `at` (increasing), the value of the nearest of `times` (increasing, not
 /// empty); a tie goes to the earlier record.
@@ -719,10 +750,18 @@ fn raw_vectors(
                 )
             })?;
         let vector = axes.map(|f| topic.real(f, i));
-        if vector.iter().any(|v| !v.is_finite()) {
+        let temperature_c = topic.real(temperature, i);
+        // A NaN temperature is "not measured" (the record is counted and left out later).
+        let problem = inertial_values_problem(&["x", "y", "z"], &vector).or_else(|| {
+            temperature_c
+                .is_finite()
+                .then(|| temperature_problem(temperature_c))
+                .flatten()
+        });
+        if let Some(problem) = problem {
             return Err(topic_error(
                 input,
-                format!("at byte {at}: {name} record {i} holds a NaN or infinite value"),
+                format!("at byte {at}: {name} record {i}: {problem}"),
             ));
         }
         if let Some(previous) = samples.last().map(|s| s.time).filter(|&p| time <= p) {
@@ -735,11 +774,10 @@ fn raw_vectors(
                 ),
             ));
         }
-        let temperature_c = Some(topic.real(temperature, i));
         samples.push(RawSample {
             time,
             vector,
-            temperature_c,
+            temperature_c: Some(temperature_c),
         });
     }
     match samples.is_empty() {

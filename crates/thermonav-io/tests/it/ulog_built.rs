@@ -166,8 +166,9 @@ fn nested_arrays_of_an_empty_type_are_refused_at_once() {
 }
 
 // Each 'A' message lays its format out again: 600 subscriptions to a 2000-field format
-// (1.2 M fields, a file of about 30 KB) pass the cap of 2^20 fields and are refused, while a
-// real log's few thousand stay far below it.
+// (1.2 M fields, a file of about 30 KB) pass the cap of 2^18 fields and are refused, while a
+// real log's few thousand stay far below it (the cap times the 256-byte longest name bounds
+// the names to 64 MiB).
 #[test]
 fn subscriptions_beyond_the_layout_cap_are_refused() {
     let mut out = log_start();
@@ -178,7 +179,7 @@ fn subscriptions_beyond_the_layout_cap_are_refused() {
     }
     let error = decode_ulog(&out, "many.ulg").unwrap_err().to_string();
     assert!(
-        error.contains("many.ulg") && error.contains("1048576 fields"),
+        error.contains("many.ulg") && error.contains("262144 fields"),
         "{error}"
     );
 }
@@ -284,5 +285,92 @@ fn raw_sensors_of_one_instance_give_the_sweep_and_the_device_ids() {
             .to_string()
             .contains("no topic sensor_gyro of instance 2"),
         "{missing}"
+    );
+}
+
+// Issue 37 rows 6 and 7: the binary reader applies the CSV reader's value checks per record.
+#[test]
+fn a_temperature_in_kelvin_or_absurd_is_refused_naming_the_record() {
+    let kelvin = built_log_with([(1_000_000, 298.15), (1_010_000, 21.5)]);
+    let log = decode_ulog(&kelvin, "k.ulg").unwrap();
+    let error = imu_series(&log, "k.ulg", TimeScale::Boot)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("k.ulg")
+            && error.contains("sensor_accel record 0")
+            && error.contains("in kelvin?"),
+        "{error}"
+    );
+    let absurd = built_log_with([(1_000_000, 20.5), (1_010_000, 1e30)]);
+    let log = decode_ulog(&absurd, "a.ulg").unwrap();
+    let error = imu_series(&log, "a.ulg", TimeScale::Boot)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("sensor_accel record 1") && error.contains("outside -80..150"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_raw_sweep_at_1e30_degrees_is_refused_naming_the_record() {
+    let mut out = log_start();
+    format(
+        &mut out,
+        "sensor_gyro:uint64_t timestamp;float x;float y;float z;float temperature;",
+    );
+    format(
+        &mut out,
+        "sensor_accel:uint64_t timestamp;float x;float y;float z;float temperature;",
+    );
+    subscribe(&mut out, 0, "sensor_gyro");
+    subscribe(&mut out, 1, "sensor_accel");
+    let rows = [
+        (1_000_000_u64, 0.001_f32, 25.0_f32),
+        (1_010_000, 0.001, 1e30),
+    ];
+    for (t, gx, c) in rows {
+        data(
+            &mut out,
+            0,
+            &Record::default().u64(t).f32(gx).f32(0.0).f32(0.0).f32(c).0,
+        );
+        data(
+            &mut out,
+            1,
+            &Record::default()
+                .u64(t)
+                .f32(0.0)
+                .f32(0.0)
+                .f32(-9.8)
+                .f32(25.0)
+                .0,
+        );
+    }
+    let log = decode_ulog(&out, "sweep.ulg").unwrap();
+    let error = raw_sensor_series(&log, "sweep.ulg", TimeScale::Boot, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("sweep.ulg")
+            && error.contains("sensor_gyro record 1")
+            && error.contains("outside -80..150"),
+        "{error}"
+    );
+}
+
+// Issue 37 row 5: a format of 60,000 array elements under a 60,000-character name asked for
+// gigabytes of names (SIGABRT under a 2 GB cap); it is refused from the name's length.
+#[test]
+fn a_format_with_a_huge_field_name_is_refused_before_its_names_are_built() {
+    let mut out = log_start();
+    let name = "n".repeat(60_000);
+    format(&mut out, &format!("huge:uint8_t[60000] {name};"));
+    subscribe(&mut out, 0, "huge");
+    let error = decode_ulog(&out, "huge.ulg").unwrap_err().to_string();
+    assert!(
+        error.contains("huge.ulg") && error.contains("longer than the 256"),
+        "{error}"
     );
 }
