@@ -10,8 +10,8 @@ from the reference state at the first GNSS epoch, take the 1 Hz position fixes a
 dual-antenna heading, and coast through the same outages; the horizontal error at the end of
 each outage is computed for both solutions by the same code below. The filters differ (states,
 noise model, tuning, precision), so the errors are a sanity check that the peer navigates, not an
-agreement check; the times are the point. The other PyPI candidates are listed in the README
-(Speed) with why they were not timed.
+agreement check; the times are the point. The other PyPI candidates are listed in the user
+guide (docs/user-guide.md, Speed) with why they were not timed.
 """
 import argparse
 import json
