@@ -26,6 +26,7 @@
 use super::{DataFlash, MessageType, Value};
 use crate::error::{ReadError, ReadErrorKind};
 use crate::gpst::from_week_and_nanos;
+use crate::sample_checks::imu_sample_problem;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use thermonav::gnss::GnssFix;
@@ -476,14 +477,11 @@ fn imu_sample(
     for (value, &c) in v.iter_mut().zip(columns) {
         *value = number(t, c, r, input)?;
     }
-    if v.iter().any(|x| !x.is_finite()) {
+    let (gyro, accel) = ([v[0], v[1], v[2]], [v[3], v[4], v[5]]);
+    if let Some(problem) = imu_sample_problem(gyro, accel, Some(v[6])) {
         return Err(unusable(
             input,
-            format!(
-                "at byte {}: {} record {r} holds a NaN or infinite value",
-                t.offset(r),
-                t.name
-            ),
+            format!("at byte {}: {} record {r}: {problem}", t.offset(r), t.name),
         ));
     }
     let us = unsigned(t, time, r, input)?;
@@ -495,8 +493,8 @@ fn imu_sample(
     })?;
     Ok(ImuSample {
         time,
-        gyro: [v[0], v[1], v[2]],
-        accel: [v[3], v[4], v[5]],
+        gyro,
+        accel,
         temperature_c: Some(v[6]),
     })
 }

@@ -293,3 +293,41 @@ fn every_cut_and_random_corruption_of_the_logs_gives_an_error_or_a_log_never_a_p
         }
     }
 }
+
+/// boot.bin with the f32 at `field_byte` of IMU record 0 replaced by `value`.
+fn boot_with_imu_field(field_byte: usize, value: f32) -> Vec<u8> {
+    let mut bytes = bytes("boot.bin");
+    let log = decode_dataflash(&bytes, "boot.bin").unwrap();
+    let at = log.message("IMU").unwrap().offset(0) as usize;
+    assert_eq!(
+        bytes[at..at + 2],
+        [0xA3, 0x95],
+        "a record starts with its header"
+    );
+    bytes[at + field_byte..at + field_byte + 4].copy_from_slice(&value.to_le_bytes());
+    bytes
+}
+
+// Issue 37 row 6: the CSV reader's value checks apply to every IMU record. The IMU record is
+// "QBffffffIIf...": header 3 bytes, TimeUS 8, I 1, gyro 12, AccX at byte 24, EG/EA 8, T at 44.
+#[test]
+fn a_temperature_in_kelvin_or_a_huge_accelerometer_is_refused_naming_the_record() {
+    let refusal_of = |bytes: Vec<u8>| {
+        let log = decode_dataflash(&bytes, "boot.bin").unwrap();
+        imu_series(&log, None, "--imu-instance", "boot.bin", TimeScale::Boot)
+            .unwrap_err()
+            .to_string()
+    };
+    let kelvin = refusal_of(boot_with_imu_field(44, 298.15));
+    assert!(
+        kelvin.contains("boot.bin")
+            && kelvin.contains("IMU record 0")
+            && kelvin.contains("in kelvin?"),
+        "{kelvin}"
+    );
+    let huge = refusal_of(boot_with_imu_field(24, -1e30));
+    assert!(
+        huge.contains("at byte 342: IMU record 0: ax is -1.0000000150474662e30 in SI"),
+        "{huge}"
+    );
+}
