@@ -10,6 +10,7 @@ mod commands;
 mod failure;
 mod figure_data;
 mod fir_design;
+mod html_ranking;
 mod html_report;
 mod html_temperature;
 mod inputs;
