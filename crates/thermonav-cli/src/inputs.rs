@@ -5,6 +5,7 @@ use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::imu::{ImuSeries, SampleKind};
+use thermonav::nav::run::operating_temperature_c;
 use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
@@ -206,4 +207,26 @@ pub fn load_profile(path: Option<&Path>) -> Result<SensorProfile, Failure> {
         Some(p) => read_profile(p).data(),
         None => Ok(adis16364_like()),
     }
+}
+
+/// The operating temperature: given, or the mean of the IMU file's temp_c column.
+pub fn operating_temperature(
+    given: Option<f64>,
+    series: &ImuSeries,
+    imu: &Path,
+) -> Result<f64, Failure> {
+    operating_temperature_c(given, series).map_err(|_| no_temperature(imu))
+}
+
+/// A record without temp_c and no temperature given: a usage error naming the options.
+pub(crate) fn no_temperature(imu: &Path) -> Failure {
+    Failure::Usage(anyhow!(
+        "{}no temp_c column; give the temperature (--model-temperature-c or --operating-temperature-c)",
+        prefix(imu)
+    ))
+}
+
+/// `PATH: `, the start of a message about a file.
+pub(crate) fn prefix(path: &Path) -> String {
+    format!("{}: ", path.display())
 }

@@ -5,7 +5,8 @@
 //! [`thermonav::nav::stream`]; [`crate::integration`] chooses it when the run allows.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::{ImuReading, LoadedNoise, Summary, run_failure, summarize, write_epochs};
+use crate::integration_outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
+use crate::loaded_noise::LoadedNoise;
 use crate::settings::navigation::IntegrateSettings;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;

@@ -4,7 +4,7 @@
 //! `evaluate` and `demo`.
 
 use crate::failure::{Classify, Failure};
-use crate::integration::operating_temperature;
+use crate::inputs::operating_temperature;
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;

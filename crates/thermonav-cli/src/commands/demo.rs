@@ -14,7 +14,8 @@ use crate::bank_building::build_bank;
 use crate::bank_tables::show_estimate;
 use crate::campaign::{VesselFiles, create_folder, run_chamber, simulate_vessel_files, vessel_run};
 use crate::failure::{Classify, Failure};
-use crate::integration::{Summary as IntegrateSummary, integrate};
+use crate::integration::integrate;
+use crate::integration_outcome::Summary as IntegrateSummary;
 use crate::report::print_json;
 use crate::settings::navigation::{
     IntegrateSettings, ModelTemperature, NoiseSource, ScenarioFiles, SolutionFiles,

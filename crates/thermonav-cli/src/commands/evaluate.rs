@@ -6,7 +6,7 @@
 
 use crate::args::{EvaluateAction, EvaluateArgs};
 use crate::failure::{Classify, Failure};
-use crate::integration::load_noise;
+use crate::loaded_noise::load_noise;
 use crate::report::print_json;
 use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use crate::tournament_files::{
