@@ -15,10 +15,10 @@ use thermonav::evaluation::outside::OutsideResult;
 use thermonav::evaluation::report::{ModelReport, TournamentReport};
 pub use thermonav::evaluation::scenario::RecordPlan;
 use thermonav::evaluation::scenario::{
-    ScenarioError, scenario_imu as library_scenario_imu, scenario_of as library_scenario_of,
-    scenario_of_records,
+    Scenario, ScenarioError, ScenarioImu, scenario_imu as library_scenario_imu,
+    scenario_of as library_scenario_of, scenario_of_records,
 };
-use thermonav::evaluation::tournament::{ModelResult, Scenario, ScenarioImu};
+use thermonav::evaluation::tournament::ModelResult;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
 use thermonav::nav::engine::{EngineSettings, FilterKind};

@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
+use thermonav::evaluation::scenario::Scenario;
 use thermonav::evaluation::shard::{Shard, TournamentShard, merge_shards};
-use thermonav::evaluation::tournament::Scenario;
 use thermonav_io::write_json_atomically;
 
 /// What a shard file holds.

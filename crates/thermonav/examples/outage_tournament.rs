@@ -15,9 +15,8 @@ mod common;
 use std::time::Instant;
 use thermonav::evaluation::candidates::{DatasheetValues, tournament_candidates};
 use thermonav::evaluation::metrics::Metric;
-use thermonav::evaluation::tournament::{
-    ModelResult, Scenario, run_tournament, summarize_replicates,
-};
+use thermonav::evaluation::scenario::Scenario;
+use thermonav::evaluation::tournament::{ModelResult, run_tournament, summarize_replicates};
 use thermonav::nav::alignment::{InitialUncertainty, align_from_gnss, uncorrected};
 use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
 use thermonav::nav::measurement::AntennaGeometry;

@@ -35,7 +35,7 @@ use std::time::Instant;
 use thermonav::evaluation::candidates::DatasheetValues;
 use thermonav::evaluation::candidates::ThermalOptions;
 use thermonav::evaluation::experiment::{CandidateSource, Replicates, Tournament, TournamentPlan};
-use thermonav::evaluation::tournament::Scenario;
+use thermonav::evaluation::scenario::Scenario;
 use thermonav::imu::Channel;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;

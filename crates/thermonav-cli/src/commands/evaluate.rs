@@ -20,8 +20,8 @@ use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datas
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::outside::{OutsideResult, score_outside};
+use thermonav::evaluation::scenario::Scenario;
 use thermonav::evaluation::shard::Shard;
-use thermonav::evaluation::tournament::Scenario;
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::Outage;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};

@@ -272,7 +272,7 @@ pub struct ThermalOptions {
 impl ThermalOptions {
     /// The options for a scenario: its record's temperature range, and the switches.
     pub fn of_scenario(
-        scenario: &super::tournament::Scenario,
+        scenario: &super::scenario::Scenario,
         scheduling: Scheduling,
         compensation: Compensation,
     ) -> Self {

@@ -13,8 +13,9 @@ use super::candidates::{
 use super::oracle::TrueModel;
 use super::outside::outage_spans;
 use super::report::TournamentReport;
+use super::scenario::Scenario;
 use super::shard::{FrameModel, Shard, ShardFrame, TournamentShard, merge_shards, stored_run};
-use super::tournament::{ModelResult, Scenario, run_selected};
+use super::tournament::{ModelResult, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;
 use crate::nav::schedule::Compensation;

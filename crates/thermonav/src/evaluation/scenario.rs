@@ -6,16 +6,102 @@
 
 use super::metrics::{MetricsError, check_reference_covers};
 use super::oracle::{OracleError, TrueModel};
-use super::tournament::{Scenario, ScenarioImu};
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
+use crate::ins::error_model::SystemMatrix;
+use crate::ins::state::Increment;
 use crate::nav::alignment::{InitialUncertainty, uncorrected};
-use crate::nav::engine::{EngineSettings, NavError, check_inputs};
+use crate::nav::engine::{EngineSettings, NavError, check_inputs, increments_from_series};
+use crate::nav::error_state::Estimate;
 use crate::nav::outage::OutageSpec;
 use crate::nav::run::{RunError, RunInput, with_outages};
-use crate::nav::schedule::{Compensation, ScheduleError};
+use crate::nav::schedule::{
+    Compensation, CompensationOutcome, ScheduleError, TemperatureTrack, compensate_record,
+};
 use crate::stoch::thermal::ThermalCalibration;
 use crate::trajectory::TrajectoryPoint;
+
+/// The data and settings every candidate is run on.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// IMU increments.
+    pub increments: Vec<Increment>,
+    /// The increments of the record with the thermal calibration's bias(T) subtracted, for
+    /// the compensated candidates; `None` when the record was not compensated.
+    pub compensated_increments: Option<Vec<Increment>>,
+    /// The increments of the record with the true repeatable bias subtracted, for the
+    /// oracle (see [`super::oracle`]); `None` without a truth.
+    pub oracle_increments: Option<Vec<Increment>>,
+    /// The IMU's temperature over time, for the scheduled candidates; `None` without temp_c.
+    pub temperature: Option<TemperatureTrack>,
+    /// GNSS fixes.
+    pub gnss: Vec<GnssFix>,
+    /// Reference trajectory (covering every outage).
+    pub reference: Vec<TrajectoryPoint>,
+    /// Initial estimate.
+    pub initial: Estimate,
+    /// Initial covariance.
+    pub initial_covariance: SystemMatrix,
+    /// Filter settings, outages included (the filter kind is set per run).
+    pub settings: EngineSettings,
+}
+
+/// The IMU side of a scenario, from a record.
+#[derive(Debug, Clone)]
+pub struct ScenarioImu {
+    /// Increments of the record as read.
+    pub increments: Vec<Increment>,
+    /// Increments of the compensated record, when compensated.
+    pub compensated_increments: Option<Vec<Increment>>,
+    /// Increments of the record compensated with the truth, when given one.
+    pub oracle_increments: Option<Vec<Increment>>,
+    /// The temperature over time, when the record has one.
+    pub temperature: Option<TemperatureTrack>,
+    /// What the compensation did.
+    pub compensation: CompensationOutcome,
+}
+
+impl ScenarioImu {
+    /// The increments of `series`, its temperature track, and the increments of the record
+    /// compensated with `thermal` under `compensation`.
+    ///
+    /// # Errors
+    /// [`ScheduleError::NonFiniteTemperature`] for a bad temp_c value.
+    pub fn of(
+        series: &ImuSeries,
+        thermal: Option<&ThermalCalibration>,
+        compensation: Compensation,
+    ) -> Result<Self, ScheduleError> {
+        let temperature = TemperatureTrack::of_series(series)?;
+        let mut compensated = series.clone();
+        let outcome = compensate_record(&mut compensated, thermal, compensation);
+        Ok(Self {
+            increments: increments_from_series(series),
+            compensated_increments: outcome
+                .applied()
+                .then(|| increments_from_series(&compensated)),
+            oracle_increments: None,
+            temperature,
+            compensation: outcome,
+        })
+    }
+
+    /// Adds the increments of `series` with `truth`'s repeatable bias subtracted, for the
+    /// oracle candidates.
+    ///
+    /// # Errors
+    /// [`OracleError::NoTemperature`] when the record has no usable temperatures.
+    pub fn with_oracle(
+        mut self,
+        series: &ImuSeries,
+        truth: &TrueModel,
+    ) -> Result<Self, OracleError> {
+        let mut compensated = series.clone();
+        truth.compensate(&mut compensated)?;
+        self.oracle_increments = Some(increments_from_series(&compensated));
+        Ok(self)
+    }
+}
 
 /// How a scenario's records are made: the bank's calibration (if any) under the switch, and
 /// the simulator's truth for the oracle's record (if any).

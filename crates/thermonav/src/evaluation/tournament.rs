@@ -3,105 +3,14 @@
 
 use super::candidates::{Candidate, CandidateKind, Record};
 use super::metrics::{EpochError, Metric, RunMetrics, evaluate_solution};
-use super::oracle::{OracleError, TrueModel};
+use super::scenario::Scenario;
 use super::significance::{MeanInterval, PairedTest, mean_interval, paired_t_test};
-use crate::gnss::GnssFix;
-use crate::imu::ImuSeries;
-use crate::ins::error_model::SystemMatrix;
 use crate::ins::state::Increment;
-use crate::nav::engine::{EngineSettings, FilterKind, increments_from_series, run_scheduled};
-use crate::nav::error_state::Estimate;
-use crate::nav::schedule::{
-    Compensation, CompensationOutcome, ModelSchedule, ScheduleError, TemperatureTrack,
-    compensate_record,
-};
+use crate::nav::engine::{EngineSettings, FilterKind, run_scheduled};
+use crate::nav::schedule::ModelSchedule;
 use crate::nav::solution::InnovationStatistics;
-use crate::stoch::thermal::ThermalCalibration;
-use crate::trajectory::TrajectoryPoint;
 use rayon::prelude::*;
 use serde::Serialize;
-
-/// The data and settings every candidate is run on.
-#[derive(Debug, Clone)]
-pub struct Scenario {
-    /// IMU increments.
-    pub increments: Vec<Increment>,
-    /// The increments of the record with the thermal calibration's bias(T) subtracted, for
-    /// the compensated candidates; `None` when the record was not compensated.
-    pub compensated_increments: Option<Vec<Increment>>,
-    /// The increments of the record with the true repeatable bias subtracted, for the
-    /// oracle (see [`super::oracle`]); `None` without a truth.
-    pub oracle_increments: Option<Vec<Increment>>,
-    /// The IMU's temperature over time, for the scheduled candidates; `None` without temp_c.
-    pub temperature: Option<TemperatureTrack>,
-    /// GNSS fixes.
-    pub gnss: Vec<GnssFix>,
-    /// Reference trajectory (covering every outage).
-    pub reference: Vec<TrajectoryPoint>,
-    /// Initial estimate.
-    pub initial: Estimate,
-    /// Initial covariance.
-    pub initial_covariance: SystemMatrix,
-    /// Filter settings, outages included (the filter kind is set per run).
-    pub settings: EngineSettings,
-}
-
-/// The IMU side of a scenario, from a record.
-#[derive(Debug, Clone)]
-pub struct ScenarioImu {
-    /// Increments of the record as read.
-    pub increments: Vec<Increment>,
-    /// Increments of the compensated record, when compensated.
-    pub compensated_increments: Option<Vec<Increment>>,
-    /// Increments of the record compensated with the truth, when given one.
-    pub oracle_increments: Option<Vec<Increment>>,
-    /// The temperature over time, when the record has one.
-    pub temperature: Option<TemperatureTrack>,
-    /// What the compensation did.
-    pub compensation: CompensationOutcome,
-}
-
-impl ScenarioImu {
-    /// The increments of `series`, its temperature track, and the increments of the record
-    /// compensated with `thermal` under `compensation`.
-    ///
-    /// # Errors
-    /// [`ScheduleError::NonFiniteTemperature`] for a bad temp_c value.
-    pub fn of(
-        series: &ImuSeries,
-        thermal: Option<&ThermalCalibration>,
-        compensation: Compensation,
-    ) -> Result<Self, ScheduleError> {
-        let temperature = TemperatureTrack::of_series(series)?;
-        let mut compensated = series.clone();
-        let outcome = compensate_record(&mut compensated, thermal, compensation);
-        Ok(Self {
-            increments: increments_from_series(series),
-            compensated_increments: outcome
-                .applied()
-                .then(|| increments_from_series(&compensated)),
-            oracle_increments: None,
-            temperature,
-            compensation: outcome,
-        })
-    }
-
-    /// Adds the increments of `series` with `truth`'s repeatable bias subtracted, for the
-    /// oracle candidates.
-    ///
-    /// # Errors
-    /// [`OracleError::NoTemperature`] when the record has no usable temperatures.
-    pub fn with_oracle(
-        mut self,
-        series: &ImuSeries,
-        truth: &TrueModel,
-    ) -> Result<Self, OracleError> {
-        let mut compensated = series.clone();
-        truth.compensate(&mut compensated)?;
-        self.oracle_increments = Some(increments_from_series(&compensated));
-        Ok(self)
-    }
-}
 
 /// What a run of one candidate gave.
 #[derive(Debug, Clone, PartialEq, Serialize)]
