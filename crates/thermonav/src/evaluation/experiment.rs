@@ -11,10 +11,9 @@ use super::candidates::{
     thermal_candidates, tournament_candidates,
 };
 use super::oracle::TrueModel;
-use super::outside::outage_spans;
-use super::report::TournamentReport;
+use super::report::{FrameModel, ShardFrame, TournamentReport, outage_spans};
 use super::scenario::Scenario;
-use super::shard::{FrameModel, Shard, ShardFrame, TournamentShard, merge_shards, stored_run};
+use super::shard::{Shard, TournamentShard, merge_shards, stored_run};
 use super::tournament::{ModelResult, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::OutageError;

@@ -7,11 +7,13 @@
 //! [`super::metrics::evaluate_trajectory`], the same arithmetic as our filters' figures, so an
 //! outside solution and one of ours written as a trajectory score alike.
 
+use super::experiment::Replicates;
 use super::metrics::{MetricsError, evaluate_trajectory};
-use super::report::{ModelReport, OutageSpan};
+use super::report::{ModelReport, SignificanceReport, TournamentReport, outage_spans};
 use super::tournament::Evaluated;
 use crate::nav::outage::Outage;
 use crate::trajectory::TrajectoryPoint;
+use std::collections::BTreeMap;
 
 /// An outside solution scored.
 #[derive(Debug, Clone, PartialEq)]
@@ -104,13 +106,32 @@ pub fn outside_model_report(result: &OutsideResult) -> ModelReport {
     }
 }
 
-/// The spans of `outages`, as the report lists them.
-pub fn outage_spans(outages: &[Outage]) -> Vec<OutageSpan> {
-    outages
-        .iter()
-        .map(|w| OutageSpan {
-            start_s: w.start.as_seconds(),
-            end_s: w.end.as_seconds(),
-        })
-        .collect()
+impl TournamentReport {
+    /// The report of outside solutions alone (no filter ran): their rows, the outages, no
+    /// ranking, no replicate.
+    pub fn outside_only(outages: &[Outage], outside: &[OutsideResult]) -> Self {
+        Self {
+            operating_temperature_c: None,
+            gauss_markov_source: None,
+            filters: Vec::new(),
+            outages: outage_spans(outages),
+            models: outside.iter().map(outside_model_report).collect(),
+            excluded: Vec::new(),
+            best: BTreeMap::new(),
+            best_by_filter: BTreeMap::new(),
+            significance: SignificanceReport {
+                replicates: 1,
+                replicates_differ_by: Replicates::None.differ_by().into(),
+                tests: Vec::new(),
+                horizontal_contrasts: Vec::new(),
+            },
+            oracle_gaps: Vec::new(),
+        }
+    }
+
+    /// Adds the rows of outside solutions after the candidates' (they are not ranked: no
+    /// model of ours stands behind them).
+    pub fn add_outside(&mut self, outside: &[OutsideResult]) {
+        self.models.extend(outside.iter().map(outside_model_report));
+    }
 }

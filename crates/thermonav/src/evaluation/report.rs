@@ -1,28 +1,77 @@
 //! The tournament's report: these types are the `evaluation.json` contract (snake_case keys,
-//! units in the names), built from the runs by [`super::experiment::Tournament::run`].
+//! units in the names), built from the runs by [`super::experiment::Tournament::run`] and from
+//! a tournament's [`ShardFrame`] (all the report needs beside the runs, which every shard
+//! stores) by the merge of [`super::shard`].
 
 use super::candidates::{CandidateKind, Excluded};
-use super::experiment::Replicates;
 use super::metrics::{Metric, OutageMetrics, RunMetrics};
-use super::outside::{OutsideResult, outage_spans, outside_model_report};
-use super::shard::ShardFrame;
 use super::significance::MeanInterval;
 use super::tournament::{Contrast, ModelResult, ModelSummary, Significance};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::Outage;
 use crate::nav::solution::InnovationStatistics;
 use crate::stoch::bank::GaussMarkovSource;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// One outage window, s on the data's time scale.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct OutageSpan {
     /// First instant without GNSS, s.
     pub start_s: f64,
     /// First instant with GNSS again, s.
     pub end_s: f64,
+}
+
+/// The spans of `outages`, as the report lists them.
+pub fn outage_spans(outages: &[Outage]) -> Vec<OutageSpan> {
+    outages
+        .iter()
+        .map(|w| OutageSpan {
+            start_s: w.start.as_seconds(),
+            end_s: w.end.as_seconds(),
+        })
+        .collect()
+}
+
+/// One model of the tournament (a candidate through a filter), in report order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FrameModel {
+    /// Candidate label.
+    pub label: String,
+    /// Candidate kind.
+    pub candidate: CandidateKind,
+    /// The filter.
+    pub filter: FilterKind,
+}
+
+/// What every shard of a tournament shares: all the report needs beside the runs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShardFrame {
+    /// Operating temperature, °C.
+    pub operating_temperature_c: f64,
+    /// Gauss-Markov family of the bank candidates.
+    pub gauss_markov_source: GaussMarkovSource,
+    /// Filters, in report order.
+    pub filters: Vec<FilterKind>,
+    /// Outages of the main run.
+    pub outages: Vec<OutageSpan>,
+    /// The models of one replicate, in report order.
+    pub models: Vec<FrameModel>,
+    /// Candidates that could not be built.
+    pub excluded: Vec<Excluded>,
+    /// Replicates, the main run included.
+    pub replicates: usize,
+    /// How they differ, in words.
+    pub replicates_differ_by: String,
+}
+
+impl ShardFrame {
+    /// Runs in all (replicates × models).
+    pub fn runs(&self) -> usize {
+        self.replicates * self.models.len()
+    }
 }
 
 /// One model through one filter.
@@ -117,36 +166,6 @@ pub struct TournamentReport {
     /// With an oracle: every other model's horizontal error against the best oracle run of
     /// its filter (empty without one).
     pub oracle_gaps: Vec<OracleGap>,
-}
-
-impl TournamentReport {
-    /// The report of outside solutions alone (no filter ran): their rows, the outages, no
-    /// ranking, no replicate.
-    pub fn outside_only(outages: &[Outage], outside: &[OutsideResult]) -> Self {
-        Self {
-            operating_temperature_c: None,
-            gauss_markov_source: None,
-            filters: Vec::new(),
-            outages: outage_spans(outages),
-            models: outside.iter().map(outside_model_report).collect(),
-            excluded: Vec::new(),
-            best: BTreeMap::new(),
-            best_by_filter: BTreeMap::new(),
-            significance: SignificanceReport {
-                replicates: 1,
-                replicates_differ_by: Replicates::None.differ_by().into(),
-                tests: Vec::new(),
-                horizontal_contrasts: Vec::new(),
-            },
-            oracle_gaps: Vec::new(),
-        }
-    }
-
-    /// Adds the rows of outside solutions after the candidates' (they are not ranked: no
-    /// model of ours stands behind them).
-    pub fn add_outside(&mut self, outside: &[OutsideResult]) {
-        self.models.extend(outside.iter().map(outside_model_report));
-    }
 }
 
 /// How far one model is from the best possible one (the oracle) on the horizontal error.

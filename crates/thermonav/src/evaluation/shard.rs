@@ -15,13 +15,10 @@
 //! one tournament and does the aggregation; the unsharded run is one shard merged alone, so
 //! the two give the same report by construction.
 
-use super::candidates::{CandidateKind, Excluded};
 use super::metrics::{EpochError, RunMetrics};
-use super::report::{OutageSpan, TournamentReport, report_of};
+use super::report::{FrameModel, ShardFrame, TournamentReport, report_of};
 use super::tournament::{Evaluated, ModelResult, horizontal_contrasts, summarize_replicates};
-use crate::nav::engine::FilterKind;
 use crate::nav::solution::InnovationStatistics;
-use crate::stoch::bank::GaussMarkovSource;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -62,45 +59,6 @@ impl Shard {
     /// Whether run `run` (0-based over all runs) is this shard's.
     pub fn holds(&self, run: usize) -> bool {
         run % self.count == self.index - 1
-    }
-}
-
-/// One model of the tournament (a candidate through a filter), in report order.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FrameModel {
-    /// Candidate label.
-    pub label: String,
-    /// Candidate kind.
-    pub candidate: CandidateKind,
-    /// The filter.
-    pub filter: FilterKind,
-}
-
-/// What every shard of a tournament shares: all the report needs beside the runs.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ShardFrame {
-    /// Operating temperature, °C.
-    pub operating_temperature_c: f64,
-    /// Gauss-Markov family of the bank candidates.
-    pub gauss_markov_source: GaussMarkovSource,
-    /// Filters, in report order.
-    pub filters: Vec<FilterKind>,
-    /// Outages of the main run.
-    pub outages: Vec<OutageSpan>,
-    /// The models of one replicate, in report order.
-    pub models: Vec<FrameModel>,
-    /// Candidates that could not be built.
-    pub excluded: Vec<Excluded>,
-    /// Replicates, the main run included.
-    pub replicates: usize,
-    /// How they differ, in words.
-    pub replicates_differ_by: String,
-}
-
-impl ShardFrame {
-    /// Runs in all (replicates × models).
-    pub fn runs(&self) -> usize {
-        self.replicates * self.models.len()
     }
 }
 
