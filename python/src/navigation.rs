@@ -19,9 +19,10 @@ use thermonav::evaluation::scenario::{RecordPlan, ScenarioError, scenario_of_rec
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::report::RunReport;
 use thermonav::nav::run::{
-    ModelTemperature, NoiseModel, RunError, RunInput, RunReport, RunSettings, Start,
-    operating_temperature_c, prepare,
+    ModelTemperature, NoiseModel, RunError, RunInput, RunSettings, Start, operating_temperature_c,
+    prepare,
 };
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;

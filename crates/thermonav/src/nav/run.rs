@@ -6,6 +6,7 @@
 //!
 //! ```no_run
 //! # use thermonav::nav::run::*;
+//! # use thermonav::nav::report::RunReport;
 //! # fn demo(series: thermonav::imu::ImuSeries, gnss: Vec<thermonav::gnss::GnssFix>,
 //! #         bank: &thermonav::stoch::bank::ModelBank) -> Result<(), RunError> {
 //! let settings = RunSettings::default();
@@ -41,8 +42,6 @@ use crate::time::Timestamp;
 use crate::trajectory::TrajectoryPoint;
 use serde::Serialize;
 use std::time::Instant;
-
-pub use super::report::RunReport;
 
 /// Which temperature's model the filter uses.
 #[derive(Debug, Clone, Copy, PartialEq)]
