@@ -439,7 +439,9 @@ class Crate:
         # A child module of the same name (`mod deviation;` beside `pub use family::deviation`)
         # is another thing: its `deviation::` paths are not uses of the name.
         after = r"(?!\s*::)" if name in module.children else ""
-        return re.search(r"(?<![\w:])" + re.escape(name) + r"\b" + after, code) is None
+        # Nor are fields (`deviation: curve.adev`, `self.deviation`) and methods of that name.
+        field = r"(?!\s*:(?!:))"
+        return re.search(r"(?<![\w:.])" + re.escape(name) + r"\b" + after + field, code) is None
 
     def add(self, found, a, b, name):
         if a != b:
