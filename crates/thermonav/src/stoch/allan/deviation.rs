@@ -1,11 +1,13 @@
 //! The overlapping Allan deviation itself: the centred phase (cumulative sum) and one blocked
-//! sweep that accumulates the squared second differences of every averaging factor at once.
+//! sweep that accumulates the squared second differences of every averaging factor at once;
+//! and what the rest of the family builds on: the factors a kind can use and a curve from a
+//! variance of the phase ([`curve_from_variance`]).
 
 use rayon::prelude::*;
 
 use crate::stoch::acf::sum_of;
 
-use super::{AllanCurve, AllanError, DeviationKind, TauGrid};
+use super::{AllanCurve, AllanError, DeviationCurve, DeviationKind, TauGrid};
 
 /// The overlapping Allan deviation of rate samples `y` at `sample_rate_hz` on `grid`.
 ///
@@ -377,6 +379,38 @@ impl pulp::WithSimd for Piece<'_> {
 /// 4 Σ acc: the sum of squared second differences from the quarter-squares in the lanes.
 pub(super) fn total_of_lanes(acc: &[f64; LANES]) -> f64 {
     4.0 * acc.iter().sum::<f64>()
+}
+
+/// The curve of `kind` whose variance at factor m is `variance(phase, m)`, with the phase
+/// S_i = Σ_{j<i} (y_j − ȳ) (N + 1 points, in units of τ₀) and the variance in the unit of
+/// `y` squared. The factors are evaluated in parallel; each one alone, so the result does not
+/// depend on the number of threads.
+///
+/// # Errors
+/// As [`deviation`](fn@super::deviation).
+pub(super) fn curve_from_variance(
+    kind: DeviationKind,
+    y: &[f64],
+    sample_rate_hz: f64,
+    grid: &TauGrid,
+    variance: impl Fn(&[f64], usize) -> f64 + Sync,
+) -> Result<DeviationCurve, AllanError> {
+    let factors = checked_factors_for(kind, y.len(), sample_rate_hz, grid)?;
+    if let Some(index) = y.iter().position(|v| !v.is_finite()) {
+        return Err(AllanError::NonFinite { index });
+    }
+    let phase = centred_cumulative_sum(y);
+    let sigma = factors
+        .par_iter()
+        .map(|&m| variance(&phase, m).sqrt())
+        .collect();
+    Ok(DeviationCurve::new(
+        kind,
+        factors,
+        sigma,
+        y.len(),
+        sample_rate_hz,
+    ))
 }
 
 #[cfg(test)]

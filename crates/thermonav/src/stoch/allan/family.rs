@@ -1,11 +1,9 @@
-//! The Allan family behind one entry point: the factors a kind can use, the phase they all
-//! start from, and the dispatch from a [`DeviationKind`] to its estimator.
-
-use rayon::prelude::*;
+//! The Allan family behind one entry point: the dispatch from a [`DeviationKind`] to its
+//! estimator (the factors a kind can use and the phase they all start from are in
+//! [`super::deviation`]'s helpers).
 
 use crate::imu::{Channel, ImuSeries};
 
-use super::deviation::{centred_cumulative_sum, checked_factors_for};
 use super::{
     AllanError, DeviationCurve, DeviationKind, TauGrid, hadamard_deviation, modified_adev,
     overlapping_adev, overlapping_hadamard_deviation, time_deviation, total_deviation,
@@ -68,36 +66,4 @@ pub fn channel_deviations(
                 .map_err(|e| (c, e))
         })
         .collect()
-}
-
-/// The curve of `kind` whose variance at factor m is `variance(phase, m)`, with the phase
-/// S_i = Σ_{j<i} (y_j − ȳ) (N + 1 points, in units of τ₀) and the variance in the unit of
-/// `y` squared. The factors are evaluated in parallel; each one alone, so the result does not
-/// depend on the number of threads.
-///
-/// # Errors
-/// As [`deviation`].
-pub(super) fn curve_from_variance(
-    kind: DeviationKind,
-    y: &[f64],
-    sample_rate_hz: f64,
-    grid: &TauGrid,
-    variance: impl Fn(&[f64], usize) -> f64 + Sync,
-) -> Result<DeviationCurve, AllanError> {
-    let factors = checked_factors_for(kind, y.len(), sample_rate_hz, grid)?;
-    if let Some(index) = y.iter().position(|v| !v.is_finite()) {
-        return Err(AllanError::NonFinite { index });
-    }
-    let phase = centred_cumulative_sum(y);
-    let sigma = factors
-        .par_iter()
-        .map(|&m| variance(&phase, m).sqrt())
-        .collect();
-    Ok(DeviationCurve::new(
-        kind,
-        factors,
-        sigma,
-        y.len(),
-        sample_rate_hz,
-    ))
 }

@@ -1,6 +1,6 @@
 //! The Hadamard deviations: third differences of the phase, blind to a linear frequency drift.
 
-use super::family::curve_from_variance;
+use super::deviation::curve_from_variance;
 use super::{AllanError, DeviationCurve, DeviationKind, TauGrid};
 
 /// The overlapping Hadamard deviation (NIST SP 1065 eq. 20; allantools `ohdev(y, rate,

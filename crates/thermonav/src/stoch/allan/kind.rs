@@ -152,20 +152,6 @@ impl DeviationCurve {
     }
 }
 
-impl From<super::AllanCurve> for DeviationCurve {
-    fn from(curve: super::AllanCurve) -> Self {
-        Self {
-            kind: DeviationKind::Adev,
-            tau_s: curve.tau_s,
-            averaging_factor: curve.averaging_factor,
-            deviation: curve.adev,
-            n_terms: curve.n_terms,
-            n_samples: curve.n_samples,
-            tau0_s: curve.tau0_s,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

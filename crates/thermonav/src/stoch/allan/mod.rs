@@ -96,6 +96,20 @@ pub struct AllanCurve {
     pub tau0_s: f64,
 }
 
+impl From<AllanCurve> for DeviationCurve {
+    fn from(curve: AllanCurve) -> Self {
+        Self {
+            kind: DeviationKind::Adev,
+            tau_s: curve.tau_s,
+            averaging_factor: curve.averaging_factor,
+            deviation: curve.adev,
+            n_terms: curve.n_terms,
+            n_samples: curve.n_samples,
+            tau0_s: curve.tau0_s,
+        }
+    }
+}
+
 /// Why an Allan curve cannot be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AllanError {

@@ -1,6 +1,6 @@
 //! The modified Allan deviation and the time deviation derived from it.
 
-use super::family::curve_from_variance;
+use super::deviation::curve_from_variance;
 use super::{AllanError, DeviationCurve, DeviationKind, TauGrid};
 
 /// The modified Allan deviation (NIST SP 1065 eq. 14; allantools `mdev(y, rate,

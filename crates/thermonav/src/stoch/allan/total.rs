@@ -1,6 +1,6 @@
 //! The total deviation: the Allan deviation of the phase extended by reflection at both ends.
 
-use super::family::curve_from_variance;
+use super::deviation::curve_from_variance;
 use super::{AllanError, DeviationCurve, DeviationKind, TauGrid};
 
 /// The total deviation (NIST SP 1065 eq. 25; allantools `totdev(y, rate, data_type='freq')`)
