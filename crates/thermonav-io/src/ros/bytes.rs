@@ -109,53 +109,160 @@ impl<'a> Cursor<'a> {
 /// Decompressed bytes of one chunk, at most `limit` bytes from `reader` (bytes grow with the
 /// data, never allocated from a length field); `Err` with the decoder's text.
 pub fn read_limited(reader: impl std::io::Read, limit: u64) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let mut out = Vec::new();
-    reader
-        .take(limit.saturating_add(1))
-        .read_to_end(&mut out)
-        .map_err(|e| e.to_string())?;
+    let out = read_at_most(reader, limit.saturating_add(1))?;
     match out.len() as u64 > limit {
         true => Err(format!("more than the {limit} bytes the chunk declares")),
         false => Ok(out),
     }
 }
 
-/// Most bytes one chunk may declare when decompressed: 1 GiB.
-pub const MAX_CHUNK_BYTES: u64 = 1 << 30;
+/// At most `n` bytes from `reader`, grown with the data; `Err` with the decoder's text.
+fn read_at_most(reader: impl std::io::Read, n: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let mut out = Vec::new();
+    reader
+        .take(n)
+        .read_to_end(&mut out)
+        .map_err(|e| e.to_string())?;
+    Ok(out)
+}
 
-/// A chunk of `compression` decompressed: `none`, `zstd` (MCAP), `lz4` (the LZ4 frame format,
-/// in MCAP and ROS 1) or `bz2` (ROS 1). `declared` is the uncompressed size the record gives.
-pub fn decompress(
+/// Most bytes one compressed chunk may declare (and expand to): 64 MiB. Recorders write far
+/// smaller chunks (ROS 1's `rosbag record` 768 KiB by default, rosbag2's MCAP storage and the
+/// `mcap` tools 4 MiB), so no honest bag comes near it; a chunk beyond it is refused before
+/// anything is decompressed, so memory stays bounded whatever the record declares.
+pub const MAX_CHUNK_BYTES: u64 = 64 << 20;
+
+/// Most bytes a file's compressed chunks may expand to altogether, per byte of the file.
+/// Recorded IMU data compresses 2-10 times (floats with noise in their low bits; the test bags
+/// 3-5 times), images and point clouds less; 100 times is beyond any honest bag and bounds the
+/// work a small file can ask for.
+pub const MAX_EXPANSION_RATIO: u64 = 100;
+
+/// The file's expansion bound is never below this (small files of highly repetitive test data
+/// compress far more than 100 times, and 64 MiB is quick to decompress).
+pub const MIN_EXPANSION_BYTES: u64 = 64 << 20;
+
+/// What a file's compressed chunks have expanded to so far, against the file's bound: the
+/// larger of [`MAX_EXPANSION_RATIO`] times the file's size and [`MIN_EXPANSION_BYTES`].
+#[derive(Debug, Clone)]
+pub struct Expansion {
+    /// The file's size, bytes.
+    file_bytes: u64,
+    /// The bound, bytes.
+    limit: u64,
+    /// Bytes the chunks read so far declared.
+    used: u64,
+}
+
+impl Expansion {
+    /// The bound of a file of `file_bytes` bytes.
+    pub fn for_file(file_bytes: u64) -> Self {
+        Self {
+            file_bytes,
+            limit: file_bytes
+                .saturating_mul(MAX_EXPANSION_RATIO)
+                .max(MIN_EXPANSION_BYTES),
+            used: 0,
+        }
+    }
+
+    /// Bytes the compressed chunks read so far expanded to.
+    pub fn used(&self) -> u64 {
+        self.used
+    }
+}
+
+/// The bytes of a chunk whose record starts at file offset `chunk_offset`: its `data` when
+/// `compression` is `none` (or empty), else decompressed: `zstd` (MCAP), `lz4` (the LZ4 frame
+/// format, in MCAP and ROS 1) or `bz2` (ROS 1). `declared` is the uncompressed size the record
+/// gives; `at` is where the data start (for errors about what is inside).
+///
+/// # Errors
+/// A compressed chunk declaring more than [`MAX_CHUNK_BYTES`], or more than is left of the
+/// file's [`Expansion`] bound (both refused before anything is decompressed, naming the file,
+/// the chunk's offset and the figures); an unknown compression; data that do not decompress,
+/// or not to exactly `declared` bytes (decompression stops one byte past `declared`).
+pub fn decompress<'d>(
     compression: &str,
-    data: &[u8],
+    data: &'d [u8],
     declared: u64,
-    cursor: &Cursor<'_>,
-) -> Result<Vec<u8>, ReadError> {
-    if declared > MAX_CHUNK_BYTES {
-        return Err(cursor.error(format_args!(
-            "a chunk declares {declared} bytes uncompressed, above the {MAX_CHUNK_BYTES}-byte limit"
+    chunk_offset: u64,
+    at: &Cursor<'_>,
+    expansion: &mut Expansion,
+) -> Result<std::borrow::Cow<'d, [u8]>, ReadError> {
+    let refuse =
+        |what: std::fmt::Arguments<'_>| at_chunk(at.input, chunk_offset, compression, what);
+    if matches!(compression, "" | "none") {
+        return match data.len() as u64 == declared {
+            true => Ok(std::borrow::Cow::Borrowed(data)),
+            false => Err(refuse(format_args!(
+                "holds {} bytes, but its record declares {declared}",
+                data.len()
+            ))),
+        };
+    }
+    if !matches!(compression, "zstd" | "lz4" | "bz2") {
+        return Err(at.error(format_args!(
+            "chunk compression \"{compression}\" is not supported (expected none, zstd, lz4 or \
+             bz2)"
         )));
     }
+    if declared > MAX_CHUNK_BYTES {
+        return Err(refuse(format_args!(
+            "declares {declared} bytes uncompressed ({} compressed), above the {MAX_CHUNK_BYTES}-byte \
+             (64 MiB) limit of a chunk (recorders write chunks of 768 KiB to 4 MiB): a corrupt \
+             size or a decompression bomb",
+            data.len()
+        )));
+    }
+    let total = expansion.used.saturating_add(declared);
+    if total > expansion.limit {
+        return Err(refuse(format_args!(
+            "declares {declared} bytes uncompressed ({} compressed), which would bring the \
+             file's chunks to {total} bytes, above the {}-byte limit for this {}-byte file \
+             ({MAX_EXPANSION_RATIO} times its size, at least {MIN_EXPANSION_BYTES}): a \
+             decompression bomb, or data far more repetitive than a recording",
+            data.len(),
+            expansion.limit,
+            expansion.file_bytes
+        )));
+    }
+    expansion.used = total;
+    // One byte past the declaration tells a chunk that expands further.
+    let past = declared + 1;
     let out = match compression {
-        "" | "none" => Ok(data.to_vec()),
         "zstd" => ruzstd::decoding::StreamingDecoder::new(data)
             .map_err(|e| e.to_string())
-            .and_then(|d| read_limited(d, declared)),
-        "lz4" => read_limited(lz4_flex::frame::FrameDecoder::new(data), declared),
-        "bz2" => read_limited(bzip2_rs::DecoderReader::new(data), declared),
-        other => {
-            return Err(cursor.error(format_args!(
-                "chunk compression \"{other}\" is not supported (expected none, zstd, lz4 or bz2)"
-            )));
-        }
+            .and_then(|d| read_at_most(d, past)),
+        "lz4" => read_at_most(lz4_flex::frame::FrameDecoder::new(data), past),
+        _ => read_at_most(bzip2_rs::DecoderReader::new(data), past),
     };
-    let out = out.map_err(|e| cursor.error(format_args!("{compression} chunk: {e}")))?;
-    match out.len() as u64 == declared {
-        true => Ok(out),
-        false => Err(cursor.error(format_args!(
-            "{compression} chunk holds {} bytes uncompressed, but its record declares {declared}",
+    let out = out.map_err(|e| refuse(format_args!("does not decompress: {e}")))?;
+    match (out.len() as u64).cmp(&declared) {
+        std::cmp::Ordering::Equal => Ok(std::borrow::Cow::Owned(out)),
+        std::cmp::Ordering::Greater => Err(refuse(format_args!(
+            "({} bytes compressed) expands to more than the {declared} bytes its record \
+             declares (decompression stopped there)",
+            data.len()
+        ))),
+        std::cmp::Ordering::Less => Err(refuse(format_args!(
+            "holds {} bytes uncompressed, but its record declares {declared}",
             out.len()
         ))),
     }
+}
+
+/// A problem with the `compression` chunk whose record starts at `chunk_offset` of `input`.
+fn at_chunk(
+    input: &str,
+    chunk_offset: u64,
+    compression: &str,
+    what: std::fmt::Arguments<'_>,
+) -> ReadError {
+    let name = match compression {
+        "" => "uncompressed",
+        other => other,
+    };
+    at(input, chunk_offset, format_args!("the {name} chunk {what}"))
 }

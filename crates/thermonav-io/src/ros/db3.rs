@@ -68,7 +68,7 @@ pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
             )
         })?;
         match row.values.get(3) {
-            Some(Value::Blob(data)) => bag.push(k, timestamp, row.offset, data),
+            Some(Value::Blob(data)) => bag.push(k, timestamp, row.offset, data, input)?,
             _ => {
                 return Err(column_error(
                     &row,

@@ -16,7 +16,7 @@
 //! offsets; inside a chunk they are the chunk's records offset plus the position in its
 //! uncompressed records.
 
-use super::bytes::{Cursor, decompress};
+use super::bytes::{Cursor, Expansion, decompress};
 use super::messages::Encoding;
 use super::{Bag, BagFormat, log_time};
 use crate::error::ReadError;
@@ -32,6 +32,8 @@ struct Reader<'a> {
     schemas: HashMap<u16, String>,
     /// Topic index of the bag by channel id.
     channels: HashMap<u16, usize>,
+    /// What the compressed chunks expanded to, against the file's bound.
+    expansion: Expansion,
     bag: Bag,
 }
 
@@ -55,6 +57,7 @@ pub fn decode_mcap(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
         input,
         schemas: HashMap::new(),
         channels: HashMap::new(),
+        expansion: Expansion::for_file(bytes.len() as u64),
         bag: Bag::new(BagFormat::Ros2Mcap),
     };
     reader.records(&mut cursor, false)?;
@@ -79,7 +82,7 @@ impl Reader<'_> {
                 (0x03, _) => self.schema(&mut body)?,
                 (0x04, _) => self.channel(&mut body)?,
                 (0x05, _) => self.message(&mut body, record_start)?,
-                (0x06, false) => self.chunk(&mut body)?,
+                (0x06, false) => self.chunk(&mut body, record_start)?,
                 _ => {}
             }
         }
@@ -130,12 +133,11 @@ impl Reader<'_> {
             ))
         })?;
         let data = body.rest();
-        self.bag.push(k, log_time_ns, offset, data);
-        Ok(())
+        self.bag.push(k, log_time_ns, offset, data, self.input)
     }
 
-    /// A Chunk record: its records, decompressed.
-    fn chunk(&mut self, body: &mut Cursor<'_>) -> Result<(), ReadError> {
+    /// A Chunk record starting at file offset `offset`: its records, decompressed.
+    fn chunk(&mut self, body: &mut Cursor<'_>, offset: u64) -> Result<(), ReadError> {
         body.u64_le("a chunk start time")?;
         body.u64_le("a chunk end time")?;
         let declared = body.u64_le("a chunk's uncompressed size")?;
@@ -144,7 +146,14 @@ impl Reader<'_> {
         let length = body.u64_le("a chunk's records length")?;
         let at = body.clone();
         let data = body.take(length, "a chunk's records")?;
-        let records = decompress(&compression, data, declared, &at)?;
+        let records = decompress(
+            &compression,
+            data,
+            declared,
+            offset,
+            &at,
+            &mut self.expansion,
+        )?;
         let mut inner = Cursor::new(&records, at.offset(), self.input);
         self.records(&mut inner, true)
     }

@@ -63,6 +63,30 @@ impl MessageType {
     }
 }
 
+impl MessageType {
+    /// Fewest bytes a serialised message of the type takes, in either serialisation: a
+    /// `std_msgs/Header` at its smallest (the stamp's 8 bytes and an empty `frame_id`'s 4-byte
+    /// length) and the fixed fields, without the CDR encapsulation header, the ROS 1 `seq`,
+    /// the CDR string's NUL or any alignment padding (each only adds bytes). A shorter message
+    /// cannot be one of the type.
+    pub fn min_bytes(self) -> usize {
+        const HEADER: usize = 8 + 4;
+        HEADER
+            + match self {
+                // orientation (4), its covariance (9), angular velocity (3) and its covariance
+                // (9), linear acceleration (3) and its covariance (9): 37 float64.
+                Self::Imu => 37 * 8,
+                // status.status int8, status.service uint16, latitude, longitude, altitude,
+                // position_covariance (9) float64, position_covariance_type uint8.
+                Self::NavSatFix => 1 + 2 + 3 * 8 + 9 * 8 + 1,
+                // temperature and variance.
+                Self::Temperature => 2 * 8,
+                // twist.linear and twist.angular.
+                Self::TwistStamped => 6 * 8,
+            }
+    }
+}
+
 /// A type name in ROS 2 form: `pkg/Name` becomes `pkg/msg/Name`.
 pub fn normalized_type(name: &str) -> String {
     match name.split('/').collect::<Vec<_>>()[..] {

@@ -130,16 +130,46 @@ impl Bag {
     }
 
     /// Adds a message to topic `k`, keeping its bytes when the type is decoded.
-    fn push(&mut self, k: usize, log_time_ns: i64, offset: u64, data: &[u8]) {
+    ///
+    /// # Errors
+    /// A message of a decoded type shorter than the type's [`MessageType::min_bytes`] (a corrupt
+    /// bag): refused here, before its bytes are kept, naming the topic, the message's index in
+    /// it and the file offset `offset` of its record, so that memory follows real messages.
+    fn push(
+        &mut self,
+        k: usize,
+        log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError> {
         let topic = &mut self.topics[k];
+        let index = topic.count;
         topic.count += 1;
-        if topic.message_type.is_some() {
-            topic.messages.push(Message {
-                log_time_ns,
+        let Some(kind) = topic.message_type else {
+            return Ok(());
+        };
+        if data.len() < kind.min_bytes() {
+            return Err(bytes::at(
+                input,
                 offset,
-                data: data.to_vec(),
-            });
+                format_args!(
+                    "{} message {index} ({}) is {} bytes, shorter than the {} bytes a message \
+                     of that type takes at the least (a corrupt bag, or a message of another \
+                     type)",
+                    topic.name,
+                    topic.type_name,
+                    data.len(),
+                    kind.min_bytes()
+                ),
+            ));
         }
+        topic.messages.push(Message {
+            log_time_ns,
+            offset,
+            data: data.to_vec(),
+        });
+        Ok(())
     }
 
     /// Total messages of all topics.

@@ -7,10 +7,11 @@
 //! and connection records), 0x07 connection (`conn` id and `topic` in the header; `type`,
 //! `md5sum`, `message_definition` as fields in the data), 0x02 message data (`conn`, `time` as
 //! `u32 secs, u32 nsecs`; the data is the serialised message), 0x04 index data and 0x06 chunk
-//! info (skipped). Connections may come after the messages that use them (the index section
-//! repeats them at the end), so messages are resolved once the whole file is read.
+//! info (skipped). A message is given its topic as it is read when its connection record came
+//! before it (as recorders write them); one that comes before its connection is kept until the
+//! connection record (the index section at the end repeats them). A chunk is dropped once read.
 
-use super::bytes::{Cursor, decompress};
+use super::bytes::{Cursor, Expansion, decompress};
 use super::messages::Encoding;
 use super::{Bag, BagFormat};
 use crate::error::ReadError;
@@ -95,24 +96,23 @@ impl<'a> Header<'a> {
     }
 }
 
-/// A message record not yet given its topic.
+/// A message record read before the connection record that gives its topic.
 struct Pending {
-    conn: u32,
     log_time_ns: i64,
     offset: u64,
-    range: (usize, usize),
-    /// Index of the buffer the data are in (0: the file; k: chunk k).
-    buffer: usize,
+    data: Vec<u8>,
 }
 
 /// Reading state.
 struct Reader<'a> {
     input: &'a str,
-    /// Topic name and type by connection id.
-    connections: HashMap<u32, (String, String)>,
-    pending: Vec<Pending>,
-    /// Decompressed chunks (index 0 stands for the file itself).
-    chunks: Vec<Vec<u8>>,
+    /// Topic index of the bag by connection id.
+    connections: HashMap<u32, usize>,
+    /// Messages of connections not yet defined, by connection id, in record order.
+    pending: HashMap<u32, Vec<Pending>>,
+    /// What the compressed chunks expanded to, against the file's bound.
+    expansion: Expansion,
+    bag: Bag,
 }
 
 /// Decodes the bytes of a ROS 1 bag (v2.0), named `input` in errors.
@@ -120,8 +120,9 @@ struct Reader<'a> {
 /// # Errors
 /// [`crate::error::ReadErrorKind::Unusable`] with the byte offset: a wrong magic (or another
 /// version), a record cut short, a header without its required fields, a chunk of another
-/// compression than none/bz2/lz4 or that does not decompress to its `size`, a message of a
-/// connection that no connection record defines.
+/// compression than none/bz2/lz4 or that does not decompress to its `size` (or beyond the
+/// bounds of [`super::bytes::decompress`]), a message of a connection that no connection
+/// record defines, a message shorter than its type.
 pub fn decode_ros1(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
     if !bytes.starts_with(MAGIC) {
         return Err(super::bytes::at(
@@ -133,22 +134,18 @@ pub fn decode_ros1(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
     let mut reader = Reader {
         input,
         connections: HashMap::new(),
-        pending: Vec::new(),
-        chunks: vec![Vec::new()],
+        pending: HashMap::new(),
+        expansion: Expansion::for_file(bytes.len() as u64),
+        bag: Bag::new(BagFormat::Ros1Bag),
     };
     let mut cursor = Cursor::new(&bytes[MAGIC.len()..], MAGIC.len() as u64, input);
-    reader.records(&mut cursor, 0, 0)?;
-    reader.finish(bytes)
+    reader.records(&mut cursor, false)?;
+    reader.finish()
 }
 
 impl Reader<'_> {
-    /// The records of `cursor`, whose buffer `buffer` starts at cursor offset `base`.
-    fn records(
-        &mut self,
-        cursor: &mut Cursor<'_>,
-        buffer: usize,
-        base: u64,
-    ) -> Result<(), ReadError> {
+    /// The records of `cursor` (`in_chunk`: the records of a chunk).
+    fn records(&mut self, cursor: &mut Cursor<'_>, in_chunk: bool) -> Result<(), ReadError> {
         while !cursor.is_empty() {
             let offset = cursor.offset();
             let header_len = cursor.u32_le("a record header length")?;
@@ -157,18 +154,17 @@ impl Reader<'_> {
             let data_len = cursor.u32_le("a record data length")?;
             let data_at = cursor.clone();
             let data = cursor.take(u64::from(data_len), "a record's data")?;
-            let start = (data_at.offset() - base) as usize;
             match header.fixed::<1>("op", self.input)?[0] {
-                0x05 if buffer == 0 => self.chunk(&header, data, &data_at)?,
+                0x05 if !in_chunk => self.chunk(&header, data, &data_at)?,
                 0x07 => self.connection(&header, data, &data_at)?,
-                0x02 => self.message(&header, (start, start + data.len()), buffer)?,
+                0x02 => self.message(&header, data)?,
                 _ => {}
             }
         }
         Ok(())
     }
 
-    /// A chunk record: its records, decompressed.
+    /// A chunk record: its records, decompressed (and dropped once read).
     fn chunk(
         &mut self,
         header: &Header<'_>,
@@ -177,17 +173,19 @@ impl Reader<'_> {
     ) -> Result<(), ReadError> {
         let compression = header.text("compression", self.input)?;
         let size = u32::from_le_bytes(header.fixed("size", self.input)?);
-        let records = decompress(&compression, data, u64::from(size), at)?;
-        let k = self.chunks.len();
-        self.chunks.push(records);
-        let inner = std::mem::take(&mut self.chunks[k]);
-        let mut cursor = Cursor::new(&inner, at.offset(), self.input);
-        let outcome = self.records(&mut cursor, k, at.offset());
-        self.chunks[k] = inner;
-        outcome
+        let records = decompress(
+            &compression,
+            data,
+            u64::from(size),
+            header.offset,
+            at,
+            &mut self.expansion,
+        )?;
+        let mut cursor = Cursor::new(&records, at.offset(), self.input);
+        self.records(&mut cursor, true)
     }
 
-    /// A connection record.
+    /// A connection record: its topic, and the messages that waited for it.
     fn connection(
         &mut self,
         header: &Header<'_>,
@@ -198,59 +196,51 @@ impl Reader<'_> {
         let topic = header.text("topic", self.input)?;
         let fields = Header::parse(data, at.offset(), self.input)?;
         let type_name = fields.text("type", self.input)?;
-        self.connections.insert(conn, (topic, type_name));
+        let k = self.bag.topic_index(&topic, &type_name, Encoding::Ros1);
+        self.connections.insert(conn, k);
+        for m in self.pending.remove(&conn).unwrap_or_default() {
+            self.bag
+                .push(k, m.log_time_ns, m.offset, &m.data, self.input)?;
+        }
         Ok(())
     }
 
-    /// A message data record whose data is `range` of buffer `buffer`.
-    fn message(
-        &mut self,
-        header: &Header<'_>,
-        range: (usize, usize),
-        buffer: usize,
-    ) -> Result<(), ReadError> {
+    /// A message data record whose serialised message is `data`.
+    fn message(&mut self, header: &Header<'_>, data: &[u8]) -> Result<(), ReadError> {
         let conn = u32::from_le_bytes(header.fixed("conn", self.input)?);
         let time: [u8; 8] = header.fixed("time", self.input)?;
         let secs = u32::from_le_bytes([time[0], time[1], time[2], time[3]]);
         let nsecs = u32::from_le_bytes([time[4], time[5], time[6], time[7]]);
-        self.pending.push(Pending {
-            conn,
-            log_time_ns: i64::from(secs) * 1_000_000_000 + i64::from(nsecs),
-            offset: header.offset,
-            range,
-            buffer,
-        });
-        Ok(())
+        let log_time_ns = i64::from(secs) * 1_000_000_000 + i64::from(nsecs);
+        match self.connections.get(&conn) {
+            Some(&k) => self
+                .bag
+                .push(k, log_time_ns, header.offset, data, self.input),
+            None => {
+                self.pending.entry(conn).or_default().push(Pending {
+                    log_time_ns,
+                    offset: header.offset,
+                    data: data.to_vec(),
+                });
+                Ok(())
+            }
+        }
     }
 
-    /// The bag: every pending message given its connection's topic.
-    fn finish(self, file: &[u8]) -> Result<Bag, ReadError> {
-        let mut bag = Bag::new(BagFormat::Ros1Bag);
-        let mut topic_of: HashMap<u32, usize> = HashMap::new();
-        let mut ids: Vec<&u32> = self.connections.keys().collect();
-        ids.sort();
-        for id in ids {
-            let (topic, type_name) = &self.connections[id];
-            topic_of.insert(*id, bag.topic_index(topic, type_name, Encoding::Ros1));
+    /// The bag, once no message waits for its connection.
+    fn finish(self) -> Result<Bag, ReadError> {
+        let orphan = self
+            .pending
+            .iter()
+            .filter_map(|(conn, messages)| Some((messages.first()?.offset, *conn)))
+            .min();
+        match orphan {
+            Some((offset, conn)) => Err(super::bytes::at(
+                self.input,
+                offset,
+                format_args!("a message of connection {conn}, which no connection record defines"),
+            )),
+            None => Ok(self.bag),
         }
-        for m in &self.pending {
-            let k = *topic_of.get(&m.conn).ok_or_else(|| {
-                super::bytes::at(
-                    self.input,
-                    m.offset,
-                    format_args!(
-                        "a message of connection {}, which no connection record defines",
-                        m.conn
-                    ),
-                )
-            })?;
-            let buffer = if m.buffer == 0 {
-                file
-            } else {
-                &self.chunks[m.buffer]
-            };
-            bag.push(k, m.log_time_ns, m.offset, &buffer[m.range.0..m.range.1]);
-        }
-        Ok(bag)
     }
 }

@@ -15,6 +15,7 @@ mod outside_solution;
 mod parallel;
 mod raw_imu;
 mod ros;
+mod ros_bounds;
 mod round_trip;
 mod rtklib_pos;
 mod spare;
