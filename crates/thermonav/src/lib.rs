@@ -21,7 +21,7 @@
 //!    between the two entries ([`nav::sensor_model::ImuStochasticModel::from_bank`]).
 //! 4. **Filter** a harbour survey at 17 °C ([`sim::vessel::simulate_vessel`]) with that model:
 //!    aligned from GNSS alone ([`nav::alignment::align_from_gnss`]), the 21-state EKF
-//!    ([`nav::engine::run`]), GNSS withheld for 60 s ([`nav::outage::Outages`]).
+//!    ([`nav::navigate::run`]), GNSS withheld for 60 s ([`nav::outage::Outages`]).
 //! 5. **Measure** the errors against the reference trajectory inside the outage
 //!    ([`evaluation::metrics::evaluate_solution`]), and inside an aided window of the same
 //!    length for comparison.

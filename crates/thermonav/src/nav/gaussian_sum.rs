@@ -21,48 +21,19 @@
 //! heaviest member at each update.
 
 use super::engine::{
-    Filtering, NavError, Run, StreamError, StreamTail, check_fix_latitudes, check_imu_gaps,
-    check_settings,
+    BiasHypotheses, Filtering, NavError, Run, StreamError, StreamTail, check_fix_latitudes,
+    check_imu_gaps, check_settings,
 };
 use super::error_state::ErrorVector;
 use super::solution::{InnovationRecord, SolutionEpoch, SolutionSink};
 use crate::gnss::GnssFix;
 use crate::ins::error_model::{STATES, block};
 use crate::ins::state::Increment;
-use serde::Serialize;
 use std::cell::RefCell;
 use std::rc::Rc;
 
 /// Index of the z-gyro bias in the error state.
 const GYRO_Z_BIAS: usize = block::GYRO_BIAS + 2;
-
-/// How the z-gyro bias prior is split.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct BiasHypotheses {
-    /// Members of the sum (odd, so that one sits at the prior's mean; 1 is a single filter).
-    pub members: usize,
-    /// The grid spans ±`span_sd` prior sds.
-    pub span_sd: f64,
-    /// A member whose normalised weight falls below this is dropped.
-    pub prune_below: f64,
-}
-
-impl Default for BiasHypotheses {
-    /// 41 members over ±3 sd, 0.15 sd apart, each with an sd of 0.20 prior sds (the grid's
-    /// truncation at ±3 sd leaves that much to the members): a 1 °/s prior gives members
-    /// 0.15 °/s apart, so that a member near the truth drifts by about 12° (one sd) in the
-    /// minute a vessel may run before its first speed change shows the heading.
-    /// Dropped below a weight of 1e-8. (On the position-only vessel runs of
-    /// `tests/it/position_only.rs`, 31, 41 and 61 members gave 79-84 % of epochs inside the
-    /// NEES band, against 0 % for one filter.)
-    fn default() -> Self {
-        Self {
-            members: 41,
-            span_sd: 3.0,
-            prune_below: 1e-8,
-        }
-    }
-}
 
 /// One member's place in the prior: offset and sd in units of the prior sd, and weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -180,12 +151,12 @@ struct Live<'a, 's, 'f> {
     log_weight: f64,
 }
 
-/// [`super::engine::run_streaming`] with the z-gyro bias prior split into a Gaussian sum
+/// [`super::navigate::run_streaming`] with the z-gyro bias prior split into a Gaussian sum
 /// (see the module's documentation); the mixture's epochs and the heaviest member's
 /// innovations go to `sink`. Smoothing is refused (a sum has no single forward history).
 ///
 /// # Errors
-/// As [`super::engine::run_streaming`]; [`NavError::Setting`] for a split [`split_prior`]
+/// As [`super::navigate::run_streaming`]; [`NavError::Setting`] for a split [`split_prior`]
 /// refuses or `smooth`; the last member's divergence when every member diverged.
 pub fn run_gaussian_sum<E>(
     filtering: Filtering,

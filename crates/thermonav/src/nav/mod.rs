@@ -13,6 +13,8 @@
 //! - [`outage`]: windows in which GNSS updates are withheld.
 //! - [`engine`]: the run loop: mechanization at the IMU rate, covariance propagation at a
 //!   chosen rate, updates at GNSS epochs, closed-loop feedback.
+//! - [`navigate`]: the entry points ([`navigate::run`], [`navigate::run_scheduled`],
+//!   [`navigate::run_streaming`]): the checks, then one filter or the Gaussian sum.
 //! - [`process_model`]: one covariance step's linearisation (Φ, Q) and nonlinear propagation;
 //!   [`error_filter`]: the EKF and the UKF behind one interface (predict and update by value).
 //! - [`gaussian_sum`]: the z-gyro bias prior split into filters run in lockstep, for runs in
@@ -34,6 +36,7 @@ pub mod error_filter;
 pub mod error_state;
 pub mod gaussian_sum;
 pub mod measurement;
+pub mod navigate;
 pub mod outage;
 pub mod process_model;
 pub mod report;

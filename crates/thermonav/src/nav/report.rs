@@ -4,8 +4,7 @@
 //! the file names) and the Python package's `integrate` result's.
 
 use super::alignment::{CourseBaseline, InitialBiasSource};
-use super::engine::FilterKind;
-use super::gaussian_sum::BiasHypotheses;
+use super::engine::{BiasHypotheses, FilterKind};
 use super::measurement::MeasurementKind;
 use super::outage::Outage;
 use super::run::{InitialSource, RunOutcome};

@@ -20,9 +20,10 @@ use super::alignment::{
     AlignmentError, CourseBaseline, HeadingSource, InitialBiasSource, InitialUncertainty,
     align_from_gnss, bias_sd_in_quadrature, uncorrected,
 };
-use super::engine::{EngineSettings, NavError, increments_from_series, run_scheduled};
+use super::engine::{EngineSettings, NavError, increments_from_series};
 use super::error_state::Estimate;
 use super::measurement::AntennaGeometry;
+use super::navigate::run_scheduled;
 use super::outage::{OutageError, OutageSpec};
 use super::schedule::{
     Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,

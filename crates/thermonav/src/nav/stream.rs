@@ -18,7 +18,8 @@
 
 use super::alignment::AlignmentError;
 use super::alignment::{InitialBiasSource, InitialUncertainty};
-use super::engine::{EngineSettings, Filtering, StreamError, run_streaming};
+use super::engine::{EngineSettings, Filtering, StreamError};
+use super::navigate::run_streaming;
 use super::run::{
     LEVELLING_S, NO_TEMPERATURE_NOTE, NoiseModel, RunError, RunModels, RunOutcome, RunSettings,
     Start, StartFound, initial_estimate, initial_uncertainty, with_outages_over,

@@ -8,9 +8,10 @@ use super::navigation::{
 };
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use thermonav::imu::Channel;
-use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
-use thermonav::nav::engine::{increments_from_series, run};
-use thermonav::nav::gaussian_sum::BiasHypotheses;
+use thermonav::nav::engine::{
+    Aiding, BiasHypotheses, EngineSettings, FilterKind, increments_from_series,
+};
+use thermonav::nav::navigate::run;
 use thermonav::nav::outage::Outages;
 use thermonav::nav::solution::Solution;
 use thermonav::sensor::adis16364_like;

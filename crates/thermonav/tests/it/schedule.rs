@@ -5,10 +5,9 @@ use std::collections::BTreeMap;
 use thermonav::imu::{Channel, ImuSample, ImuSeries, SampleKind};
 use thermonav::ins::error_model::block;
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
-use thermonav::nav::engine::{
-    EngineSettings, FilterKind, increments_from_series, run, run_scheduled,
-};
+use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
 use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::navigate::{run, run_scheduled};
 use thermonav::nav::schedule::{ModelGrid, ModelSchedule, TemperatureTrack};
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav::nav::solution::Solution;

@@ -7,10 +7,10 @@ use thermonav::imu::{ImuSample, ImuSeries, SampleKind};
 use thermonav::ins::state::Increment;
 use thermonav::nav::alignment::{InitialUncertainty, uncorrected};
 use thermonav::nav::engine::{
-    EngineSettings, Filtering, NavError, StreamError, increments_from_series,
-    increments_of_samples, run, run_streaming,
+    EngineSettings, Filtering, NavError, StreamError, increments_from_series, increments_of_samples,
 };
 use thermonav::nav::measurement::AntennaGeometry;
+use thermonav::nav::navigate::{run, run_streaming};
 use thermonav::nav::outage::Outages;
 use thermonav::nav::schedule::ModelSchedule;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
