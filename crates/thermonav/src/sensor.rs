@@ -5,11 +5,11 @@
 //! three users: the simulator draws errors from it (`sim::errors`, `sim::chamber`,
 //! `sim::vessel`), the navigation filter takes its noise model from it
 //! ([`SensorProfile::stochastic_model`], for `integrate --profile` and the data-sheet
-//! baseline), and `thermonav-io` reads and writes it as TOML. So it lives here, at the top
-//! level, rather than in `sim` (no core module may depend on `sim`) or in `imu` (which holds
-//! samples and series, and is used by `nav`: the profile builds a `nav` model, so putting it
-//! under `imu` would make the data module depend on the filter). Drawing the random errors a
-//! profile describes stays in `sim::errors`.
+//! baseline; that conversion lives with the filter's model in `nav::profile_model`, so this
+//! module depends on nothing of `nav`), and `thermonav-io` reads and writes it as TOML. So it
+//! lives here, at the top level, rather than in `sim` (no core module may depend on `sim`) or
+//! in `imu` (which holds samples and series). Drawing the random errors a profile describes
+//! stays in `sim::errors`.
 //!
 //! A profile gives, per channel, the white-noise density, a table of Gauss-Markov bias
 //! parameters (Tc, σ) at several temperatures, an optional bias random walk, the turn-on bias
@@ -22,9 +22,6 @@
 //! the end value is held.
 
 use crate::imu::{Channel, Sensor};
-use crate::nav::sensor_model::{
-    AxisModel, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior, SensorModelError,
-};
 use crate::units::{
     arw_deg_per_sqrt_h_to_rad_per_sqrt_s, deg_to_rad, mg_to_m_per_s2,
     vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s,
@@ -57,32 +54,6 @@ impl DatasheetValues {
             accel_vrw_m_s_sqrt_h: 0.12,
             accel_bias_stability_mg: 0.1,
             correlation_time_s: 3600.0,
-        }
-    }
-
-    /// The filter model these figures imply.
-    pub fn model(&self, scale: &ScaleFactorPrior) -> ImuStochasticModel {
-        let axis = |white: f64, stability: f64, scale_factor| AxisModel {
-            white_noise_density: white,
-            bias: GaussMarkovParameters {
-                correlation_time_s: self.correlation_time_s,
-                sigma: stability / GAUSS_MARKOV_ADEV_PEAK_RATIO,
-            },
-            scale_factor,
-        };
-        let gyro = axis(
-            arw_deg_per_sqrt_h_to_rad_per_sqrt_s(self.gyro_arw_deg_sqrt_h),
-            deg_to_rad(self.gyro_bias_stability_deg_s),
-            scale.gyro,
-        );
-        let accel = axis(
-            vrw_m_per_s_per_sqrt_h_to_m_per_s_per_sqrt_s(self.accel_vrw_m_s_sqrt_h),
-            mg_to_m_per_s2(self.accel_bias_stability_mg),
-            scale.accel,
-        );
-        ImuStochasticModel {
-            gyro: [gyro; 3],
-            accel: [accel; 3],
         }
     }
 }
@@ -197,43 +168,6 @@ pub enum ProfileError {
 }
 
 impl SensorProfile {
-    /// The model a sensor profile implies at `temperature_c`: its white-noise densities, its
-    /// Gauss-Markov bias at that temperature, its scale-factor Gauss-Markov process where it
-    /// has one and the prior otherwise. For simulated data this is the true model; for a
-    /// data-sheet profile it is the temperature-blind baseline.
-    ///
-    /// # Errors
-    /// [`SensorModelError::Parameter`] when a channel is missing or a value is unusable.
-    pub fn stochastic_model(
-        &self,
-        temperature_c: f64,
-        scale: &ScaleFactorPrior,
-    ) -> Result<ImuStochasticModel, SensorModelError> {
-        let axis = |channel: Channel, prior: GaussMarkovParameters| {
-            let p = self
-                .channel(channel)
-                .ok_or_else(|| SensorModelError::Parameter {
-                    what: format!("profile channel {}", channel.name()),
-                    value: f64::NAN,
-                })?;
-            let bias = p.bias_at(temperature_c);
-            Ok::<_, SensorModelError>(AxisModel {
-                white_noise_density: p.white_noise_density,
-                bias: GaussMarkovParameters {
-                    correlation_time_s: bias.correlation_time_s,
-                    sigma: bias.sigma,
-                },
-                scale_factor: p.scale_factor_gauss_markov.map_or(prior, |g| {
-                    GaussMarkovParameters {
-                        correlation_time_s: g.correlation_time_s,
-                        sigma: g.sigma_ppm * 1e-6,
-                    }
-                }),
-            })
-        };
-        ImuStochasticModel::from_axes(axis, scale)
-    }
-
     /// Checks every channel: all six present, tables non-empty and increasing, values finite
     /// with the right sign.
     ///

@@ -2,7 +2,8 @@
 //! temperature model bank's noise models into navigation.
 //!
 //! - [`sensor_model`]: per-axis white noise and Gauss-Markov bias / scale-factor models, taken
-//!   from the bank at a chosen temperature, and their exact discretisation.
+//!   from the bank at a chosen temperature, and their exact discretisation; [`profile_model`]:
+//!   the same model taken from a sensor profile or a data sheet's figures.
 //! - [`error_state`]: the nominal estimate (navigation state plus sensor corrections) and the
 //!   21-element error vector that moves between it and the truth (⊕ and ⊖).
 //! - [`measurement`]: GNSS position and velocity at a lever arm, dual-antenna heading.
@@ -39,6 +40,7 @@ pub mod measurement;
 pub mod navigate;
 pub mod outage;
 pub mod process_model;
+pub mod profile_model;
 pub mod report;
 pub mod run;
 pub mod schedule;
