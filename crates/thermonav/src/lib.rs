@@ -36,8 +36,9 @@
 //! use thermonav::evaluation::metrics::evaluate_solution;
 //! use thermonav::imu::Channel;
 //! use thermonav::nav::alignment::{InitialUncertainty, align_from_gnss, uncorrected};
-//! use thermonav::nav::engine::{EngineSettings, increments_from_series, run};
+//! use thermonav::nav::engine::{EngineSettings, increments_from_series};
 //! use thermonav::nav::measurement::AntennaGeometry;
+//! use thermonav::nav::navigate::run;
 //! use thermonav::nav::outage::Outages;
 //! use thermonav::nav::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior};
 //! use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
@@ -161,6 +162,7 @@
 //! ## Modules
 //! - [`time`]: exact timestamps and durations.
 //! - [`units`]: named unit conversions (deg/h, mg, deg/√h, …).
+//! - [`statistics`]: order statistics of plain numbers (median, median absolute deviation).
 //! - [`evaluation`]: outage metrics, the temperature-model tournament and its significance.
 //! - [`filter`]: generic UKF and EKF steps, sigma points, chi-square gating.
 //! - [`frames`]: vectors and rotations typed by frame (body FRD, NED, ECEF).
@@ -192,6 +194,7 @@ pub mod rng;
 pub mod sensor;
 pub mod signal;
 pub mod sim;
+pub mod statistics;
 pub mod stoch;
 pub mod time;
 pub mod trajectory;

@@ -6,7 +6,7 @@
 //! car, lever-arm and timing residuals in turns), and a fixed gate then throws away good fixes
 //! in runs. Outliers stand far above their neighbours' level and are still rejected.
 
-use crate::stoch::lot::median_of_sorted;
+use crate::statistics::median_of_sorted;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::collections::VecDeque;
 

@@ -16,6 +16,7 @@
 //! is zero (fewer than three distinct values) no unit is flagged.
 
 use crate::imu::{Channel, Sensor};
+use crate::statistics::{median_absolute_deviation, median_of_sorted};
 use crate::stoch::bank::{ChannelModel, GaussMarkovEstimate, GaussMarkovSource, ModelBank};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -219,26 +220,6 @@ fn family_name(family: GaussMarkovSource) -> &'static str {
     }
 }
 
-/// Median of values sorted in increasing order (mean of the middle two for an even count).
-///
-/// # Panics
-/// Never on a non-empty slice; an empty slice gives NaN.
-pub fn median_of_sorted(sorted: &[f64]) -> f64 {
-    let n = sorted.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => sorted[n / 2],
-        _ => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
-    }
-}
-
-/// Median absolute deviation of `values` from `median` (unscaled).
-pub fn median_absolute_deviation(values: &[f64], median: f64) -> f64 {
-    let mut deviations: Vec<f64> = values.iter().map(|v| (v - median).abs()).collect();
-    deviations.sort_by(f64::total_cmp);
-    median_of_sorted(&deviations)
-}
-
 /// Distance of `value` from `median` in scaled MADs; `None` when the MAD is zero.
 pub fn scaled_mads_from_median(value: f64, median: f64, mad: f64) -> Option<f64> {
     (mad > 0.0).then(|| (value - median).abs() / (MAD_TO_SIGMA * mad))
@@ -406,17 +387,6 @@ fn outliers_of_point(point: &LotPoint) -> Vec<Outlier> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    // Closed forms worked by hand.
-    #[test]
-    fn median_and_mad_of_small_samples() {
-        assert_eq!(median_of_sorted(&[1.0, 2.0, 10.0]), 2.0);
-        assert_eq!(median_of_sorted(&[1.0, 2.0, 3.0, 4.0]), 2.5);
-        assert!(median_of_sorted(&[]).is_nan());
-        // [1, 2, 3, 4, 100]: median 3, deviations 2 1 0 1 97, their median 1.
-        let values = [1.0, 2.0, 3.0, 4.0, 100.0];
-        assert_eq!(median_absolute_deviation(&values, 3.0), 1.0);
-    }
 
     // 1 / Φ⁻¹(3/4), with Φ⁻¹(0.75) = 0.674489750196081743... (Abramowitz & Stegun table 26.5);
     // the product is 1 to the last bit or two.
