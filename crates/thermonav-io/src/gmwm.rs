@@ -7,8 +7,8 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use thermonav::imu::Sensor;
 use thermonav::stoch::gmwm::{
-    BootstrapSettings, GmwmError, GmwmEstimate, ModelSpec, ModelSpecError, ParameterEstimate,
-    auto_candidates, select_model,
+    BootstrapSettings, GmwmError, GmwmEstimate, ModelSelection, ModelSpec, ModelSpecError,
+    ParameterEstimate, auto_candidates, select_model,
 };
 use thermonav::stoch::wavelet_variance::{
     WaveletVariance, WaveletVarianceError, haar_wavelet_variance,
@@ -30,6 +30,17 @@ pub struct GmwmChannelJson {
     pub parameters: BTreeMap<String, ParameterJson>,
     /// Every candidate, best (lowest WIC) first.
     pub candidates: Vec<CandidateJson>,
+    /// Candidates that could not be fitted, with why.
+    pub not_fitted: Vec<NotFittedJson>,
+}
+
+/// A candidate left out.
+#[derive(Debug, Serialize)]
+pub struct NotFittedJson {
+    /// Its name.
+    pub model: String,
+    /// Why it could not be fitted.
+    pub reason: String,
 }
 
 /// The selected model.
@@ -127,11 +138,16 @@ pub fn gmwm_channel_json(
     (candidates, settings): (&[ModelSpec], BootstrapSettings),
 ) -> Result<GmwmChannelJson, ChannelFitError> {
     let wv = haar_wavelet_variance(y, rate_hz, None, settings.confidence)?;
-    let ranked = select_model(&wv, candidates, settings)?;
-    Ok(ranked_json(&wv, &ranked, sensor))
+    let selection = select_model(&wv, candidates, settings)?;
+    Ok(ranked_json(&wv, &selection, sensor))
 }
 
-fn ranked_json(wv: &WaveletVariance, ranked: &[GmwmEstimate], sensor: Sensor) -> GmwmChannelJson {
+fn ranked_json(
+    wv: &WaveletVariance,
+    selection: &ModelSelection,
+    sensor: Sensor,
+) -> GmwmChannelJson {
+    let ranked = &selection.ranked;
     let best = &ranked[0];
     GmwmChannelJson {
         selected: SelectedJson {
@@ -142,6 +158,14 @@ fn ranked_json(wv: &WaveletVariance, ranked: &[GmwmEstimate], sensor: Sensor) ->
         wavelet_variance: wavelet_variance_json(wv, best),
         parameters: parameters_json(best, sensor),
         candidates: ranked.iter().map(candidate_json).collect(),
+        not_fitted: selection
+            .not_fitted
+            .iter()
+            .map(|(model, reason)| NotFittedJson {
+                model: model.to_string(),
+                reason: reason.to_string(),
+            })
+            .collect(),
     }
 }
 

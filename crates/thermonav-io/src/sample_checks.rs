@@ -49,7 +49,11 @@ pub fn temperature_problem(temperature_c: f64) -> Option<String> {
 /// [`inertial_values_problem`] of a gyro and accelerometer triple (`gx`..`az`), then
 /// [`temperature_problem`] of the temperature when there is one.
 #[must_use]
-pub fn imu_sample_problem(gyro: [f64; 3], accel: [f64; 3], temperature_c: Option<f64>) -> Option<String> {
+pub fn imu_sample_problem(
+    gyro: [f64; 3],
+    accel: [f64; 3],
+    temperature_c: Option<f64>,
+) -> Option<String> {
     let values = [gyro[0], gyro[1], gyro[2], accel[0], accel[1], accel[2]];
     inertial_values_problem(&["gx", "gy", "gz", "ax", "ay", "az"], &values)
         .or_else(|| temperature_c.and_then(temperature_problem))
@@ -78,9 +82,15 @@ mod tests {
         assert_eq!(temperature_problem(-80.0), None);
         assert_eq!(temperature_problem(150.0), None);
         let kelvin = temperature_problem(298.15).unwrap();
-        assert!(kelvin.contains("in kelvin? 298.15 K is 25.00 °C"), "{kelvin}");
+        assert!(
+            kelvin.contains("in kelvin? 298.15 K is 25.00 °C"),
+            "{kelvin}"
+        );
         let absurd = temperature_problem(1e30).unwrap();
-        assert!(absurd.contains("outside -80..150") && !absurd.contains("kelvin"), "{absurd}");
+        assert!(
+            absurd.contains("outside -80..150") && !absurd.contains("kelvin"),
+            "{absurd}"
+        );
         assert!(temperature_problem(f64::NAN).is_some());
     }
 }

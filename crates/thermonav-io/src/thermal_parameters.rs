@@ -168,6 +168,14 @@ pub enum ParameterValue {
 }
 
 impl ParameterValue {
+    /// `value` as a 32-bit float parameter (a zero, of either sign, as 0); `None` when it is
+    /// not finite or overflows a 32-bit float: the one conversion every parameter file's real
+    /// values go through (thermal calibration, EKF noise).
+    pub fn real(value: f64) -> Option<Self> {
+        let stored = if value == 0.0 { 0.0 } else { value as f32 };
+        stored.is_finite().then_some(ParameterValue::Real(stored))
+    }
+
     /// The `MAV_PARAM_TYPE` of a QGroundControl file: 6 = INT32, 9 = REAL32.
     pub fn mav_param_type(self) -> u8 {
         match self {
@@ -334,14 +342,10 @@ fn sensor_export(
 
 /// `value` as a 32-bit float parameter (a zero, of either sign, written as 0).
 fn real(name: String, value: f64) -> Result<Parameter, ExportError> {
-    let stored = if value == 0.0 { 0.0 } else { value as f32 };
-    if !stored.is_finite() {
-        return Err(ExportError::NotRepresentable { name, value });
+    match ParameterValue::real(value) {
+        Some(value) => Ok(Parameter { name, value }),
+        None => Err(ExportError::NotRepresentable { name, value }),
     }
-    Ok(Parameter {
-        name,
-        value: ParameterValue::Real(stored),
-    })
 }
 
 fn integer(name: &str, value: i32) -> Parameter {

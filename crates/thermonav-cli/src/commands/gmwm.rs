@@ -37,8 +37,9 @@ struct Job(f64, Vec<ModelSpec>, BootstrapSettings);
 /// Runs `gmwm`.
 pub fn run(args: &GmwmArgs) -> Result<(), Failure> {
     let candidates = candidates(&args.model)?;
+    let settings = settings(args)?;
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM", &Default::default())?;
-    let doc = document(args, &series, Job(rate_hz, candidates, settings(args)))?;
+    let doc = document(args, &series, Job(rate_hz, candidates, settings))?;
     if args.json {
         return print_json(&doc);
     }
@@ -46,10 +47,14 @@ pub fn run(args: &GmwmArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-fn settings(args: &GmwmArgs) -> BootstrapSettings {
+/// The bootstrap's settings, checked before any file is read.
+fn settings(args: &GmwmArgs) -> Result<BootstrapSettings, Failure> {
     let mut settings = BootstrapSettings::default();
     (settings.replicates, settings.seed) = (args.replicates, args.seed);
     settings
+        .validate()
+        .map_err(|e| Failure::Usage(anyhow!("--{e}")))?;
+    Ok(settings)
 }
 
 /// The candidates of `--model`: the automatic list or the one model given.
@@ -105,6 +110,9 @@ fn print_channel(name: &str, c: &ChannelJson) {
     print_parameters(&c.parameters);
     if c.candidates.len() > 1 {
         print_candidates(&c.candidates);
+    }
+    for left_out in &c.not_fitted {
+        println!("not fitted: {}", left_out.reason);
     }
 }
 

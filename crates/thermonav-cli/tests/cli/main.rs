@@ -17,6 +17,7 @@ mod outside;
 mod plots;
 mod real_data;
 mod reliability;
+mod runaway;
 mod shapes;
 mod shards;
 mod streaming;

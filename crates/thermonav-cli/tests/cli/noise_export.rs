@@ -742,3 +742,26 @@ fn linear_export_drops_a_term_that_one_of_the_two_entries_lacks() {
     );
     assert!(text.contains("gz: no rate random walk K"), "{text}");
 }
+
+// Issue 37 row 11: a white noise of 1e300 (finite in the bank) overflows the autopilots'
+// 32-bit float parameters; the export is refused naming the parameter, and nothing is written
+// (it used to write `EKF2_GYR_NOISE inf`, exit 0).
+#[test]
+fn ekf_exports_refuse_a_value_beyond_a_32_bit_float() {
+    let dir = tempfile::tempdir().unwrap();
+    let bank = edited_bank(dir.path(), "gx", |channel| {
+        channel["allan"]["white_noise_density"] = json!(1e300);
+    });
+    for (format, name) in [
+        ("px4-ekf2", "EKF2_GYR_NOISE"),
+        ("ardupilot-ek3", "EK3_GYRO_P_NSE"),
+    ] {
+        let (status, stderr) = refused(&bank, format, &["--temperature-c", "20"]);
+        assert_eq!(status, 1, "{format}: {stderr}");
+        assert!(
+            stderr.contains(name)
+                && stderr.contains("cannot be stored as a 32-bit float parameter"),
+            "{format}: {stderr}"
+        );
+    }
+}

@@ -52,7 +52,12 @@ pub fn ekf_parameters_text(
     let mut body = String::new();
     for ((name, value), unit) in target.names.iter().zip(values).zip(units) {
         body.push_str(&format!("# {name} [{unit}]\n"));
-        body.push_str(&(target.line)(name, ParameterValue::Real(value as f32)));
+        let stored =
+            ParameterValue::real(value).ok_or_else(|| NoiseExportError::NotRepresentable {
+                key: name.to_string(),
+                value,
+            })?;
+        body.push_str(&(target.line)(name, stored));
     }
     Ok(commented("#", &comments) + &body)
 }

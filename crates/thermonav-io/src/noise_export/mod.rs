@@ -181,6 +181,14 @@ pub enum NoiseExportError {
     /// A scale-factor standard deviation that is not a number ≥ 0.
     #[error("--scale-factor-std-ppm {0}: expected a finite number >= 0 (ppm)")]
     ScaleFactorInvalid(f64),
+    /// A value beyond a 32-bit float parameter (or not finite).
+    #[error("{key} = {value:e} cannot be stored as a 32-bit float parameter: nothing written")]
+    NotRepresentable {
+        /// The parameter.
+        key: String,
+        /// The value.
+        value: f64,
+    },
     /// A value that would not be a finite number.
     #[error("{key} would be {value}, not a finite number: nothing written")]
     NotFinite {

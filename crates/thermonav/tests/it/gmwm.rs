@@ -203,7 +203,13 @@ fn the_wavelet_information_criterion_prefers_the_true_composite_to_smaller_ones(
         .iter()
         .map(|s| s.parse().unwrap())
         .collect();
-    let ranked = select_model(&wv, &candidates, BootstrapSettings::default()).unwrap();
+    let selection = select_model(&wv, &candidates, BootstrapSettings::default()).unwrap();
+    assert!(
+        selection.not_fitted.is_empty(),
+        "{:?}",
+        selection.not_fitted
+    );
+    let ranked = selection.ranked;
     assert_eq!(ranked[0].fit.model.to_string(), "wn+gm");
     assert!(ranked.iter().all(|e| e.wic.is_finite() && e.optimism > 0.0));
 }
@@ -341,4 +347,64 @@ fn adis_accelerometer_curves_are_no_composites_wavelet_variance() {
             }
         }
     }
+}
+
+// Issue 37 row 10: a candidate that cannot be estimated is named with its reason, never
+// ranked with a NaN WIC. On 2^7 samples (7 scales) the five-parameter wn+qn+rw+gm has too few
+// scales; wn+gm (3 parameters) is still estimated.
+#[test]
+fn a_candidate_that_cannot_be_estimated_is_named_with_its_reason() {
+    let mut rng = named_rng(7, "gmwm-test/not-fitted");
+    let y = simulate(
+        &[Term::White { variance: 1.0 }, gm(4.0, 0.5)],
+        1 << 7,
+        &mut rng,
+    );
+    let wv = haar_wavelet_variance(&y, 1.0, None, 0.95).unwrap();
+    let candidates: Vec<ModelSpec> = ["wn+gm", "wn+qn+rw+2gm"]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let selection = select_model(&wv, &candidates, BootstrapSettings::default()).unwrap();
+    assert!(selection.ranked.iter().all(|e| e.wic.is_finite()));
+    assert_eq!(selection.ranked.len() + selection.not_fitted.len(), 2);
+    let (model, reason) = selection
+        .not_fitted
+        .iter()
+        .find(|(m, _)| m.to_string() == "wn+qn+rw+2gm")
+        .expect("the seven-parameter composite cannot be identified on 7 scales");
+    assert!(
+        reason.to_string().contains("cannot identify 7 parameters"),
+        "{model}: {reason}"
+    );
+}
+
+#[test]
+fn bootstrap_settings_are_checked_with_the_setting_named() {
+    let too_few = BootstrapSettings {
+        replicates: 5,
+        ..BootstrapSettings::default()
+    };
+    let text = too_few.validate().unwrap_err().to_string();
+    assert_eq!(
+        text,
+        "replicates: the bootstrap takes 10 to 1000 replicates, got 5"
+    );
+    let too_many = BootstrapSettings {
+        replicates: 1_000_000_000,
+        ..BootstrapSettings::default()
+    };
+    assert!(too_many.validate().is_err());
+    let level = BootstrapSettings {
+        confidence: 1.0,
+        ..BootstrapSettings::default()
+    };
+    assert!(
+        level
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .starts_with("confidence:")
+    );
+    assert!(BootstrapSettings::default().validate().is_ok());
 }

@@ -28,9 +28,10 @@ mod simulate;
 pub mod theory;
 
 pub use bootstrap::{
-    ADEQUACY_LEVEL, AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, MAX_SKIPPED_SCALES,
-    ParameterEstimate, auto_candidates, estimate_gmwm, fit_from_first_adequate_scale,
-    rank_by_asymptotic_wic, select_model,
+    ADEQUACY_LEVEL, AUTO_CANDIDATES, BootstrapSettings, GmwmEstimate, MAX_BOOTSTRAP_REPLICATES,
+    MAX_SKIPPED_SCALES, MIN_BOOTSTRAP_REPLICATES, ModelSelection, ParameterEstimate,
+    auto_candidates, estimate_gmwm, fit_from_first_adequate_scale, rank_by_asymptotic_wic,
+    select_model,
 };
 pub use fit::{GmwmFit, fit_gmwm};
 pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
@@ -59,13 +60,41 @@ pub enum GmwmError {
     },
     /// Bad bootstrap settings.
     #[error(
-        "the bootstrap needs at least 10 replicates and a level in (0, 1), got {replicates} and {confidence}"
+        "replicates: the bootstrap takes {} to {} replicates, got {replicates}",
+        bootstrap::MIN_BOOTSTRAP_REPLICATES,
+        bootstrap::MAX_BOOTSTRAP_REPLICATES
     )]
-    Bootstrap {
+    BootstrapReplicates {
         /// Replicates asked for.
         replicates: usize,
+    },
+    /// A confidence level outside (0, 1).
+    #[error("confidence: the intervals' level must lie in (0, 1), got {confidence}")]
+    BootstrapConfidence {
         /// Level asked for.
         confidence: f64,
+    },
+    /// Too few bootstrap replicates could be refitted to estimate the WIC and the intervals.
+    #[error(
+        "{model}: only {succeeded} of {asked} bootstrap refits succeeded (at least {} are needed): the composite is not identified on this record",
+        bootstrap::MIN_BOOTSTRAP_REPLICATES
+    )]
+    BootstrapRefits {
+        /// The composite.
+        model: String,
+        /// Refits that succeeded.
+        succeeded: usize,
+        /// Replicates asked for.
+        asked: usize,
+    },
+    /// The WIC or an interval came out non-finite (a parameter estimated at zero, whose
+    /// logarithm the intervals take).
+    #[error("{model}: its {what} is not finite (a parameter estimated at zero or beyond range)")]
+    NonFiniteEstimate {
+        /// The composite.
+        model: String,
+        /// What (`WIC`, or a parameter's interval).
+        what: String,
     },
     /// No candidate model.
     #[error("no candidate model to select from")]
