@@ -118,7 +118,9 @@ pub fn read_imu_input_into(
     match bag_format_of(path) {
         Some(_) if options.mounting.is_some() || options.rate_hz.is_some() => {
             Err(Failure::Data(anyhow!(
-                "{}: a ROS bag has its own times and is read in FRD from ROS body axes:                  --imu-rotation and --rate-hz apply to CSV input (thermonav convert BAG --out                  imu.csv, then give the options with imu.csv)",
+                "{}: a ROS bag has its own times and is read in FRD from ROS body axes: \
+                 --imu-rotation and --rate-hz apply to CSV input (thermonav convert BAG --out \
+                 imu.csv, then give the options with imu.csv)",
                 path.display()
             )))
         }

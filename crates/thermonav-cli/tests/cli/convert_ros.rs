@@ -201,3 +201,83 @@ fn readme_a_static_mcap_bag_to_a_bank_and_a_kalibr_imu_yaml_in_two_commands() {
     );
     assert_eq!(series.temperature_c.unwrap()[0], 25.0);
 }
+
+/// The oracle bag `name` with the 8 bytes of `from` (little-endian, as the bag stores it)
+/// replaced by `to`, saved in `dir`.
+fn bag_with(dir: &Path, name: &str, from: f64, to: f64) -> PathBuf {
+    let mut bytes = std::fs::read(data(name)).unwrap();
+    let at = bytes
+        .windows(8)
+        .position(|w| w == from.to_le_bytes())
+        .unwrap();
+    bytes[at..at + 8].copy_from_slice(&to.to_le_bytes());
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+#[test]
+fn bags_holding_a_value_no_reader_accepts_are_refused_naming_the_message_and_nothing_is_written() {
+    let expected = expected("expected.json");
+    let temperature = expected["temperature"][0]["temperature_c"]
+        .as_f64()
+        .unwrap();
+    let ax = expected["imu"][0]["accel"][0].as_f64().unwrap();
+    let cases = [
+        (
+            "static_none.mcap",
+            temperature,
+            298.15,
+            "/imu/temperature message 0: temperature 298.15 °C is outside -80..150 °C, the \
+             range of a sensor's temperature (in kelvin? 298.15 K is 25.00 °C)",
+        ),
+        (
+            "static.bag",
+            temperature,
+            1e30,
+            "/imu/temperature message 0: temperature 1000000000000000000000000000000 °C is \
+             outside -80..150 °C",
+        ),
+        (
+            "static.db3",
+            ax,
+            -1e300,
+            "/imu/data message 0: ax is -1e300 in SI, beyond the 1e15 any sensor reading stays \
+             within (in FRD)",
+        ),
+    ];
+    for (name, from, to, message) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let bag = bag_with(dir.path(), name, from, to);
+        let out = dir.path().join("imu.csv");
+        let (status, stdout, stderr) = run(&["convert", arg(&bag), "--out", arg(&out)]);
+        assert_eq!(status, 1, "{name}: {stderr}");
+        assert!(stdout.is_empty(), "{stdout}");
+        assert!(
+            stderr.contains(&format!("{}: at byte ", bag.display())) && stderr.contains(message),
+            "{name}: {stderr}"
+        );
+        assert_eq!(
+            files_in(dir.path()),
+            vec![name.to_string()],
+            "nothing written"
+        );
+    }
+    // allan and characterize read the bag directly: the same refusal, naming the same place.
+    let dir = tempfile::tempdir().unwrap();
+    let bag = bag_with(dir.path(), "static.db3", ax, -1e300);
+    let bank = dir.path().join("bank.json");
+    for args in [
+        vec!["allan", arg(&bag)],
+        vec!["characterize", arg(&bag), "--out", arg(&bank)],
+    ] {
+        let (status, _, stderr) = run(&args);
+        assert_eq!(status, 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&bag.display().to_string())
+                && stderr.contains("/imu/data message 0: ax is -1e300 in SI"),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(files_in(dir.path()), vec!["static.db3".to_string()]);
+    }
+}

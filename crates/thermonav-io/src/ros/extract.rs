@@ -11,7 +11,10 @@
 //! - **Topic**: the one asked for; else the only topic of the needed type; else an error listing
 //!   the candidates with their types and counts.
 //! - **Temperature**: the nearest `sensor_msgs/Temperature` message in time (ties to the
-//!   earlier), as the ULog reader does.
+//!   earlier), as the ULog reader does; a NaN temperature is "not measured" and left out.
+//! - **Values**: every IMU sample and temperature passes the checks of every reader
+//!   ([`crate::sample_checks`]: finite, at most 1e15 in SI, −80..150 °C with a hint for
+//!   kelvin), refused naming the file, the topic, the message's index in it and its offset.
 //! - **GNSS**: `NavSatFix` with `status.status` ≥ 0 (a fix) and finite latitude, longitude and
 //!   altitude (above the WGS84 ellipsoid, as the message defines it); standard deviations from
 //!   the diagonal of `position_covariance` (east-north-up, m²) when its type is not 0 (unknown).
@@ -19,6 +22,7 @@
 use super::messages::{MessageType, decode_imu, decode_nav_sat_fix, decode_temperature};
 use super::{Bag, Topic};
 use crate::error::{ReadError, ReadErrorKind};
+use crate::sample_checks::{imu_sample_problem, temperature_problem};
 use serde::Serialize;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::{ImuSample, ImuSeries, SampleKind};
@@ -101,12 +105,19 @@ fn listing<'a>(topics: impl Iterator<Item = &'a Topic>) -> String {
     }
 }
 
-/// The topic of type `kind`: `requested` by name, else the only one of that type.
+/// True for a topic of type `kind` that holds a message: one without (a channel or connection
+/// declared and never used) is listed but never taken unasked, nor counted against another.
+fn is_candidate(topic: &Topic, kind: MessageType) -> bool {
+    topic.message_type == Some(kind) && topic.count > 0
+}
+
+/// The topic of type `kind`: `requested` by name, else the only one of that type that holds
+/// messages.
 ///
 /// # Errors
 /// [`ReadErrorKind::Unusable`]: no topic of that name (listing every topic), one of another
-/// type, or zero or several topics of the type when none is requested (listing them, and
-/// naming `option`, the command-line option that chooses one).
+/// type, or zero or several topics of the type with messages when none is requested (listing
+/// them, and naming `option`, the command-line option that chooses one).
 pub fn select_topic<'a>(
     bag: &'a Bag,
     kind: MessageType,
@@ -114,7 +125,7 @@ pub fn select_topic<'a>(
     option: &str,
     input: &str,
 ) -> Result<&'a Topic, ReadError> {
-    let candidates = || bag.topics.iter().filter(|t| t.message_type == Some(kind));
+    let candidates = || bag.topics.iter().filter(|t| is_candidate(t, kind));
     if let Some(name) = requested {
         let named: Vec<&Topic> = bag.topics.iter().filter(|t| t.name == name).collect();
         return match named.iter().find(|t| t.message_type == Some(kind)) {
@@ -252,7 +263,9 @@ pub fn imu_series(
     })
 }
 
-/// A sample's values finite and its time after the previous one.
+/// A sample's values as every reader checks them ([`imu_sample_problem`]: finite, within
+/// 1e15 SI) and its time after the previous one; message `k` of `topic`, at file offset
+/// `offset`.
 fn check_sample(
     series: &ImuSeries,
     sample: &ImuSample,
@@ -262,15 +275,10 @@ fn check_sample(
     input: &str,
 ) -> Result<(), ReadError> {
     let name = &topic.name;
-    if sample
-        .gyro
-        .iter()
-        .chain(&sample.accel)
-        .any(|v| !v.is_finite())
-    {
+    if let Some(problem) = imu_sample_problem(sample.gyro, sample.accel, sample.temperature_c) {
         return Err(topic_error(
             input,
-            format!("at byte {offset}: {name} message {k} holds a NaN or infinite value"),
+            format!("at byte {offset}: {name} message {k}: {problem} (in FRD)"),
         ));
     }
     match series.time.last() {
@@ -297,7 +305,7 @@ fn temperature_topic<'a>(
     let count = bag
         .topics
         .iter()
-        .filter(|t| t.message_type == Some(MessageType::Temperature))
+        .filter(|t| is_candidate(t, MessageType::Temperature))
         .count();
     match (requested, count) {
         (None, 0) => Ok(None),
@@ -312,23 +320,43 @@ fn temperature_topic<'a>(
     }
 }
 
-/// A temperature topic's (stamps, °C), in stamp order, finite values only.
+/// A temperature topic's (stamps, °C), in stamp order; a NaN temperature is "not measured"
+/// and left out (as the ULog reader does).
+///
+/// # Errors
+/// A message that does not decode; a temperature outside the range every reader accepts
+/// ([`temperature_problem`]: −80..150 °C, with a hint when it reads as kelvin; infinities
+/// too), naming the message and its offset; no message with a temperature.
 fn temperature_records(
     topic: &Topic,
     input: &str,
 ) -> Result<(Vec<Timestamp>, Vec<f64>), ReadError> {
     let mut records = Vec::with_capacity(topic.messages.len());
-    for m in &topic.messages {
+    for (k, m) in topic.messages.iter().enumerate() {
         let t = decode_temperature(&m.data, &topic.encoding, input, m.offset)?;
-        if t.temperature_c.is_finite() {
-            records.push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
+        if t.temperature_c.is_nan() {
+            continue;
         }
+        if let Some(problem) = temperature_problem(t.temperature_c) {
+            return Err(topic_error(
+                input,
+                format!(
+                    "at byte {}: {} message {k}: {problem}",
+                    m.offset, topic.name
+                ),
+            ));
+        }
+        records.push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
     }
     records.sort_by_key(|&(time, _)| time);
     if records.is_empty() {
         return Err(topic_error(
             input,
-            format!("temperature topic {} has no finite value", topic.name),
+            format!(
+                "temperature topic {} has no temperature ({} messages, every one NaN)",
+                topic.name,
+                topic.messages.len()
+            ),
         ));
     }
     Ok(records.into_iter().unzip())

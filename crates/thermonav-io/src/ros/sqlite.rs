@@ -290,7 +290,7 @@ impl<'a> Database<'a> {
                     self.visit_page(be32(page, cell), depth + 1, seen, visit)?
                 }
                 true => return Err(bad(format_args!("cell {k} is cut by the page end"))),
-                false => visit(self.leaf_cell(n, page, cell)?)?,
+                false => visit(self.leaf_cell(n, page, cell, seen)?)?,
             }
         }
         match interior {
@@ -299,8 +299,15 @@ impl<'a> Database<'a> {
         }
     }
 
-    /// The row of the table leaf cell at `cell` of page `n`.
-    fn leaf_cell(&self, n: u32, page: &'a [u8], cell: usize) -> Result<Row, ReadError> {
+    /// The row of the table leaf cell at `cell` of page `n`; `seen` marks the pages of the walk
+    /// so far (its overflow pages are marked too).
+    fn leaf_cell(
+        &self,
+        n: u32,
+        page: &'a [u8],
+        cell: usize,
+        seen: &mut [bool],
+    ) -> Result<Row, ReadError> {
         let offset = self.page_offset(n) + cell as u64;
         let bad = |what: &str| at(self.input, offset, format_args!("page {n}: {what}"));
         let usable = &page[..self.usable];
@@ -323,7 +330,7 @@ impl<'a> Database<'a> {
         let mut payload = Vec::with_capacity(size);
         payload.extend_from_slice(&page[start..end]);
         if local < size {
-            self.overflow(be32(page, end), size, &mut payload, offset)?;
+            self.overflow(be32(page, end), size, &mut payload, offset, seen)?;
         }
         let values = record(&payload)
             .ok_or_else(|| bad("a record whose header or values do not fit its payload"))?;
@@ -348,18 +355,35 @@ impl<'a> Database<'a> {
     }
 
     /// Appends the overflow chain starting at page `first` until `payload` holds `size` bytes.
+    /// Each page of a file belongs to one b-tree page or one overflow chain: a page already
+    /// reached in this walk (`seen`: a chain naming itself, looping, or shared with another
+    /// cell or a b-tree page) is refused, so a walk reads each page at most once and its
+    /// payloads add up to at most the file.
     fn overflow(
         &self,
         first: u32,
         size: usize,
         payload: &mut Vec<u8>,
         offset: u64,
+        seen: &mut [bool],
     ) -> Result<(), ReadError> {
         let mut next = first;
-        let mut pages = 0;
         while payload.len() < size {
-            pages += 1;
-            if next == 0 || pages > self.page_count {
+            if next != 0
+                && next <= self.page_count
+                && std::mem::replace(&mut seen[next as usize], true)
+            {
+                return Err(at(
+                    self.input,
+                    offset,
+                    format_args!(
+                        "the overflow chain of a {size}-byte payload reaches page {next} a second \
+                         time, after {} bytes (a chain that loops or is shared: a corrupt file)",
+                        payload.len()
+                    ),
+                ));
+            }
+            if next == 0 {
                 return Err(at(
                     self.input,
                     offset,

@@ -414,3 +414,228 @@ fn a_ros1_message_before_its_connection_record_is_read_in_record_order() {
         "{err}"
     );
 }
+
+/// The pages of tests/data/ros/static.db3 (4096 bytes each, 1-based) that are overflow pages of
+/// the /blob row: after their 4-byte next-page number, the letters 'A'..'Z' in sequence.
+fn blob_overflow_pages(db: &[u8]) -> Vec<usize> {
+    (2..=db.len() / 4096)
+        .filter(|&n| {
+            let page = &db[(n - 1) * 4096..n * 4096];
+            page[4..64]
+                .windows(2)
+                .all(|w| w[0].is_ascii_uppercase() && (w[1] - b'A') == (w[0] - b'A' + 1) % 26)
+        })
+        .collect()
+}
+
+#[test]
+fn a_db3_overflow_page_naming_itself_is_refused_naming_the_row() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
+    let db = std::fs::read(dir.join("static.db3")).unwrap();
+    assert!(decode_bag(&db, "static.db3", BagFormat::Ros2Db3).is_ok());
+    let pages = blob_overflow_pages(&db);
+    // 10,000 characters of text past the local part: at least two overflow pages, chained.
+    assert!(pages.len() >= 2, "{pages:?}");
+    let next = |n: usize| u32::from_be_bytes(db[(n - 1) * 4096..][..4].try_into().unwrap());
+    let linked = *pages.iter().find(|&&n| next(n) != 0).unwrap();
+    let mut looped = db.clone();
+    looped[(linked - 1) * 4096..][..4].copy_from_slice(&(linked as u32).to_be_bytes());
+    let (err, took) = refusal(&looped, "loop.db3", BagFormat::Ros2Db3);
+    assert!(
+        err.contains(&format!(
+            "byte payload reaches page {linked} a second time, after"
+        )) && err.contains("(a chain that loops or is shared: a corrupt file)"),
+        "{err}"
+    );
+    assert!(err.starts_with("loop.db3: at byte "), "{err}");
+    assert!(took < QUICK, "{took:?}");
+}
+
+/// A ROS 1 serialised `sensor_msgs/Temperature` stamped `secs` of `temperature_c`.
+fn ros1_temperature(secs: u32, temperature_c: f64) -> Vec<u8> {
+    let mut out = [0u32.to_le_bytes(), secs.to_le_bytes(), 0u32.to_le_bytes()].concat();
+    out.extend(0u32.to_le_bytes());
+    out.extend(temperature_c.to_le_bytes());
+    out.extend(0.0f64.to_le_bytes());
+    out
+}
+
+/// A ROS 1 bag of `/imu` (connection 0) messages of angular velocity `gyro[k]` and linear
+/// acceleration `accel[k]` (ROS body axes) at k + 1 s, and `/temp` (connection 1) messages of
+/// `temps[k]` at k + 1 s; returns the bag and each record's offset (Imu then Temperature).
+fn ros1_bag(gyro: &[[f64; 3]], accel: &[[f64; 3]], temps: &[f64]) -> (Vec<u8>, Vec<usize>) {
+    let mut out = [
+        b"#ROSBAG V2.0\n".to_vec(),
+        ros1_connection(0, "/imu", "sensor_msgs/Imu"),
+        ros1_connection(1, "/temp", "sensor_msgs/Temperature"),
+    ]
+    .concat();
+    let mut offsets = Vec::new();
+    for (k, (g, a)) in gyro.iter().zip(accel).enumerate() {
+        offsets.push(out.len());
+        let secs = k as u32 + 1;
+        out.extend(ros1_message(0, secs, &ros1_imu(secs, *g, *a)));
+    }
+    for (k, t) in temps.iter().enumerate() {
+        offsets.push(out.len());
+        let secs = k as u32 + 1;
+        out.extend(ros1_message(1, secs, &ros1_temperature(secs, *t)));
+    }
+    (out, offsets)
+}
+
+/// The error of [`imu_series`] on `bag` (a ROS 1 bag) named `input`.
+fn extract_error(bag: &[u8], input: &str) -> String {
+    let bag = decode_bag(bag, input, BagFormat::Ros1Bag).unwrap();
+    match imu_series(&bag, TopicChoice::default(), input) {
+        Ok(extract) => panic!("expected an error, read {} samples", extract.series.len()),
+        Err(e) => e.to_string(),
+    }
+}
+
+const LEVEL: [f64; 3] = [0.0, 0.0, 9.8];
+
+#[test]
+fn an_accelerometer_at_minus_1e300_is_refused_naming_the_message() {
+    let (bag, offsets) = ros1_bag(&[[0.0; 3]; 3], &[LEVEL, LEVEL, [-1e300, 0.0, 9.8]], &[25.0]);
+    let err = extract_error(&bag, "huge.bag");
+    assert_eq!(
+        err,
+        format!(
+            "huge.bag: at byte {}: /imu message 2: ax is -1e300 in SI, beyond the 1e15 any \
+             sensor reading stays within (in FRD)",
+            offsets[2]
+        )
+    );
+}
+
+#[test]
+fn a_gyro_at_1e30_or_nan_is_refused_naming_the_message() {
+    // ROS y left is FRD y right: the value changes sign.
+    let (bag, offsets) = ros1_bag(&[[0.0; 3], [0.0, 1e30, 0.0]], &[LEVEL; 2], &[]);
+    let err = extract_error(&bag, "fast.bag");
+    assert!(
+        err.starts_with(&format!(
+            "fast.bag: at byte {}: /imu message 1: gy is -1e30 in SI",
+            offsets[1]
+        )),
+        "{err}"
+    );
+    let (bag, _) = ros1_bag(&[[f64::NAN, 0.0, 0.0]], &[LEVEL], &[]);
+    let err = extract_error(&bag, "nan.bag");
+    assert!(
+        err.contains("/imu message 0: gx is NaN, not a finite number"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_temperature_in_kelvin_or_at_1e30_is_refused_naming_the_message_with_a_hint() {
+    let (bag, offsets) = ros1_bag(&[[0.0; 3]; 2], &[LEVEL; 2], &[25.0, 298.15]);
+    let err = extract_error(&bag, "kelvin.bag");
+    assert_eq!(
+        err,
+        format!(
+            "kelvin.bag: at byte {}: /temp message 1: temperature 298.15 °C is outside \
+             -80..150 °C, the range of a sensor's temperature (in kelvin? 298.15 K is 25.00 °C)",
+            offsets[3]
+        )
+    );
+    let (bag, _) = ros1_bag(&[[0.0; 3]; 2], &[LEVEL; 2], &[1e30, 25.0]);
+    let err = extract_error(&bag, "hot.bag");
+    assert!(
+        err.contains("/temp message 0: temperature 1000000000000000000000000000000 °C is outside")
+            && !err.contains("kelvin"),
+        "{err}"
+    );
+    let (bag, _) = ros1_bag(&[[0.0; 3]; 2], &[LEVEL; 2], &[f64::INFINITY, 25.0]);
+    assert!(extract_error(&bag, "inf.bag").contains("/temp message 0: temperature inf °C"));
+    // The range's ends and a NaN ("not measured", left out) are read.
+    let (bag, _) = ros1_bag(&[[0.0; 3]; 3], &[LEVEL; 3], &[-80.0, f64::NAN, 150.0]);
+    let bag = decode_bag(&bag, "ends.bag", BagFormat::Ros1Bag).unwrap();
+    let series = imu_series(&bag, TopicChoice::default(), "ends.bag")
+        .unwrap()
+        .series;
+    assert_eq!(series.temperature_c, Some(vec![-80.0, -80.0, 150.0]));
+}
+
+#[test]
+fn the_oracle_bags_with_their_first_temperature_in_kelvin_are_refused_in_every_format() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
+    let first = expected["temperature"][0]["temperature_c"]
+        .as_f64()
+        .unwrap();
+    let kelvin = first + 273.15;
+    // The bags whose messages are stored as they are (no compressed chunk).
+    for (name, format, big_endian) in [
+        ("static_none.mcap", BagFormat::Ros2Mcap, false),
+        ("static_unchunked_be.mcap", BagFormat::Ros2Mcap, true),
+        ("static.db3", BagFormat::Ros2Db3, false),
+        ("static.bag", BagFormat::Ros1Bag, false),
+    ] {
+        let mut bytes = std::fs::read(dir.join(name)).unwrap();
+        let (from, to) = match big_endian {
+            true => (first.to_be_bytes(), kelvin.to_be_bytes()),
+            false => (first.to_le_bytes(), kelvin.to_le_bytes()),
+        };
+        let at = bytes.windows(8).position(|w| w == from).unwrap();
+        bytes[at..at + 8].copy_from_slice(&to);
+        let bag = decode_bag(&bytes, name, format).unwrap();
+        let choice = TopicChoice {
+            imu: Some("/imu/data"),
+            ..TopicChoice::default()
+        };
+        let err = imu_series(&bag, choice, name).unwrap_err().to_string();
+        assert!(
+            err.starts_with(&format!("{name}: at byte "))
+                && err.contains(&format!(
+                    "/imu/temperature message 0: temperature {kelvin} °C is outside -80..150 °C"
+                ))
+                && err.contains(&format!(
+                    "(in kelvin? {kelvin} K is {:.2} °C)",
+                    kelvin - 273.15
+                )),
+            "{name}: {err}"
+        );
+    }
+}
+
+#[test]
+fn a_topic_without_messages_is_listed_but_never_a_candidate() {
+    // A second Imu connection and a Temperature connection, neither used.
+    let (mut bag, _) = ros1_bag(&[[0.0; 3]; 2], &[LEVEL; 2], &[]);
+    bag.extend(ros1_connection(5, "/imu/unused", "sensor_msgs/Imu"));
+    bag.extend(ros1_connection(
+        6,
+        "/temp/unused",
+        "sensor_msgs/Temperature",
+    ));
+    let bag = decode_bag(&bag, "quiet.bag", BagFormat::Ros1Bag).unwrap();
+    let extract = imu_series(&bag, TopicChoice::default(), "quiet.bag").unwrap();
+    assert_eq!(extract.topic, "/imu");
+    assert_eq!(extract.series.len(), 2);
+    assert_eq!(extract.temperature_topic, None);
+    // Asked for by name, the empty topic is named as empty.
+    let choice = TopicChoice {
+        imu: Some("/imu/unused"),
+        ..TopicChoice::default()
+    };
+    let err = imu_series(&bag, choice, "quiet.bag")
+        .unwrap_err()
+        .to_string();
+    assert_eq!(err, "quiet.bag: topic /imu/unused has no message");
+    // With no topic holding messages, the error lists the empty ones with their counts.
+    let (empty, _) = ros1_bag(&[], &[], &[]);
+    let empty = decode_bag(&empty, "empty.bag", BagFormat::Ros1Bag).unwrap();
+    let err = imu_series(&empty, TopicChoice::default(), "empty.bag")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains(
+            "no sensor_msgs/msg/Imu topic in the bag (topics: /imu (sensor_msgs/Imu, 0 messages)"
+        ),
+        "{err}"
+    );
+}
