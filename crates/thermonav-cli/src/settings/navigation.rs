@@ -10,7 +10,6 @@ use thermonav::evaluation::experiment::MAX_REPLICATES;
 use thermonav::evaluation::shard::Shard;
 use thermonav::nav::engine::BiasHypotheses;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
-use thermonav::nav::gaussian_sum::split_prior;
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::schedule::{Compensation, Scheduling};
@@ -284,11 +283,9 @@ fn bias_hypotheses(members: usize, smooth: bool) -> Result<Option<BiasHypotheses
         members,
         ..BiasHypotheses::default()
     };
-    if split_prior(members, hypotheses.span_sd).is_none() {
-        return Err(Failure::Usage(anyhow!(
-            "--bias-hypotheses {members}: expected 1 or an odd count of at least 9 (members closer than one prior sd)"
-        )));
-    }
+    hypotheses
+        .split()
+        .map_err(|e| Failure::Usage(anyhow!("--bias-hypotheses {members}: {e}")))?;
     if smooth {
         return Err(Failure::Usage(anyhow!(
             "--bias-hypotheses with --smooth: a Gaussian sum has no single forward history to smooth"

@@ -861,6 +861,13 @@ fn integrate_runs_a_gaussian_sum_over_the_gyro_bias_when_asked() {
     for (extra, expected) in [
         (&["--bias-hypotheses", "4"][..], "--bias-hypotheses 4"),
         (&["--bias-hypotheses", "7"][..], "--bias-hypotheses 7"),
+        // Issue 37 row 14: refused before anything is allocated (it used to abort asking for
+        // 37 GB).
+        (&["--bias-hypotheses", "203"][..], "from 9 to 201"),
+        (
+            &["--bias-hypotheses", "999999999"][..],
+            "--bias-hypotheses 999999999",
+        ),
         (&["--bias-hypotheses", "21", "--smooth"][..], "--smooth"),
     ] {
         let refused = dir.path().join("refused.csv");

@@ -21,8 +21,8 @@
 //! heaviest member at each update.
 
 use super::engine::{
-    BiasHypotheses, Filtering, NavError, Run, StreamError, StreamTail, check_fix_latitudes,
-    check_imu_gaps, check_settings,
+    BiasHypotheses, Filtering, MAX_BIAS_HYPOTHESES, NavError, Run, StreamError, StreamTail,
+    check_fix_latitudes, check_imu_gaps, check_settings,
 };
 use super::error_state::ErrorVector;
 use super::solution::{InnovationRecord, SolutionEpoch, SolutionSink};
@@ -44,6 +44,22 @@ pub struct Member {
     pub sd: f64,
     /// Its prior weight (the weights add up to 1).
     pub weight: f64,
+}
+
+impl BiasHypotheses {
+    /// The members' places in the prior ([`split_prior`]), checked first against
+    /// [`MAX_BIAS_HYPOTHESES`] so that nothing is allocated for an absurd count.
+    ///
+    /// # Errors
+    /// [`NavError::BiasHypotheses`] for more than [`MAX_BIAS_HYPOTHESES`] members, or a count or
+    /// span that [`split_prior`] cannot split.
+    pub fn split(&self) -> Result<Vec<Member>, NavError> {
+        let refused = NavError::BiasHypotheses(self.members);
+        if self.members > MAX_BIAS_HYPOTHESES {
+            return Err(refused);
+        }
+        split_prior(self.members, self.span_sd).ok_or(refused)
+    }
 }
 
 /// The members of the split: offsets on an even grid over ±`span_sd`, weights from a normal of
@@ -176,10 +192,7 @@ pub fn run_gaussian_sum<E>(
         }
         .into());
     }
-    let members = split_prior(hypotheses.members, hypotheses.span_sd).ok_or(NavError::Setting {
-        what: "bias hypotheses (an odd count, a positive span, spacing below one sd)",
-        value: hypotheses.members as f64,
-    })?;
+    let members = hypotheses.split()?;
     let start = filtering.initial.nav.time;
     let starts: Vec<_> = members
         .iter()
