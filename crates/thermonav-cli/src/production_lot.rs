@@ -127,7 +127,7 @@ fn lot_settings(mut settings: CharacterizeSettings, given: &Conditioning) -> Cha
 /// Characterises one unit into `DIR/SERIAL/bank.json`; the error names the unit.
 ///
 /// A unit that fails loses the bank an earlier run wrote for it, so that no summary can mix
-/// that stale bank with the new ones.
+/// that stale bank with the new ones, and its folder when that leaves it empty.
 fn characterize_unit(
     unit: &LotUnit,
     settings: &CharacterizeSettings,
@@ -152,6 +152,8 @@ fn characterize_unit(
     };
     build_bank_reading(&inputs, settings, reading, &bank).map_err(|failure| {
         let stale = remove_if_present(&bank).err().map(|e| format!("; {e}"));
+        // The unit's folder goes too when nothing else is in it (remove_dir refuses otherwise).
+        let _ = std::fs::remove_dir(&folder);
         fail(format!("{failure}{}", stale.unwrap_or_default()))
     })
 }
