@@ -170,6 +170,14 @@ fn write_evaluation(
     errors: &[(String, Option<&[Vec<EpochError>]>)],
     (out, imu_rotation): (&Path, Option<String>),
 ) -> Result<EvaluationFile, Failure> {
+    // Every number is checked before the first file is written: a report that cannot be
+    // written leaves no error table behind.
+    thermonav_io::check_finite(&report).data()?;
+    for (stem, errors) in errors {
+        thermonav_io::check_finite(errors)
+            .map_err(|e| anyhow!("errors of {stem}: {e}"))
+            .data()?;
+    }
     for (model, (stem, errors)) in report.models.iter_mut().zip(errors) {
         model.errors_csv = match errors {
             Some(e) => Some(write_errors(out, stem, e)?),

@@ -215,3 +215,72 @@ fn evaluate_refuses_a_bad_shard() {
         assert!(!out.exists());
     }
 }
+
+/// The shard file at `path` with `edit` applied to its JSON, written to `to`.
+fn edited_shard(path: &Path, to: &Path, edit: impl Fn(&mut serde_json::Value)) -> PathBuf {
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    edit(&mut json);
+    std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+    std::fs::write(to, serde_json::to_vec(&json).unwrap()).unwrap();
+    to.to_path_buf()
+}
+
+/// Every run's stored metrics of a shard's JSON.
+fn each_metrics(json: &mut serde_json::Value, set: impl Fn(&mut serde_json::Value)) {
+    for run in json["tournament"]["runs"].as_array_mut().unwrap() {
+        if let Some(metrics) = run["outcome"]["Ok"].get_mut("metrics") {
+            set(metrics);
+        }
+    }
+}
+
+// Issue 37 rows 12 and 13, and the minor point on negative RMS: shards edited to absurd
+// counts or figures are refused before anything is allocated or written.
+#[test]
+fn merge_refuses_edited_shards_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let shards = three_shards(dir.path(), &bank, &vessel);
+    let [one, two, three] = [1, 2, 3].map(|i| shards.join(format!("shard-{i}-of-3.json")));
+    let out = dir.path().join("merged");
+    let edits = dir.path().join("edits");
+    // A count of 2^63: it panicked with "capacity overflow".
+    let huge = edited_shard(&one, &edits.join("huge/shard-1-of-3.json"), |j| {
+        j["tournament"]["shard"]["count"] = serde_json::json!(1_u64 << 63);
+    });
+    merge_fails(&[&huge], &out, &["shard 2/9223372036854775808 is missing"]);
+    // A frame that stands for more runs than the shard holds.
+    let frame = edited_shard(&one, &edits.join("frame/shard-1-of-1.json"), |j| {
+        j["tournament"]["shard"]["count"] = serde_json::json!(1);
+        j["tournament"]["frame"]["replicates"] = serde_json::json!(1_u64 << 62);
+    });
+    merge_fails(&[&frame], &out, &["but their frame stands for"]);
+    // A negative RMS.
+    let negative = edited_shard(&one, &edits.join("negative/shard-1-of-3.json"), |j| {
+        each_metrics(j, |m| m["rms_north_m"] = serde_json::json!(-1.0));
+    });
+    merge_fails(&[&negative, &two, &three], &out, &["rms_north_m is -1"]);
+    // 1.7e308 is finite, but the summaries over replicates overflow: refused before any
+    // error table is written (it left five errors/*.csv without evaluation.json).
+    let overflowing = edited_shard(&one, &edits.join("overflow/shard-1-of-3.json"), |j| {
+        each_metrics(j, |m| m["rms_horizontal_m"] = serde_json::json!(1.7e308));
+    });
+    merge_fails(&[&overflowing, &two, &three], &out, &["NaN or infinity"]);
+    assert!(!out.join("errors").exists() || files_in(&out.join("errors")).is_empty());
+}
+
+#[test]
+fn evaluate_refuses_more_shards_than_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bank, vessel) = inputs(dir.path());
+    let out = dir.path().join("out");
+    let output = evaluate(&vessel, &bank, &out, &["--shard", "1/1000000000"]).output();
+    let (status, _, stderr) = outcome(&output.unwrap());
+    assert_ne!(status, 0, "{stderr}");
+    assert!(
+        stderr.contains("shard count 1000000000") && stderr.contains("at most"),
+        "{stderr}"
+    );
+    assert!(!out.join("shard-1-of-1000000000.json").exists());
+}

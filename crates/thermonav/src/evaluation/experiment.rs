@@ -121,6 +121,16 @@ pub enum TournamentError {
         /// Replicates asked for, the main run included.
         asked: usize,
     },
+    /// More shards than runs: a shard would hold none.
+    #[error(
+        "shard count {count}: the tournament has {runs} runs (replicates x models x filters), so at most {runs} shards"
+    )]
+    ShardCount {
+        /// Shards asked for.
+        count: usize,
+        /// Runs of the tournament.
+        runs: usize,
+    },
     /// A shifted outage list is unusable.
     #[error("shifted outages: {0}")]
     Outage(#[from] OutageError),
@@ -234,6 +244,12 @@ impl Tournament {
             _ => Vec::new(),
         };
         let per_replicate = self.candidates.len() * self.filters.len();
+        if shard.count > asked * per_replicate {
+            return Err(TournamentError::ShardCount {
+                count: shard.count,
+                runs: asked * per_replicate,
+            });
+        }
         let mut runs = Vec::new();
         for index in 0..asked {
             let first = index * per_replicate;

@@ -152,6 +152,30 @@ pub enum MergeError {
         /// The fingerprint entry (or "tournament models, outages or replicates").
         what: String,
     },
+    /// Shards whose runs cannot be those of their frame (an edited or foreign file).
+    #[error(
+        "the shards hold {held} runs in all, but their frame stands for {expected} (replicates x models): not one tournament's complete shards"
+    )]
+    RunCount {
+        /// What the frame stands for, in words (it may overflow).
+        expected: String,
+        /// Runs held by all shards.
+        held: usize,
+    },
+    /// A stored figure no run can give (negative, or not finite).
+    #[error(
+        "{name}: run {run}: {what} is {value}, not a figure a run gives (expected a finite number >= 0)"
+    )]
+    Value {
+        /// The shard.
+        name: String,
+        /// The run.
+        run: usize,
+        /// The figure's name.
+        what: &'static str,
+        /// Its value, as text.
+        value: String,
+    },
     /// A shard without the runs its index stands for.
     #[error("{name}: its runs are not those of shard {index}/{count} (run {run})")]
     Runs {
@@ -186,7 +210,12 @@ pub fn merge_shards(shards: &[(String, TournamentShard)]) -> Result<MergedTourna
     for (name, shard) in &shards[1..] {
         check_same_tournament((first_name, first), (name, shard))?;
     }
+    for (name, shard) in shards {
+        check_stored_figures(name, shard)?;
+    }
+    check_count_against_shards(shards)?;
     let ordered = complete_set(shards)?;
+    check_runs_against_frame(shards)?;
     let frame = &first.frame;
     let replicates = replicate_results(frame, &ordered)?;
     let (summaries, tests) = summarize_replicates(&replicates);
@@ -227,6 +256,95 @@ fn check_same_tournament(
         return Err(differs("tournament models, outages or replicates"));
     }
     Ok(())
+}
+
+/// Refuses a stored figure that no run gives: a negative or non-finite RMS, maximum or
+/// outage time.
+fn check_stored_figures(name: &str, shard: &TournamentShard) -> Result<(), MergeError> {
+    for run in &shard.runs {
+        let Ok(stored) = &run.outcome else { continue };
+        let m = &stored.metrics;
+        let whole = [
+            ("rms_north_m", m.rms_north_m),
+            ("rms_east_m", m.rms_east_m),
+            ("rms_horizontal_m", m.rms_horizontal_m),
+            ("rms_heading_deg", m.rms_heading_deg),
+            ("max_drift_horizontal_m", m.max_drift_horizontal_m),
+            ("rms_of_max_north_m", m.rms_of_max_north_m),
+            ("rms_of_max_east_m", m.rms_of_max_east_m),
+            ("rms_of_max_heading_deg", m.rms_of_max_heading_deg),
+        ];
+        let outages = m.per_outage.iter().flat_map(|o| {
+            [
+                ("per_outage.start_s", o.start_s),
+                ("per_outage.end_s", o.end_s),
+                ("per_outage.rms_north_m", o.rms_north_m),
+                ("per_outage.rms_east_m", o.rms_east_m),
+                ("per_outage.rms_horizontal_m", o.rms_horizontal_m),
+                ("per_outage.rms_heading_deg", o.rms_heading_deg),
+                ("per_outage.max_north_m", o.max_north_m),
+                ("per_outage.max_east_m", o.max_east_m),
+                ("per_outage.max_horizontal_m", o.max_horizontal_m),
+                ("per_outage.max_heading_deg", o.max_heading_deg),
+            ]
+        });
+        // Outage times may be negative (before the record's first sample); the magnitudes not.
+        let bad = whole.into_iter().chain(outages).find(|&(what, v)| {
+            !v.is_finite() || (v < 0.0 && !what.ends_with("start_s") && !what.ends_with("end_s"))
+        });
+        if let Some((what, value)) = bad {
+            return Err(MergeError::Value {
+                name: name.to_string(),
+                run: run.run,
+                what,
+                value: value.to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Refuses, before anything is allocated for them, a shard count beyond the shards given (the
+/// first index missing is named).
+fn check_count_against_shards(shards: &[(String, TournamentShard)]) -> Result<(), MergeError> {
+    let count = shards[0].1.shard.count;
+    if count > shards.len() {
+        let given: std::collections::BTreeSet<usize> =
+            shards.iter().map(|(_, s)| s.shard.index).collect();
+        let index = (1..=shards.len() + 1)
+            .find(|i| !given.contains(i))
+            .unwrap_or(1);
+        let names: Vec<&str> = shards.iter().map(|(n, _)| n.as_str()).collect();
+        return Err(MergeError::Missing {
+            index,
+            count,
+            given: names.join(", "),
+        });
+    }
+    Ok(())
+}
+
+/// Refuses a frame whose runs are not the runs the shards hold, before anything is allocated
+/// for the frame's runs.
+fn check_runs_against_frame(shards: &[(String, TournamentShard)]) -> Result<(), MergeError> {
+    let frame = &shards[0].1.frame;
+    let held: usize = shards.iter().map(|(_, s)| s.runs.len()).sum();
+    match frame.replicates.checked_mul(frame.models.len()) {
+        Some(expected) if expected == held => Ok(()),
+        expected => Err(MergeError::RunCount {
+            expected: expected.map_or_else(
+                || {
+                    format!(
+                        "{} x {} (beyond any count)",
+                        frame.replicates,
+                        frame.models.len()
+                    )
+                },
+                |e| e.to_string(),
+            ),
+            held,
+        }),
+    }
 }
 
 /// The shards in index order, each once, none missing.

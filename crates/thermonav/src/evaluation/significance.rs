@@ -70,11 +70,13 @@ pub fn paired_t_test(a: &[f64], b: &[f64]) -> Option<PairedTest> {
     let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
     let interval = mean_interval(&d)?;
     let (mean, sd) = mean_and_sd(&d);
-    if sd <= 0.0 {
-        return None;
-    }
     let n = d.len() as f64;
     let t = mean / (sd / n.sqrt());
+    // A zero or non-finite spread, or a non-finite t (sums that overflowed), has no p-value
+    // (statrs' Student t panics on a NaN argument).
+    if !(sd > 0.0 && t.is_finite()) {
+        return None;
+    }
     let dist = StudentsT::new(0.0, 1.0, n - 1.0).ok()?;
     Some(PairedTest {
         n: d.len(),
