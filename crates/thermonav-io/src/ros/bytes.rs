@@ -173,6 +173,89 @@ impl Expansion {
     }
 }
 
+/// Checks a chunk before it is read: `compression` known, an uncompressed chunk's records
+/// `stored` bytes as `declared`, a compressed one's `declared` at most [`MAX_CHUNK_BYTES`] and
+/// within what is left of the file's [`Expansion`] bound (then counted in it). `at` is the
+/// file offsets of the chunk record and of its records.
+///
+/// # Errors
+/// Each of those, naming the file, the chunk's offset and the figures.
+pub fn chunk_bounds(
+    compression: &str,
+    stored: u64,
+    declared: u64,
+    (chunk_offset, records_offset): (u64, u64),
+    input: &str,
+    expansion: &mut Expansion,
+) -> Result<(), ReadError> {
+    let refuse = |what: std::fmt::Arguments<'_>| at_chunk(input, chunk_offset, compression, what);
+    if matches!(compression, "" | "none") {
+        return match stored == declared {
+            true => Ok(()),
+            false => Err(refuse(format_args!(
+                "holds {stored} bytes, but its record declares {declared}"
+            ))),
+        };
+    }
+    if !matches!(compression, "zstd" | "lz4" | "bz2") {
+        return Err(at(
+            input,
+            records_offset,
+            format_args!(
+                "chunk compression \"{compression}\" is not supported (expected none, zstd, lz4 \
+                 or bz2)"
+            ),
+        ));
+    }
+    if declared > MAX_CHUNK_BYTES {
+        return Err(refuse(format_args!(
+            "declares {declared} bytes uncompressed ({stored} compressed), above the \
+             {MAX_CHUNK_BYTES}-byte (64 MiB) limit of a chunk (recorders write chunks of 768 KiB \
+             to 4 MiB): a corrupt size or a decompression bomb"
+        )));
+    }
+    let total = expansion.used.saturating_add(declared);
+    if total > expansion.limit {
+        return Err(refuse(format_args!(
+            "declares {declared} bytes uncompressed ({stored} compressed), which would bring the \
+             file's chunks to {total} bytes, above the {}-byte limit for this {}-byte file \
+             ({MAX_EXPANSION_RATIO} times its size, at least {MIN_EXPANSION_BYTES}): a \
+             decompression bomb, or data far more repetitive than a recording",
+            expansion.limit, expansion.file_bytes
+        )));
+    }
+    expansion.used = total;
+    Ok(())
+}
+
+/// Checks what a chunk decompressed to: `produced` bytes read (at most `declared`), `more`
+/// when the decompressor had bytes past them.
+///
+/// # Errors
+/// Fewer bytes than declared, or more, naming the chunk's offset and the figures.
+pub fn check_expansion(
+    compression: &str,
+    (produced, more): (u64, bool),
+    declared: u64,
+    stored: u64,
+    chunk_offset: u64,
+    input: &str,
+) -> Result<(), ReadError> {
+    let refuse = |what: std::fmt::Arguments<'_>| at_chunk(input, chunk_offset, compression, what);
+    if more {
+        return Err(refuse(format_args!(
+            "({stored} bytes compressed) expands to more than the {declared} bytes its record \
+             declares (decompression stopped there)"
+        )));
+    }
+    match produced == declared {
+        true => Ok(()),
+        false => Err(refuse(format_args!(
+            "holds {produced} bytes uncompressed, but its record declares {declared}"
+        ))),
+    }
+}
+
 /// The bytes of a chunk whose record starts at file offset `chunk_offset`: its `data` when
 /// `compression` is `none` (or empty), else decompressed: `zstd` (MCAP), `lz4` (the LZ4 frame
 /// format, in MCAP and ROS 1) or `bz2` (ROS 1). `declared` is the uncompressed size the record
@@ -191,44 +274,12 @@ pub fn decompress<'d>(
     at: &Cursor<'_>,
     expansion: &mut Expansion,
 ) -> Result<std::borrow::Cow<'d, [u8]>, ReadError> {
-    let refuse =
-        |what: std::fmt::Arguments<'_>| at_chunk(at.input, chunk_offset, compression, what);
+    let stored = data.len() as u64;
+    let offsets = (chunk_offset, at.offset());
+    chunk_bounds(compression, stored, declared, offsets, at.input, expansion)?;
     if matches!(compression, "" | "none") {
-        return match data.len() as u64 == declared {
-            true => Ok(std::borrow::Cow::Borrowed(data)),
-            false => Err(refuse(format_args!(
-                "holds {} bytes, but its record declares {declared}",
-                data.len()
-            ))),
-        };
+        return Ok(std::borrow::Cow::Borrowed(data));
     }
-    if !matches!(compression, "zstd" | "lz4" | "bz2") {
-        return Err(at.error(format_args!(
-            "chunk compression \"{compression}\" is not supported (expected none, zstd, lz4 or \
-             bz2)"
-        )));
-    }
-    if declared > MAX_CHUNK_BYTES {
-        return Err(refuse(format_args!(
-            "declares {declared} bytes uncompressed ({} compressed), above the {MAX_CHUNK_BYTES}-byte \
-             (64 MiB) limit of a chunk (recorders write chunks of 768 KiB to 4 MiB): a corrupt \
-             size or a decompression bomb",
-            data.len()
-        )));
-    }
-    let total = expansion.used.saturating_add(declared);
-    if total > expansion.limit {
-        return Err(refuse(format_args!(
-            "declares {declared} bytes uncompressed ({} compressed), which would bring the \
-             file's chunks to {total} bytes, above the {}-byte limit for this {}-byte file \
-             ({MAX_EXPANSION_RATIO} times its size, at least {MIN_EXPANSION_BYTES}): a \
-             decompression bomb, or data far more repetitive than a recording",
-            data.len(),
-            expansion.limit,
-            expansion.file_bytes
-        )));
-    }
-    expansion.used = total;
     // One byte past the declaration tells a chunk that expands further.
     let past = declared + 1;
     let out = match compression {
@@ -238,19 +289,26 @@ pub fn decompress<'d>(
         "lz4" => read_at_most(lz4_flex::frame::FrameDecoder::new(data), past),
         _ => read_at_most(bzip2_rs::DecoderReader::new(data), past),
     };
-    let out = out.map_err(|e| refuse(format_args!("does not decompress: {e}")))?;
-    match (out.len() as u64).cmp(&declared) {
-        std::cmp::Ordering::Equal => Ok(std::borrow::Cow::Owned(out)),
-        std::cmp::Ordering::Greater => Err(refuse(format_args!(
-            "({} bytes compressed) expands to more than the {declared} bytes its record \
-             declares (decompression stopped there)",
-            data.len()
-        ))),
-        std::cmp::Ordering::Less => Err(refuse(format_args!(
-            "holds {} bytes uncompressed, but its record declares {declared}",
-            out.len()
-        ))),
-    }
+    let mut out = out.map_err(|e| {
+        at_chunk(
+            at.input,
+            chunk_offset,
+            compression,
+            format_args!("does not decompress: {e}"),
+        )
+    })?;
+    let more = out.len() as u64 > declared;
+    out.truncate(declared as usize);
+    let produced = out.len() as u64;
+    check_expansion(
+        compression,
+        (produced, more),
+        declared,
+        stored,
+        chunk_offset,
+        at.input,
+    )?;
+    Ok(std::borrow::Cow::Owned(out))
 }
 
 /// A problem with the `compression` chunk whose record starts at `chunk_offset` of `input`.

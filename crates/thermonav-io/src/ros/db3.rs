@@ -8,7 +8,7 @@
 
 use super::messages::Encoding;
 use super::sqlite::{Database, Row, Value};
-use super::{Bag, BagFormat};
+use super::{Bag, BagFormat, Sink};
 use crate::error::{ReadError, ReadErrorKind};
 use std::collections::HashMap;
 use std::path::Path;

@@ -16,37 +16,62 @@
 //! offsets; inside a chunk they are the chunk's records offset plus the position in its
 //! uncompressed records.
 
-use super::bytes::{Cursor, Expansion, decompress};
+use super::bytes::{Cursor, Expansion, chunk_bounds};
 use super::messages::Encoding;
-use super::{Bag, BagFormat, log_time};
+use super::source::{Origin, Source};
+use super::{Bag, BagFormat, Sink, log_time};
 use crate::error::ReadError;
 use std::collections::HashMap;
+use std::io::Read;
 
 /// The first (and last) 8 bytes of an MCAP file.
 pub const MAGIC: [u8; 8] = *b"\x89MCAP0\r\n";
 
-/// Reading state: schemas and channels by id, the bag so far.
-struct Reader<'a> {
+/// Bytes of a Message record before its data: channel id, sequence, log and publish times.
+const MESSAGE_HEAD: u64 = 2 + 4 + 8 + 8;
+
+/// Reading state: schemas and channels by id, and where the topics and messages go.
+struct Reader<'a, S> {
     input: &'a str,
     /// Schema name by id.
     schemas: HashMap<u16, String>,
-    /// Topic index of the bag by channel id.
+    /// Topic index of the sink by channel id.
     channels: HashMap<u16, usize>,
     /// What the compressed chunks expanded to, against the file's bound.
     expansion: Expansion,
-    bag: Bag,
+    /// The bytes of the message being read (reused).
+    buffer: Vec<u8>,
+    sink: &'a mut S,
 }
 
 /// Decodes the bytes of an MCAP file, named `input` in errors.
 ///
 /// # Errors
+/// Those of [`read_mcap`].
+pub fn decode_mcap(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
+    let mut bag = Bag::new(BagFormat::Ros2Mcap);
+    read_mcap(bytes, bytes.len() as u64, input, &mut bag)?;
+    Ok(bag)
+}
+
+/// Reads an MCAP file of `file_bytes` bytes from `reader`, record by record, into `sink`:
+/// memory is a record's bytes at a time (a message's data only when the sink wants them) and a
+/// chunk's decompressor, whatever the file's length.
+///
+/// # Errors
 /// [`crate::error::ReadErrorKind::Unusable`] with the byte offset: a wrong magic, a record cut
 /// short, a string that is not UTF-8, a channel naming an undefined schema, a message naming
-/// an undefined channel, a chunk of another compression than none/zstd/lz4 or whose data does
-/// not decompress to its declared size.
-pub fn decode_mcap(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
-    let mut cursor = Cursor::new(bytes, 0, input);
-    if cursor.take(8, "the MCAP magic")? != MAGIC {
+/// an undefined channel, a chunk of another compression than none/zstd/lz4, beyond the bounds
+/// of [`super::bytes::chunk_bounds`], or whose data does not decompress to its declared size;
+/// the sink's errors.
+pub fn read_mcap<S: Sink>(
+    reader: impl Read,
+    file_bytes: u64,
+    input: &str,
+    sink: &mut S,
+) -> Result<(), ReadError> {
+    let mut source = Source::new(reader, 0, input, Origin::File);
+    if source.array::<8>("the MCAP magic")? != MAGIC {
         return Err(super::bytes::at(
             input,
             0,
@@ -57,36 +82,54 @@ pub fn decode_mcap(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
         input,
         schemas: HashMap::new(),
         channels: HashMap::new(),
-        expansion: Expansion::for_file(bytes.len() as u64),
-        bag: Bag::new(BagFormat::Ros2Mcap),
+        expansion: Expansion::for_file(file_bytes),
+        buffer: Vec::new(),
+        sink,
     };
-    reader.records(&mut cursor, false)?;
-    Ok(reader.bag)
+    reader.records(&mut source, false)
 }
 
-impl Reader<'_> {
-    /// Reads records until the cursor is empty or the data section ends.
-    fn records(&mut self, cursor: &mut Cursor<'_>, in_chunk: bool) -> Result<(), ReadError> {
-        while !cursor.is_empty() {
-            if !in_chunk && cursor.remaining() == 8 && cursor.clone().rest() == MAGIC {
+impl<S: Sink> Reader<'_, S> {
+    /// Reads records until the source ends or the data section does (`in_chunk`: the records
+    /// of a chunk).
+    fn records<R: Read>(
+        &mut self,
+        source: &mut Source<'_, R>,
+        in_chunk: bool,
+    ) -> Result<(), ReadError> {
+        loop {
+            let record_start = source.offset();
+            let Some([opcode]) = source.array_or_end::<1>("a record opcode")? else {
                 return Ok(());
+            };
+            if !in_chunk && opcode == MAGIC[0] {
+                // The closing magic of a file without a Data End or Footer record.
+                return match source.array::<7>("the closing MCAP magic")? == MAGIC[1..] {
+                    true => Ok(()),
+                    false => Err(super::bytes::at(
+                        self.input,
+                        record_start,
+                        "expected a record or the closing MCAP magic",
+                    )),
+                };
             }
-            let record_start = cursor.offset();
-            let opcode = cursor.u8("a record opcode")?;
-            let length = cursor.u64_le("a record length")?;
-            let record_at = cursor.clone();
-            let content = cursor.take(length, "a record's content")?;
-            let mut body = Cursor::new(content, record_at.offset(), self.input);
+            let length = source.u64_le("a record length")?;
+            let content_at = source.offset();
             match (opcode, in_chunk) {
                 (0x02 | 0x0F, false) => return Ok(()),
-                (0x03, _) => self.schema(&mut body)?,
-                (0x04, _) => self.channel(&mut body)?,
-                (0x05, _) => self.message(&mut body, record_start)?,
-                (0x06, false) => self.chunk(&mut body, record_start)?,
-                _ => {}
+                (0x03 | 0x04, _) => {
+                    let content = source.bytes(length, "a record's content")?;
+                    let mut body = Cursor::new(&content, content_at, self.input);
+                    match opcode {
+                        0x03 => self.schema(&mut body)?,
+                        _ => self.channel(&mut body)?,
+                    }
+                }
+                (0x05, _) => self.message(source, length, record_start)?,
+                (0x06, false) => self.chunk(source, length, record_start)?,
+                _ => source.skip(length, "a record's content")?,
             }
         }
-        Ok(())
     }
 
     /// A Schema record: its name by id.
@@ -116,46 +159,163 @@ impl Reader<'_> {
                 ))
             })?,
         };
-        let k = self.bag.topic_index(&topic, &type_name, encoding);
+        let k = self.sink.topic_index(&topic, &type_name, encoding);
         self.channels.insert(id, k);
         Ok(())
     }
 
-    /// A Message record, found at file offset `offset`.
-    fn message(&mut self, body: &mut Cursor<'_>, offset: u64) -> Result<(), ReadError> {
+    /// A Message record of `length` bytes, found at file offset `offset`: its data read when
+    /// the sink wants them, else skipped and counted.
+    fn message<R: Read>(
+        &mut self,
+        source: &mut Source<'_, R>,
+        length: u64,
+        offset: u64,
+    ) -> Result<(), ReadError> {
+        let head_at = source.offset();
+        let head = source.bytes(length.min(MESSAGE_HEAD), "a record's content")?;
+        let mut body = Cursor::new(&head, head_at, self.input);
         let channel = body.u16_le("a message's channel id")?;
         body.u32_le("a message sequence")?;
-        let log_time_ns = log_time(body.u64_le("a message log time")?, body)?;
+        let log_time_ns = log_time(body.u64_le("a message log time")?, &body)?;
         body.u64_le("a message publish time")?;
         let k = *self.channels.get(&channel).ok_or_else(|| {
             body.error(format_args!(
                 "a message on channel {channel}, which no earlier Channel record defines"
             ))
         })?;
-        let data = body.rest();
-        self.bag.push(k, log_time_ns, offset, data, self.input)
+        let data_len = length - MESSAGE_HEAD;
+        match self.sink.wants(k) {
+            true => {
+                let mut data = std::mem::take(&mut self.buffer);
+                source.read_into(data_len, "a message's data", &mut data)?;
+                let pushed = self.sink.push(k, log_time_ns, offset, &data, self.input);
+                self.buffer = data;
+                pushed
+            }
+            false => {
+                source.skip(data_len, "a message's data")?;
+                self.sink.count(k);
+                Ok(())
+            }
+        }
     }
 
-    /// A Chunk record starting at file offset `offset`: its records, decompressed.
-    fn chunk(&mut self, body: &mut Cursor<'_>, offset: u64) -> Result<(), ReadError> {
+    /// A Chunk record of `length` bytes starting at file offset `offset`: its records, read
+    /// through the decompressor as they come.
+    fn chunk<R: Read>(
+        &mut self,
+        source: &mut Source<'_, R>,
+        length: u64,
+        offset: u64,
+    ) -> Result<(), ReadError> {
+        let input = self.input;
+        let content_at = source.offset();
+        let mut body = Source::new(
+            source.reader().take(length),
+            content_at,
+            input,
+            Origin::File,
+        );
         body.u64_le("a chunk start time")?;
         body.u64_le("a chunk end time")?;
         let declared = body.u64_le("a chunk's uncompressed size")?;
         body.u32_le("a chunk's uncompressed CRC")?;
-        let compression = string(body, "a chunk compression")?;
-        let length = body.u64_le("a chunk's records length")?;
-        let at = body.clone();
-        let data = body.take(length, "a chunk's records")?;
-        let records = decompress(
+        let name_len = body.u32_le("a chunk compression")?;
+        let name = body.bytes(u64::from(name_len), "a chunk compression")?;
+        let compression = String::from_utf8(name)
+            .map_err(|_| body.error("expected a chunk compression in UTF-8"))?;
+        let records_len = body.u64_le("a chunk's records length")?;
+        let records_at = body.offset();
+        chunk_bounds(
             &compression,
-            data,
+            records_len,
             declared,
-            offset,
-            &at,
+            (offset, records_at),
+            input,
             &mut self.expansion,
         )?;
-        let mut inner = Cursor::new(&records, at.offset(), self.input);
-        self.records(&mut inner, true)
+        let mut compressed = body.reader().take(records_len);
+        let outcome = self.chunk_records(
+            &mut compressed,
+            &compression,
+            declared,
+            (offset, records_at),
+        );
+        // The rest of the chunk's stored bytes: a file that ends inside them is truncated,
+        // whatever the decompressor made of what was there.
+        let left = compressed.limit();
+        let skipped = std::io::copy(&mut compressed, &mut std::io::sink())
+            .map_err(|e| ReadError::new(input, None, crate::error::ReadErrorKind::Read(e)))?;
+        if skipped < left {
+            return Err(super::bytes::at(
+                input,
+                records_at,
+                format_args!(
+                    "expected a chunk's records of {records_len} bytes, but only {} bytes are \
+                     left (a truncated file, or a corrupt length field)",
+                    records_len - left + skipped
+                ),
+            ));
+        }
+        let (produced, more) = outcome?;
+        super::bytes::check_expansion(
+            &compression,
+            (produced, more),
+            declared,
+            records_len,
+            offset,
+            input,
+        )?;
+        body.advance(records_len);
+        body.skip(length - body.consumed(), "a record's content")?;
+        source.advance(length);
+        Ok(())
+    }
+
+    /// The records of a chunk of `compression` from its stored bytes `stored`, at most
+    /// `declared` bytes of them once decompressed: how many bytes they took and whether the
+    /// decompressor had more. `at` is the file offsets of the chunk record and of its records.
+    fn chunk_records(
+        &mut self,
+        stored: &mut dyn Read,
+        compression: &str,
+        declared: u64,
+        (offset, records_at): (u64, u64),
+    ) -> Result<(u64, bool), ReadError> {
+        let input = self.input;
+        let decoder: Box<dyn Read + '_> = match compression {
+            "" | "none" => Box::new(stored),
+            "zstd" => Box::new(
+                ruzstd::decoding::StreamingDecoder::new(stored).map_err(|e| {
+                    super::bytes::at(
+                        input,
+                        offset,
+                        format_args!("the zstd chunk does not decompress: {e}"),
+                    )
+                })?,
+            ),
+            "lz4" => Box::new(lz4_flex::frame::FrameDecoder::new(stored)),
+            _ => Box::new(bzip2_rs::DecoderReader::new(stored)),
+        };
+        let origin = Origin::Chunk {
+            offset,
+            compression,
+        };
+        let mut inner = Source::new(decoder.take(declared), records_at, input, origin);
+        let parsed = self.records(&mut inner, true);
+        let produced = inner.consumed();
+        if parsed.is_err() {
+            // A record cut by the declared end of a chunk that expands further is that
+            // chunk's fault: read to the declared end (at most 64 MiB) to tell.
+            let left = inner.reader().limit();
+            let _ = inner.skip(left, "a chunk's records");
+        }
+        let more = !Source::new(inner.reader().get_mut(), 0, input, origin).at_end()?;
+        match parsed {
+            Err(e) if !more => Err(e),
+            _ => Ok((produced, more)),
+        }
     }
 }
 

@@ -19,6 +19,7 @@ pub mod extract;
 pub mod mcap;
 pub mod messages;
 pub mod ros1;
+pub mod source;
 pub mod sqlite;
 
 use crate::error::{ReadError, ReadErrorKind};
@@ -109,7 +110,7 @@ impl Bag {
     }
 
     /// Index of the topic `name` of `type_name`, added (with `encoding`) when new.
-    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
+    fn find_or_add_topic(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
         if let Some(k) = self
             .topics
             .iter()
@@ -135,7 +136,7 @@ impl Bag {
     /// A message of a decoded type shorter than the type's [`MessageType::min_bytes`] (a corrupt
     /// bag): refused here, before its bytes are kept, naming the topic, the message's index in
     /// it and the file offset `offset` of its record, so that memory follows real messages.
-    fn push(
+    fn keep(
         &mut self,
         k: usize,
         log_time_ns: i64,
@@ -178,18 +179,89 @@ impl Bag {
     }
 }
 
+/// Where a reader puts what it reads: the topics as they are defined, and each message, whose
+/// bytes are read only when [`Sink::wants`] them (else it is only counted).
+pub trait Sink {
+    /// Index of the topic `name` of `type_name` in `encoding`, added when new.
+    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize;
+    /// Whether the bytes of topic `k`'s messages are wanted.
+    fn wants(&self, k: usize) -> bool;
+    /// A message of topic `k` (wanted), recorded at `log_time_ns`, its record at file offset
+    /// `offset` of `input`.
+    ///
+    /// # Errors
+    /// The sink's refusal of the message.
+    fn push(
+        &mut self,
+        k: usize,
+        log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError>;
+    /// A message of topic `k` not wanted: counted.
+    fn count(&mut self, k: usize);
+}
+
+impl Sink for Bag {
+    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
+        self.find_or_add_topic(name, type_name, encoding)
+    }
+
+    fn wants(&self, k: usize) -> bool {
+        self.topics[k].message_type.is_some()
+    }
+
+    fn push(
+        &mut self,
+        k: usize,
+        log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError> {
+        self.keep(k, log_time_ns, offset, data, input)
+    }
+
+    fn count(&mut self, k: usize) {
+        self.topics[k].count += 1;
+    }
+}
+
 /// A record time in ns (u64 in the files) as i64.
 fn log_time(ns: u64, at: &bytes::Cursor<'_>) -> Result<i64, ReadError> {
     i64::try_from(ns).map_err(|_| at.error(format_args!("record time {ns} ns is beyond 2262")))
 }
 
-/// Reads a bag in `format`, or the one its magic bytes tell when `None`.
+/// Reads a bag in `format`, or the one its magic bytes tell when `None`. An MCAP file is read
+/// record by record through a buffer (memory follows the messages kept, not the file); a db3,
+/// a ROS 1 bag and a gzip-compressed file are read whole.
 ///
 /// # Errors
 /// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; a file of no bag format; those of the
 /// format's reader.
 pub fn read_bag_file(path: impl AsRef<Path>, format: Option<BagFormat>) -> Result<Bag, ReadError> {
     let path = path.as_ref();
+    let input = path.display().to_string();
+    // A gzip-compressed bag is read whole, under the gzip reader's expansion bound.
+    let streamed = !crate::is_compressed(path);
+    let format = match (format, streamed) {
+        (Some(f), _) => f,
+        (None, true) => detect_file(path, &input)?,
+        (None, false) => return read_whole_bag(path, None),
+    };
+    match (format, streamed) {
+        (BagFormat::Ros2Mcap, true) => {
+            let mut bag = Bag::new(format);
+            read_bag_into(path, format, &mut bag)?;
+            Ok(bag)
+        }
+        _ => read_whole_bag(path, Some(format)),
+    }
+}
+
+/// Reads the bag at `path` whole, in `format` or the one its magic bytes tell.
+fn read_whole_bag(path: &Path, format: Option<BagFormat>) -> Result<Bag, ReadError> {
     let (bytes, input) = crate::read_whole_file(path)?;
     let format = match format {
         Some(f) => f,
@@ -199,6 +271,52 @@ pub fn read_bag_file(path: impl AsRef<Path>, format: Option<BagFormat>) -> Resul
         db3::refuse_pending_wal(path, &input)?;
     }
     decode_bag(&bytes, &input, format)
+}
+
+/// Reads the MCAP file at `path` into `sink`, record by record.
+///
+/// # Errors
+/// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; those of [`mcap::read_mcap`].
+pub fn read_bag_into<S: Sink>(
+    path: &Path,
+    format: BagFormat,
+    sink: &mut S,
+) -> Result<(), ReadError> {
+    let input = path.display().to_string();
+    let file = crate::open_input(path).map_err(|e| open_error(&input, e))?;
+    let file_bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+    match format {
+        BagFormat::Ros2Mcap => mcap::read_mcap(file, file_bytes, &input, sink),
+        other => Err(ReadError::new(
+            input,
+            None,
+            ReadErrorKind::Unusable(format!(
+                "a {} bag is not read record by record (only ros2-mcap is)",
+                other.name()
+            )),
+        )),
+    }
+}
+
+/// The format of the bag at `path`, told by its first bytes.
+fn detect_file(path: &Path, input: &str) -> Result<BagFormat, ReadError> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    crate::open_input(path)
+        .and_then(|file| file.take(16).read_to_end(&mut head))
+        .map_err(|e| open_error(input, e))?;
+    BagFormat::detect(&head).ok_or_else(|| not_a_bag(input))
+}
+
+/// The error for a file that cannot be opened or read.
+fn open_error(input: &str, e: std::io::Error) -> ReadError {
+    let kind = match e.kind() {
+        std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied => {
+            ReadErrorKind::Open(e)
+        }
+        _ => ReadErrorKind::Read(e),
+    };
+    ReadError::new(input, None, kind)
 }
 
 /// The error for a file of no bag format.

@@ -13,7 +13,7 @@
 
 use super::bytes::{Cursor, Expansion, decompress};
 use super::messages::Encoding;
-use super::{Bag, BagFormat};
+use super::{Bag, BagFormat, Sink};
 use crate::error::ReadError;
 use std::collections::HashMap;
 
