@@ -7,7 +7,7 @@
 //! 1800,17
 //! ```
 //!
-//! `t_s` is the time since the start of the record, s (finite, at least 0, strictly
+//! `t_s` is the time since the start of the record, s (finite, 0 on the first row, strictly
 //! increasing); `temp_c` the temperature, °C, within [`crate::SENSOR_TEMPERATURE_RANGE_C`].
 //! Between rows the temperature is linear in time; before the first row and after the last
 //! the end values hold. `simulate vessel --temperature-file` (the sensor's temperature during
@@ -28,7 +28,7 @@ pub const MAX_TEMPERATURE_ROWS: usize = 1_000_000;
 /// A temperature table as read: times since the start, s, and temperatures, °C.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TemperatureTable {
-    /// Times since the start, s (strictly increasing, from 0 or later).
+    /// Times since the start, s (strictly increasing, from 0).
     pub t_s: Vec<f64>,
     /// Temperatures, °C.
     pub temperature_c: Vec<f64>,
@@ -38,7 +38,8 @@ pub struct TemperatureTable {
 ///
 /// # Errors
 /// A [`ReadError`] naming the file and line: a header other than `t_s,temp_c`, a row without
-/// exactly two numbers, a time that is negative, not finite or not after the previous one, a
+/// exactly two numbers, a first time other than 0, a time that is negative, not finite or not
+/// after the previous one, a
 /// temperature outside [`crate::SENSOR_TEMPERATURE_RANGE_C`], no row, or more than
 /// [`MAX_TEMPERATURE_ROWS`].
 pub fn read_temperature_table(path: impl AsRef<Path>) -> Result<TemperatureTable, ReadError> {
@@ -116,6 +117,13 @@ fn check_row(table: &TemperatureTable, t_s: f64, temperature_c: f64) -> Result<(
             expected: "a finite time since the start of the record, 0 s or later",
         });
     }
+    if table.t_s.is_empty() && t_s != 0.0 {
+        return Err(ReadErrorKind::OutOfRange {
+            column: "t_s",
+            found: t_s,
+            expected: "0 s on the first row: the table starts with the record (a time since the start, not a clock time)",
+        });
+    }
     if let Some(&previous) = table.t_s.last()
         && t_s <= previous
     {
@@ -171,6 +179,12 @@ mod tests {
             ),
             ("t_s,temp_c\n0,nan\n", "t.csv:2: column temp_c: value NaN"),
             ("t_s,temp_c\ninf,20\n", "t.csv:2: column t_s: value inf"),
+            // A clock time where the time since the start belongs (issue 37).
+            (
+                "t_s,temp_c\n1700000000,20\n1700000600,21\n",
+                "t.csv:2: column t_s: value 1700000000",
+            ),
+            ("t_s,temp_c\n5,20\n", "0 s on the first row"),
         ];
         for (text, needle) in cases {
             let error = parse(text).unwrap_err();
