@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Replays issue 20's hostile cases against the release binary and measures each one.
+"""Replays issue 20's and issue 37's hostile cases against the release binary and measures each one.
 
 Every case must end cleanly: exit 0, 1 or 2 (never 101, a signal or a hang), within 10 s of
 wall time and under 500 MB of peak memory (the child's maximum resident set, from wait4), and
@@ -50,6 +50,56 @@ def measured(cwd, shell_words):
         return 124, LIMIT_S * 3, 0.0, err
 
 
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def gzip_of_zeros(path, mib):
+    """`mib` MiB of zeros gzipped (about a thousand times smaller)."""
+    import gzip
+    block = bytes(1 << 20)
+    with gzip.open(path, "wb", compresslevel=1) as out:
+        for _ in range(mib):
+            out.write(block)
+
+
+def ulog_with_a_huge_field_name(path):
+    """A 60 KB ULog whose one format has 60,000 elements under a 60,000-character name."""
+    import struct
+
+    def message(kind, payload):
+        return struct.pack("<HB", len(payload), ord(kind)) + payload
+
+    head = b"ULog\x01\x12\x35" + bytes([1]) + struct.pack("<Q", 1000) + message("B", bytes(40))
+    fmt = message("F", b"huge:uint8_t[60000] " + b"n" * 60000 + b";")
+    subscribe = message("A", bytes([0]) + struct.pack("<H", 0) + b"huge")
+    with open(path, "wb") as out:
+        out.write(head + fmt + subscribe)
+
+
+def dataflash_in_kelvin(path):
+    """The io tests' boot.bin with its first IMU record's temperature (byte 44) at 298.15."""
+    import struct
+    data = bytearray(open(os.path.join(REPO, "crates/thermonav-io/tests/data/dataflash/boot.bin"), "rb").read())
+    # The first IMU record: header A3 95 and the id of the FMT that defines "IMU".
+    fmt = data.find(b"IMU\x00")
+    imu_id = data[fmt - 2]
+    at = next(i for i in range(len(data) - 2) if data[i:i + 3] == bytes([0xA3, 0x95, imu_id]) and i > fmt)
+    data[at + 44:at + 48] = struct.pack("<f", 298.15)
+    open(path, "wb").write(bytes(data))
+
+
+def issue_37_fixtures(base):
+    """The decompression bombs, hostile logs and a lot of 10^5 units of issue 37's rows."""
+    gzip_of_zeros(os.path.join(base, "bomb.bin.gz"), 512)
+    shutil.copy(os.path.join(base, "bomb.bin.gz"), os.path.join(base, "bomb.ulg.gz"))
+    ulog_with_a_huge_field_name(os.path.join(base, "huge.ulg"))
+    dataflash_in_kelvin(os.path.join(base, "kelvin.bin"))
+    with open(os.path.join(base, "lot.toml"), "w") as out:
+        out.write('name = "big"\n')
+        for k in range(100_000):
+            out.write(f'[[unit]]\nserial = "SN{k:06d}"\nfiles = ["c/imu_0C.csv", "c/imu_20C.csv"]\n')
+
+
 def fixtures(base):
     """A 330 s vessel survey and a three-temperature bank, made by the binary itself."""
     subprocess.run([BINARY, "--quiet", "simulate", "vessel", "--out", "v", "--duration-s", "300"],
@@ -61,6 +111,7 @@ def fixtures(base):
                      if f.endswith(".csv"))
     subprocess.run([BINARY, "--quiet", "characterize", *records, "--out", "bank.json"],
                    cwd=base, check=True, stdout=subprocess.DEVNULL)
+    issue_37_fixtures(base)
 
 
 NAV = "$T integrate --imu v/imu.csv --gnss {gnss} --bank bank.json --out o.csv"
@@ -108,6 +159,17 @@ CASES = [
     ("18446744073709551615 taps", "$T fir --fs-hz 100 --cutoff-hz 10 --transition-hz 1e-300", {2}, "more than 2000000"),
     ("a process substitution", "$T inspect <(cat v/imu.csv)", {1, 2}, "process substitution"),
     ("a 254-byte output name", "$T filter v/imu.csv --cutoff-hz 10 --out $(printf 'a%.0s' {1..250}).csv", {2}, "at most 255"),
+    # Issue 37 (a second hostile round: binary logs and options that multiply work).
+    ("37.3 a DataFlash gzip bomb", "$T convert bomb.bin.gz --format dataflash --out x.csv", {1}, "decompression bomb"),
+    ("37.3 a ULog gzip bomb", "$T convert bomb.ulg.gz --format px4-ulog --out x.csv", {1}, "decompression bomb"),
+    ("37.5 a 60,000-character field name", "$T convert huge.ulg --out x.csv", {1}, "longer than the 256"),
+    ("37.6 a DataFlash log in kelvin", "$T convert kelvin.bin --out x.csv", {1}, "in kelvin?"),
+    ("37.9 gmwm --replicates 1e9", "$T gmwm v/imu.csv --replicates 1000000000", {2}, "10 to 1000 replicates"),
+    ("37.11 an EKF2 export of 1e300", "sed '0,/\"white_noise_density\": [^,]*/s//\"white_noise_density\": 1e300/' bank.json > w.json; $T bank export w.json --format px4-ekf2 --temperature-c 0 --out p.params", {1}, "32-bit float parameter"),
+    ("37.12 --shard 1/1000000000", EVAL + " --outages 60+30,150+30 --shard 1/1000000000", {1, 2}, "at most"),
+    ("37.14 --bias-hypotheses 9999999", NAV.format(gnss="v/gnss.csv") + " --bias-hypotheses 9999999", {2}, "from 9 to 201"),
+    ("37.15 one unit of a 10^5-unit lot", "$T characterize --manifest lot.toml --unit-index 99999 --out lot", {0}, None),
+    ("37 a table from a clock time", "printf 't_s,temp_c\\n1700000000,20\\n' > tt.csv; $T simulate vessel --temperature-file tt.csv --duration-s 60 --out vv", {1}, "0 s on the first row"),
 ]
 
 
@@ -120,7 +182,8 @@ def main():
             work = os.path.join(base, "w")
             shutil.rmtree(work, ignore_errors=True)
             os.mkdir(work)
-            for entry in ("v", "c", "bank.json"):
+            for entry in ("v", "c", "bank.json", "bomb.bin.gz", "bomb.ulg.gz", "huge.ulg",
+                          "kelvin.bin", "lot.toml"):
                 source = os.path.join(base, entry)
                 copy = shutil.copytree if os.path.isdir(source) else shutil.copy
                 copy(source, os.path.join(work, entry))
