@@ -1,6 +1,7 @@
 //! `characterize --reading streaming`: one record read in pieces and characterised in memory
 //! independent of its length (see `thermonav::stoch::streaming`). A reader thread parses the
-//! next piece while the six channels of the previous one are processed in parallel.
+//! next piece of a CSV while the six channels of the previous one are processed in parallel; an
+//! MCAP bag is read record by record in the same thread, its pieces pushed as they come.
 
 use crate::args::ReadingArg;
 use crate::failure::{Classify, Failure};
@@ -11,7 +12,8 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, Strictness};
+use thermonav_io::ros::extract::{TopicChoice, stream_imu_series};
+use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, ReadErrorKind, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
 /// a full-precision 6-channel CSV, whose in-memory characterisation peaks near 2 GB).
@@ -37,11 +39,16 @@ pub fn characterize_streaming(
     settings: &CharacterizeSettings,
     (name, imu): (&str, &ImuOptions),
 ) -> Result<TemperatureEntry, Failure> {
-    let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
-    check_all_six(&reader, path)?;
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
-    feed(path, reader, &mut stream, &mut gravity)?;
+    match crate::inputs::is_streamed_bag(path) {
+        true => feed_bag(path, imu, &mut stream, &mut gravity)?,
+        false => {
+            let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
+            check_all_six(&reader, path)?;
+            feed(path, reader, &mut stream, &mut gravity)?;
+        }
+    }
     check_has_rows(&stream, path)?;
     gravity
         .verdict(&path.display().to_string(), Strictness::Strict)
@@ -75,6 +82,50 @@ fn feed(
         }
         Ok(())
     })
+}
+
+/// Pushes the IMU of the MCAP bag at `path` (its only `sensor_msgs/Imu` topic, `temp_c` from
+/// its only temperature topic, as a bag is read in memory) into the characterisation and the
+/// gravity check in pieces as the bag is read record by record: memory is a piece and the
+/// temperature messages, whatever the bag's length.
+fn feed_bag(
+    path: &Path,
+    imu: &ImuOptions,
+    stream: &mut StreamingCharacterizer,
+    gravity: &mut GravityCheck,
+) -> Result<(), Failure> {
+    if imu.mounting.is_some() || imu.rate_hz.is_some() {
+        return Err(Failure::Data(anyhow!(
+            "{}: a ROS bag has its own times and is read in FRD from ROS body axes: \
+             --imu-rotation and --rate-hz apply to CSV input (thermonav convert BAG --out \
+             imu.csv, then give the options with imu.csv)",
+            path.display()
+        )));
+    }
+    let mut refused = None;
+    let read = stream_imu_series(path, TopicChoice::default(), PIECE_ROWS, &mut |piece| {
+        gravity.add(&piece);
+        stream.push(&piece).map_err(|e| {
+            let text = format!("{}: {e}", path.display());
+            refused = Some(anyhow!("{text}"));
+            ReadError::new(
+                path.display().to_string(),
+                None,
+                ReadErrorKind::Unusable(text),
+            )
+        })
+    });
+    if let Some(refusal) = refused {
+        return Err(refusal).data();
+    }
+    match read {
+        Ok(_) => Ok(()),
+        Err(e) => Err(anyhow!(
+            "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
+             --temperature-topic T2 --out imu.csv)"
+        ))
+        .data(),
+    }
 }
 
 /// The refusal of a record of a subset of the channels: streaming characterises all six.

@@ -129,9 +129,10 @@ pub fn read_imu_input_into(
     }
 }
 
-/// True when the file at `path` is a ROS bag or a DataFlash log, read whole (never streamed).
+/// True when the file at `path` is a ROS bag or a DataFlash log read whole (never streamed): every
+/// one but an MCAP bag not gzip-compressed ([`is_streamed_bag`]).
 pub fn is_whole_log(path: &Path) -> bool {
-    bag_format_of(path).is_some() || is_dataflash(path)
+    (bag_format_of(path).is_some() && !is_streamed_bag(path)) || is_dataflash(path)
 }
 
 /// The first `n` bytes of the regular file at `path`, decompressed when it is gzip (`None`: not
@@ -178,6 +179,13 @@ fn read_dataflash_imu(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Fa
 /// unreadable, for the CSV reader to name).
 pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
     BagFormat::detect(&head_of(path, 16)?)
+}
+
+/// True when the file at `path` is an MCAP bag that is not gzip-compressed: one read record by
+/// record, which `characterize` can stream
+/// ([`thermonav_io::ros::extract::stream_imu_series`]).
+pub fn is_streamed_bag(path: &Path) -> bool {
+    bag_format_of(path) == Some(BagFormat::Ros2Mcap) && !thermonav_io::is_compressed(path)
 }
 
 /// The IMU of a bag, its topic chosen as [`imu_series`] does without options.

@@ -281,3 +281,59 @@ fn bags_holding_a_value_no_reader_accepts_are_refused_naming_the_message_and_not
         assert_eq!(files_in(dir.path()), vec!["static.db3".to_string()]);
     }
 }
+
+#[test]
+fn characterize_streams_an_mcap_bag_to_the_bank_it_builds_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let bag = data("static_10hz.mcap");
+    let bank = |reading: &str| {
+        let out = dir.path().join(format!("{reading}.json"));
+        let args = [
+            "characterize",
+            arg(&bag),
+            "--out",
+            arg(&out),
+            "--reading",
+            reading,
+        ];
+        let (status, _, stderr) = run(&args);
+        assert_eq!(status, 0, "{reading}: {stderr}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let (memory, streamed) = (bank("in-memory"), bank("streaming"));
+    let (m, s) = (&memory["entries"][0], &streamed["entries"][0]);
+    // The bag's temperature (25 C, its only Temperature topic) and its samples, read either way.
+    assert_eq!(m["temperature_c"], s["temperature_c"]);
+    assert_eq!(m["preprocessing"], s["preprocessing"]);
+    for channel in ["gx", "gy", "gz", "ax", "ay", "az"] {
+        let (mc, sc) = (&m["channels"][channel], &s["channels"][channel]);
+        assert!(mc["ar"]["coefficients"].is_array(), "{channel}: {mc}");
+        assert_eq!(mc["ar"], sc["ar"], "{channel}");
+    }
+}
+
+#[test]
+fn characterize_streaming_a_bag_refuses_a_bad_sample_naming_it_and_writes_nothing() {
+    let expected = expected("expected.json");
+    let ax = expected["imu"][0]["accel"][0].as_f64().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let bag = bag_with(dir.path(), "static_none.mcap", ax, -1e300);
+    let bank = dir.path().join("bank.json");
+    let args = [
+        "characterize",
+        arg(&bag),
+        "--out",
+        arg(&bank),
+        "--reading",
+        "streaming",
+    ];
+    let (status, _, stderr) = run(&args);
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains(&format!("{}: at byte ", bag.display()))
+            && stderr.contains("/imu/data message 0: ax is -1e300 in SI"),
+        "{stderr}"
+    );
+    assert_eq!(files_in(dir.path()), vec!["static_none.mcap".to_string()]);
+}

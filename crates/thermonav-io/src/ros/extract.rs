@@ -19,11 +19,13 @@
 //!   altitude (above the WGS84 ellipsoid, as the message defines it); standard deviations from
 //!   the diagonal of `position_covariance` (east-north-up, m²) when its type is not 0 (unknown).
 
+use super::messages::Encoding;
 use super::messages::{MessageType, decode_imu, decode_nav_sat_fix, decode_temperature};
-use super::{Bag, Topic};
+use super::{Bag, BagFormat, Sink, Topic};
 use crate::error::{ReadError, ReadErrorKind};
 use crate::sample_checks::{imu_sample_problem, temperature_problem};
 use serde::Serialize;
+use std::path::Path;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::{ImuSample, ImuSeries, SampleKind};
 use thermonav::time::Timestamp;
@@ -451,5 +453,198 @@ pub fn gnss_fixes(
         stamp_lag_s: StampLag::of(lags),
         height: "altitude above the WGS84 ellipsoid (NavSatFix.altitude); sd_n/sd_e/sd_u from the \
                  diagonal of position_covariance (east-north-up) when its type is not unknown",
+    })
+}
+
+/// A [`Bag`] that keeps the bytes of the messages of `kinds` only (the others are counted).
+struct Keeping<'k> {
+    bag: Bag,
+    kinds: &'k [MessageType],
+}
+
+impl Sink for Keeping<'_> {
+    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
+        self.bag.topic_index(name, type_name, encoding)
+    }
+
+    fn wants(&self, k: usize) -> bool {
+        self.bag.topics[k]
+            .message_type
+            .is_some_and(|t| self.kinds.contains(&t))
+    }
+
+    fn push(
+        &mut self,
+        k: usize,
+        log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError> {
+        self.bag.push(k, log_time_ns, offset, data, input)
+    }
+
+    fn count(&mut self, k: usize) {
+        self.bag.count(k);
+    }
+}
+
+/// What [`stream_imu_series`] read.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StreamedImu {
+    /// The IMU topic read.
+    pub topic: String,
+    /// The temperature topic, when there is one.
+    pub temperature_topic: Option<String>,
+    /// Samples delivered.
+    pub samples: usize,
+}
+
+/// The sink of the samples pass: topic `target`'s messages decoded, checked and delivered in
+/// pieces, with the temperatures of `temperatures` (stamps, °C) assigned.
+struct Samples<'d> {
+    bag: Bag,
+    target: usize,
+    name: String,
+    piece: ImuSeries,
+    piece_len: usize,
+    last: Option<Timestamp>,
+    temperatures: Option<(Vec<Timestamp>, Vec<f64>)>,
+    delivered: usize,
+    deliver: &'d mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
+}
+
+impl Samples<'_> {
+    /// Hands the piece so far to the caller, its temperatures assigned.
+    fn flush(&mut self) -> Result<(), ReadError> {
+        if self.piece.is_empty() {
+            return Ok(());
+        }
+        let mut piece = std::mem::replace(&mut self.piece, ImuSeries::new(SampleKind::Rates));
+        if let Some((times, values)) = &self.temperatures {
+            piece.temperature_c =
+                Some(crate::ulog::px4::nearest_values(&piece.time, times, values));
+        }
+        self.delivered += piece.len();
+        (self.deliver)(piece)
+    }
+}
+
+impl Sink for Samples<'_> {
+    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
+        self.bag.topic_index(name, type_name, encoding)
+    }
+
+    fn wants(&self, k: usize) -> bool {
+        k == self.target
+    }
+
+    fn push(
+        &mut self,
+        k: usize,
+        _log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError> {
+        let index = self.bag.topics[k].count;
+        self.bag.count(k);
+        let imu = decode_imu(data, &self.bag.topics[k].encoding, input, offset)?;
+        let frd = |v: [f64; 3]| [v[0], -v[1], -v[2]];
+        let sample = ImuSample {
+            time: Timestamp::from_nanos(imu.stamp_ns),
+            gyro: frd(imu.angular_velocity),
+            accel: frd(imu.linear_acceleration),
+            temperature_c: None,
+        };
+        let name = &self.name;
+        if let Some(problem) = imu_sample_problem(sample.gyro, sample.accel, None) {
+            return Err(topic_error(
+                input,
+                format!("at byte {offset}: {name} message {index}: {problem} (in FRD)"),
+            ));
+        }
+        if let Some(previous) = self.last.filter(|&p| sample.time <= p) {
+            return Err(topic_error(
+                input,
+                format!(
+                    "at byte {offset}: {name} message {index} is stamped {:.9} s, not after the \
+                     previous message's {:.9} s",
+                    sample.time.as_seconds(),
+                    previous.as_seconds()
+                ),
+            ));
+        }
+        self.last = Some(sample.time);
+        self.piece.push(&sample);
+        match self.piece.len() >= self.piece_len {
+            true => self.flush(),
+            false => Ok(()),
+        }
+    }
+
+    fn count(&mut self, k: usize) {
+        self.bag.count(k);
+    }
+}
+
+/// The IMU of the MCAP bag at `path` as rates in FRD, read in two passes record by record and
+/// handed to `deliver` in pieces of `piece_len` samples (at least 1) as they are decoded, each
+/// with `temp_c` from the temperature topic as [`imu_series`] assigns it: memory is a piece
+/// and the temperature messages, whatever the bag's length. The first pass lists the topics
+/// and keeps the temperature messages; the second decodes the chosen IMU topic. The topics
+/// are chosen, and every sample checked, as [`imu_series`] does.
+///
+/// # Errors
+/// Those of [`super::read_bag_into`] and of [`imu_series`]; those of `deliver`, which stop the
+/// reading.
+pub fn stream_imu_series(
+    path: &Path,
+    choice: TopicChoice<'_>,
+    piece_len: usize,
+    deliver: &mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
+) -> Result<StreamedImu, ReadError> {
+    let input = path.display().to_string();
+    let format = BagFormat::Ros2Mcap;
+    let mut survey = Keeping {
+        bag: Bag::new(format),
+        kinds: &[MessageType::Temperature],
+    };
+    super::read_bag_into(path, format, &mut survey)?;
+    let bag = survey.bag;
+    let topic = select_topic(&bag, MessageType::Imu, choice.imu, "--topic", &input)?;
+    let target = bag
+        .topics
+        .iter()
+        .position(|t| std::ptr::eq(t, topic))
+        .unwrap_or(usize::MAX);
+    let temperature = temperature_topic(&bag, choice.temperature, &input)?;
+    let temperatures = match temperature {
+        Some(t) => Some(temperature_records(t, &input)?),
+        None => None,
+    };
+    let mut samples = Samples {
+        bag: Bag::new(format),
+        target,
+        name: topic.name.clone(),
+        piece: ImuSeries::new(SampleKind::Rates),
+        piece_len: piece_len.max(1),
+        last: None,
+        temperatures,
+        delivered: 0,
+        deliver,
+    };
+    super::read_bag_into(path, format, &mut samples)?;
+    samples.flush()?;
+    if samples.delivered == 0 {
+        return Err(topic_error(
+            &input,
+            format!("topic {} has no message", topic.name),
+        ));
+    }
+    Ok(StreamedImu {
+        topic: topic.name.clone(),
+        temperature_topic: temperature.map(|t| t.name.clone()),
+        samples: samples.delivered,
     })
 }

@@ -639,3 +639,100 @@ fn a_topic_without_messages_is_listed_but_never_a_candidate() {
         "{err}"
     );
 }
+
+#[test]
+fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
+    use thermonav_io::ros::extract::stream_imu_series;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
+    for name in [
+        "static_none.mcap",
+        "static_zstd.mcap",
+        "static_lz4.mcap",
+        "static_unchunked_be.mcap",
+        "static_10hz.mcap",
+    ] {
+        let path = dir.join(name);
+        let choice = TopicChoice {
+            imu: (name != "static_10hz.mcap").then_some("/imu/data"),
+            ..TopicChoice::default()
+        };
+        let whole = thermonav_io::ros::read_bag_file(&path, None).unwrap();
+        let whole = imu_series(&whole, choice, name).unwrap();
+        let mut pieces = Vec::new();
+        let streamed = stream_imu_series(&path, choice, 7, &mut |piece| {
+            pieces.push(piece);
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(streamed.samples, whole.series.len(), "{name}");
+        assert_eq!(streamed.topic, whole.topic);
+        assert_eq!(streamed.temperature_topic, whole.temperature_topic);
+        assert!(pieces.iter().all(|p| p.len() <= 7 && !p.is_empty()));
+        let (mut times, mut channels) = (Vec::new(), vec![Vec::new(); 6]);
+        let mut temperatures = Vec::new();
+        for piece in &pieces {
+            times.extend_from_slice(&piece.time);
+            for (c, values) in channels.iter_mut().enumerate() {
+                values.extend_from_slice(&piece.channels[c]);
+            }
+            temperatures.extend(piece.temperature_c.clone().unwrap());
+        }
+        assert_eq!(times, whole.series.time, "{name}");
+        for (c, values) in channels.iter().enumerate() {
+            assert_eq!(
+                values[..],
+                whole.series.channels[c][..],
+                "{name} channel {c}"
+            );
+        }
+        assert_eq!(Some(temperatures), whole.series.temperature_c, "{name}");
+    }
+}
+
+#[test]
+fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error() {
+    use thermonav_io::ros::extract::stream_imu_series;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
+    let ax = expected["imu"][20]["accel"][0].as_f64().unwrap();
+    let mut bytes = std::fs::read(dir.join("static_none.mcap")).unwrap();
+    let at = bytes
+        .windows(8)
+        .position(|w| w == ax.to_le_bytes())
+        .unwrap();
+    bytes[at..at + 8].copy_from_slice(&(-1e300f64).to_le_bytes());
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("huge.mcap");
+    std::fs::write(&path, bytes).unwrap();
+    let choice = TopicChoice {
+        imu: Some("/imu/data"),
+        ..TopicChoice::default()
+    };
+    let mut delivered = 0;
+    let err = stream_imu_series(&path, choice, 8, &mut |piece| {
+        delivered += piece.len();
+        Ok(())
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.starts_with(&format!("{}: at byte ", path.display()))
+            && err.contains("/imu/data message 20: ax is -1e300 in SI"),
+        "{err}"
+    );
+    assert_eq!(delivered, 16, "the pieces before message 20");
+    // An error of the caller stops the reading at once.
+    let mut calls = 0;
+    let path = dir.join("static_none.mcap");
+    let err = stream_imu_series(&path, choice, 8, &mut |_| {
+        calls += 1;
+        Err(thermonav_io::ReadError::new(
+            "caller",
+            None,
+            thermonav_io::ReadErrorKind::Unusable("enough".to_string()),
+        ))
+    })
+    .unwrap_err();
+    assert_eq!((calls, err.to_string()), (1, "caller: enough".to_string()));
+}
