@@ -2,11 +2,12 @@
 //! and its thermal calibration per channel in deg/h and mg.
 
 use thermonav::imu::{Channel, SampleKind, Sensor};
-use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::bank::{AllanSummary, ChannelModel, GaussMarkovEstimate, ModelBank};
 use thermonav::stoch::thermal::sweep_model::{ChoiceRule, HeldOutSelection};
 use thermonav::stoch::thermal::{
     CalibrationSummary, ChannelCalibration, ScaleFactorCalibration, ThermalCalibration,
 };
+use thermonav_io::noise_terms::{Units, term_units};
 use thermonav_plot::figures::DisplayUnits;
 
 /// Width of a rate column of the thermal table, characters.
@@ -70,7 +71,75 @@ pub fn print_bank_table(bank: &ModelBank) {
             );
         }
     }
+    print_noise_terms(bank);
     bank.thermal.iter().for_each(print_thermal_table);
+}
+
+/// What the noise-term table's columns are and how B is read.
+const NOISE_TERMS_NOTE: &str = "noise terms from the Allan deviation of the raw record (IEEE Std 952): N white noise (angle or velocity random walk); B bias instability = minimum Allan deviation / 0.664 (the flicker floor sits at sqrt(2 ln 2 / pi) = 0.664 B), \"<=\" a bound where the curve's lowest point is its last; K rate random walk; sigma of the exact-ML Gauss-Markov model";
+
+/// Width of a noise-term cell, characters.
+const TERM_WIDTH: usize = 22;
+
+/// Per entry and channel: N, B and K with their edge units, and the exact-ML sigma.
+fn print_noise_terms(bank: &ModelBank) {
+    println!("\n{NOISE_TERMS_NOTE}");
+    let head = ["N", "B", "K", "sigma (exact ML)"].map(|h| format!("{h:<TERM_WIDTH$}"));
+    println!("{:>7} {:<4} {}", "temp_C", "ch", head.join(" "));
+    for e in &bank.entries {
+        for (c, m) in &e.channels {
+            let cells = noise_term_cells(c.sensor(), m).map(|v| format!("{v:<TERM_WIDTH$}"));
+            println!(
+                "{:>7.1} {:<4} {}",
+                e.temperature_c,
+                c.name(),
+                cells.join(" ")
+            );
+        }
+    }
+}
+
+/// N, B, K and sigma of one channel, each with its unit, or `n/a`.
+fn noise_term_cells(sensor: Sensor, m: &ChannelModel) -> [String; 4] {
+    let [_, n, b, k, _] = term_units(sensor);
+    let allan: &AllanSummary = &m.allan;
+    let bias = match (allan.bias_instability, allan.bias_instability_at_most) {
+        (Some(v), _) => term_cell("", Some(v), b),
+        (None, bound) => term_cell("<=", bound, b),
+    };
+    let sigma = match &m.gauss_markov.irregular_ml {
+        GaussMarkovEstimate::Model { sigma, .. } => {
+            let unit = DisplayUnits::Navigation.rate_unit(sensor);
+            format!(
+                "{} {unit}",
+                significant(DisplayUnits::Navigation.rate(sensor, *sigma))
+            )
+        }
+        GaussMarkovEstimate::NoEquivalent { .. } => "none".to_string(),
+    };
+    [
+        term_cell("", allan.white_noise_density, n),
+        bias,
+        term_cell("", allan.rate_random_walk, k),
+        sigma,
+    ]
+}
+
+/// "0.2013 deg/sqrt(h)" (with `relation` before the number), or `n/a`.
+fn term_cell(relation: &str, si: Option<f64>, (_, unit, to_edge): Units) -> String {
+    si.map_or("n/a".to_string(), |v| {
+        format!("{relation}{} {unit}", significant(to_edge(v)))
+    })
+}
+
+/// A value with four significant digits, in decimals between 1e-3 and 1e5.
+pub fn significant(value: f64) -> String {
+    let magnitude = value.abs();
+    if !(1e-3..1e5).contains(&magnitude) {
+        return format!("{value:.3e}");
+    }
+    let decimals = (3 - magnitude.log10().floor() as i32).max(0) as usize;
+    format!("{value:.decimals$}")
 }
 
 /// The thermal calibration: a table per sensor in deg/h or mg, then what it cannot tell.

@@ -55,7 +55,17 @@ pub struct TermsJson {
 }
 
 /// A term's units: SI, edge, and the conversion between them.
-type Units = (&'static str, &'static str, fn(f64) -> f64);
+pub type Units = (&'static str, &'static str, fn(f64) -> f64);
+
+/// The units of Q, N, B, K and R of a sensor's channel, in that order (SI, edge, conversion):
+/// deg, deg/sqrt(h), deg/h, deg/h/sqrt(h), deg/h^2 for a gyro; m/s, m/s/sqrt(h), mg,
+/// m/s^2/sqrt(h), m/s^2/h for an accelerometer.
+pub fn term_units(sensor: Sensor) -> [Units; 5] {
+    match sensor {
+        Sensor::Gyro => gyro_units(),
+        Sensor::Accelerometer => accelerometer_units(),
+    }
+}
 
 fn term(t: &TermReading, (unit_si, unit, to_edge): Units) -> Option<TermJson> {
     t.as_ref().ok().map(|t| TermJson {
@@ -108,10 +118,7 @@ fn accelerometer_units() -> [Units; 5] {
 
 /// Converts terms of a gyro or accelerometer channel.
 pub fn terms_json(terms: &NoiseTerms, sensor: Sensor) -> TermsJson {
-    let [q, n, b, k, r] = match sensor {
-        Sensor::Gyro => gyro_units(),
-        Sensor::Accelerometer => accelerometer_units(),
-    };
+    let [q, n, b, k, r] = term_units(sensor);
     TermsJson {
         quantization: term(&terms.quantization, q),
         random_walk: term(&terms.random_walk, n),

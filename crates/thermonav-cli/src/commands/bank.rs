@@ -3,7 +3,7 @@
 //! model at a temperature as another tool's noise configuration.
 
 use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportKind};
-use crate::bank_tables::print_bank_table;
+use crate::bank_tables::{print_bank_table, significant};
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::{print_json, print_rows};
@@ -13,7 +13,7 @@ use clap::ValueEnum;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
-use thermonav::imu::Channel;
+use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection};
 use thermonav::stoch::thermal::SensorDevices;
 use thermonav_io::noise_export::{
@@ -24,6 +24,7 @@ use thermonav_io::thermal_parameters::{
     ExportSummary, ExportTarget, ParameterFile, ParameterTarget, SensorExport,
     ardupilot_parameters, px4_parameters, write_parameter_file,
 };
+use thermonav_plot::figures::DisplayUnits;
 
 /// Runs `bank`.
 pub fn run(args: &BankArgs) -> Result<(), Failure> {
@@ -228,7 +229,42 @@ struct SelectionJson {
     operating_temperature_c: f64,
     selection: Selection,
     model: GaussMarkovSource,
-    channels: BTreeMap<&'static str, SelectedModel>,
+    channels: BTreeMap<&'static str, SelectedChannel>,
+}
+
+/// A selected model with its sigma also under a unit-suffixed key, SI and edge unit:
+/// `sigma_rad_s` and `sigma_deg_h` for a gyro, `sigma_m_s2` and `sigma_mg` for an
+/// accelerometer (`sigma` stays, in the channel's SI unit).
+#[derive(Debug, Serialize)]
+struct SelectedChannel {
+    #[serde(flatten)]
+    model: SelectedModel,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sigma_rad_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sigma_deg_h: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sigma_m_s2: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sigma_mg: Option<f64>,
+    #[serde(skip)]
+    sensor: Sensor,
+}
+
+impl SelectedChannel {
+    fn new(channel: Channel, model: SelectedModel) -> Self {
+        let (sigma, sensor) = (model.sigma, channel.sensor());
+        let gyro = sensor == Sensor::Gyro;
+        let edge = DisplayUnits::Navigation.rate(sensor, sigma);
+        Self {
+            model,
+            sigma_rad_s: gyro.then_some(sigma),
+            sigma_deg_h: gyro.then_some(edge),
+            sigma_m_s2: (!gyro).then_some(sigma),
+            sigma_mg: (!gyro).then_some(edge),
+            sensor,
+        }
+    }
 }
 
 fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
@@ -248,7 +284,7 @@ fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
             .select(t, channel, source, selection)
             .map_err(|e| anyhow!("{}: {e}", args.bank.display()))
             .data()?;
-        channels.insert(channel.name(), model);
+        channels.insert(channel.name(), SelectedChannel::new(channel, model));
     }
     let doc = SelectionJson {
         operating_temperature_c: t,
@@ -273,11 +309,14 @@ fn print_selection(doc: &SelectionJson) {
     print_rows(&rows);
 }
 
-fn selected_row((name, m): (&&'static str, &SelectedModel)) -> (&'static str, String) {
+fn selected_row((name, c): (&&'static str, &SelectedChannel)) -> (&'static str, String) {
+    let m = &c.model;
     let tc_s = m.correlation_time_s;
+    let units = DisplayUnits::Navigation;
+    let sigma = significant(units.rate(c.sensor, m.sigma));
     let text = format!(
-        "tc_s {tc_s:>10.2}  sigma {:>12.4e}  {}",
-        m.sigma,
+        "Tc {tc_s:>10.2} s  sigma {sigma:>10} {:<5}  {}",
+        units.rate_unit(c.sensor),
         placement_text(&m.placement)
     );
     (name, text)

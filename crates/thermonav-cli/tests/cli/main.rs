@@ -8,6 +8,7 @@ mod convert_dataflash;
 mod convert_ros;
 mod convert_ulog;
 mod denoise;
+mod frictions;
 mod lot;
 mod modelling;
 mod navigation;

@@ -145,7 +145,7 @@ fn characterize_then_select_by_linear_interpolation() {
     }
     let gx = stdout.lines().find(|l| l.starts_with("gx ")).unwrap();
     assert!(
-        gx.contains("tc_s") && gx.contains("between") && gx.contains("(weight 0.500 on"),
+        gx.contains("Tc ") && gx.contains("between") && gx.contains("(weight 0.500 on"),
         "{gx}"
     );
 }

@@ -1,0 +1,179 @@
+//! Issue 38: the steps where a new user, on real recordings, stopped, guessed or was misled.
+//! Each test repeats the user's step; expected values are worked out here from the files, not
+//! taken from our own code.
+
+use crate::{IMU_HEADER, arg, outcome, thermonav, write_file};
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Seconds per hour.
+const HOUR_S: f64 = 3600.0;
+/// Standard gravity, m/s² per g.
+const G: f64 = 9.80665;
+
+/// A reproducible standard normal stream (xorshift64 and Box-Muller).
+struct Normal(u64);
+
+impl Normal {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    fn next(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
+    }
+}
+
+/// A static record at 100 Hz: white noise on every channel, plus a Gauss-Markov bias of Tc
+/// 5 s and `gm` times the white sd when `gm` > 0, az at −g, columns `columns` of the
+/// canonical header (all when `None`).
+fn static_imu(rows: usize, gm: f64, columns: Option<&[usize]>) -> String {
+    let names: Vec<&str> = IMU_HEADER.split(',').collect();
+    let kept: Vec<usize> = columns.map_or((0..6).collect(), <[usize]>::to_vec);
+    let header: Vec<&str> = std::iter::once(names[0])
+        .chain(kept.iter().map(|&c| names[c + 1]))
+        .collect();
+    let mut normal = Normal(0x9e37_79b9_7f4a_7c15);
+    let mut text = format!("{}\n", header.join(","));
+    let decay: f64 = (-0.01_f64 / 5.0).exp();
+    let mut bias = [0.0; 6];
+    for k in 0..rows {
+        let _ = write!(text, "{:.9}", k as f64 / 100.0);
+        for &c in &kept {
+            let sd = if c < 3 { 2e-3 } else { 2e-2 };
+            let mean = if c == 5 { -G } else { 0.0 };
+            let drive = gm * sd * (1.0 - decay * decay).sqrt();
+            bias[c] = decay * bias[c] + drive * normal.next();
+            let _ = write!(text, ",{}", mean + bias[c] + sd * normal.next());
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// Characterizes `imu` at 20 °C into `dir/name`, returning the bank's path and stderr.
+fn characterize(dir: &Path, imu: &Path, name: &str, extra: &[&str]) -> (PathBuf, String) {
+    let bank = dir.join(name);
+    let args = [
+        &["characterize", arg(imu), "--temperature-c", "20", "--out"],
+        &[arg(&bank)][..],
+        extra,
+    ]
+    .concat();
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    (bank, stderr)
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
+}
+
+/// The number printed just before `unit` in `line` (a leading "<=" dropped).
+fn value_before(line: &str, unit: &str) -> f64 {
+    let tokens: Vec<&str> = line.split_whitespace().collect();
+    let at = tokens
+        .iter()
+        .position(|t| *t == unit)
+        .unwrap_or_else(|| panic!("no {unit} in {line}"));
+    tokens[at - 1].trim_start_matches("<=").parse().unwrap()
+}
+
+fn close(shown: f64, expected: f64, what: &str) {
+    assert!(
+        (shown / expected - 1.0).abs() < 1e-3,
+        "{what}: shown {shown}, expected {expected}"
+    );
+}
+
+/// Row 5: `bank show` gives each channel's N, B and K in the edge units, with B's 0.664
+/// convention in the table's note, and `--at-temperature-c` gives sigma with its unit.
+#[test]
+fn bank_show_prints_white_noise_bias_instability_and_random_walk_with_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let imu = write_file(dir.path(), "imu.csv", &static_imu(20_000, 0.2, None));
+    let (bank, _) = characterize(dir.path(), &imu, "bank.json", &[]);
+    let doc = json(&std::fs::read_to_string(&bank).unwrap());
+    let (status, stdout, stderr) = outcome(&thermonav(&["bank", "show", arg(&bank)]));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("/ 0.664"), "{stdout}");
+    let rows: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains("deg/sqrt(h)") || l.contains("m/s/sqrt(h)"))
+        .collect();
+    assert_eq!(rows.len(), 6, "{stdout}");
+    let deg = 180.0 / PI;
+    for (channel, gyro) in [
+        ("gx", true),
+        ("gy", true),
+        ("gz", true),
+        ("ax", false),
+        ("ay", false),
+        ("az", false),
+    ] {
+        let row = rows
+            .iter()
+            .find(|l| l.split_whitespace().nth(1) == Some(channel))
+            .unwrap();
+        let allan = &doc["entries"][0]["channels"][channel]["allan"];
+        let n = allan["white_noise_density"]
+            .as_f64()
+            .expect("white noise identified");
+        let b = allan["bias_instability"]
+            .as_f64()
+            .or(allan["bias_instability_at_most"].as_f64())
+            .unwrap();
+        if gyro {
+            close(
+                value_before(row, "deg/sqrt(h)"),
+                n * deg * HOUR_S.sqrt(),
+                "N",
+            );
+            close(value_before(row, "deg/h"), b * deg * HOUR_S, "B");
+        } else {
+            close(value_before(row, "m/s/sqrt(h)"), n * HOUR_S.sqrt(), "N");
+            close(value_before(row, "mg"), b / G * 1000.0, "B");
+        }
+        match allan["rate_random_walk"].as_f64() {
+            Some(k) if gyro => close(
+                value_before(row, "deg/h/sqrt(h)"),
+                k * deg * HOUR_S * HOUR_S.sqrt(),
+                "K",
+            ),
+            Some(k) => close(value_before(row, "m/s^2/sqrt(h)"), k * HOUR_S.sqrt(), "K"),
+            None => assert!(row.contains("n/a"), "{row}"),
+        }
+    }
+    // At an operating temperature: sigma in deg/h or mg as text, SI under a suffixed key.
+    let show = ["bank", "show", arg(&bank), "--at-temperature-c", "25"];
+    let (status, stdout, stderr) = outcome(&thermonav(&show));
+    assert_eq!(status, 0, "{stderr}");
+    let selected = json(&outcome(&thermonav(&[&show[..], &["--json"]].concat())).1);
+    let gx = &selected["channels"]["gx"];
+    let sigma = gx["sigma_rad_s"].as_f64().unwrap();
+    assert_eq!(gx["sigma"].as_f64(), Some(sigma));
+    close(
+        gx["sigma_deg_h"].as_f64().unwrap(),
+        sigma * deg * HOUR_S,
+        "sigma_deg_h",
+    );
+    let az = &selected["channels"]["az"];
+    close(
+        az["sigma_mg"].as_f64().unwrap(),
+        az["sigma_m_s2"].as_f64().unwrap() / G * 1000.0,
+        "sigma_mg",
+    );
+    let row = stdout.lines().find(|l| l.starts_with("gx ")).unwrap();
+    close(value_before(row, "deg/h"), sigma * deg * HOUR_S, "gx sigma");
+    let row = stdout.lines().find(|l| l.starts_with("az ")).unwrap();
+    close(
+        value_before(row, "mg"),
+        az["sigma_m_s2"].as_f64().unwrap() / G * 1000.0,
+        "az sigma",
+    );
+}
