@@ -164,7 +164,7 @@ CASES = [
     ("37.3 a ULog gzip bomb", "$T convert bomb.ulg.gz --format px4-ulog --out x.csv", {1}, "decompression bomb"),
     ("37.5 a 60,000-character field name", "$T convert huge.ulg --out x.csv", {1}, "longer than the 256"),
     ("37.6 a DataFlash log in kelvin", "$T convert kelvin.bin --out x.csv", {1}, "in kelvin?"),
-    ("37.9 gmwm --replicates 1e9", "$T gmwm v/imu.csv --replicates 1000000000", {2}, "10 to 1000 replicates"),
+    ("37.9 gmwm --replicates 1e9", "$T gmwm v/imu.csv --replicates 1000000000", {2}, "10 to 1000 bootstrap replicates"),
     ("37.11 an EKF2 export of 1e300", "sed '0,/\"white_noise_density\": [^,]*/s//\"white_noise_density\": 1e300/' bank.json > w.json; $T bank export w.json --format px4-ekf2 --temperature-c 0 --out p.params", {1}, "32-bit float parameter"),
     ("37.12 --shard 1/1000000000", EVAL + " --outages 60+30,150+30 --shard 1/1000000000", {1, 2}, "at most"),
     ("37.14 --bias-hypotheses 9999999", NAV.format(gnss="v/gnss.csv") + " --bias-hypotheses 9999999", {2}, "from 9 to 201"),

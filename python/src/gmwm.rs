@@ -9,7 +9,9 @@ use pyo3::prelude::*;
 use serde::Serialize;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::stoch::gmwm::BootstrapSettings;
-use thermonav_io::gmwm::{GmwmChannelJson, INTERVAL_METHOD, candidates_of, gmwm_channel_json};
+use thermonav_io::gmwm::{
+    DEFAULT_REPLICATES, GmwmChannelJson, candidates_of, gmwm_channel_json, interval_method,
+};
 
 /// The fit with the run's settings, keys as `gmwm --json`'s run and channel.
 #[derive(Serialize)]
@@ -25,7 +27,7 @@ struct Fit<'a> {
 /// The GMWM fit of rate samples `x` at `rate_hz` (module docs of the Python package:
 /// `thermonav.gmwm`).
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, model="auto", sensor="gyro", replicates=100, seed=DEFAULT_SEED))]
+#[pyo3(signature = (x, rate_hz, model="auto", sensor="gyro", replicates=DEFAULT_REPLICATES, seed=DEFAULT_SEED))]
 pub fn gmwm<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,
@@ -50,7 +52,7 @@ pub fn gmwm<'py>(
     let fit = Fit {
         sample_rate_hz: rate_hz,
         model,
-        interval_method: INTERVAL_METHOD,
+        interval_method: interval_method(replicates),
         bootstrap_replicates: replicates,
         channel,
     };

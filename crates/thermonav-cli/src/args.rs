@@ -508,9 +508,10 @@ pub struct GmwmArgs {
     /// candidate with the smallest Wavelet Information Criterion.
     #[arg(long, default_value = "auto")]
     pub model: String,
-    /// Parametric-bootstrap replicates for the intervals and the WIC (each simulates the
-    /// whole record once).
-    #[arg(long, default_value_t = 100)]
+    /// Parametric-bootstrap replicates for the parameters' intervals and the WIC, 10 to 1000
+    /// (each simulates and refits the whole record once); 0, the default: no intervals, the
+    /// candidates ranked by the asymptotic WIC (objective + 2 x parameters).
+    #[arg(long, default_value_t = thermonav_io::gmwm::DEFAULT_REPLICATES)]
     pub replicates: usize,
     /// Seed of the bootstrap's named random streams.
     #[arg(long, default_value_t = DEFAULT_SEED)]

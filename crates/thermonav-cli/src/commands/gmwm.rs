@@ -9,8 +9,8 @@ use std::collections::BTreeMap;
 use thermonav::imu::{Channel, ImuSeries};
 use thermonav::stoch::gmwm::{BootstrapSettings, ModelSpec};
 use thermonav_io::gmwm::{
-    CandidateJson, GmwmChannelJson as ChannelJson, INTERVAL_METHOD, ParameterJson,
-    WaveletVarianceJson, candidates_of, gmwm_channel_json,
+    CandidateJson, GmwmChannelJson as ChannelJson, ParameterJson, WaveletVarianceJson,
+    candidates_of, gmwm_channel_json, interval_method,
 };
 
 #[derive(Debug, Serialize)]
@@ -85,7 +85,7 @@ fn run_json(args: &GmwmArgs, rate_hz: f64) -> RunJson {
         file: args.file.display().to_string(),
         sample_rate_hz: rate_hz,
         model: args.model.clone(),
-        interval_method: INTERVAL_METHOD,
+        interval_method: interval_method(args.replicates),
         bootstrap_replicates: args.replicates,
     }
 }
@@ -137,7 +137,11 @@ fn cells(values: &[f64]) -> String {
 fn print_parameters(parameters: &BTreeMap<String, ParameterJson>) {
     println!("{:>40} {}", "parameter", labels(&["value", "low", "high"]));
     for (key, p) in parameters {
-        println!("{key:>40} {}", cells(&[p.value, p.ci_low, p.ci_high]));
+        let limits = match (p.ci_low, p.ci_high) {
+            (Some(low), Some(high)) => cells(&[low, high]),
+            _ => labels(&["-", "-"]),
+        };
+        println!("{key:>40} {} {limits}", cells(&[p.value]));
     }
 }
 

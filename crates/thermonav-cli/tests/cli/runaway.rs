@@ -14,7 +14,7 @@ fn gmwm_replicates_out_of_range_are_a_usage_error_before_reading_the_file() {
         assert!(stdout.is_empty(), "{stdout}");
         assert!(
             stderr.contains(&format!(
-                "--replicates: the bootstrap takes 10 to 1000 replicates, got {replicates}"
+                "--replicates: 0 (no bootstrap) or 10 to 1000 bootstrap replicates, got {replicates}"
             )),
             "{stderr}"
         );

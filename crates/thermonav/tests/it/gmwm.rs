@@ -67,7 +67,8 @@ fn assert_recovers(truth: &[Term], estimate: &GmwmEstimate, relative: &[f64]) {
     for ((p, t), tol) in estimate.parameters.iter().zip(&expected).zip(relative) {
         assert_eq!(p.kind, t.kind);
         let name = p.kind.name();
-        assert!(p.ci_low < p.value && p.value < p.ci_high, "{name}: {p:?}");
+        let (low, high) = (p.ci_low.unwrap(), p.ci_high.unwrap());
+        assert!(low < p.value && p.value < high, "{name}: {p:?}");
         assert!(
             (p.value / t.value - 1.0).abs() < *tol,
             "{name}: {} vs {}",
@@ -118,8 +119,9 @@ fn agrees_with_the_exact_likelihood_on_white_noise_plus_gauss_markov() {
     };
     let e = estimate_gmwm(&wv, "wn+gm".parse().unwrap(), settings).unwrap();
     let [density, tc, sigma] = [0, 1, 2].map(|k| e.parameters[k]);
-    let inside =
-        |x: f64, p: &thermonav::stoch::gmwm::ParameterEstimate| p.ci_low <= x && x <= p.ci_high;
+    let inside = |x: f64, p: &thermonav::stoch::gmwm::ParameterEstimate| {
+        p.ci_low.unwrap() <= x && x <= p.ci_high.unwrap()
+    };
     assert!(inside(ml.correlation_time_s, &tc), "{ml:?} vs {tc:?}");
     let [low, high] = ml.ci95_correlation_time_s;
     assert!(low.unwrap() <= tc.value && tc.value <= high.unwrap_or(f64::INFINITY));
@@ -139,7 +141,7 @@ fn assert_coverage(truth: &[Term], model: &str, n: usize, seeds: u64) {
     for seed in 1..=seeds {
         let e = estimate(truth, model, n, seed, 100);
         for (count, (p, t)) in covered.iter_mut().zip(e.parameters.iter().zip(&expected)) {
-            *count += u64::from(p.ci_low <= t.value && t.value <= p.ci_high);
+            *count += u64::from(p.ci_low.unwrap() <= t.value && t.value <= p.ci_high.unwrap());
         }
     }
     let binomial = Binomial::new(0.95, seeds).unwrap();
@@ -388,7 +390,7 @@ fn bootstrap_settings_are_checked_with_the_setting_named() {
     let text = too_few.validate().unwrap_err().to_string();
     assert_eq!(
         text,
-        "replicates: the bootstrap takes 10 to 1000 replicates, got 5"
+        "replicates: 0 (no bootstrap) or 10 to 1000 bootstrap replicates, got 5"
     );
     let too_many = BootstrapSettings {
         replicates: 1_000_000_000,
@@ -407,4 +409,34 @@ fn bootstrap_settings_are_checked_with_the_setting_named() {
             .starts_with("confidence:")
     );
     assert!(BootstrapSettings::default().validate().is_ok());
+}
+
+// Without a bootstrap (replicates 0, gmwm's default) the fit is the bootstrap's fit, its WIC
+// the asymptotic objective + 2p (closed form), and no interval is claimed.
+#[test]
+fn without_a_bootstrap_the_wic_is_the_objective_plus_twice_the_parameters() {
+    let mut rng = named_rng(5, "gmwm-test/no-bootstrap");
+    let y = simulate(&wn_gm(), 1 << 14, &mut rng);
+    let wv = haar_wavelet_variance(&y, 1.0, None, 0.95).unwrap();
+    let model: ModelSpec = "wn+gm".parse().unwrap();
+    let none = BootstrapSettings {
+        replicates: 0,
+        ..BootstrapSettings::default()
+    };
+    let quick = estimate_gmwm(&wv, model, none).unwrap();
+    let full = estimate_gmwm(&wv, model, BootstrapSettings::default()).unwrap();
+    assert_eq!(quick.fit, full.fit);
+    assert_eq!(quick.wic, quick.fit.objective + 2.0 * 3.0);
+    assert_eq!(quick.replicates, 0);
+    assert!(
+        quick
+            .parameters
+            .iter()
+            .all(|p| p.ci_low.is_none() && p.ci_high.is_none())
+    );
+    assert!(
+        full.parameters
+            .iter()
+            .all(|p| p.ci_low.is_some() && p.ci_high.is_some())
+    );
 }

@@ -54,12 +54,14 @@ pub const MIN_BOOTSTRAP_REPLICATES: usize = 10;
 pub const MAX_BOOTSTRAP_REPLICATES: usize = 1000;
 
 impl BootstrapSettings {
-    /// Checks the replicates (10..=1000) and the level (in (0, 1)).
+    /// Checks the replicates (0, no bootstrap, or 10..=1000) and the level (in (0, 1)).
     ///
     /// # Errors
     /// [`GmwmError::BootstrapReplicates`] or [`GmwmError::BootstrapConfidence`].
     pub fn validate(&self) -> Result<(), GmwmError> {
-        if !(MIN_BOOTSTRAP_REPLICATES..=MAX_BOOTSTRAP_REPLICATES).contains(&self.replicates) {
+        let bootstrapped =
+            (MIN_BOOTSTRAP_REPLICATES..=MAX_BOOTSTRAP_REPLICATES).contains(&self.replicates);
+        if !(self.replicates == 0 || bootstrapped) {
             return Err(GmwmError::BootstrapReplicates {
                 replicates: self.replicates,
             });
@@ -90,10 +92,10 @@ pub struct ParameterEstimate {
     pub kind: Parameter,
     /// The estimate.
     pub value: f64,
-    /// Lower limit.
-    pub ci_low: f64,
-    /// Upper limit.
-    pub ci_high: f64,
+    /// Lower limit (`None` without a bootstrap).
+    pub ci_low: Option<f64>,
+    /// Upper limit (`None` without a bootstrap).
+    pub ci_high: Option<f64>,
 }
 
 /// A GMWM fit with its parameter intervals and its WIC.
@@ -101,9 +103,11 @@ pub struct ParameterEstimate {
 pub struct GmwmEstimate {
     /// The fit.
     pub fit: GmwmFit,
-    /// Physical parameters with parametric-bootstrap intervals (robust Wald, log scale).
+    /// Physical parameters with parametric-bootstrap intervals (robust Wald, log scale; none
+    /// without a bootstrap).
     pub parameters: Vec<ParameterEstimate>,
-    /// The Wavelet Information Criterion (dimensionless; smaller is better).
+    /// The Wavelet Information Criterion (dimensionless; smaller is better): the objective
+    /// plus the bootstrap optimism, or plus 2p without a bootstrap.
     pub wic: f64,
     /// Its optimism term 2 Σ Ω_jj cov*(ν̂*_j, ν_j(θ̂*)).
     pub optimism: f64,
@@ -125,6 +129,9 @@ pub fn estimate_gmwm(
 ) -> Result<GmwmEstimate, GmwmError> {
     settings.validate()?;
     let fit = fit_gmwm(wv, model)?;
+    if settings.replicates == 0 {
+        return Ok(estimate_without_bootstrap(fit, settings.confidence));
+    }
     let replicates: Vec<Replicate> = (0..settings.replicates)
         .into_par_iter()
         .filter_map(|b| replicate(wv, &fit, settings.seed, b))
@@ -149,6 +156,30 @@ pub fn estimate_gmwm(
     Ok(estimate)
 }
 
+/// The fit without intervals, its WIC the asymptotic objective + 2p of a correctly specified
+/// model (see [`rank_by_asymptotic_wic`]): what `replicates = 0` asks for, in a fraction of a
+/// second where the bootstrap refits the whole record `replicates` times.
+fn estimate_without_bootstrap(fit: GmwmFit, confidence: f64) -> GmwmEstimate {
+    let parameters = physical_parameters(&fit.terms, fit.dt_s)
+        .iter()
+        .map(|p| ParameterEstimate {
+            kind: p.kind,
+            value: p.value,
+            ci_low: None,
+            ci_high: None,
+        })
+        .collect();
+    let optimism = 2.0 * fit.model.n_parameters() as f64;
+    GmwmEstimate {
+        parameters,
+        wic: fit.objective + optimism,
+        optimism,
+        replicates: 0,
+        confidence,
+        fit,
+    }
+}
+
 /// `Ok` when the WIC and every parameter's value and interval are finite.
 fn check_finite_estimate(estimate: &GmwmEstimate) -> Result<(), GmwmError> {
     let non_finite = |what: String| GmwmError::NonFiniteEstimate {
@@ -158,11 +189,10 @@ fn check_finite_estimate(estimate: &GmwmEstimate) -> Result<(), GmwmError> {
     if !estimate.wic.is_finite() {
         return Err(non_finite("WIC".to_string()));
     }
-    match estimate
-        .parameters
-        .iter()
-        .find(|p| ![p.value, p.ci_low, p.ci_high].iter().all(|v| v.is_finite()))
-    {
+    match estimate.parameters.iter().find(|p| {
+        let limits = [p.ci_low, p.ci_high].into_iter().flatten();
+        !std::iter::once(p.value).chain(limits).all(f64::is_finite)
+    }) {
         Some(p) => Err(non_finite(format!("{} interval", p.kind.name()))),
         None => Ok(()),
     }
@@ -203,8 +233,8 @@ fn intervals(fit: &GmwmFit, replicates: &[Replicate], confidence: f64) -> Vec<Pa
             ParameterEstimate {
                 kind: p.kind,
                 value: p.value,
-                ci_low,
-                ci_high,
+                ci_low: Some(ci_low),
+                ci_high: Some(ci_high),
             }
         })
         .collect()

@@ -60,7 +60,7 @@ pub enum GmwmError {
     },
     /// Bad bootstrap settings.
     #[error(
-        "replicates: the bootstrap takes {} to {} replicates, got {replicates}",
+        "replicates: 0 (no bootstrap) or {} to {} bootstrap replicates, got {replicates}",
         bootstrap::MIN_BOOTSTRAP_REPLICATES,
         bootstrap::MAX_BOOTSTRAP_REPLICATES
     )]
