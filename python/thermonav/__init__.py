@@ -247,10 +247,15 @@ def read_gnss(path, strict=True) -> GnssRecord:
     return GnssRecord(_native.read_gnss(os.fspath(path), strict))
 
 
-def gmwm(x, rate_hz, model="auto", sensor="gyro", replicates=100, seed=2009) -> GmwmFit:
-    """A composite noise model fitted to the Haar wavelet variance, as one channel of ``thermonav gmwm --json``."""
+def gmwm(x, rate_hz, model="auto", sensor="gyro", replicates=None, seed=None) -> GmwmFit:
+    """A composite noise model fitted to the Haar wavelet variance, as one channel of ``thermonav gmwm --json``.
+
+    ``replicates``: parametric-bootstrap replicates (10 to 1000) for intervals and the WIC; by
+    default none, as ``thermonav gmwm`` (the asymptotic WIC, no intervals). ``seed``: the
+    bootstrap's seed (default: thermonav's). Both defaults are the library's own."""
+    given = {k: int(v) for k, v in (("replicates", replicates), ("seed", seed)) if v is not None}
     result = _wrap(
-        _native.gmwm(_samples("x", x), float(rate_hz), model, sensor, int(replicates), int(seed)),
+        _native.gmwm(_samples("x", x), float(rate_hz), model, sensor, **given),
         GmwmFit,
     )
     wv = result["wavelet_variance"]
