@@ -103,7 +103,8 @@ fn feed_bag(
         )));
     }
     let mut refused = None;
-    let read = stream_imu_series(path, TopicChoice::default(), PIECE_ROWS, &mut |piece| {
+    let pieces = (PIECE_ROWS, false);
+    let read = stream_imu_series(path, TopicChoice::default(), pieces, &mut |piece| {
         gravity.add(&piece);
         stream.push(&piece).map_err(|e| {
             let text = format!("{}: {e}", path.display());

@@ -12,7 +12,7 @@ use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav_io::profile::read_profile;
 use thermonav_io::ros::BagFormat;
-use thermonav_io::ros::extract::{TopicChoice, imu_series};
+use thermonav_io::ros::extract::{TopicChoice, imu_series, stream_imu_extract};
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_into};
 
 /// A record's mean temp_c when it is a temperature a sensor is characterised at (else the
@@ -189,10 +189,15 @@ pub fn is_streamed_bag(path: &Path) -> bool {
 }
 
 /// The IMU of a bag, its topic chosen as [`imu_series`] does without options.
+/// An MCAP bag is read record by record: memory is the series, not the bag.
 fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
-    let bag = thermonav_io::ros::read_bag_file(path, Some(format)).data()?;
     let input = path.display().to_string();
-    match imu_series(&bag, TopicChoice::default(), &input) {
+    let extract = match format == BagFormat::Ros2Mcap && is_streamed_bag(path) {
+        true => stream_imu_extract(path, TopicChoice::default()).map(|(extract, _)| extract),
+        false => thermonav_io::ros::read_bag_file(path, Some(format))
+            .and_then(|bag| imu_series(&bag, TopicChoice::default(), &input)),
+    };
+    match extract {
         Ok(extract) => Ok(extract.series),
         Err(e) => Err(Failure::Data(anyhow!(
             "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \

@@ -490,7 +490,7 @@ impl Sink for Keeping<'_> {
 }
 
 /// What [`stream_imu_series`] read.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct StreamedImu {
     /// The IMU topic read.
     pub topic: String,
@@ -498,6 +498,11 @@ pub struct StreamedImu {
     pub temperature_topic: Option<String>,
     /// Samples delivered.
     pub samples: usize,
+    /// Header stamp minus record time of the IMU messages, when asked for.
+    pub stamp_lag_s: Option<StampLag>,
+    /// The bag's topics with their counts, the messages of the temperature and `NavSatFix`
+    /// topics kept (for [`gnss_fixes`]), the IMU's not.
+    pub bag: Bag,
 }
 
 /// The sink of the samples pass: topic `target`'s messages decoded, checked and delivered in
@@ -511,6 +516,8 @@ struct Samples<'d> {
     last: Option<Timestamp>,
     temperatures: Option<(Vec<Timestamp>, Vec<f64>)>,
     delivered: usize,
+    /// Header stamp minus record time of each sample, ns, when asked for.
+    lags: Option<Vec<i64>>,
     deliver: &'d mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
 }
 
@@ -542,7 +549,7 @@ impl Sink for Samples<'_> {
     fn push(
         &mut self,
         k: usize,
-        _log_time_ns: i64,
+        log_time_ns: i64,
         offset: u64,
         data: &[u8],
         input: &str,
@@ -576,6 +583,9 @@ impl Sink for Samples<'_> {
             ));
         }
         self.last = Some(sample.time);
+        if let Some(lags) = &mut self.lags {
+            lags.push(imu.stamp_ns.saturating_sub(log_time_ns));
+        }
         self.piece.push(&sample);
         match self.piece.len() >= self.piece_len {
             true => self.flush(),
@@ -591,8 +601,9 @@ impl Sink for Samples<'_> {
 /// The IMU of the MCAP bag at `path` as rates in FRD, read in two passes record by record and
 /// handed to `deliver` in pieces of `piece_len` samples (at least 1) as they are decoded, each
 /// with `temp_c` from the temperature topic as [`imu_series`] assigns it: memory is a piece
-/// and the temperature messages, whatever the bag's length. The first pass lists the topics
-/// and keeps the temperature messages; the second decodes the chosen IMU topic. The topics
+/// and the temperature messages (and 8 bytes a sample when `stamp_lags` asks for the
+/// [`StampLag`]), whatever the bag's length. The first pass lists the topics and keeps the
+/// temperature and `NavSatFix` messages; the second decodes the chosen IMU topic. The topics
 /// are chosen, and every sample checked, as [`imu_series`] does.
 ///
 /// # Errors
@@ -601,14 +612,14 @@ impl Sink for Samples<'_> {
 pub fn stream_imu_series(
     path: &Path,
     choice: TopicChoice<'_>,
-    piece_len: usize,
+    (piece_len, stamp_lags): (usize, bool),
     deliver: &mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
 ) -> Result<StreamedImu, ReadError> {
     let input = path.display().to_string();
     let format = BagFormat::Ros2Mcap;
     let mut survey = Keeping {
         bag: Bag::new(format),
-        kinds: &[MessageType::Temperature],
+        kinds: &[MessageType::Temperature, MessageType::NavSatFix],
     };
     super::read_bag_into(path, format, &mut survey)?;
     let bag = survey.bag;
@@ -632,6 +643,7 @@ pub fn stream_imu_series(
         last: None,
         temperatures,
         delivered: 0,
+        lags: stamp_lags.then(Vec::new),
         deliver,
     };
     super::read_bag_into(path, format, &mut samples)?;
@@ -642,9 +654,48 @@ pub fn stream_imu_series(
             format!("topic {} has no message", topic.name),
         ));
     }
+    let stamp_lag_s = samples.lags.take().and_then(StampLag::of);
+    let (topic, temperature_topic) = (topic.name.clone(), temperature.map(|t| t.name.clone()));
     Ok(StreamedImu {
-        topic: topic.name.clone(),
-        temperature_topic: temperature.map(|t| t.name.clone()),
+        topic,
+        temperature_topic,
         samples: samples.delivered,
+        stamp_lag_s,
+        bag,
     })
+}
+
+/// [`imu_series`] of the MCAP bag at `path`, read record by record ([`stream_imu_series`]):
+/// memory is the series and the messages of the temperature and `NavSatFix` topics, not the
+/// bag's bytes nor its IMU messages.
+///
+/// # Errors
+/// Those of [`stream_imu_series`].
+pub fn stream_imu_extract(
+    path: &Path,
+    choice: TopicChoice<'_>,
+) -> Result<(ImuExtract, Bag), ReadError> {
+    let mut series = ImuSeries::new(SampleKind::Rates);
+    let mut temperatures: Vec<f64> = Vec::new();
+    let streamed = stream_imu_series(path, choice, (1 << 16, true), &mut |piece| {
+        series.time.extend_from_slice(&piece.time);
+        for (all, part) in series.channels.iter_mut().zip(&piece.channels) {
+            all.extend_from_slice(part);
+        }
+        temperatures.extend(piece.temperature_c.iter().flatten());
+        Ok(())
+    })?;
+    if streamed.temperature_topic.is_some() {
+        series.temperature_c = Some(temperatures);
+    }
+    let extract = ImuExtract {
+        series,
+        topic: streamed.topic,
+        temperature_assignment: streamed.temperature_topic.as_ref().map(|_| NEAREST),
+        temperature_topic: streamed.temperature_topic,
+        stamp_lag_s: streamed.stamp_lag_s,
+        frame: FRAME_NOTE,
+        time: TIME_NOTE,
+    };
+    Ok((extract, streamed.bag))
 }

@@ -640,6 +640,14 @@ fn a_topic_without_messages_is_listed_but_never_a_candidate() {
     );
 }
 
+/// The GNSS fixes of `bag` read whole.
+fn gnss_fixes_of(
+    bag: &thermonav_io::ros::Bag,
+    name: &str,
+) -> thermonav_io::ros::extract::GnssExtract {
+    thermonav_io::ros::extract::gnss_fixes(bag, None, name).unwrap()
+}
+
 #[test]
 fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
     use thermonav_io::ros::extract::stream_imu_series;
@@ -659,7 +667,7 @@ fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
         let whole = thermonav_io::ros::read_bag_file(&path, None).unwrap();
         let whole = imu_series(&whole, choice, name).unwrap();
         let mut pieces = Vec::new();
-        let streamed = stream_imu_series(&path, choice, 7, &mut |piece| {
+        let streamed = stream_imu_series(&path, choice, (7, true), &mut |piece| {
             pieces.push(piece);
             Ok(())
         })
@@ -667,6 +675,21 @@ fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
         assert_eq!(streamed.samples, whole.series.len(), "{name}");
         assert_eq!(streamed.topic, whole.topic);
         assert_eq!(streamed.temperature_topic, whole.temperature_topic);
+        assert_eq!(streamed.stamp_lag_s, whole.stamp_lag_s, "{name}");
+        let counts = |bag: &thermonav_io::ros::Bag| {
+            let topics = bag.topics.iter();
+            topics
+                .map(|t| (t.name.clone(), t.count))
+                .collect::<Vec<_>>()
+        };
+        let whole_bag = thermonav_io::ros::read_bag_file(&path, None).unwrap();
+        assert_eq!(counts(&streamed.bag), counts(&whole_bag), "{name}");
+        let (extract, bag) = thermonav_io::ros::extract::stream_imu_extract(&path, choice).unwrap();
+        assert_eq!(extract, whole, "{name}");
+        if name != "static_10hz.mcap" {
+            let fixes = thermonav_io::ros::extract::gnss_fixes(&bag, None, name).unwrap();
+            assert_eq!(fixes, gnss_fixes_of(&whole_bag, name), "{name}");
+        }
         assert!(pieces.iter().all(|p| p.len() <= 7 && !p.is_empty()));
         let (mut times, mut channels) = (Vec::new(), vec![Vec::new(); 6]);
         let mut temperatures = Vec::new();
@@ -710,7 +733,7 @@ fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error(
         ..TopicChoice::default()
     };
     let mut delivered = 0;
-    let err = stream_imu_series(&path, choice, 8, &mut |piece| {
+    let err = stream_imu_series(&path, choice, (8, false), &mut |piece| {
         delivered += piece.len();
         Ok(())
     })
@@ -725,7 +748,7 @@ fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error(
     // An error of the caller stops the reading at once.
     let mut calls = 0;
     let path = dir.join("static_none.mcap");
-    let err = stream_imu_series(&path, choice, 8, &mut |_| {
+    let err = stream_imu_series(&path, choice, (8, false), &mut |_| {
         calls += 1;
         Err(thermonav_io::ReadError::new(
             "caller",

@@ -2,16 +2,17 @@
 //! IMU CSV (`--out`, rates in FRD at the header stamps, `temp_c` from the temperature topic),
 //! optionally the canonical GNSS CSV (`--gnss-out`), and a sidecar `OUT.json` saying what was
 //! read: the topics, the time and axes used, how far header stamps lie from record times.
-//! Everything is read and checked before the first file is written.
+//! Everything is read and checked before the first file is written. An MCAP bag is read record
+//! by record: memory is the series (about 64 bytes a sample), not the bag.
 
 use crate::args::{ConvertArgs, ForeignFormatArg};
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use serde::Serialize;
 use thermonav_io::ros::extract::{
-    GnssExtract, ImuExtract, TopicChoice, TopicSummary, gnss_fixes, imu_series,
+    GnssExtract, ImuExtract, TopicChoice, TopicSummary, gnss_fixes, imu_series, stream_imu_extract,
 };
-use thermonav_io::ros::{BagFormat, read_bag_file};
+use thermonav_io::ros::{Bag, BagFormat, read_bag_file};
 
 /// The sidecar: where the series came from, their time and axes.
 #[derive(Serialize)]
@@ -66,14 +67,30 @@ pub fn reject_topics(format: ForeignFormatArg, args: &ConvertArgs) -> Result<(),
     }
 }
 
+/// The IMU of the bag and the bag (its topics, and the messages of the GNSS topics): an MCAP
+/// bag not gzip-compressed is read record by record (memory is the series, not the bag).
+fn read_imu(
+    format: ForeignFormatArg,
+    args: &ConvertArgs,
+    input: &str,
+) -> Result<(ImuExtract, Bag), Failure> {
+    let format = bag_format(format);
+    let mcap = format.is_none_or(|f| f == BagFormat::Ros2Mcap);
+    if mcap && crate::inputs::is_streamed_bag(&args.input) {
+        return stream_imu_extract(&args.input, choice(args)).data();
+    }
+    let bag = read_bag_file(&args.input, format).data()?;
+    let imu = imu_series(&bag, choice(args), input).data()?;
+    Ok((imu, bag))
+}
+
 /// Converts a bag; returns the number of IMU samples and what they are.
 pub fn convert(
     format: ForeignFormatArg,
     args: &ConvertArgs,
 ) -> Result<(usize, &'static str), Failure> {
     let input = args.input.display().to_string();
-    let bag = read_bag_file(&args.input, bag_format(format)).data()?;
-    let imu = imu_series(&bag, choice(args), &input).data()?;
+    let (imu, bag) = read_imu(format, args, &input)?;
     let gnss = match &args.gnss_out {
         Some(_) => Some(gnss_fixes(&bag, args.gnss_topic.as_deref(), &input).data()?),
         None => None,
