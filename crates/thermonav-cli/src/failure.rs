@@ -30,9 +30,23 @@ impl Failure {
 impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Failure::Usage(error) | Failure::Data(error) => write!(f, "{error:#}"),
+            Failure::Usage(error) | Failure::Data(error) => write!(f, "{}", chain_text(error)),
         }
     }
+}
+
+/// The error and its causes joined by ": " (anyhow's `{:#}`), leaving out a cause whose text
+/// the message already holds (an error that prints its source, as a write error prints the
+/// system's reason, would otherwise say it twice).
+fn chain_text(error: &anyhow::Error) -> String {
+    let mut text = error.to_string();
+    for cause in error.chain().skip(1).map(ToString::to_string) {
+        if !text.contains(&cause) {
+            text.push_str(": ");
+            text.push_str(&cause);
+        }
+    }
+    text
 }
 
 /// Classifies a library error as a usage or a data failure at the call site.
@@ -53,5 +67,26 @@ where
 
     fn data(self) -> Result<T, Failure> {
         self.map_err(|e| Failure::Data(e.into()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Issue 38 row 8: a write error that prints the system's reason said it twice through
+    // anyhow's chain ("(os error 2): ... (os error 2)").
+    #[test]
+    fn a_cause_the_message_already_holds_is_said_once() {
+        let reason = std::io::Error::from(std::io::ErrorKind::NotFound);
+        let error = thermonav_io::WriteError::CreateTemporary {
+            path: "missing/bank.json".into(),
+            source: reason,
+        };
+        let text = Failure::Data(error.into()).to_string();
+        let said = std::io::Error::from(std::io::ErrorKind::NotFound).to_string();
+        assert_eq!(text.matches(&said).count(), 1, "{text}");
+        let wrapped = anyhow::anyhow!("outer").context("context");
+        assert_eq!(Failure::Usage(wrapped).to_string(), "context: outer");
     }
 }

@@ -4,6 +4,7 @@ use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, outage_errors, rms_series};
 use crate::inputs::{read_bank, read_rates, thermal_calibration_of};
+use crate::settings::paths::Io;
 use anyhow::anyhow;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -67,6 +68,11 @@ fn lowercase_extension(path: &Path) -> Option<String> {
 
 /// Runs `plot`.
 pub fn run(args: &PlotArgs) -> Result<(), Failure> {
+    Io::new()
+        .input("INPUT", &args.input)
+        .optional_inputs([("--record", args.record.as_ref())])
+        .output("figure", &args.out)
+        .check()?;
     let format = image_format(&args.out)?;
     let svg = figure_svg(args, display_units(args.units))?;
     let bytes = image_bytes(svg, format)?;

@@ -152,6 +152,9 @@ fn sensor_temperature(summary: &VesselSummary) -> String {
 
 /// Writes the built-in sensor profile as TOML.
 fn run_profile(args: &ProfileArgs) -> Result<(), Failure> {
+    crate::settings::paths::Io::new()
+        .output("profile", &args.out)
+        .check()?;
     let text = profile_to_toml(&adis16364_like())
         .map_err(|e| anyhow!("cannot write the profile: {e}"))
         .data()?;

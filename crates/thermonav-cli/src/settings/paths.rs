@@ -58,10 +58,12 @@ impl Io {
     }
 
     /// Refuses (exit 2) an output that is one of the inputs, or a folder of outputs that
-    /// holds one, two outputs that are one file, and an output whose name the file system
-    /// cannot hold.
+    /// holds one, two outputs that are one file, an output whose name the file system
+    /// cannot hold, and an output whose folder does not exist (unless the command makes it:
+    /// the folder of one of its output folders).
     pub fn check(&self) -> Result<(), Failure> {
         self.check_name_lengths()?;
+        self.check_output_folders()?;
         for (option, input) in &self.inputs {
             if let Some((what, output)) = self.outputs.iter().find(|(_, o)| same_file(input, o)) {
                 return Err(collision(what, output, option, input));
@@ -86,6 +88,27 @@ impl Io {
             ))),
             None => Ok(()),
         }
+    }
+
+    /// Every output file's folder exists, or is one the command creates (it holds, or is, one
+    /// of the output folders); checked before any work, so that a long run does not end in
+    /// "cannot create".
+    fn check_output_folders(&self) -> Result<(), Failure> {
+        for (what, path) in &self.outputs {
+            let folder = match path.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p,
+                _ => Path::new("."),
+            };
+            let made = |(_, f): &(&str, PathBuf)| resolved(f).starts_with(resolved(folder));
+            if !folder.is_dir() && !self.output_folders.iter().any(made) {
+                return Err(Failure::Usage(anyhow!(
+                    "the {what} {}: its folder {} does not exist or is not a folder: create it first, or choose an output in an existing folder",
+                    path.display(),
+                    folder.display()
+                )));
+            }
+        }
+        Ok(())
     }
 
     fn check_outputs_distinct(&self) -> Result<(), Failure> {

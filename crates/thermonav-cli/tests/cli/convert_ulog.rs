@@ -147,8 +147,9 @@ fn a_log_still_being_written_converts_its_whole_records_and_says_so() {
     assert!(tail > 0 && tail < 100, "{tail}");
 }
 
-// A GNSS output that cannot be written (its folder is missing) fails the run before the IMU
-// CSV or its record is written; an absurd --leap-seconds is a usage error, not an overflow.
+// A GNSS output that cannot be written (its folder is missing) fails the run before anything
+// is read or written (a usage error since issue 38: outputs are checked first); an absurd
+// --leap-seconds is a usage error, not an overflow.
 #[test]
 fn a_failed_ulog_conversion_writes_nothing_and_leap_seconds_are_bounded() {
     let dir = tempfile::tempdir().unwrap();
@@ -156,7 +157,7 @@ fn a_failed_ulog_conversion_writes_nothing_and_leap_seconds_are_bounded() {
     let imu = dir.path().join("imu.csv");
     let gnss = dir.path().join("missing").join("gnss.csv");
     let (status, _, stderr) = convert_with_gnss(&input, &imu, &gnss);
-    assert_eq!(status, 1, "{stderr}");
+    assert_eq!(status, 2, "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(
         files_in(dir.path()).is_empty(),

@@ -177,3 +177,66 @@ fn bank_show_prints_white_noise_bias_instability_and_random_walk_with_units() {
         "az sigma",
     );
 }
+
+/// Row 8: an output in a folder that does not exist is refused before any work (the input
+/// here does not exist either, and the refusal is about the output), naming the folder, and
+/// the system's reason is never said twice.
+#[test]
+fn an_output_in_a_missing_folder_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing").join("dir");
+    let absent_input = dir.path().join("absent.csv");
+    let bank = crate::bank_export::plain_bank(dir.path());
+    let out = |name: &str| missing.join(name).to_str().unwrap().to_string();
+    let runs: Vec<Vec<String>> = vec![
+        vec![
+            "characterize".into(),
+            arg(&absent_input).into(),
+            "--out".into(),
+            out("bank.json"),
+        ],
+        vec![
+            "filter".into(),
+            arg(&absent_input).into(),
+            "--cutoff-hz".into(),
+            "1".into(),
+            "--out".into(),
+            out("f.csv"),
+        ],
+        vec![
+            "plot".into(),
+            "allan".into(),
+            arg(&bank).into(),
+            "--out".into(),
+            out("a.svg"),
+        ],
+        vec![
+            "simulate".into(),
+            "profile".into(),
+            "--out".into(),
+            out("p.toml"),
+        ],
+        vec![
+            "bank".into(),
+            "export".into(),
+            arg(&bank).into(),
+            "--format".into(),
+            "kalibr".into(),
+            "--out".into(),
+            out("k.yaml"),
+        ],
+    ];
+    for run in &runs {
+        let args: Vec<&str> = run.iter().map(String::as_str).collect();
+        let (status, stdout, stderr) = outcome(&thermonav(&args));
+        assert_eq!(status, 2, "{args:?}: {stdout}{stderr}");
+        assert!(
+            stderr.contains(missing.to_str().unwrap()) && stderr.contains("does not exist"),
+            "{args:?}: {stderr}"
+        );
+        assert!(
+            !stderr.contains("absent.csv") && !stderr.contains("os error"),
+            "{args:?}: {stderr}"
+        );
+    }
+}
