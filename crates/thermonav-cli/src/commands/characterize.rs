@@ -26,6 +26,13 @@ struct Summary<'a> {
     /// Why there is no thermal calibration; absent when there is one.
     #[serde(skip_serializing_if = "Option::is_none")]
     thermal_not_fitted_reason: Option<String>,
+    /// Channels of gx..az without a noise model (the records had no such column); absent
+    /// when all six are there.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    missing_channels: Vec<&'static str>,
+    /// What the missing channels mean for the bank's users; absent with all six.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    missing_channels_note: Option<String>,
 }
 
 /// The thermal calibration in brief.
@@ -97,6 +104,9 @@ pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
         CharacterizeJob::Bank(job) => job,
     };
     let bank = build_job_bank(&job)?;
+    if let Some(note) = missing_channels_note(&bank) {
+        eprintln!("note: {note}");
+    }
     if args.json {
         return print_json(&summarize(&bank, &job.out));
     }
@@ -104,6 +114,32 @@ pub fn run(args: &CharacterizeArgs) -> Result<(), Failure> {
     print_missing_thermal(&bank);
     println!("\nbank written to {}", job.out.display());
     Ok(())
+}
+
+/// The channels of gx..az that some entry of the bank has no model for.
+fn missing_channels(bank: &ModelBank) -> Vec<&'static str> {
+    let lacking = |c: &&Channel| bank.entries.iter().any(|e| !e.channels.contains_key(*c));
+    Channel::ALL
+        .iter()
+        .filter(lacking)
+        .map(|c| c.name())
+        .collect()
+}
+
+/// What a bank without some channels cannot be used for, naming them; `None` with all six.
+fn missing_channels_note(bank: &ModelBank) -> Option<String> {
+    let missing = missing_channels(bank);
+    if missing.is_empty() {
+        return None;
+    }
+    let (list, verb) = (
+        missing.join(", "),
+        if missing.len() == 1 { "has" } else { "have" },
+    );
+    Some(format!(
+        "{list} {verb} no noise model in this bank (the records have no such column): a bank of {} channels; what needs all six (`bank export` of a noise configuration such as kalibr or kf-gins, `bank show --at-temperature-c`, `integrate` and `evaluate` with --bank) will refuse it",
+        Channel::ALL.len() - missing.len()
+    ))
 }
 
 /// Why the bank has no thermal calibration, when it has none.
@@ -173,6 +209,8 @@ fn summarize<'a>(bank: &'a ModelBank, out: &Path) -> Summary<'a> {
     Summary {
         thermal,
         thermal_not_fitted_reason,
+        missing_channels: missing_channels(bank),
+        missing_channels_note: missing_channels_note(bank),
         bank: out.display().to_string(),
         temperatures_c: bank.temperatures_c(),
         entries: bank

@@ -240,3 +240,53 @@ fn an_output_in_a_missing_folder_is_refused_before_any_work() {
         );
     }
 }
+
+/// Row 7: a record without its az column makes a five-channel bank, and `characterize` says
+/// so (stderr and JSON), naming az and what will refuse the bank; the export then does.
+#[test]
+fn a_bank_without_a_channel_is_announced_when_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = static_imu(20_000, 0.2, Some(&[0, 1, 2, 3, 4]));
+    assert!(!text.lines().next().unwrap().contains("az"));
+    let imu = write_file(dir.path(), "imu.csv", &text);
+    let (bank, stderr) = characterize(dir.path(), &imu, "bank.json", &[]);
+    let note = stderr
+        .lines()
+        .find(|l| l.contains("az has no noise model"))
+        .unwrap_or_else(|| panic!("{stderr}"));
+    assert!(
+        note.contains("5 channels") && note.contains("refuse") && note.contains("bank export"),
+        "{note}"
+    );
+    let args = [
+        "characterize",
+        arg(&imu),
+        "--temperature-c",
+        "20",
+        "--json",
+        "--out",
+    ];
+    let (status, stdout, stderr) = outcome(&thermonav(
+        &[&args[..], &[arg(&dir.path().join("b.json"))]].concat(),
+    ));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stderr.contains("az has no noise model"), "{stderr}");
+    let summary = json(&stdout);
+    assert_eq!(summary["missing_channels"], serde_json::json!(["az"]));
+    assert!(
+        summary["missing_channels_note"]
+            .as_str()
+            .unwrap()
+            .contains("refuse")
+    );
+    let export = ["bank", "export", arg(&bank), "--format", "kalibr", "--out"];
+    let (status, _, stderr) = outcome(&thermonav(
+        &[&export[..], &[arg(&dir.path().join("k.yaml"))]].concat(),
+    ));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(stderr.contains("az"), "{stderr}");
+    // With all six there is no note.
+    let full = write_file(dir.path(), "full.csv", &static_imu(20_000, 0.2, None));
+    let (_, stderr) = characterize(dir.path(), &full, "full.json", &[]);
+    assert!(!stderr.contains("no noise model"), "{stderr}");
+}
