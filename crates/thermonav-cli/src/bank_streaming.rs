@@ -1,7 +1,7 @@
 //! `characterize --reading streaming`: one record read in pieces and characterised in memory
 //! independent of its length (see `thermonav::stoch::streaming`). A reader thread parses the
 //! next piece of a CSV while the six channels of the previous one are processed in parallel; an
-//! MCAP bag is read record by record in the same thread, its pieces pushed as they come.
+//! MCAP or ROS 1 bag is read record by record in the same thread, its pieces pushed as they come.
 
 use crate::args::ReadingArg;
 use crate::failure::{Classify, Failure};
@@ -84,7 +84,7 @@ fn feed(
     })
 }
 
-/// Pushes the IMU of the MCAP bag at `path` (its only `sensor_msgs/Imu` topic, `temp_c` from
+/// Pushes the IMU of the MCAP or ROS 1 bag at `path` (its only `sensor_msgs/Imu` topic, `temp_c` from
 /// its only temperature topic, as a bag is read in memory) into the characterisation and the
 /// gravity check in pieces as the bag is read record by record: memory is a piece and the
 /// temperature messages, whatever the bag's length.

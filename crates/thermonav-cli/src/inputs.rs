@@ -130,7 +130,7 @@ pub fn read_imu_input_into(
 }
 
 /// True when the file at `path` is a ROS bag or a DataFlash log read whole (never streamed): every
-/// one but an MCAP bag not gzip-compressed ([`is_streamed_bag`]).
+/// one but an MCAP or ROS 1 bag not gzip-compressed ([`is_streamed_bag`]).
 pub fn is_whole_log(path: &Path) -> bool {
     (bag_format_of(path).is_some() && !is_streamed_bag(path)) || is_dataflash(path)
 }
@@ -181,18 +181,21 @@ pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
     BagFormat::detect(&head_of(path, 16)?)
 }
 
-/// True when the file at `path` is an MCAP bag that is not gzip-compressed: one read record by
-/// record, which `characterize` can stream
+/// True when the file at `path` is an MCAP bag or a ROS 1 bag that is not gzip-compressed: one
+/// read record by record, which `characterize` can stream
 /// ([`thermonav_io::ros::extract::stream_imu_series`]).
 pub fn is_streamed_bag(path: &Path) -> bool {
-    bag_format_of(path) == Some(BagFormat::Ros2Mcap) && !thermonav_io::is_compressed(path)
+    matches!(
+        bag_format_of(path),
+        Some(BagFormat::Ros2Mcap | BagFormat::Ros1Bag)
+    ) && !thermonav_io::is_compressed(path)
 }
 
 /// The IMU of a bag, its topic chosen as [`imu_series`] does without options.
-/// An MCAP bag is read record by record: memory is the series, not the bag.
+/// An MCAP or ROS 1 bag is read record by record: memory is the series, not the bag.
 fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
     let input = path.display().to_string();
-    let extract = match format == BagFormat::Ros2Mcap && is_streamed_bag(path) {
+    let extract = match format != BagFormat::Ros2Db3 && is_streamed_bag(path) {
         true => stream_imu_extract(path, TopicChoice::default()).map(|(extract, _)| extract),
         false => thermonav_io::ros::read_bag_file(path, Some(format))
             .and_then(|bag| imu_series(&bag, TopicChoice::default(), &input)),

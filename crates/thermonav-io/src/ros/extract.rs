@@ -21,7 +21,7 @@
 
 use super::messages::Encoding;
 use super::messages::{MessageType, decode_imu, decode_nav_sat_fix, decode_temperature};
-use super::{Bag, BagFormat, Sink, Topic};
+use super::{Bag, Sink, Topic};
 use crate::error::{ReadError, ReadErrorKind};
 use crate::sample_checks::{imu_sample_problem, temperature_problem};
 use serde::Serialize;
@@ -598,7 +598,8 @@ impl Sink for Samples<'_> {
     }
 }
 
-/// The IMU of the MCAP bag at `path` as rates in FRD, read in two passes record by record and
+/// The IMU of the MCAP bag or ROS 1 bag at `path` (not gzip-compressed) as rates in FRD, read
+/// in two passes record by record and
 /// handed to `deliver` in pieces of `piece_len` samples (at least 1) as they are decoded, each
 /// with `temp_c` from the temperature topic as [`imu_series`] assigns it: memory is a piece
 /// and the temperature messages (and 8 bytes a sample when `stamp_lags` asks for the
@@ -616,7 +617,7 @@ pub fn stream_imu_series(
     deliver: &mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
 ) -> Result<StreamedImu, ReadError> {
     let input = path.display().to_string();
-    let format = BagFormat::Ros2Mcap;
+    let format = super::detect_file(path, &input)?;
     let mut survey = Keeping {
         bag: Bag::new(format),
         kinds: &[MessageType::Temperature, MessageType::NavSatFix],
@@ -665,7 +666,7 @@ pub fn stream_imu_series(
     })
 }
 
-/// [`imu_series`] of the MCAP bag at `path`, read record by record ([`stream_imu_series`]):
+/// [`imu_series`] of the MCAP or ROS 1 bag at `path`, read record by record ([`stream_imu_series`]):
 /// memory is the series and the messages of the temperature and `NavSatFix` topics, not the
 /// bag's bytes nor its IMU messages.
 ///

@@ -238,9 +238,9 @@ fn log_time(ns: u64, at: &bytes::Cursor<'_>) -> Result<i64, ReadError> {
     i64::try_from(ns).map_err(|_| at.error(format_args!("record time {ns} ns is beyond 2262")))
 }
 
-/// Reads a bag in `format`, or the one its magic bytes tell when `None`. An MCAP file is read
-/// record by record through a buffer (memory follows the messages kept, not the file); a db3,
-/// a ROS 1 bag and a gzip-compressed file are read whole.
+/// Reads a bag in `format`, or the one its magic bytes tell when `None`. An MCAP file or a
+/// ROS 1 bag is read record by record through a buffer (memory follows the messages kept, not
+/// the file); a db3 and a gzip-compressed file are read whole.
 ///
 /// # Errors
 /// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; a file of no bag format; those of the
@@ -256,7 +256,7 @@ pub fn read_bag_file(path: impl AsRef<Path>, format: Option<BagFormat>) -> Resul
         (None, false) => return read_whole_bag(path, None),
     };
     match (format, streamed) {
-        (BagFormat::Ros2Mcap, true) => {
+        (BagFormat::Ros2Mcap | BagFormat::Ros1Bag, true) => {
             let mut bag = Bag::new(format);
             read_bag_into(path, format, &mut bag)?;
             Ok(bag)
@@ -278,7 +278,7 @@ fn read_whole_bag(path: &Path, format: Option<BagFormat>) -> Result<Bag, ReadErr
     decode_bag(&bytes, &input, format)
 }
 
-/// Reads the MCAP file at `path` into `sink`, record by record.
+/// Reads the MCAP file or ROS 1 bag at `path` into `sink`, record by record.
 ///
 /// # Errors
 /// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; those of [`mcap::read_mcap`].
@@ -292,11 +292,12 @@ pub fn read_bag_into<S: Sink>(
     let file_bytes = std::fs::metadata(path).map_or(0, |m| m.len());
     match format {
         BagFormat::Ros2Mcap => mcap::read_mcap(file, file_bytes, &input, sink),
+        BagFormat::Ros1Bag => ros1::read_ros1(file, file_bytes, &input, sink),
         other => Err(ReadError::new(
             input,
             None,
             ReadErrorKind::Unusable(format!(
-                "a {} bag is not read record by record (only ros2-mcap is)",
+                "a {} bag is not read record by record (ros2-mcap and ros1-bag are)",
                 other.name()
             )),
         )),
@@ -304,7 +305,10 @@ pub fn read_bag_into<S: Sink>(
 }
 
 /// The format of the bag at `path`, told by its first bytes.
-fn detect_file(path: &Path, input: &str) -> Result<BagFormat, ReadError> {
+///
+/// # Errors
+/// The file cannot be opened or read; it starts like no bag.
+pub fn detect_file(path: &Path, input: &str) -> Result<BagFormat, ReadError> {
     use std::io::Read;
     let mut head = Vec::new();
     crate::open_input(path)

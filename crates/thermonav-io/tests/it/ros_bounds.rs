@@ -649,7 +649,7 @@ fn gnss_fixes_of(
 }
 
 #[test]
-fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
+fn a_bag_streamed_in_pieces_gives_the_series_read_whole() {
     use thermonav_io::ros::extract::stream_imu_series;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
     for name in [
@@ -658,14 +658,20 @@ fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
         "static_lz4.mcap",
         "static_unchunked_be.mcap",
         "static_10hz.mcap",
+        "static.bag",
+        "static_lz4.bag",
+        "static_bz2.bag",
     ] {
         let path = dir.join(name);
         let choice = TopicChoice {
             imu: (name != "static_10hz.mcap").then_some("/imu/data"),
             ..TopicChoice::default()
         };
-        let whole = thermonav_io::ros::read_bag_file(&path, None).unwrap();
-        let whole = imu_series(&whole, choice, name).unwrap();
+        // The bag read whole from its bytes, by the same decoder over a slice.
+        let bytes = std::fs::read(&path).unwrap();
+        let format = BagFormat::detect(&bytes).unwrap();
+        let whole_bag = decode_bag(&bytes, name, format).unwrap();
+        let whole = imu_series(&whole_bag, choice, name).unwrap();
         let mut pieces = Vec::new();
         let streamed = stream_imu_series(&path, choice, (7, true), &mut |piece| {
             pieces.push(piece);
@@ -682,7 +688,6 @@ fn an_mcap_bag_streamed_in_pieces_gives_the_series_read_whole() {
                 .map(|t| (t.name.clone(), t.count))
                 .collect::<Vec<_>>()
         };
-        let whole_bag = thermonav_io::ros::read_bag_file(&path, None).unwrap();
         assert_eq!(counts(&streamed.bag), counts(&whole_bag), "{name}");
         let (extract, bag) = thermonav_io::ros::extract::stream_imu_extract(&path, choice).unwrap();
         assert_eq!(extract, whole, "{name}");
@@ -758,4 +763,17 @@ fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error(
     })
     .unwrap_err();
     assert_eq!((calls, err.to_string()), (1, "caller: enough".to_string()));
+}
+
+#[test]
+fn a_ros1_record_header_longer_than_16_mib_is_refused_before_it_is_read() {
+    let mut bag = b"#ROSBAG V2.0\n".to_vec();
+    bag.extend(((16u32 << 20) + 1).to_le_bytes());
+    bag.extend([0u8; 64]);
+    let (err, _) = refusal(&bag, "long.bag", BagFormat::Ros1Bag);
+    assert_eq!(
+        err,
+        "long.bag: at byte 17: expected a record header of 16777217 bytes: above the 16777216 \
+         bytes any recorder writes (a corrupt length field)"
+    );
 }

@@ -2,8 +2,8 @@
 //! IMU CSV (`--out`, rates in FRD at the header stamps, `temp_c` from the temperature topic),
 //! optionally the canonical GNSS CSV (`--gnss-out`), and a sidecar `OUT.json` saying what was
 //! read: the topics, the time and axes used, how far header stamps lie from record times.
-//! Everything is read and checked before the first file is written. An MCAP bag is read record
-//! by record: memory is the series (about 64 bytes a sample), not the bag.
+//! Everything is read and checked before the first file is written. An MCAP or ROS 1 bag is
+//! read record by record: memory is the series (about 64 bytes a sample), not the bag.
 
 use crate::args::{ConvertArgs, ForeignFormatArg};
 use crate::failure::{Classify, Failure};
@@ -68,15 +68,16 @@ pub fn reject_topics(format: ForeignFormatArg, args: &ConvertArgs) -> Result<(),
 }
 
 /// The IMU of the bag and the bag (its topics, and the messages of the GNSS topics): an MCAP
-/// bag not gzip-compressed is read record by record (memory is the series, not the bag).
+/// or ROS 1 bag not gzip-compressed is read record by record (memory is the series, not the
+/// bag).
 fn read_imu(
     format: ForeignFormatArg,
     args: &ConvertArgs,
     input: &str,
 ) -> Result<(ImuExtract, Bag), Failure> {
     let format = bag_format(format);
-    let mcap = format.is_none_or(|f| f == BagFormat::Ros2Mcap);
-    if mcap && crate::inputs::is_streamed_bag(&args.input) {
+    let streamed = format.is_none_or(|f| f != BagFormat::Ros2Db3);
+    if streamed && crate::inputs::is_streamed_bag(&args.input) {
         return stream_imu_extract(&args.input, choice(args)).data();
     }
     let bag = read_bag_file(&args.input, format).data()?;
