@@ -106,27 +106,6 @@ impl<'a> Cursor<'a> {
     }
 }
 
-/// Decompressed bytes of one chunk, at most `limit` bytes from `reader` (bytes grow with the
-/// data, never allocated from a length field); `Err` with the decoder's text.
-pub fn read_limited(reader: impl std::io::Read, limit: u64) -> Result<Vec<u8>, String> {
-    let out = read_at_most(reader, limit.saturating_add(1))?;
-    match out.len() as u64 > limit {
-        true => Err(format!("more than the {limit} bytes the chunk declares")),
-        false => Ok(out),
-    }
-}
-
-/// At most `n` bytes from `reader`, grown with the data; `Err` with the decoder's text.
-fn read_at_most(reader: impl std::io::Read, n: u64) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let mut out = Vec::new();
-    reader
-        .take(n)
-        .read_to_end(&mut out)
-        .map_err(|e| e.to_string())?;
-    Ok(out)
-}
-
 /// Most bytes one compressed chunk may declare (and expand to): 64 MiB. Recorders write far
 /// smaller chunks (ROS 1's `rosbag record` 768 KiB by default, rosbag2's MCAP storage and the
 /// `mcap` tools 4 MiB), so no honest bag comes near it; a chunk beyond it is refused before
@@ -254,61 +233,6 @@ pub fn check_expansion(
             "holds {produced} bytes uncompressed, but its record declares {declared}"
         ))),
     }
-}
-
-/// The bytes of a chunk whose record starts at file offset `chunk_offset`: its `data` when
-/// `compression` is `none` (or empty), else decompressed: `zstd` (MCAP), `lz4` (the LZ4 frame
-/// format, in MCAP and ROS 1) or `bz2` (ROS 1). `declared` is the uncompressed size the record
-/// gives; `at` is where the data start (for errors about what is inside).
-///
-/// # Errors
-/// A compressed chunk declaring more than [`MAX_CHUNK_BYTES`], or more than is left of the
-/// file's [`Expansion`] bound (both refused before anything is decompressed, naming the file,
-/// the chunk's offset and the figures); an unknown compression; data that do not decompress,
-/// or not to exactly `declared` bytes (decompression stops one byte past `declared`).
-pub fn decompress<'d>(
-    compression: &str,
-    data: &'d [u8],
-    declared: u64,
-    chunk_offset: u64,
-    at: &Cursor<'_>,
-    expansion: &mut Expansion,
-) -> Result<std::borrow::Cow<'d, [u8]>, ReadError> {
-    let stored = data.len() as u64;
-    let offsets = (chunk_offset, at.offset());
-    chunk_bounds(compression, stored, declared, offsets, at.input, expansion)?;
-    if matches!(compression, "" | "none") {
-        return Ok(std::borrow::Cow::Borrowed(data));
-    }
-    // One byte past the declaration tells a chunk that expands further.
-    let past = declared + 1;
-    let out = match compression {
-        "zstd" => ruzstd::decoding::StreamingDecoder::new(data)
-            .map_err(|e| e.to_string())
-            .and_then(|d| read_at_most(d, past)),
-        "lz4" => read_at_most(lz4_flex::frame::FrameDecoder::new(data), past),
-        _ => read_at_most(bzip2_rs::DecoderReader::new(data), past),
-    };
-    let mut out = out.map_err(|e| {
-        at_chunk(
-            at.input,
-            chunk_offset,
-            compression,
-            format_args!("does not decompress: {e}"),
-        )
-    })?;
-    let more = out.len() as u64 > declared;
-    out.truncate(declared as usize);
-    let produced = out.len() as u64;
-    check_expansion(
-        compression,
-        (produced, more),
-        declared,
-        stored,
-        chunk_offset,
-        at.input,
-    )?;
-    Ok(std::borrow::Cow::Owned(out))
 }
 
 /// A problem with the `compression` chunk whose record starts at `chunk_offset` of `input`.

@@ -5,7 +5,12 @@
 //! Each reader gives one [`Bag`]: its topics with their type, serialisation and message count,
 //! and the bytes of the messages of the types [`messages`] decodes (`sensor_msgs/Imu`,
 //! `NavSatFix`, `Temperature`, `geometry_msgs/TwistStamped`); the messages of other types are
-//! counted and dropped, so memory follows the data that is used. [`extract`] turns a topic into
+//! counted and dropped, so memory follows the data that is used. The MCAP and ROS 1 readers
+//! read a file record by record ([`source::Source`], chunks through their decompressor as they
+//! come) into any [`Sink`], so that [`extract::stream_imu_series`] can decode a long bag's IMU
+//! into pieces without keeping its messages; a db3 (SQLite pages) is read whole. Decompression
+//! is bounded ([`bytes::chunk_bounds`]): a chunk at most 64 MiB, a file's chunks together at
+//! most 100 times its size (64 MiB at least). [`extract`] turns a topic into
 //! thermonav's series: the sample time is the message's **header stamp**, not the record (log)
 //! time, and the ROS body axes (REP 103: x forward, y left, z up) become FRD.
 //!
