@@ -12,7 +12,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::ros::extract::{TopicChoice, stream_imu_series};
+use thermonav_io::ros::extract::{StreamOptions, TopicChoice, stream_imu_series};
 use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, ReadErrorKind, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
@@ -103,7 +103,11 @@ fn feed_bag(
         )));
     }
     let mut refused = None;
-    let pieces = (PIECE_ROWS, false);
+    let pieces = StreamOptions {
+        piece_len: PIECE_ROWS,
+        stamp_lags: false,
+        gnss: false,
+    };
     let read = stream_imu_series(path, TopicChoice::default(), pieces, &mut |piece| {
         gravity.add(&piece);
         stream.push(&piece).map_err(|e| {

@@ -489,6 +489,17 @@ impl Sink for Keeping<'_> {
     }
 }
 
+/// How [`stream_imu_series`] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamOptions {
+    /// Samples a piece holds (at least 1).
+    pub piece_len: usize,
+    /// Whether to keep each sample's stamp lag (8 bytes a sample) for [`StampLag`].
+    pub stamp_lags: bool,
+    /// Whether to keep the `NavSatFix` messages (for [`gnss_fixes`]).
+    pub gnss: bool,
+}
+
 /// What [`stream_imu_series`] read.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StreamedImu {
@@ -500,8 +511,8 @@ pub struct StreamedImu {
     pub samples: usize,
     /// Header stamp minus record time of the IMU messages, when asked for.
     pub stamp_lag_s: Option<StampLag>,
-    /// The bag's topics with their counts, the messages of the temperature and `NavSatFix`
-    /// topics kept (for [`gnss_fixes`]), the IMU's not.
+    /// The bag's topics with their counts, the messages of the temperature topics kept (and
+    /// those of the `NavSatFix` topics when [`StreamOptions::gnss`] asks), the IMU's not.
     pub bag: Bag,
 }
 
@@ -602,9 +613,10 @@ impl Sink for Samples<'_> {
 /// in two passes record by record and
 /// handed to `deliver` in pieces of `piece_len` samples (at least 1) as they are decoded, each
 /// with `temp_c` from the temperature topic as [`imu_series`] assigns it: memory is a piece
-/// and the temperature messages (and 8 bytes a sample when `stamp_lags` asks for the
+/// and the temperature messages (and 8 bytes a sample when `options` ask for the
 /// [`StampLag`]), whatever the bag's length. The first pass lists the topics and keeps the
-/// temperature and `NavSatFix` messages; the second decodes the chosen IMU topic. The topics
+/// temperature messages (and the `NavSatFix` ones when asked); the second decodes the chosen
+/// IMU topic. The topics
 /// are chosen, and every sample checked, as [`imu_series`] does.
 ///
 /// # Errors
@@ -613,14 +625,22 @@ impl Sink for Samples<'_> {
 pub fn stream_imu_series(
     path: &Path,
     choice: TopicChoice<'_>,
-    (piece_len, stamp_lags): (usize, bool),
+    options: StreamOptions,
     deliver: &mut dyn FnMut(ImuSeries) -> Result<(), ReadError>,
 ) -> Result<StreamedImu, ReadError> {
+    let StreamOptions {
+        piece_len,
+        stamp_lags,
+        gnss,
+    } = options;
     let input = path.display().to_string();
     let format = super::detect_file(path, &input)?;
     let mut survey = Keeping {
         bag: Bag::new(format),
-        kinds: &[MessageType::Temperature, MessageType::NavSatFix],
+        kinds: match gnss {
+            true => &[MessageType::Temperature, MessageType::NavSatFix],
+            false => &[MessageType::Temperature],
+        },
     };
     super::read_bag_into(path, format, &mut survey)?;
     let bag = survey.bag;
@@ -678,7 +698,12 @@ pub fn stream_imu_extract(
 ) -> Result<(ImuExtract, Bag), ReadError> {
     let mut series = ImuSeries::new(SampleKind::Rates);
     let mut temperatures: Vec<f64> = Vec::new();
-    let streamed = stream_imu_series(path, choice, (1 << 16, true), &mut |piece| {
+    let options = StreamOptions {
+        piece_len: 1 << 16,
+        stamp_lags: true,
+        gnss: true,
+    };
+    let streamed = stream_imu_series(path, choice, options, &mut |piece| {
         series.time.extend_from_slice(&piece.time);
         for (all, part) in series.channels.iter_mut().zip(&piece.channels) {
             all.extend_from_slice(part);

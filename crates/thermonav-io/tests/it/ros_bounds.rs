@@ -640,6 +640,15 @@ fn a_topic_without_messages_is_listed_but_never_a_candidate() {
     );
 }
 
+/// Pieces of `piece_len` samples, the stamp lags kept when `lags`, the GNSS messages not.
+fn options(piece_len: usize, lags: bool) -> thermonav_io::ros::extract::StreamOptions {
+    thermonav_io::ros::extract::StreamOptions {
+        piece_len,
+        stamp_lags: lags,
+        gnss: false,
+    }
+}
+
 /// The GNSS fixes of `bag` read whole.
 fn gnss_fixes_of(
     bag: &thermonav_io::ros::Bag,
@@ -673,7 +682,7 @@ fn a_bag_streamed_in_pieces_gives_the_series_read_whole() {
         let whole_bag = decode_bag(&bytes, name, format).unwrap();
         let whole = imu_series(&whole_bag, choice, name).unwrap();
         let mut pieces = Vec::new();
-        let streamed = stream_imu_series(&path, choice, (7, true), &mut |piece| {
+        let streamed = stream_imu_series(&path, choice, options(7, true), &mut |piece| {
             pieces.push(piece);
             Ok(())
         })
@@ -689,6 +698,15 @@ fn a_bag_streamed_in_pieces_gives_the_series_read_whole() {
                 .collect::<Vec<_>>()
         };
         assert_eq!(counts(&streamed.bag), counts(&whole_bag), "{name}");
+        // Without GNSS asked for, no NavSatFix message is kept (only counted).
+        let kept = |bag: &thermonav_io::ros::Bag, topic: &str| {
+            let found = bag.topics.iter().find(|t| t.name == topic);
+            found.map(|t| t.messages.len())
+        };
+        if name != "static_10hz.mcap" {
+            assert_eq!(kept(&streamed.bag, "/gnss/fix"), Some(0), "{name}");
+            assert_eq!(kept(&whole_bag, "/gnss/fix"), Some(8), "{name}");
+        }
         let (extract, bag) = thermonav_io::ros::extract::stream_imu_extract(&path, choice).unwrap();
         assert_eq!(extract, whole, "{name}");
         if name != "static_10hz.mcap" {
@@ -738,7 +756,7 @@ fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error(
         ..TopicChoice::default()
     };
     let mut delivered = 0;
-    let err = stream_imu_series(&path, choice, (8, false), &mut |piece| {
+    let err = stream_imu_series(&path, choice, options(8, false), &mut |piece| {
         delivered += piece.len();
         Ok(())
     })
@@ -753,7 +771,7 @@ fn a_streamed_bag_refuses_a_bad_sample_naming_it_and_stops_at_the_callers_error(
     // An error of the caller stops the reading at once.
     let mut calls = 0;
     let path = dir.join("static_none.mcap");
-    let err = stream_imu_series(&path, choice, (8, false), &mut |_| {
+    let err = stream_imu_series(&path, choice, options(8, false), &mut |_| {
         calls += 1;
         Err(thermonav_io::ReadError::new(
             "caller",
