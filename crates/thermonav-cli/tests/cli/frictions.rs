@@ -290,3 +290,122 @@ fn a_bank_without_a_channel_is_announced_when_written() {
     let (_, stderr) = characterize(dir.path(), &full, "full.json", &[]);
     assert!(!stderr.contains("no noise model"), "{stderr}");
 }
+
+/// The stand-in of an Allan curve worked out here: σ = the minimum / 0.664 and Tc its τ when
+/// the minimum is inside the curve, else the bound at the longest τ and that τ.
+fn stand_in_of(allan: &serde_json::Value) -> (f64, f64) {
+    let column = |key: &str| -> Vec<f64> {
+        allan[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (tau, adev) = (column("tau_s"), column("adev"));
+    let mut k = 0;
+    for i in 1..adev.len() {
+        if adev[i] < adev[k] {
+            k = i;
+        }
+    }
+    if k == 0 || k + 1 == adev.len() {
+        k = adev.len() - 1;
+    }
+    (adev[k] / 0.664, tau[k])
+}
+
+/// The numbers of `key`'s line in a YAML or Python export: `key: [a, b, c]` or
+/// `'key': np.array([a, b, c])`.
+fn numbers_of(text: &str, key: &str) -> Vec<f64> {
+    let line = text
+        .lines()
+        .find(|l| {
+            !l.trim_start().starts_with('#')
+                && (l.trim_start().starts_with(&format!("{key}:"))
+                    || l.contains(&format!("'{key}'")))
+        })
+        .unwrap_or_else(|| panic!("no {key} in {text}"));
+    let body = line.split('#').next().unwrap();
+    let body = body.split_once(':').unwrap().1;
+    body.split(|c: char| !(c.is_ascii_digit() || "+-.e".contains(c)))
+        .filter(|t| !t.is_empty() && t.chars().any(|c| c.is_ascii_digit()))
+        .map(|t| t.parse().unwrap())
+        .collect()
+}
+
+/// Row 11: a bank whose Gauss-Markov part is not significant (white noise alone) exports to
+/// KF-GINS, OB_GINS and gnss-ins-sim with the documented stand-in, said so in the file.
+#[test]
+fn exports_needing_a_gauss_markov_bias_write_the_allan_stand_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let imu = write_file(dir.path(), "imu.csv", &static_imu(20_000, 0.0, None));
+    let (bank, _) = characterize(dir.path(), &imu, "bank.json", &[]);
+    let doc = json(&std::fs::read_to_string(&bank).unwrap());
+    let channels = &doc["entries"][0]["channels"];
+    assert_eq!(
+        channels["gx"]["gauss_markov"]["irregular_ml"]["status"], "no_equivalent",
+        "{}",
+        channels["gx"]["gauss_markov"]
+    );
+    let names = ["gx", "gy", "gz", "ax", "ay", "az"];
+    let stand_ins: Vec<(f64, f64)> = names
+        .iter()
+        .map(|c| stand_in_of(&channels[*c]["allan"]))
+        .collect();
+    let export = |format: &str, extra: &[&str]| -> String {
+        let out = dir.path().join(format!("{format}.out"));
+        let args = [
+            &[
+                "bank",
+                "export",
+                arg(&bank),
+                "--format",
+                format,
+                "--out",
+                arg(&out),
+            ][..],
+            extra,
+        ]
+        .concat();
+        let (status, _, stderr) = outcome(&thermonav(&args));
+        assert_eq!(status, 0, "{format}: {stderr}");
+        std::fs::read_to_string(out).unwrap()
+    };
+    // gnss-ins-sim: per axis, σ in deg/h and m/s², Tc in s.
+    let sim = export("gnss-ins-sim", &[]);
+    assert!(sim.contains("stand-in") && sim.contains("0.664"), "{sim}");
+    let deg_h = 180.0 / PI * HOUR_S;
+    for (k, (sigma, tc)) in numbers_of(&sim, "gyro_b_stability")
+        .iter()
+        .zip(numbers_of(&sim, "gyro_b_corr"))
+        .enumerate()
+    {
+        close(*sigma, stand_ins[k].0 * deg_h, "gyro_b_stability");
+        close(tc, stand_ins[k].1, "gyro_b_corr");
+    }
+    for (k, (sigma, tc)) in numbers_of(&sim, "accel_b_stability")
+        .iter()
+        .zip(numbers_of(&sim, "accel_b_corr"))
+        .enumerate()
+    {
+        close(*sigma, stand_ins[3 + k].0, "accel_b_stability");
+        close(tc, stand_ins[3 + k].1, "accel_b_corr");
+    }
+    // KF-GINS: σ per axis in deg/h and mGal, one Tc in hours (the geometric mean of the six).
+    let kf = export("kf-gins", &["--scale-factor-std-ppm", "100"]);
+    assert!(kf.contains("stand-in"), "{kf}");
+    for (k, v) in numbers_of(&kf, "gbstd").iter().enumerate() {
+        close(*v, stand_ins[k].0 * deg_h, "gbstd");
+    }
+    for (k, v) in numbers_of(&kf, "abstd").iter().enumerate() {
+        close(*v, stand_ins[3 + k].0 / 1e-5, "abstd");
+    }
+    let mean_tc = (stand_ins.iter().map(|s| s.1.ln()).sum::<f64>() / 6.0).exp();
+    close(numbers_of(&kf, "corrtime")[0], mean_tc / HOUR_S, "corrtime");
+    // OB_GINS: the largest axis.
+    let ob = export("ob-gins", &[]);
+    assert!(ob.contains("stand-in"), "{ob}");
+    let largest = stand_ins[..3].iter().map(|s| s.0).fold(0.0, f64::max);
+    close(numbers_of(&ob, "gbstd")[0], largest * deg_h, "ob gbstd");
+}

@@ -12,8 +12,8 @@
 //! calibration, not the noise model, holds a unit's bias).
 
 use super::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, commented, finite_axes,
-    provenance, vector_text,
+    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, bias_stand_in_comments,
+    commented, finite_axes, provenance, vector_text,
 };
 use thermonav::imu::Sensor;
 use thermonav::nav::sensor_model::GaussMarkovParameters;
@@ -27,8 +27,8 @@ use thermonav::units::{
 /// # Errors
 /// A missing white-noise density or Gauss-Markov model, or a non-finite value.
 pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseExportError> {
-    let gyro = noise.gauss_markov_axes(Sensor::Gyro)?;
-    let accel = noise.gauss_markov_axes(Sensor::Accelerometer)?;
+    let gyro = noise.bias_model_axes(Sensor::Gyro)?;
+    let accel = noise.bias_model_axes(Sensor::Accelerometer)?;
     let sigma = |gm: [GaussMarkovParameters; 3]| gm.map(|m| m.sigma);
     let tc = |gm: [GaussMarkovParameters; 3]| gm.map(|m| m.correlation_time_s);
     let entries = [
@@ -78,6 +78,7 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
         "pass it as imu_model.IMU(accuracy=imu_err, axis=6); axes x forward, y right, z down".to_string(),
         "arw, vrw: continuous densities (gnss-ins-sim draws arw/sqrt(dt) per sample); b_stability, b_corr: first-order Gauss-Markov drift".to_string(),
     ]);
+    comments.extend(bias_stand_in_comments(noise)?);
     let mut body = String::from("import numpy as np\n\nimu_err = {\n");
     for (key, values, note) in entries {
         let values = finite_axes(key, values)?;

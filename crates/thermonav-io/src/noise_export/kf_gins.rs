@@ -13,9 +13,9 @@
 //! a static record does not observe scale factors.
 
 use super::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, commented,
-    common_correlation_time_s, correlation_times_comment, finite, finite_axes, float_text,
-    provenance, vector_text,
+    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, bias_stand_in_comments,
+    commented, common_correlation_time_s, correlation_times_comment, finite, finite_axes,
+    float_text, provenance, vector_text,
 };
 use thermonav::imu::Sensor;
 use thermonav::units::{
@@ -40,8 +40,10 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
     let ppm = finite("gsstd/asstd", ppm)?;
     let arw = noise.axes(Sensor::Gyro, Term::WhiteNoiseDensity)?;
     let vrw = noise.axes(Sensor::Accelerometer, Term::WhiteNoiseDensity)?;
-    let gbstd = noise.axes(Sensor::Gyro, Term::GaussMarkov)?;
-    let abstd = noise.axes(Sensor::Accelerometer, Term::GaussMarkov)?;
+    let gbstd = noise.bias_model_axes(Sensor::Gyro)?.map(|m| m.sigma);
+    let abstd = noise
+        .bias_model_axes(Sensor::Accelerometer)?
+        .map(|m| m.sigma);
     let corrtime_h = common_correlation_time_s(noise)? / SECONDS_PER_HOUR;
     let lines = [
         (
@@ -81,6 +83,7 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
         "arw, vrw: continuous white-noise densities; gbstd, abstd: stationary std of first-order Gauss-Markov biases; KF-GINS discretises with each IMU interval".to_string(),
         correlation_times_comment(noise)?,
     ]);
+    comments.extend(bias_stand_in_comments(noise)?);
     let mut body = String::from("imunoise:\n");
     for (key, values, note) in lines {
         body.push_str(&format!("  {key}: {}  # {note}\n", vector_text(&values)));

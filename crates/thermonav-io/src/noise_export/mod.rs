@@ -13,6 +13,11 @@
 //!   without a Gauss-Markov model either (a record of white noise alone), the largest K the
 //!   Allan curve allows, K = σ(τ) √(3/τ) at its longest τ (IEEE Std 952: σ_K(τ) = K √(τ/3)
 //!   would otherwise lift the curve above its last point); [`bias_random_walk`];
+//! - **Gauss-Markov bias** for tools that need σ and Tc (KF-GINS, OB_GINS, gnss-ins-sim) when
+//!   the bank has none (its part was not significant): the first-order Gauss-Markov that
+//!   reproduces the Allan minimum, σ = B (the minimum / 0.664) and Tc = the τ of the minimum;
+//!   with no minimum inside the curve, the bound on B at its longest τ as σ and that τ as Tc
+//!   ([`AllanStandIn`]);
 //! - **one value for three axes** (Kalibr, OB_GINS, PX4, ArduPilot): the largest of the three,
 //!   so that no axis is given less noise than it has; **one correlation time** for all six
 //!   channels (KF-GINS, OB_GINS): the geometric mean of their Tc (correlation times spread over
@@ -45,7 +50,7 @@ pub mod ros_imu;
 mod selection;
 
 pub use error::NoiseExportError;
-pub use selection::{ChannelNoise, ImuNoise, Term, sensor_channels};
+pub use selection::{AllanStandIn, ChannelNoise, ImuNoise, Term, sensor_channels};
 
 use crate::atomic::write_atomically;
 use crate::error::WriteError;
@@ -285,6 +290,35 @@ fn stand_in_comments(sensor: Sensor, walks: &[BiasRandomWalk; 3]) -> Vec<String>
         .collect()
 }
 
+/// The comment lines saying which Gauss-Markov biases are stand-ins reproducing the Allan
+/// minimum ([`AllanStandIn`]), with the bank's reason for having none.
+///
+/// # Errors
+/// As [`ImuNoise::bias_model`].
+pub fn bias_stand_in_comments(noise: &ImuNoise) -> Result<Vec<String>, NoiseExportError> {
+    let mut lines = Vec::new();
+    for channel in Channel::ALL {
+        let Some(stand_in) = noise.bias_model(channel)?.1 else {
+            continue;
+        };
+        let unit = channel.si_unit(thermonav::imu::SampleKind::Rates);
+        let reason = noise.channels[&channel].absent.get(&Term::GaussMarkov);
+        let rule = if stand_in.at_minimum {
+            "sigma = B = the minimum Allan deviation / 0.664, Tc = the tau of that minimum"
+        } else {
+            "the curve has no minimum inside it: sigma = the bound on B at its longest tau (adev / 0.664), Tc = that tau"
+        };
+        lines.push(format!(
+            "{}: no Gauss-Markov model in the bank ({}); stand-in: a first-order Gauss-Markov reproducing the Allan minimum, {rule}: sigma {} {unit}, Tc {} s",
+            channel.name(),
+            reason.map_or("not in the bank", String::as_str),
+            float_text(stand_in.model.sigma),
+            float_text(stand_in.model.correlation_time_s)
+        ));
+    }
+    Ok(lines)
+}
+
 /// The discrete per-step noise of an EKF that predicts every `dt_s` (PX4 EKF2, ArduPilot
 /// EKF3): N / √dt and K / √dt, the largest of the three axes.
 #[derive(Debug, Clone, PartialEq)]
@@ -338,7 +372,7 @@ pub fn largest(values: [f64; 3]) -> f64 {
 pub fn common_correlation_time_s(noise: &ImuNoise) -> Result<f64, NoiseExportError> {
     let mut log_sum = 0.0;
     for channel in Channel::ALL {
-        log_sum += noise.gauss_markov(channel)?.correlation_time_s.ln();
+        log_sum += noise.bias_model(channel)?.0.correlation_time_s.ln();
     }
     Ok((log_sum / Channel::ALL.len() as f64).exp())
 }
@@ -444,7 +478,7 @@ pub fn placement_words(placement: Placement) -> String {
 fn correlation_times_comment(noise: &ImuNoise) -> Result<String, NoiseExportError> {
     let mut items = Vec::new();
     for channel in Channel::ALL {
-        let tc = noise.gauss_markov(channel)?.correlation_time_s;
+        let tc = noise.bias_model(channel)?.0.correlation_time_s;
         items.push(format!("{} {} s", channel.name(), float_text(tc)));
     }
     Ok(format!(

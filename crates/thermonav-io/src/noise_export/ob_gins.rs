@@ -9,8 +9,9 @@
 
 use super::kf_gins::M_PER_S2_PER_MGAL;
 use super::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, commented,
-    common_correlation_time_s, correlation_times_comment, finite, float_text, largest, provenance,
+    ExportOptions, ImuNoise, NoiseExportError, NoiseFormat, Term, bias_stand_in_comments,
+    commented, common_correlation_time_s, correlation_times_comment, finite, float_text, largest,
+    provenance,
 };
 use thermonav::imu::Sensor;
 use thermonav::units::{
@@ -28,6 +29,9 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
     let accel = |term| -> Result<f64, NoiseExportError> {
         Ok(largest(noise.axes(Sensor::Accelerometer, term)?))
     };
+    let bias_sigma = |sensor| -> Result<f64, NoiseExportError> {
+        Ok(largest(noise.bias_model_axes(sensor)?.map(|m| m.sigma)))
+    };
     let lines = [
         (
             "arw",
@@ -41,12 +45,12 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
         ),
         (
             "gbstd",
-            rad_per_s_to_deg_per_h(gyro(Term::GaussMarkov)?),
+            rad_per_s_to_deg_per_h(bias_sigma(Sensor::Gyro)?),
             "[deg/hr] gyro bias Gauss-Markov std (stationary)",
         ),
         (
             "abstd",
-            accel(Term::GaussMarkov)? / M_PER_S2_PER_MGAL,
+            bias_sigma(Sensor::Accelerometer)? / M_PER_S2_PER_MGAL,
             "[mGal] accelerometer bias Gauss-Markov std (stationary)",
         ),
         (
@@ -62,6 +66,7 @@ pub fn text(noise: &ImuNoise, options: &ExportOptions) -> Result<String, NoiseEx
         "arw, vrw: continuous white-noise densities; gbstd, abstd: stationary std of first-order Gauss-Markov biases".to_string(),
         correlation_times_comment(noise)?,
     ]);
+    comments.extend(bias_stand_in_comments(noise)?);
     let mut body = String::from("imumodel:\n");
     for (key, value, note) in lines {
         body.push_str(&format!(

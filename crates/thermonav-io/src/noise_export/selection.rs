@@ -15,6 +15,7 @@ use thermonav::nav::sensor_model::GaussMarkovParameters;
 use thermonav::stoch::bank::{
     BankError, GaussMarkovSource, ModelBank, Placement, Selection, TemperatureEntry,
 };
+use thermonav::stoch::noise_terms::BIAS_INSTABILITY_FACTOR;
 
 /// A noise quantity of a channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -69,8 +70,51 @@ pub struct ChannelNoise {
     pub rate_random_walk_at_most: Option<f64>,
     /// The Gauss-Markov model of the chosen family.
     pub gauss_markov: Option<GaussMarkovParameters>,
+    /// The first-order Gauss-Markov model that reproduces the Allan minimum, for the formats
+    /// that need a Gauss-Markov bias when the bank has none ([`AllanStandIn`]).
+    pub allan_stand_in: Option<AllanStandIn>,
     /// Why a quantity is absent.
     pub absent: BTreeMap<Term, String>,
+}
+
+/// A first-order Gauss-Markov bias standing in for one the bank does not have (its part was
+/// not significant): σ = B = the minimum Allan deviation / 0.664 and Tc = the τ of that
+/// minimum; where the curve has no minimum inside it (it falls to its end), σ = the bound on B
+/// at its longest τ (σ(τ)/0.664) and Tc = that τ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AllanStandIn {
+    /// The stand-in (σ in the channel's SI unit).
+    pub model: GaussMarkovParameters,
+    /// Whether it is read at a minimum inside the curve (else at its longest τ).
+    pub at_minimum: bool,
+}
+
+impl AllanStandIn {
+    /// The stand-in of an Allan curve, `None` for a curve that is zero or empty.
+    pub fn of_curve(tau_s: &[f64], adev: &[f64]) -> Option<Self> {
+        let positive = adev.iter().enumerate().filter(|(_, sigma)| **sigma > 0.0);
+        let (i, _) = positive.min_by(|a, b| a.1.total_cmp(b.1))?;
+        let last = adev.len().min(tau_s.len()).checked_sub(1)?;
+        let at_minimum = i > 0 && i < last;
+        let k = if at_minimum { i } else { last };
+        let model = GaussMarkovParameters {
+            correlation_time_s: tau_s[k],
+            sigma: adev[k] / BIAS_INSTABILITY_FACTOR,
+        };
+        Some(Self { model, at_minimum })
+    }
+
+    /// Interpolated with `weight` on `upper`.
+    fn between(lower: Option<Self>, upper: Option<Self>, weight: f64) -> Option<Self> {
+        let (a, b) = (lower?, upper?);
+        let lerp = |x: f64, y: f64| x + (y - x) * weight;
+        let model = GaussMarkovParameters {
+            correlation_time_s: lerp(a.model.correlation_time_s, b.model.correlation_time_s),
+            sigma: lerp(a.model.sigma, b.model.sigma),
+        };
+        let at_minimum = a.at_minimum && b.at_minimum;
+        Some(Self { model, at_minimum })
+    }
 }
 
 /// The bank's noise at one temperature: the six channels and the record's rate.
@@ -150,6 +194,39 @@ impl ImuNoise {
         self.channels[&channel]
             .gauss_markov
             .ok_or_else(|| self.missing(channel, Term::GaussMarkov))
+    }
+
+    /// The Gauss-Markov model of `channel`, or where the bank has none its Allan stand-in
+    /// ([`AllanStandIn`], returned beside it).
+    ///
+    /// # Errors
+    /// [`NoiseExportError::MissingTerm`] when there is neither.
+    pub fn bias_model(
+        &self,
+        channel: Channel,
+    ) -> Result<(GaussMarkovParameters, Option<AllanStandIn>), NoiseExportError> {
+        let noise = &self.channels[&channel];
+        match (noise.gauss_markov, noise.allan_stand_in) {
+            (Some(model), _) => Ok((model, None)),
+            (None, Some(stand_in)) => Ok((stand_in.model, Some(stand_in))),
+            (None, None) => Err(self.missing(channel, Term::GaussMarkov)),
+        }
+    }
+
+    /// [`ImuNoise::bias_model`] of the three axes of `sensor`, without the stand-in flags.
+    ///
+    /// # Errors
+    /// As [`ImuNoise::bias_model`].
+    pub fn bias_model_axes(
+        &self,
+        sensor: Sensor,
+    ) -> Result<[GaussMarkovParameters; 3], NoiseExportError> {
+        let [x, y, z] = sensor_channels(sensor);
+        Ok([
+            self.bias_model(x)?.0,
+            self.bias_model(y)?.0,
+            self.bias_model(z)?.0,
+        ])
     }
 
     /// `term` of the three axes x, y, z of `sensor`.
@@ -323,6 +400,7 @@ fn entry_noise(
         rate_random_walk: allan.rate_random_walk,
         rate_random_walk_at_most: at_most,
         gauss_markov: None,
+        allan_stand_in: AllanStandIn::of_curve(&allan.tau_s, &allan.adev),
         absent,
     };
     Ok(without_reasons_of_present(noise))
@@ -373,6 +451,7 @@ fn interpolated(
             upper.rate_random_walk_at_most,
         ),
         gauss_markov: None,
+        allan_stand_in: AllanStandIn::between(lower.allan_stand_in, upper.allan_stand_in, weight),
         absent,
     }
 }
