@@ -11,12 +11,12 @@ use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model};
 use thermonav::evaluation::experiment::{
-    CandidateSource, Replicates, Tournament, TournamentOutcome, TournamentPlan,
+    CandidateSource, DEFAULT_OUTAGES, Replicates, Tournament, TournamentOutcome, TournamentPlan,
 };
 use thermonav::evaluation::metrics::EpochError;
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::scenario::{RecordPlan, ScenarioError, scenario_of_records};
-use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
+use thermonav::nav::engine::{Aiding, BiasHypotheses, EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::report::RunReport;
@@ -24,6 +24,7 @@ use thermonav::nav::run::{
     ModelTemperature, NoiseModel, RunError, RunInput, RunSettings, Start, operating_temperature_c,
     prepare,
 };
+use thermonav::nav::run_options::RunOptions;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::nav::solution::SolutionEpoch;
@@ -147,7 +148,10 @@ fn choice<T: Copy>(what: &str, value: &str, names: &[(&str, T)]) -> PyResult<T> 
         })
 }
 
-fn gauss_markov_of(model: &str) -> PyResult<GaussMarkovSource> {
+fn gauss_markov_of(model: Option<&str>) -> PyResult<GaussMarkovSource> {
+    let Some(model) = model else {
+        return Ok(GaussMarkovSource::default());
+    };
     let names = [
         ("irregular_ml", GaussMarkovSource::IrregularMl),
         ("ar_based", GaussMarkovSource::ArBased),
@@ -166,7 +170,10 @@ fn filters_of(filter: &str) -> PyResult<Vec<FilterKind>> {
     choice("filter", filter, &names).map(<[FilterKind]>::to_vec)
 }
 
-fn outages_of(outages: &str) -> PyResult<OutageSpec> {
+fn outages_of(outages: Option<&str>, default: OutageSpec) -> PyResult<OutageSpec> {
+    let Some(outages) = outages else {
+        return Ok(default);
+    };
     outages
         .parse()
         .map_err(|e| error(format!("outages {outages:?}: {e}")))
@@ -201,16 +208,16 @@ fn geometry_of(
 fn temperature_of(
     model_temperature_c: Option<f64>,
     operating_temperature_c: Option<f64>,
-    select: &str,
+    select: Option<&str>,
 ) -> PyResult<ModelTemperature> {
-    let selection = choice(
-        "select",
-        select,
-        &[
-            ("nearest", Selection::Nearest),
-            ("linear", Selection::Linear),
-        ],
-    )?;
+    let names = [
+        ("nearest", Selection::Nearest),
+        ("linear", Selection::Linear),
+    ];
+    let selection = match select {
+        Some(select) => choice("select", select, &names)?,
+        None => Selection::default(),
+    };
     match (model_temperature_c, operating_temperature_c) {
         (Some(_), Some(_)) => Err(error(
             "give model_temperature_c or operating_temperature_c, not both",
@@ -246,41 +253,99 @@ fn compensation_of(compensation: bool) -> Compensation {
     }
 }
 
-/// The filter's settings of `integrate`'s keywords (rates in Hz, sd in m/s).
-struct EngineKeywords {
-    filter: FilterKind,
-    covariance_rate_hz: Option<f64>,
-    output_rate_hz: Option<f64>,
+/// The run options of `integrate` and `evaluate` (the CLI's, with the same names: rates in
+/// Hz, sd in m/s), each `None` for the library's default ([`RunOptions::default`]).
+struct RunKeywords {
+    model: Option<String>,
+    process_noise_scale: Option<f64>,
     velocity_sd_m_s: Option<Vec<f64>>,
+    velocity: Option<bool>,
+    heading: Option<bool>,
     gate_probability: Option<f64>,
+    gate_window: Option<usize>,
+    lever_arm_m: Option<[f64; 3]>,
+    baseline: Option<[f64; 3]>,
+    covariance_rate_hz: Option<f64>,
     max_imu_gap_s: Option<f64>,
-    aiding: Aiding,
-    smooth: bool,
+    bias_hypotheses: Option<usize>,
 }
 
-impl EngineKeywords {
-    fn settings(&self, geometry: AntennaGeometry) -> PyResult<EngineSettings> {
-        let d = EngineSettings::default();
-        if self.smooth && self.filter != FilterKind::Ekf {
-            return Err(error(
-                "smooth: the RTS smoother runs on the EKF's covariance; use filter=\"ekf\"",
-            ));
-        }
-        Ok(EngineSettings {
-            filter: self.filter,
-            covariance_interval_s: (self.covariance_rate_hz.map(|r| 1.0 / r))
-                .unwrap_or(d.covariance_interval_s),
-            output_interval_s: (self.output_rate_hz.map(|r| 1.0 / r))
-                .unwrap_or(d.output_interval_s),
+impl RunKeywords {
+    /// The run options, resolved the one way for both functions.
+    fn options(&self) -> PyResult<RunOptions> {
+        let d = RunOptions::default();
+        let positive_or = |name, value: Option<f64>, default| match value {
+            Some(v) => positive(name, v),
+            None => Ok(default),
+        };
+        Ok(RunOptions {
+            gauss_markov: gauss_markov_of(self.model.as_deref())?,
+            process_noise_scale: positive_or(
+                "process_noise_scale",
+                self.process_noise_scale,
+                d.process_noise_scale,
+            )?,
             velocity_sd_m_s: velocity_sd(self.velocity_sd_m_s.as_deref(), d.velocity_sd_m_s)?,
             gate_probability: gate_of(self.gate_probability, d.gate_probability)?,
-            max_imu_gap_s: self.max_imu_gap_s.unwrap_or(d.max_imu_gap_s),
-            geometry,
-            aiding: self.aiding,
-            smooth: self.smooth,
-            ..d
+            gate_window: self.gate_window.unwrap_or(d.gate_window),
+            aiding: Aiding {
+                position: true,
+                velocity: self.velocity.unwrap_or(d.aiding.velocity),
+                heading: self.heading.unwrap_or(d.aiding.heading),
+            },
+            geometry: geometry_of(self.lever_arm_m, self.baseline)?,
+            max_imu_gap_s: positive_or("max_imu_gap_s", self.max_imu_gap_s, d.max_imu_gap_s)?,
+            covariance_interval_s: match self.covariance_rate_hz {
+                Some(r) => 1.0 / positive("covariance_rate_hz", r)?,
+                None => d.covariance_interval_s,
+            },
+            bias_hypotheses: bias_hypotheses(self.bias_hypotheses)?,
         })
     }
+}
+
+/// `bias_hypotheses=N`: none for 1 (or not given), the default split with N members otherwise.
+fn bias_hypotheses(members: Option<usize>) -> PyResult<Option<BiasHypotheses>> {
+    match members {
+        None | Some(1) => Ok(None),
+        Some(members) => {
+            let hypotheses = BiasHypotheses {
+                members,
+                ..BiasHypotheses::default()
+            };
+            (hypotheses.split()).map_err(|e| error(format!("bias_hypotheses {members}: {e}")))?;
+            Ok(Some(hypotheses))
+        }
+    }
+}
+
+/// `integrate`'s engine: the run options with its filter, output rate and smoother.
+fn integrate_engine(
+    options: &RunOptions,
+    filter: FilterKind,
+    output_rate_hz: Option<f64>,
+    smooth: bool,
+) -> PyResult<EngineSettings> {
+    let d = EngineSettings::default();
+    if smooth && filter != FilterKind::Ekf {
+        return Err(error(
+            "smooth: the RTS smoother runs on the EKF's covariance; use filter=\"ekf\"",
+        ));
+    }
+    if smooth && options.bias_hypotheses.is_some() {
+        return Err(error(
+            "bias_hypotheses with smooth: a Gaussian sum has no single forward history to smooth",
+        ));
+    }
+    Ok(options.engine(EngineSettings {
+        filter,
+        output_interval_s: match output_rate_hz {
+            Some(r) => 1.0 / positive("output_rate_hz", r)?,
+            None => d.output_interval_s,
+        },
+        smooth,
+        ..d
+    }))
 }
 
 /// One value for every axis, or north, east, down (m/s).
@@ -349,10 +414,10 @@ fn integrate_result<'py>(
 }
 
 /// The GNSS/INS filter on an IMU and a GNSS file (module docs of the Python package:
-/// `thermonav.integrate`).
+/// `thermonav.integrate`). A keyword left at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select="nearest", model="irregular_ml", filter="ekf", outages="none", lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, max_imu_gap_s=None, process_noise_scale=1.0, velocity=true, heading=true, schedule=true, compensation=true, smooth=false))]
+#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select=None, model=None, filter="ekf", outages=None, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, smooth=false))]
 pub fn integrate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -361,10 +426,10 @@ pub fn integrate<'py>(
     profile: Option<PathBuf>,
     model_temperature_c: Option<f64>,
     operating_temperature_c: Option<f64>,
-    select: &str,
-    model: &str,
+    select: Option<&str>,
+    model: Option<String>,
     filter: &str,
-    outages: &str,
+    outages: Option<&str>,
     lever_arm_m: Option<[f64; 3]>,
     baseline: Option<[f64; 3]>,
     initial_from: Option<PathBuf>,
@@ -372,10 +437,12 @@ pub fn integrate<'py>(
     output_rate_hz: Option<f64>,
     velocity_sd_m_s: Option<Vec<f64>>,
     gate_probability: Option<f64>,
+    gate_window: Option<usize>,
     max_imu_gap_s: Option<f64>,
-    process_noise_scale: f64,
-    velocity: bool,
-    heading: bool,
+    process_noise_scale: Option<f64>,
+    bias_hypotheses: Option<usize>,
+    velocity: Option<bool>,
+    heading: Option<bool>,
     schedule: bool,
     compensation: bool,
     smooth: bool,
@@ -383,29 +450,30 @@ pub fn integrate<'py>(
     let [filter] = filters_of(filter)?[..] else {
         return Err(error("filter: expected \"ekf\" or \"ukf\""));
     };
-    let keywords = EngineKeywords {
-        filter,
-        covariance_rate_hz,
-        output_rate_hz,
+    let options = RunKeywords {
+        model,
+        process_noise_scale,
         velocity_sd_m_s,
+        velocity,
+        heading,
         gate_probability,
+        gate_window,
+        lever_arm_m,
+        baseline,
+        covariance_rate_hz,
         max_imu_gap_s,
-        aiding: Aiding {
-            position: true,
-            velocity,
-            heading,
-        },
-        smooth,
-    };
+        bias_hypotheses,
+    }
+    .options()?;
     let temperature = temperature_of(model_temperature_c, operating_temperature_c, select)?;
     let settings = RunSettings {
         temperature,
         scheduling: temperature.scheduling(scheduling_of(schedule)),
         compensation: compensation_of(compensation),
-        gauss_markov: gauss_markov_of(model)?,
-        engine: keywords.settings(geometry_of(lever_arm_m, baseline)?)?,
-        outages: outages_of(outages)?,
-        process_noise_scale: positive("process_noise_scale", process_noise_scale)?,
+        gauss_markov: options.gauss_markov,
+        engine: integrate_engine(&options, filter, output_rate_hz, smooth)?,
+        outages: outages_of(outages, OutageSpec::None)?,
+        process_noise_scale: options.process_noise_scale,
     };
     let files = Files {
         imu,
@@ -414,7 +482,9 @@ pub fn integrate<'py>(
     };
     let (report, solution, notes) =
         py.detach(|| run_files(&files, initial_from.as_deref(), &settings))?;
-    integrate_result(py, &report, &solution, notes)
+    let out = integrate_result(py, &report, &solution, notes)?;
+    out.set_item("run_options", to_python(py, &options)?)?;
+    Ok(out)
 }
 
 fn positive(name: &str, value: f64) -> PyResult<f64> {
@@ -501,21 +571,21 @@ fn evaluate_result<'py>(
 /// The tournament's options besides the files.
 struct TournamentKeywords {
     operating_temperature_c: Option<f64>,
-    source: GaussMarkovSource,
+    options: RunOptions,
     filters: Vec<FilterKind>,
     outages: OutageSpec,
     extra_replicates: usize,
     seed: u64,
-    engine: EngineSettings,
     scheduling: Scheduling,
     compensation: Compensation,
 }
 
 /// The temperature-model tournament on one data set (module docs of the Python package:
-/// `thermonav.evaluate`).
+/// `thermonav.evaluate`): every candidate runs with `integrate`'s run keywords. A keyword left
+/// at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, operating_temperature_c=None, model="irregular_ml", filter="both", outages="spread:8,100", monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, max_imu_gap_s=None, heading=true, schedule=true, compensation=true, datasheet=None, truth=None))]
+#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
 pub fn evaluate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -524,15 +594,22 @@ pub fn evaluate<'py>(
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
     operating_temperature_c: Option<f64>,
-    model: &str,
+    model: Option<String>,
     filter: &str,
-    outages: &str,
+    outages: Option<&str>,
     monte_carlo: usize,
     seed: u64,
     lever_arm_m: Option<[f64; 3]>,
     baseline: Option<[f64; 3]>,
+    covariance_rate_hz: Option<f64>,
+    velocity_sd_m_s: Option<Vec<f64>>,
+    gate_probability: Option<f64>,
+    gate_window: Option<usize>,
     max_imu_gap_s: Option<f64>,
-    heading: bool,
+    process_noise_scale: Option<f64>,
+    bias_hypotheses: Option<usize>,
+    velocity: Option<bool>,
+    heading: Option<bool>,
     schedule: bool,
     compensation: bool,
     datasheet: Option<PathBuf>,
@@ -541,28 +618,30 @@ pub fn evaluate<'py>(
     if monte_carlo == 0 {
         return Err(error("monte_carlo must be at least 1"));
     }
-    let defaults = EngineSettings::default();
+    let options = RunKeywords {
+        model,
+        process_noise_scale,
+        velocity_sd_m_s,
+        velocity,
+        heading,
+        gate_probability,
+        gate_window,
+        lever_arm_m,
+        baseline,
+        covariance_rate_hz,
+        max_imu_gap_s,
+        bias_hypotheses,
+    }
+    .options()?;
     let keywords = TournamentKeywords {
         operating_temperature_c: operating_temperature_c
             .map(|t| finite("operating_temperature_c", t))
             .transpose()?,
-        source: gauss_markov_of(model)?,
+        options,
         filters: filters_of(filter)?,
-        outages: outages_of(outages)?,
+        outages: outages_of(outages, DEFAULT_OUTAGES)?,
         extra_replicates: monte_carlo - 1,
         seed,
-        engine: EngineSettings {
-            geometry: geometry_of(lever_arm_m, baseline)?,
-            aiding: Aiding {
-                heading,
-                ..Aiding::default()
-            },
-            max_imu_gap_s: positive(
-                "max_imu_gap_s",
-                max_imu_gap_s.unwrap_or(defaults.max_imu_gap_s),
-            )?,
-            ..defaults
-        },
         scheduling: scheduling_of(schedule),
         compensation: compensation_of(compensation),
     };
@@ -573,7 +652,9 @@ pub fn evaluate<'py>(
     };
     let extra = (reference, datasheet, truth);
     let outcome = py.detach(|| tournament_of_files(&files, extra, &keywords))?;
-    evaluate_result(py, &outcome)
+    let out = evaluate_result(py, &outcome)?;
+    out.set_item("run_options", to_python(py, &keywords.options)?)?;
+    Ok(out)
 }
 
 /// Reads the files, makes the scenario and runs the tournament (without the GIL).
@@ -602,7 +683,7 @@ fn tournament_of_files(
         &records.series,
         records.gnss.clone(),
         points,
-        (&k.engine, &k.outages),
+        (&k.options.engine(EngineSettings::default()), &k.outages),
         plan,
     )
     .map_err(refused)?;
@@ -617,13 +698,15 @@ fn tournament_of_files(
         noise: records.noise.source(),
         thermal: ThermalOptions::of_scenario(&main, k.scheduling, k.compensation),
         operating_temperature_c: operating_c,
-        source: k.source,
+        source: k.options.gauss_markov,
         filters: k.filters.clone(),
         datasheet: Some(datasheet_model(profile.as_ref(), &scale).map_err(named)?),
         scale,
         oracle: truth.as_ref(),
     };
-    let tournament = Tournament::new(&plan).map_err(error)?;
+    let tournament = Tournament::new(&plan)
+        .map_err(error)?
+        .with_process_noise_scale(k.options.process_noise_scale);
     let replicates = Replicates::ShiftedOutages {
         extra: k.extra_replicates,
         seed: k.seed,

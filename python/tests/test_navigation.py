@@ -117,6 +117,26 @@ def test_evaluate_equals_the_clis_evaluation_json_and_error_csvs(binary, data, t
                 assert np.array_equal(model.errors[name], table[name]), (model.label, name)
 
 
+def test_evaluate_takes_the_run_keywords_of_integrate_as_the_cli_does(binary, data, tmp_path):
+    outages = "35+20,80+20"
+    cli(binary, "evaluate", "--imu", data["imu"], "--gnss", data["gnss"], "--reference",
+        data["reference"], "--bank", data["bank"], "--outages", outages, "--filter", "ekf",
+        "--lever-arm-m", "0.3,0,-2.5", "--process-noise-scale", 3, "--gate-window", 0,
+        "--velocity-sd-m-s", "0.2", "--no-schedule", "--no-compensation", "--out", tmp_path)
+    document = json.loads((tmp_path / "evaluation.json").read_text())
+    ours = thermonav.evaluate(data["imu"], data["gnss"], data["reference"], bank=data["bank"],
+                              outages=outages, filter="ekf", lever_arm_m=LEVER_ARM,
+                              process_noise_scale=3, gate_window=0, velocity_sd_m_s=[0.2],
+                              schedule=False, compensation=False)
+    assert ours["run_options"] == document["run_options"]
+    assert document["run_options"]["process_noise_scale"] == 3.0
+    assert [m.rms_horizontal_m for m in ours.models] == [
+        m["rms_horizontal_m"] for m in document["models"]]
+    run = thermonav.integrate(data["imu"], data["gnss"], bank=data["bank"], lever_arm_m=LEVER_ARM,
+                              process_noise_scale=3, gate_window=0, velocity_sd_m_s=[0.2])
+    assert run["run_options"] == ours["run_options"]
+
+
 def test_a_bad_imu_file_names_its_line(data, tmp_path):
     bad = tmp_path / "imu.csv"
     lines = data["imu"].read_text().splitlines()

@@ -359,10 +359,10 @@ def integrate(
     *,
     model_temperature_c: float | None = None,
     operating_temperature_c: float | None = None,
-    select: Literal["nearest", "linear"] = "nearest",
-    model: GaussMarkovSource = "irregular_ml",
+    select: Literal["nearest", "linear"] | None = None,
+    model: GaussMarkovSource | None = None,
     filter: Literal["ekf", "ukf"] = "ekf",
-    outages: str = "none",
+    outages: str | None = None,
     lever_arm_m: Triple | None = None,
     baseline: Triple | None = None,
     initial_from: Path | None = None,
@@ -370,17 +370,22 @@ def integrate(
     output_rate_hz: float | None = None,
     velocity_sd_m_s: float | Sequence[float] | None = None,
     gate_probability: float | None = None,
+    gate_window: int | None = None,
     max_imu_gap_s: float | None = None,
-    process_noise_scale: float = 1.0,
-    velocity: bool = True,
-    heading: bool = True,
+    process_noise_scale: float | None = None,
+    bias_hypotheses: int | None = None,
+    velocity: bool | None = None,
+    heading: bool | None = None,
     schedule: bool = True,
     compensation: bool = True,
     smooth: bool = False,
 ) -> Integration:
     """The 21-state GNSS/INS filter on an IMU CSV and a GNSS CSV with the noise model of a
     ``bank`` (``bank.json``) or a sensor ``profile`` (TOML), as ``thermonav integrate`` (its
-    ``--json`` and its solution files, to the last bit; the keywords are its options).
+    ``--json`` and its solution files, to the last bit; the keywords are its options, and one
+    left at ``None`` takes the library's default: nearest selection, the ``irregular_ml``
+    family, no outages, a process noise scale of 1, ...). ``run_options`` in the result is
+    the resolved run options, as ``evaluate`` reports its own.
 
     The model: at ``model_temperature_c`` (degrees Celsius, nearest entry, one model for the
     run), or at the operating temperature (``operating_temperature_c``, or the IMU file's mean
@@ -401,15 +406,22 @@ def evaluate(
     profile: Path | None = None,
     *,
     operating_temperature_c: float | None = None,
-    model: GaussMarkovSource = "irregular_ml",
+    model: GaussMarkovSource | None = None,
     filter: Literal["ekf", "ukf", "both"] = "both",
-    outages: str = "spread:8,100",
+    outages: str | None = None,
     monte_carlo: int = 1,
     seed: int = 2009,
     lever_arm_m: Triple | None = None,
     baseline: Triple | None = None,
+    covariance_rate_hz: float | None = None,
+    velocity_sd_m_s: float | Sequence[float] | None = None,
+    gate_probability: float | None = None,
+    gate_window: int | None = None,
     max_imu_gap_s: float | None = None,
-    heading: bool = True,
+    process_noise_scale: float | None = None,
+    bias_hypotheses: int | None = None,
+    velocity: bool | None = None,
+    heading: bool | None = None,
     schedule: bool = True,
     compensation: bool = True,
     datasheet: Path | None = None,
@@ -421,7 +433,12 @@ def evaluate(
     against the ``reference`` trajectory inside the GNSS ``outages``, the ranking, and with
     ``monte_carlo`` > 1 its significance over outage starts shifted by the ``seed``'s named
     stream. ``datasheet``: a profile for the data-sheet candidate (default the ADIS16364 data
-    sheet); ``truth``: a simulated survey's truth.json for the oracle candidates.
+    sheet); ``truth``: a simulated survey's truth.json for the oracle candidates. Every
+    candidate runs with ``integrate``'s run keywords (``process_noise_scale``,
+    ``velocity_sd_m_s``, ``gate_probability``, ``gate_window``, ``covariance_rate_hz``,
+    ``velocity``, ``heading``, ``lever_arm_m``, ``baseline``, ``max_imu_gap_s``,
+    ``bias_hypotheses``, ``model``), reported resolved as ``run_options``; a keyword left at
+    ``None`` takes the library's default (``outages``: spread:8,100).
     """
 
 class Bank:

@@ -3,10 +3,11 @@
 use crate::thermal_calibration::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use thermonav::evaluation::experiment::DEFAULT_OUTAGES;
 use thermonav::mounting::Mounting;
 use thermonav::nav::engine::EngineSettings;
-use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::run_options::RunOptions;
 use thermonav::nav::time_offset::TimeOffsetSearch;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::signal::wavelet::daubechies::Daubechies;
@@ -17,10 +18,15 @@ use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
 use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
 use thermonav::stoch::allan::{DEFAULT_CONFIDENCE, DeviationKind};
+use thermonav::stoch::bank::{GaussMarkovSource, Selection};
 use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM};
 
 fn engine() -> EngineSettings {
     EngineSettings::default()
+}
+
+fn run_options() -> RunOptions {
+    RunOptions::default()
 }
 
 fn campaign() -> CampaignSettings {
@@ -207,45 +213,28 @@ pub struct EvaluateArgs {
     /// Leave out the candidates on the thermally compensated record.
     #[arg(long)]
     pub no_compensation: bool,
-    /// Ignore dual-antenna headings.
-    #[arg(long)]
-    pub no_heading: bool,
     /// A simulated survey's truth.json (`simulate vessel`): adds the oracle candidates, the
     /// true model scheduled by temperature on the raw record and on the record without the
     /// true bias(T), ranked apart, and every model's gap to the better of them.
     #[arg(long)]
     pub truth: Option<PathBuf>,
-    /// The sensor's operating temperature, °C (default: the mean of the IMU's temp_c column).
-    #[arg(long, allow_hyphen_values = true)]
-    pub operating_temperature_c: Option<f64>,
-    /// Which Gauss-Markov family of the bank drives the bias states.
-    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
-    pub model: GmSourceArg,
+    #[command(flatten)]
+    pub run: RunOptionArgs,
     /// Filters to run.
     #[arg(long, value_enum, default_value_t = FiltersArg::Both)]
     pub filter: FiltersArg,
     /// Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT,
     /// in seconds on the files' t_s scale; after rel: (rel:265+10) in seconds from the first
-    /// IMU sample (from the reference's first point when no IMU is given). Default
-    /// spread:8,100; required with --solution.
-    #[arg(long)]
+    /// IMU sample (from the reference's first point when no IMU is given). Required with
+    /// --solution.
+    #[arg(long, help = with_default("Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT, in seconds on the files' t_s scale; after rel: (rel:265+10) in seconds from the first IMU sample (from the reference's first point when no IMU is given). Required with --solution", DEFAULT_OUTAGES))]
     pub outages: Option<OutageSpec>,
     /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
     #[arg(long, default_value_t = 1)]
     pub monte_carlo: usize,
-    /// Longest IMU interval the filter crosses, s: a longer gap in the record is refused
-    /// (naming where it is) instead of being dead-reckoned on one held rate.
-    #[arg(long, default_value_t = engine().max_imu_gap_s)]
-    pub max_imu_gap_s: f64,
     /// Seed of the outage shifts.
     #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
-    /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().lever_arm_body_m)]
-    pub lever_arm_m: Vec<f64>,
-    /// Dual-antenna baseline direction in body axes (primary to secondary).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().baseline_body)]
-    pub baseline: Vec<f64>,
     /// The data-sheet candidate from this sensor profile (TOML, as `simulate profile`
     /// writes): its model at its reference temperature. Default: the ADIS16364 data sheet
     /// (ARW, in-run bias stability / 0.62, a 1 h correlation time).
@@ -324,6 +313,66 @@ pub enum FilterArg {
     Ukf,
 }
 
+/// The options that decide how one filter run goes, the same in `integrate` (its one run)
+/// and `evaluate` (every candidate's run): resolved by `settings::navigation::run_options`
+/// into the library's `RunOptions`, whose defaults these are.
+#[derive(Debug, Args)]
+pub struct RunOptionArgs {
+    /// The sensor's operating temperature, °C: integrate selects its model there with
+    /// --select, evaluate stands its interpolated candidate there. Without it (or integrate's
+    /// --model-temperature-c), the mean of the IMU file's temp_c column.
+    #[arg(long, allow_hyphen_values = true)]
+    pub operating_temperature_c: Option<f64>,
+    /// Which Gauss-Markov family of the bank drives the bias states.
+    #[arg(long, value_enum, default_value_t = run_options().gauss_markov.into())]
+    pub model: GmSourceArg,
+    /// Multiplies the white-noise densities (ARW, VRW) of the model (in evaluate, of every
+    /// candidate but the oracle): vibration on a vehicle raises the effective noise above a
+    /// static record's (1 = the model as characterised).
+    #[arg(long, default_value_t = run_options().process_noise_scale)]
+    pub process_noise_scale: f64,
+    /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none): one
+    /// value for all three axes, or north,east,down.
+    #[arg(long, value_delimiter = ',', default_values_t = run_options().velocity_sd_m_s)]
+    pub velocity_sd_m_s: Vec<f64>,
+    /// Ignore GNSS velocities.
+    #[arg(long)]
+    pub no_velocity: bool,
+    /// Ignore dual-antenna headings.
+    #[arg(long)]
+    pub no_heading: bool,
+    /// Probability of the chi-square innovation gate (e.g. 0.9999), or 1 to accept every
+    /// update.
+    #[arg(long, default_value_t = run_options().gate_probability.unwrap_or(1.0))]
+    pub gate_probability: f64,
+    /// The gate's quantile is widened by the median NIS of this many recent updates of the same
+    /// kind over its expected median (at most 100x), so that a run of fixes whose stated noise
+    /// is too small is not thrown away while isolated outliers still are; 0 keeps the plain gate.
+    #[arg(long, default_value_t = run_options().gate_window)]
+    pub gate_window: usize,
+    /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = run_options().geometry.lever_arm_body_m)]
+    pub lever_arm_m: Vec<f64>,
+    /// Dual-antenna baseline direction in body axes (primary to secondary).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = run_options().geometry.baseline_body)]
+    pub baseline: Vec<f64>,
+    /// Covariance propagation rate, Hz (the nominal state is mechanized at every IMU sample).
+    #[arg(long, default_value_t = 1.0 / run_options().covariance_interval_s)]
+    pub covariance_rate_hz: f64,
+    /// Longest IMU interval the filter crosses, s: a longer gap in the record is refused
+    /// (naming where it is) instead of being dead-reckoned on one held rate.
+    #[arg(long, default_value_t = run_options().max_imu_gap_s)]
+    pub max_imu_gap_s: f64,
+    /// Split the z-gyro bias prior into a Gaussian sum of this many filters run in lockstep
+    /// (odd, at least 9; weighted by their innovations, the unlikely ones dropped) so that the
+    /// heading's sd stays honest when nothing observes the heading directly: position-only
+    /// GNSS with a large turn-on gyro bias. Costs up to that many filters until the heading
+    /// has been seen (in evaluate, for every candidate). 1 (the default) runs one filter. Not
+    /// with integrate's --smooth.
+    #[arg(long, default_value_t = 1)]
+    pub bias_hypotheses: usize,
+}
+
 /// Arguments of `integrate`.
 #[derive(Debug, Args)]
 pub struct IntegrateArgs {
@@ -349,84 +398,40 @@ pub struct IntegrateArgs {
     #[arg(long)]
     pub thermal_from: Option<PathBuf>,
     /// Use the bank's model at this temperature, °C (the paper's "model of temperature T").
+    /// Integrate only: a tournament's candidates are the models at their own temperatures.
     #[arg(
         long,
         conflicts_with = "operating_temperature_c",
         allow_hyphen_values = true
     )]
     pub model_temperature_c: Option<f64>,
-    /// The sensor's operating temperature, °C; the model is selected with --select. Without
-    /// either temperature, the mean of the IMU file's temp_c column is used.
-    #[arg(long, allow_hyphen_values = true)]
-    pub operating_temperature_c: Option<f64>,
-    /// How to select the model at the operating temperature.
-    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    /// How to select the model at the operating temperature. Integrate only: a tournament
+    /// runs the nearest entries and the interpolated model as candidates of their own.
+    #[arg(long, value_enum, default_value_t = Selection::default().into())]
     pub select: SelectArg,
-    /// Which Gauss-Markov family of the bank drives the bias states.
-    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
-    pub model: GmSourceArg,
-    /// The filter.
+    /// The filter (evaluate's --filter takes ukf, ekf or both).
     #[arg(long, value_enum, default_value_t = FilterArg::Ekf)]
     pub filter: FilterArg,
+    #[command(flatten)]
+    pub run: RunOptionArgs,
     /// GNSS outages: START+DURATION[,START+DURATION...], every:FIRST,DURATION,PERIOD,COUNT or
     /// spread:COUNT,DURATION (seconds on the files' t_s scale).
     #[arg(long, default_value = "none")]
     pub outages: OutageSpec,
-    /// Primary antenna relative to the IMU in body axes (forward,right,down), m.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().lever_arm_body_m)]
-    pub lever_arm_m: Vec<f64>,
-    /// Dual-antenna baseline direction in body axes (primary to secondary).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = AntennaGeometry::default().baseline_body)]
-    pub baseline: Vec<f64>,
     /// Start from this reference trajectory's state at the first GNSS epoch instead of
-    /// aligning from GNSS and the accelerometers.
+    /// aligning from GNSS and the accelerometers (evaluate always starts from --reference).
     #[arg(long)]
     pub initial_from: Option<PathBuf>,
-    /// Longest IMU interval the filter crosses, s: a longer gap in the record is refused
-    /// (naming where it is) instead of being dead-reckoned on one held rate.
-    #[arg(long, default_value_t = engine().max_imu_gap_s)]
-    pub max_imu_gap_s: f64,
-    /// Covariance propagation rate, Hz (the nominal state is mechanized at every IMU sample).
-    #[arg(long, default_value_t = 1.0 / engine().covariance_interval_s)]
-    pub covariance_rate_hz: f64,
-    /// Solution output rate, Hz.
+    /// Solution output rate, Hz. Integrate only: it shapes the solution file; a tournament
+    /// scores its errors at the default rate.
     #[arg(long, default_value_t = 1.0 / engine().output_interval_s)]
     pub output_rate_hz: f64,
-    /// Probability of the chi-square innovation gate (e.g. 0.9999), or 1 to accept every
-    /// update.
-    #[arg(long, default_value_t = engine().gate_probability.unwrap_or(1.0))]
-    pub gate_probability: f64,
-    /// The gate's quantile is widened by the median NIS of this many recent updates of the same
-    /// kind over its expected median (at most 100x), so that a run of fixes whose stated noise
-    /// is too small is not thrown away while isolated outliers still are; 0 keeps the plain gate.
-    #[arg(long, default_value_t = engine().gate_window)]
-    pub gate_window: usize,
-    /// Standard deviation of GNSS velocities, m/s (the canonical GNSS CSV carries none): one
-    /// value for all three axes, or north,east,down.
-    #[arg(long, value_delimiter = ',', default_values_t = engine().velocity_sd_m_s)]
-    pub velocity_sd_m_s: Vec<f64>,
-    /// Multiplies the white-noise densities (ARW, VRW) of the model: vibration on a vehicle
-    /// raises the effective noise above a static record's (1 = the model as characterised).
-    #[arg(long, default_value_t = 1.0)]
-    pub process_noise_scale: f64,
-    /// Ignore GNSS velocities.
-    #[arg(long)]
-    pub no_velocity: bool,
-    /// Split the z-gyro bias prior into a Gaussian sum of this many filters run in lockstep
-    /// (odd, at least 9; weighted by their innovations, the unlikely ones dropped) so that the
-    /// heading's sd stays honest when nothing observes the heading directly: position-only
-    /// GNSS with a large turn-on gyro bias. Costs up to that many filters until the heading
-    /// has been seen. 1 (the default) runs one filter. Not with --smooth.
-    #[arg(long, default_value_t = 1)]
-    pub bias_hypotheses: usize,
     /// Do not level the start and take the gyro biases from the platform standing still at
     /// the record's start (by default done when the fixes stay put for 5 s or more before the
-    /// alignment fix; the run's report says so).
+    /// alignment fix; the run's report says so). Integrate only: a tournament starts every
+    /// run from the reference, aligning none.
     #[arg(long)]
     pub no_static_alignment: bool,
-    /// Ignore dual-antenna headings.
-    #[arg(long)]
-    pub no_heading: bool,
     /// One model for the whole run (at the mean or given temperature) instead of the model at
     /// the IMU's temp_c at every covariance step. A given --model-temperature-c or
     /// --operating-temperature-c also fixes the model.
@@ -444,6 +449,9 @@ pub struct IntegrateArgs {
     /// Estimate the IMU-GNSS time offset (added to the IMU times, as convert
     /// --time-offset-s) that maximises the innovations' likelihood over the run, within
     /// ±--time-offset-bracket-s, and run at it; reported with its sd. Reads the record whole.
+    /// Integrate only: the likelihood is one model's, and a tournament whose candidates ran at
+    /// offsets of their own would not compare models on the same data (shift the record with
+    /// convert --time-offset-s to evaluate at an offset).
     #[arg(long)]
     pub estimate_time_offset: bool,
     /// Half-width of the offsets --estimate-time-offset searches, s.
@@ -802,10 +810,10 @@ pub struct BankExportArgs {
     pub temperature_c: Option<f64>,
     /// Noise formats: the entry nearest --temperature-c, or linear interpolation between the
     /// two around it.
-    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    #[arg(long, value_enum, default_value_t = Selection::default().into())]
     pub method: SelectArg,
     /// Noise formats: which Gauss-Markov family gives the bias model.
-    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    #[arg(long, value_enum, default_value_t = GaussMarkovSource::default().into())]
     pub model: GmSourceArg,
     /// Kalibr: the IMU's ROS topic.
     #[arg(long, default_value = "/imu0")]
@@ -893,10 +901,10 @@ pub struct BankShowArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub at_temperature_c: Option<f64>,
     /// Selection rule for --at-temperature-c.
-    #[arg(long, value_enum, default_value_t = SelectArg::Nearest)]
+    #[arg(long, value_enum, default_value_t = Selection::default().into())]
     pub method: SelectArg,
     /// Which Gauss-Markov family.
-    #[arg(long, value_enum, default_value_t = GmSourceArg::IrregularMl)]
+    #[arg(long, value_enum, default_value_t = GaussMarkovSource::default().into())]
     pub model: GmSourceArg,
     /// Print one JSON document instead of text.
     #[arg(long)]
@@ -1446,6 +1454,26 @@ impl From<GmSourceArg> for thermonav::stoch::bank::GaussMarkovSource {
             GmSourceArg::ArBased => Self::ArBased,
             GmSourceArg::AcfFit => Self::AcfFit,
             GmSourceArg::Gmwm => Self::Gmwm,
+        }
+    }
+}
+
+impl From<GaussMarkovSource> for GmSourceArg {
+    fn from(m: GaussMarkovSource) -> Self {
+        match m {
+            GaussMarkovSource::IrregularMl => Self::IrregularMl,
+            GaussMarkovSource::ArBased => Self::ArBased,
+            GaussMarkovSource::AcfFit => Self::AcfFit,
+            GaussMarkovSource::Gmwm => Self::Gmwm,
+        }
+    }
+}
+
+impl From<Selection> for SelectArg {
+    fn from(m: Selection) -> Self {
+        match m {
+            Selection::Nearest => Self::Nearest,
+            Selection::Linear => Self::Linear,
         }
     }
 }

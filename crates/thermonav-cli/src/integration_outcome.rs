@@ -10,6 +10,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thermonav::nav::report::RunReport;
 use thermonav::nav::run::{RunError, RunInput};
+use thermonav::nav::run_options::RunOptions;
 use thermonav::nav::solution::SolutionEpoch;
 use thermonav::nav::time_offset::TimeOffsetEstimate;
 use thermonav::trajectory::TrajectoryPoint;
@@ -36,6 +37,8 @@ pub struct Summary {
     /// and the search.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time_offset: Option<TimeOffsetEstimate>,
+    /// How the run went (the options `evaluate` repeats for every candidate's run).
+    pub run_options: RunOptions,
     /// The run's report.
     #[serde(flatten)]
     pub run: RunReport,
@@ -71,6 +74,7 @@ pub(crate) fn summarize(
         thermal_from: settings.thermal_from.clone(),
         imu_reading,
         time_offset: None,
+        run_options: settings.run.options(),
         run,
         files: settings.outputs.clone(),
     }

@@ -24,6 +24,7 @@ use thermonav::imu::ImuSeries;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::outage::{Outage, OutageSpec};
 use thermonav::nav::run::RunInput;
+use thermonav::nav::run_options::RunOptions;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::{
     ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
@@ -39,9 +40,26 @@ pub struct EvaluationFile {
     /// The `--imu-rotation` the IMU record was turned by, when given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub imu_rotation: Option<String>,
+    /// How every candidate's run went (`evaluate`'s run options, as `integrate --json`
+    /// reports its own; absent when no filter ran, and from the demo's tournaments, which set
+    /// their runs themselves).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_options: Option<RunOptions>,
     /// This file.
     pub report_file: PathBuf,
 }
+
+/// What evaluation.json repeats of the command line beside the report.
+#[derive(Debug, Clone, Default)]
+pub struct Echo {
+    /// How the IMU record was read (its `--imu-rotation`).
+    pub imu_options: ImuOptions,
+    /// The run options of every candidate's run.
+    pub run_options: Option<RunOptions>,
+}
+
+/// The echo as evaluation.json writes it: the rotation's text and the run options.
+pub type EchoText = (Option<String>, Option<RunOptions>);
 
 /// The scenario of the files (start from the reference at the first fix, default initial
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
@@ -111,7 +129,7 @@ pub fn run_and_write(
     main: &Scenario,
     replicates: &Replicates,
     outside: &[OutsideResult],
-    (out, imu): (&Path, &ImuOptions),
+    (out, echo): (&Path, &Echo),
 ) -> Result<EvaluationFile, Failure> {
     let bar = crate::progress::bar(tournament.runs(replicates), "tournament runs");
     let outcome = tournament
@@ -119,17 +137,21 @@ pub fn run_and_write(
         .map_err(|e| anyhow!("{e}"))
         .data()?;
     bar.finish_and_clear();
-    let rotation = crate::settings::imu::rotation_text(imu);
-    write_outcome((outcome.report, &outcome.main), outside, (out, rotation))
+    let text = (
+        crate::settings::imu::rotation_text(&echo.imu_options),
+        echo.run_options.clone(),
+    );
+    write_outcome((outcome.report, &outcome.main), outside, (out, text))
 }
 
 /// Adds the `outside` solutions' rows to `report`, writes the per-model error CSVs of the
 /// main run `main` under `out/errors` and `out/evaluation.json` (with the `--imu-rotation`
-/// text, when given), and returns what was written (also the end of `evaluate merge`).
+/// text and the run options, when given), and returns what was written (also the end of
+/// `evaluate merge`).
 pub fn write_outcome(
     (mut report, main): (TournamentReport, &[ModelResult]),
     outside: &[OutsideResult],
-    (out, imu_rotation): (&Path, Option<String>),
+    (out, echo): (&Path, EchoText),
 ) -> Result<EvaluationFile, Failure> {
     report.add_outside(outside);
     let ours = main.iter().map(|r| {
@@ -137,7 +159,7 @@ pub fn write_outcome(
         (format!("{}_{}", r.filter.name(), slug(&r.label)), errors)
     });
     let errors: Vec<_> = ours.chain(outside_errors(outside)).collect();
-    write_evaluation(report, &errors, (out, imu_rotation))
+    write_evaluation(report, &errors, (out, echo))
 }
 
 /// Scores only outside solutions (no filter runs) and writes their error CSVs and
@@ -149,7 +171,7 @@ pub fn write_outside_only(
 ) -> Result<EvaluationFile, Failure> {
     let report = TournamentReport::outside_only(outages, outside);
     let errors: Vec<_> = outside_errors(outside).collect();
-    write_evaluation(report, &errors, (out, None))
+    write_evaluation(report, &errors, (out, (None, None)))
 }
 
 /// The error-CSV names and errors of outside solutions.
@@ -168,7 +190,7 @@ fn outside_errors(
 fn write_evaluation(
     mut report: TournamentReport,
     errors: &[(String, Option<&[Vec<EpochError>]>)],
-    (out, imu_rotation): (&Path, Option<String>),
+    (out, (imu_rotation, run_options)): (&Path, EchoText),
 ) -> Result<EvaluationFile, Failure> {
     // Every number is checked before the first file is written: a report that cannot be
     // written leaves no error table behind.
@@ -187,6 +209,7 @@ fn write_evaluation(
     let file = EvaluationFile {
         report,
         imu_rotation,
+        run_options,
         report_file: out.join("evaluation.json"),
     };
     // The folder exists already when an error CSV was written, not when every run failed.

@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{Replicates, Tournament};
 use thermonav::evaluation::scenario::Scenario;
 use thermonav::evaluation::shard::{Shard, TournamentShard, merge_shards};
+use thermonav::nav::run_options::RunOptions;
 use thermonav_io::write_json_atomically;
 
 /// What a shard file holds.
@@ -24,6 +25,9 @@ struct ShardFile {
     tournament: TournamentShard,
     /// The `--imu-rotation` the IMU record was turned by, when given (for evaluation.json).
     imu_rotation: Option<String>,
+    /// The run options of every candidate's run (for evaluation.json).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    run_options: Option<RunOptions>,
 }
 
 /// What `evaluate --shard` reports.
@@ -73,6 +77,7 @@ pub fn run_and_write_shard(
     let file = ShardFile {
         tournament: sharded,
         imu_rotation: crate::settings::imu::rotation_text(&run.files.imu_options),
+        run_options: Some(s.options.clone()),
     };
     crate::campaign::create_folder(&s.out)?;
     write_json_atomically(&written.shard_file, &file).data()?;
@@ -113,18 +118,15 @@ fn fingerprint(s: &EvaluateSettings, run: &FilterRun) -> Result<BTreeMap<String,
 /// between the jobs of one tournament).
 fn settings_text(s: &EvaluateSettings, run: &FilterRun) -> String {
     format!(
-        "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {} {} {:?} {:?} {:?}",
+        "{:?} {:?} {:?} {:?} {:?} {:?} {} {} {:?}",
         s.scheduling,
         s.compensation,
-        s.aiding,
+        s.options,
         s.operating_temperature_c,
-        s.source,
         s.filters,
         s.outages,
         s.extra_replicates,
         s.seed,
-        s.geometry,
-        s.max_imu_gap_s,
         run.files.imu_options,
     )
 }
@@ -170,11 +172,15 @@ pub fn merge(args: &EvaluateMergeArgs) -> Result<EvaluationFile, Failure> {
         .output_folder("per-model error folder", &args.out.join("errors"))
         .check()?;
     let read: Vec<(String, ShardFile)> = files.iter().map(read_shard).collect::<Result<_, _>>()?;
-    let rotation = read.first().and_then(|(_, f)| f.imu_rotation.clone());
+    // The fingerprint (checked by the merge) makes the shards' rotation and options one.
+    let echo = match read.first() {
+        Some((_, f)) => (f.imu_rotation.clone(), f.run_options.clone()),
+        None => (None, None),
+    };
     let shards: Vec<(String, TournamentShard)> =
         read.into_iter().map(|(n, f)| (n, f.tournament)).collect();
     let merged = merge_shards(&shards).map_err(|e| anyhow!("{e}")).data()?;
-    write_outcome((merged.report, &merged.main), &[], (&args.out, rotation))
+    write_outcome((merged.report, &merged.main), &[], (&args.out, echo))
 }
 
 /// The shard files of each argument: a file itself, or a folder's `shard-*-of-*.json` in

@@ -10,7 +10,7 @@ use crate::loaded_noise::load_noise;
 use crate::report::print_json;
 use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use crate::tournament_files::{
-    EvaluationFile, RecordPlan, check_some_model_ran, print_tournament_table, run_and_write,
+    Echo, EvaluationFile, RecordPlan, check_some_model_ran, print_tournament_table, run_and_write,
     scenario_from_files, write_outside_only,
 };
 use crate::tournament_shards;
@@ -105,7 +105,7 @@ fn run_filters(
         &main,
         &replicates_of(s),
         &outside,
-        (&s.out, &run.files.imu_options),
+        (&s.out, &echo(s, run)),
     )
 }
 
@@ -118,7 +118,7 @@ fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenari
         oracle: truth.as_ref(),
         ..RecordPlan::calibrated(noise.thermal(), s.compensation)
     };
-    let engine = engine_settings(s);
+    let engine = s.options.engine(EngineSettings::default());
     let (main, operating_c) = scenario_from_files(
         &run.files,
         engine,
@@ -130,23 +130,24 @@ fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenari
         noise: noise.source(),
         thermal: ThermalOptions::of_scenario(&main, s.scheduling, s.compensation),
         operating_temperature_c: operating_c,
-        source: s.source,
+        source: s.options.gauss_markov,
         filters: s.filters.clone(),
         datasheet: Some(datasheet_model(s.datasheet.as_deref())?),
         scale,
         oracle: truth.as_ref(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
-    Ok((tournament, main))
+    Ok((
+        tournament.with_process_noise_scale(s.options.process_noise_scale),
+        main,
+    ))
 }
 
-/// The filter settings of `s` (outages are laid over the data later).
-fn engine_settings(s: &EvaluateSettings) -> EngineSettings {
-    EngineSettings {
-        geometry: s.geometry,
-        aiding: s.aiding,
-        max_imu_gap_s: s.max_imu_gap_s,
-        ..EngineSettings::default()
+/// What evaluation.json repeats of the command line: the IMU's rotation and the run options.
+fn echo(s: &EvaluateSettings, run: &FilterRun) -> Echo {
+    Echo {
+        imu_options: run.files.imu_options,
+        run_options: Some(s.options.clone()),
     }
 }
 

@@ -2,20 +2,19 @@
 
 use super::paths::Io;
 use super::{antenna_geometry, finite, positive};
-use crate::args::{EvaluateArgs, IntegrateArgs};
+use crate::args::{EvaluateArgs, IntegrateArgs, RunOptionArgs};
 use crate::failure::Failure;
 use anyhow::anyhow;
 use std::path::{Path, PathBuf};
-use thermonav::evaluation::experiment::MAX_REPLICATES;
+use thermonav::evaluation::experiment::{DEFAULT_OUTAGES, MAX_REPLICATES};
 use thermonav::evaluation::shard::Shard;
 use thermonav::nav::engine::BiasHypotheses;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
-use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
+use thermonav::nav::run_options::RunOptions;
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::static_alignment::StaticAlignment;
 use thermonav::nav::time_offset::TimeOffsetSearch;
-use thermonav::stoch::bank::GaussMarkovSource;
 use thermonav_io::ImuOptions;
 use thermonav_io::outside_solution::SolutionFormat;
 
@@ -137,6 +136,7 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         false => SolutionFiles::beside(&args.out),
     };
     let noise = noise_source(&args.bank, &args.profile)?;
+    let options = run_options(&args.run)?;
     let temperature = model_temperature(args)?;
     let io = Io::new()
         .input("--imu", &args.imu)
@@ -159,10 +159,10 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
             scheduling: scheduling_of(args.no_schedule, &temperature),
             compensation: compensation_of(args.no_compensation),
             temperature,
-            gauss_markov: args.model.into(),
-            engine: engine_settings(args)?,
+            gauss_markov: options.gauss_markov,
+            engine: integrate_engine(args, &options)?,
             outages: args.outages.clone(),
-            process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
+            process_noise_scale: options.process_noise_scale,
         },
         initial_from: args.initial_from.clone(),
         thermal_from: args.thermal_from.clone(),
@@ -239,43 +239,61 @@ fn model_temperature(args: &IntegrateArgs) -> Result<ModelTemperature, Failure> 
     if let Some(t) = args.model_temperature_c {
         return Ok(ModelTemperature::Fixed(finite("--model-temperature-c", t)?));
     }
-    let given_c = args
-        .operating_temperature_c
-        .map(|t| finite("--operating-temperature-c", t))
-        .transpose()?;
     Ok(ModelTemperature::Operating {
-        given_c,
+        given_c: operating_temperature(&args.run)?,
         selection: args.select.into(),
     })
 }
 
-fn engine_settings(args: &IntegrateArgs) -> Result<EngineSettings, Failure> {
-    Ok(EngineSettings {
-        filter: args.filter.into(),
-        covariance_interval_s: 1.0 / rate("--covariance-rate-hz", args.covariance_rate_hz)?,
+/// `--operating-temperature-c`, when given.
+fn operating_temperature(args: &RunOptionArgs) -> Result<Option<f64>, Failure> {
+    (args.operating_temperature_c)
+        .map(|t| finite("--operating-temperature-c", t))
+        .transpose()
+}
+
+/// The run options of `integrate` and `evaluate`, resolved the one way for both.
+pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
+    Ok(RunOptions {
+        gauss_markov: args.model.into(),
+        process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
+        velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
         gate_probability: gate_of(args.gate_probability)?,
         gate_window: args.gate_window,
-        velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
-        output_interval_s: 1.0 / rate("--output-rate-hz", args.output_rate_hz)?,
-        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         aiding: Aiding {
             position: true,
             velocity: !args.no_velocity,
             heading: !args.no_heading,
         },
+        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
+        covariance_interval_s: 1.0 / rate("--covariance-rate-hz", args.covariance_rate_hz)?,
+        bias_hypotheses: bias_hypotheses(args.bias_hypotheses)?,
+    })
+}
+
+/// `integrate`'s engine: the run options with its filter, output rate, smoother and static
+/// alignment.
+fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<EngineSettings, Failure> {
+    if options.bias_hypotheses.is_some() && args.smooth {
+        return Err(Failure::Usage(anyhow!(
+            "--bias-hypotheses with --smooth: a Gaussian sum has no single forward history to smooth"
+        )));
+    }
+    Ok(options.engine(EngineSettings {
+        filter: args.filter.into(),
+        output_interval_s: 1.0 / rate("--output-rate-hz", args.output_rate_hz)?,
         smooth: args.smooth,
-        bias_hypotheses: bias_hypotheses(args.bias_hypotheses, args.smooth)?,
         static_alignment: match args.no_static_alignment {
             true => StaticAlignment::Off,
             false => StaticAlignment::WhenStill,
         },
         ..EngineSettings::default()
-    })
+    }))
 }
 
 /// `--bias-hypotheses N`: none for 1, the default split with N members otherwise.
-fn bias_hypotheses(members: usize, smooth: bool) -> Result<Option<BiasHypotheses>, Failure> {
+fn bias_hypotheses(members: usize) -> Result<Option<BiasHypotheses>, Failure> {
     if members == 1 {
         return Ok(None);
     }
@@ -286,11 +304,6 @@ fn bias_hypotheses(members: usize, smooth: bool) -> Result<Option<BiasHypotheses
     hypotheses
         .split()
         .map_err(|e| Failure::Usage(anyhow!("--bias-hypotheses {members}: {e}")))?;
-    if smooth {
-        return Err(Failure::Usage(anyhow!(
-            "--bias-hypotheses with --smooth: a Gaussian sum has no single forward history to smooth"
-        )));
-    }
     Ok(Some(hypotheses))
 }
 
@@ -387,12 +400,10 @@ pub struct EvaluateSettings {
     pub scheduling: Scheduling,
     /// Whether the compensated candidates compete.
     pub compensation: Compensation,
-    /// Measurements used.
-    pub aiding: Aiding,
+    /// How every candidate's run goes.
+    pub options: RunOptions,
     /// Operating temperature, °C (default: the IMU's mean temp_c).
     pub operating_temperature_c: Option<f64>,
-    /// Gauss-Markov family.
-    pub source: GaussMarkovSource,
     /// Filters, in report order.
     pub filters: Vec<FilterKind>,
     /// Outages as given.
@@ -401,10 +412,6 @@ pub struct EvaluateSettings {
     pub extra_replicates: usize,
     /// Seed of the shifts.
     pub seed: u64,
-    /// Antennas.
-    pub geometry: AntennaGeometry,
-    /// Longest IMU interval the filter crosses, s.
-    pub max_imu_gap_s: f64,
     /// The profile of the data-sheet candidate (none: the ADIS16364 data sheet).
     pub datasheet: Option<PathBuf>,
     /// A simulated survey's truth, for the oracle candidates.
@@ -416,14 +423,11 @@ pub struct EvaluateSettings {
 }
 
 /// The outages of `evaluate`: as given, required with outside solutions (their solver had its
-/// own), `spread:8,100` otherwise.
+/// own), [`DEFAULT_OUTAGES`] otherwise.
 fn evaluate_outages(args: &EvaluateArgs) -> Result<OutageSpec, Failure> {
     match (&args.outages, args.solution.is_empty()) {
         (Some(spec), _) => Ok(spec.clone()),
-        (None, true) => Ok(OutageSpec::Spread {
-            count: 8,
-            duration_s: 100.0,
-        }),
+        (None, true) => Ok(DEFAULT_OUTAGES),
         (None, false) => Err(Failure::Usage(anyhow!(
             "--solution needs --outages: the outages the outside solver withheld GNSS in (scoring assumes them)"
         ))),
@@ -498,21 +502,12 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
             false => Scheduling::default(),
         },
         compensation: compensation_of(args.no_compensation),
-        aiding: Aiding {
-            heading: !args.no_heading,
-            ..Aiding::default()
-        },
-        operating_temperature_c: args
-            .operating_temperature_c
-            .map(|t| finite("--operating-temperature-c", t))
-            .transpose()?,
-        source: args.model.into(),
+        options: run_options(&args.run)?,
+        operating_temperature_c: operating_temperature(&args.run)?,
         filters: args.filter.kinds(),
         outages: evaluate_outages(args)?,
         extra_replicates: replicates(args.monte_carlo)? - 1,
         seed: args.seed,
-        geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
-        max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
         datasheet: args.datasheet.clone(),
         truth: args.truth.clone(),
         out: required(&args.out, "--out")?,

@@ -16,7 +16,7 @@ use super::scenario::Scenario;
 use super::shard::{Shard, TournamentShard, merge_shards, stored_run};
 use super::tournament::{ModelResult, run_selected};
 use crate::nav::engine::FilterKind;
-use crate::nav::outage::OutageError;
+use crate::nav::outage::{OutageError, OutageSpec};
 use crate::nav::schedule::Compensation;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
@@ -27,6 +27,14 @@ use std::collections::BTreeMap;
 /// The most replicates a tournament runs (each is a run of every candidate through every
 /// filter: 1000 replicates of the demo's 28 runs take hours already).
 pub const MAX_REPLICATES: usize = 1000;
+
+/// The outages of a tournament when none are given: eight windows of 100 s spread over the
+/// data (a wrong model's drift grows with the cube of time, so outages of minutes tell the
+/// models apart).
+pub const DEFAULT_OUTAGES: OutageSpec = OutageSpec::Spread {
+    count: 8,
+    duration_s: 100.0,
+};
 
 /// Where a tournament's candidates come from.
 #[derive(Debug, Clone, Copy)]
@@ -188,6 +196,22 @@ impl Tournament {
             source: plan.source,
             filters: plan.filters.clone(),
         })
+    }
+
+    /// The tournament with every candidate's white-noise densities multiplied by `factor`
+    /// (as `process_noise_scale` does to one run's model), the oracle's excepted: it is the
+    /// simulator's truth, which no tuning changes.
+    pub fn with_process_noise_scale(mut self, factor: f64) -> Self {
+        if factor == 1.0 {
+            return self;
+        }
+        for candidate in (self.candidates.iter_mut()).filter(|c| !c.kind.is_oracle()) {
+            candidate.model.scale_white_noise(factor);
+            if let Some(grid) = &mut candidate.schedule {
+                std::sync::Arc::make_mut(grid).scale_white_noise(factor);
+            }
+        }
+        self
     }
 
     /// The competing candidates.

@@ -42,7 +42,7 @@ use crate::ins::state::Increment;
 use crate::time::{Duration, Timestamp};
 use crate::units::wrap_pi;
 use nalgebra::{SMatrix, SVector, Vector3};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::convert::Infallible;
 
 /// Which filter carries the error state.
@@ -69,7 +69,7 @@ impl FilterKind {
 }
 
 /// Which GNSS measurements to use when a fix carries them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Aiding {
     /// Antenna position.
     pub position: bool,
@@ -173,7 +173,7 @@ impl Default for EngineSettings {
 pub const MAX_BIAS_HYPOTHESES: usize = 201;
 
 /// How the z-gyro bias prior is split.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct BiasHypotheses {
     /// Members of the sum (odd, so that one sits at the prior's mean; 1 is a single filter).
     pub members: usize,

@@ -16,10 +16,10 @@ use crate::geo::position::Geodetic;
 use crate::ins::error_model::{STATES, block};
 use crate::units::wrap_pi;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Antenna set-up in the body frame.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct AntennaGeometry {
     /// Primary antenna phase centre relative to the IMU, body axes (forward, right, down), m.
     pub lever_arm_body_m: [f64; 3],

@@ -43,6 +43,7 @@ pub mod process_model;
 pub mod profile_model;
 pub mod report;
 pub mod run;
+pub mod run_options;
 pub mod schedule;
 pub mod sensor_model;
 pub mod smoother;

@@ -25,6 +25,7 @@ use super::error_state::Estimate;
 use super::measurement::AntennaGeometry;
 use super::navigate::run_scheduled;
 use super::outage::{OutageError, OutageSpec};
+use super::run_options::{DEFAULT_PROCESS_NOISE_SCALE, RunOptions};
 use super::schedule::{
     Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,
     Scheduling, TemperatureTrack, compensate_record,
@@ -64,7 +65,7 @@ impl Default for ModelTemperature {
     fn default() -> Self {
         Self::Operating {
             given_c: None,
-            selection: Selection::Nearest,
+            selection: Selection::default(),
         }
     }
 }
@@ -136,11 +137,18 @@ impl Default for RunSettings {
             temperature: ModelTemperature::default(),
             scheduling: Scheduling::default(),
             compensation: Compensation::default(),
-            gauss_markov: GaussMarkovSource::IrregularMl,
+            gauss_markov: GaussMarkovSource::default(),
             engine: EngineSettings::default(),
             outages: OutageSpec::None,
-            process_noise_scale: 1.0,
+            process_noise_scale: DEFAULT_PROCESS_NOISE_SCALE,
         }
+    }
+}
+
+impl RunSettings {
+    /// The options that decide how the filter runs (see [`RunOptions`]).
+    pub fn options(&self) -> RunOptions {
+        RunOptions::of_engine(&self.engine, self.gauss_markov, self.process_noise_scale)
     }
 }
 

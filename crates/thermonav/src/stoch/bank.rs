@@ -212,13 +212,15 @@ static NO_GMWM: std::sync::LazyLock<GaussMarkovEstimate> =
             .into(),
     });
 
-/// Which of the three Gauss-Markov models to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// Which of the Gauss-Markov models to use (the default: the exact likelihood on the
+/// irregular timestamps, see DESIGN.md).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GaussMarkovSource {
     /// AR(1)-based (the paper's).
     ArBased,
     /// Exact maximum likelihood on the irregular timestamps.
+    #[default]
     IrregularMl,
     /// Fit to the autocorrelation.
     AcfFit,
@@ -247,11 +249,12 @@ pub enum GaussMarkovEstimate {
     },
 }
 
-/// How to pick a model for an operating temperature.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// How to pick a model for an operating temperature (the default: the nearest entry).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Selection {
     /// The entry at the nearest temperature.
+    #[default]
     Nearest,
     /// Linear interpolation of Tc and σ between the bracketing entries.
     Linear,
