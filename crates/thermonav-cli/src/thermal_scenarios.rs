@@ -544,7 +544,7 @@ impl Survey<'_> {
             noise: CandidateSource::Bank(self.bank),
             thermal,
             operating_temperature_c,
-            source: GaussMarkovSource::IrregularMl,
+            source: GaussMarkovSource::default(),
             filters: vec![FilterKind::Ekf],
             datasheet: None,
             scale: ScaleFactorPrior::default(),

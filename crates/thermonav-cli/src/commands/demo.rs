@@ -34,7 +34,9 @@ use std::path::Path;
 use std::time::Instant;
 use thermonav::evaluation::candidates::DatasheetValues;
 use thermonav::evaluation::candidates::ThermalOptions;
-use thermonav::evaluation::experiment::{CandidateSource, Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::experiment::{
+    CandidateSource, DEFAULT_OUTAGES, Replicates, Tournament, TournamentPlan,
+};
 use thermonav::evaluation::scenario::Scenario;
 use thermonav::imu::Channel;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
@@ -80,10 +82,7 @@ fn scenario_plan(quick: bool, seed: u64) -> ScenarioPlan {
         repeat_duration_s: 300.0,
         survey_s: 1800.0,
         survey_rate_hz: 50.0,
-        outages: OutageSpec::Spread {
-            count: 8,
-            duration_s: 100.0,
-        },
+        outages: DEFAULT_OUTAGES,
         // (b)'s replicates are new surveys: its lead over the far models (66-73 m) needs 11-13
         // of them for p < 0.01 with 80 % power (the demo prints the count per comparison).
         replicates: if quick { 12 } else { 14 },
@@ -120,10 +119,7 @@ fn plan(quick: bool) -> Plan {
             duration_s: 10_800.0,
             rate_hz: 200.0,
             vessel_s: 1800.0,
-            outages: OutageSpec::Spread {
-                count: 8,
-                duration_s: 100.0,
-            },
+            outages: DEFAULT_OUTAGES,
             replicates: 5,
             filters: vec![FilterKind::Ukf, FilterKind::Ekf],
         }
@@ -380,7 +376,7 @@ fn tournament_plan<'a>(
             compensation: PAPER_SETUP_THERMAL.1,
         },
         operating_temperature_c,
-        source: GaussMarkovSource::IrregularMl,
+        source: GaussMarkovSource::default(),
         filters,
         datasheet: Some(DatasheetValues::adis16364().model(&ScaleFactorPrior::default())),
         scale: ScaleFactorPrior::default(),
@@ -447,14 +443,13 @@ fn solution_settings(
             },
             scheduling: Scheduling::Fixed,
             compensation: Compensation::default(),
-            gauss_markov: GaussMarkovSource::IrregularMl,
             engine: EngineSettings {
                 filter: FilterKind::Ukf,
                 geometry: survey_geometry(),
                 ..EngineSettings::default()
             },
             outages: p.outages.clone(),
-            process_noise_scale: 1.0,
+            ..RunSettings::default()
         },
         initial_from: Some(files.reference.clone()),
         thermal_from: None,
