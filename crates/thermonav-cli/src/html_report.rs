@@ -26,14 +26,18 @@ use thermonav_plot::figures::navigation::{
 use thermonav_plot::figures::thermal::{thermal_bias_figure, thermal_bias_panels};
 use thermonav_plot::html::{Block, InlineFigure, Page, Section, Table, render_page};
 
-/// Builds DIR/report.html and returns its path.
+/// Builds DIR/report.html and returns its path: from what `demo` (or `characterize` +
+/// `evaluate`) wrote, or from a folder `evaluate` wrote (the tournament alone).
 pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
+    if !dir.join("bank.json").is_file() && dir.join("evaluation.json").is_file() {
+        return write_tournament_report(dir);
+    }
     let bank = read_bank(&required(dir, "bank.json")?)?;
     let demo = read_json_if_present(&dir.join("demo.json"))?;
     let evaluation = read_json_if_present(&dir.join("evaluation/evaluation.json"))?;
     let mut sections = vec![run_section(dir, demo.as_ref()), models_section(&bank)];
     if let Some(e) = &evaluation {
-        sections.push(navigation_section(dir, e)?);
+        sections.push(navigation_section(dir, &dir.join("evaluation"), e)?);
     }
     if let Some(d) = &demo {
         sections.extend(crate::html_temperature::temperature_sections(d));
@@ -48,8 +52,29 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
     Ok(out)
 }
 
+/// The report of a folder `evaluate --out DIR` wrote: what was run and the tournament, without
+/// the noise-model sections (they need characterize's bank.json).
+fn write_tournament_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
+    let path = dir.join("evaluation.json");
+    let evaluation = read_json_if_present(&path)?
+        .ok_or_else(|| anyhow!("{}: missing; report DIR reads {LAYOUT}", path.display()))
+        .data()?;
+    let mut run = run_section(dir, None);
+    run.blocks.push(paragraph(TOURNAMENT_ONLY));
+    let page = Page {
+        title: "thermonav report: tournament".into(),
+        sections: vec![run, navigation_section(dir, dir, &evaluation)?],
+    };
+    let out = dir.join("report.html");
+    write_html(&out, &render_page(&page))?;
+    Ok(out)
+}
+
+/// What the report of an evaluate folder leaves out, and how to have it.
+const TOURNAMENT_ONLY: &str = "This folder holds a tournament alone (evaluate --out DIR): the noise-model sections need the bank, as characterize --out DIR/bank.json with the tournament in DIR/evaluation (evaluate --out DIR/evaluation).";
+
 /// The layout `report DIR` reads, in words (for its help and its errors).
-pub const LAYOUT: &str = "DIR/bank.json (required: characterize --out DIR/bank.json); optional: DIR/demo.json, DIR/evaluation/evaluation.json with its errors/ (evaluate --out DIR/evaluation), DIR/vessel/reference.csv, DIR/solution/solution.innovations.csv (integrate --out DIR/solution/solution.csv)";
+pub const LAYOUT: &str = "DIR/bank.json (required: characterize --out DIR/bank.json); optional: DIR/demo.json, DIR/evaluation/evaluation.json with its errors/ (evaluate --out DIR/evaluation), DIR/vessel/reference.csv, DIR/solution/solution.innovations.csv (integrate --out DIR/solution/solution.csv); or a folder evaluate wrote: DIR/evaluation.json with its errors/ (evaluate --out DIR), reported without the bank's sections";
 
 /// `dir/name`, or a data error naming it and the layout.
 fn required(dir: &Path, name: &str) -> Result<std::path::PathBuf, Failure> {
@@ -219,17 +244,14 @@ fn correlation_figure(bank: &ModelBank) -> Block {
 
 /// The survey, the errors in the first outage, the RMS against temperature, the innovations,
 /// the ranking and its significance.
-fn navigation_section(dir: &Path, e: &Value) -> Result<Section, Failure> {
+/// `evaluation_dir` holds evaluation.json and its errors/.
+fn navigation_section(dir: &Path, evaluation_dir: &Path, e: &Value) -> Result<Section, Failure> {
     let models = array(e, "models");
     let filters = filters_of(e);
     let mut blocks = Vec::new();
     blocks.extend(survey_figure(dir, &outages_of(e))?);
     if let Some(filter) = filters.first() {
-        blocks.extend(first_outage_figure(
-            models,
-            filter,
-            &dir.join("evaluation"),
-        )?);
+        blocks.extend(first_outage_figure(models, filter, evaluation_dir)?);
     }
     blocks.extend(rms_figures(models, &filters));
     blocks.extend(innovations_block(dir)?);

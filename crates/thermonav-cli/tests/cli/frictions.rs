@@ -409,3 +409,73 @@ fn exports_needing_a_gauss_markov_bias_write_the_allan_stand_in() {
     let largest = stand_ins[..3].iter().map(|s| s.0).fold(0.0, f64::max);
     close(numbers_of(&ob, "gbstd")[0], largest * deg_h, "ob gbstd");
 }
+
+/// A simulated 300 s vessel survey (imu.csv, gnss.csv, reference.csv) in `dir/v`.
+fn vessel(dir: &Path) -> PathBuf {
+    let out = dir.join("v");
+    let args = [
+        "simulate",
+        "vessel",
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--duration-s",
+        "300",
+        "--out",
+        arg(&out),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    out
+}
+
+/// `evaluate` of the survey in `v` with the built-in profile, the EKF and two outages.
+fn evaluate(v: &Path, out: &Path, extra: &[&str]) -> (i32, String, String) {
+    let files = ["imu.csv", "gnss.csv", "reference.csv"].map(|f| v.join(f));
+    let args = [
+        "evaluate",
+        "--imu",
+        arg(&files[0]),
+        "--gnss",
+        arg(&files[1]),
+        "--reference",
+        arg(&files[2]),
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--filter",
+        "ekf",
+        "--outages",
+        "spread:2,30",
+        "--out",
+        arg(out),
+    ];
+    outcome(&thermonav(&[&args[..], extra].concat()))
+}
+
+/// Row 12: `report DIR` on the folder `evaluate` wrote makes the tournament's report, without
+/// the bank's sections; a folder with neither names both layouts.
+#[test]
+fn report_of_a_folder_evaluate_wrote_is_the_tournament() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = vessel(dir.path());
+    let out = dir.path().join("ev");
+    let (status, _, stderr) = evaluate(&v, &out, &["--json"]);
+    assert_eq!(status, 0, "{stderr}");
+    let (status, stdout, stderr) = outcome(&thermonav(&["report", arg(&out)]));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("report.html"), "{stdout}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let evaluation = json(&std::fs::read_to_string(out.join("evaluation.json")).unwrap());
+    for model in evaluation["models"].as_array().unwrap() {
+        let label = model["label"].as_str().unwrap().replace('&', "&amp;");
+        assert!(html.contains(&label), "{label} not in the report");
+    }
+    assert!(html.contains("tournament alone") && !html.contains("Allan deviation at"));
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let (status, _, stderr) = outcome(&thermonav(&["report", arg(&empty)]));
+    assert_eq!(status, 1, "{stderr}");
+    assert!(
+        stderr.contains("bank.json: missing") && stderr.contains("evaluate --out DIR"),
+        "{stderr}"
+    );
+}
