@@ -511,8 +511,8 @@ pub struct StreamedImu {
     pub samples: usize,
     /// Header stamp minus record time of the IMU messages, when asked for.
     pub stamp_lag_s: Option<StampLag>,
-    /// The bag's topics with their counts, the messages of the temperature topics kept (and
-    /// those of the `NavSatFix` topics when [`StreamOptions::gnss`] asks), the IMU's not.
+    /// The bag's topics with their counts, the messages of the `NavSatFix` topics kept when
+    /// [`StreamOptions::gnss`] asks (no other message).
     pub bag: Bag,
 }
 
@@ -613,10 +613,10 @@ impl Sink for Samples<'_> {
 /// in two passes record by record and
 /// handed to `deliver` in pieces of `piece_len` samples (at least 1) as they are decoded, each
 /// with `temp_c` from the temperature topic as [`imu_series`] assigns it: memory is a piece
-/// and the temperature messages (and 8 bytes a sample when `options` ask for the
-/// [`StampLag`]), whatever the bag's length. The first pass lists the topics and keeps the
-/// temperature messages (and the `NavSatFix` ones when asked); the second decodes the chosen
-/// IMU topic. The topics
+/// and the chosen temperature topic's values (16 bytes a message; and 8 bytes a sample when
+/// `options` ask for the [`StampLag`]), whatever the bag's length. The first pass lists the
+/// topics (and keeps the `NavSatFix` messages when asked); the second decodes the chosen
+/// temperature topic, the third the chosen IMU topic. The topics
 /// are chosen, and every sample checked, as [`imu_series`] does.
 ///
 /// # Errors
@@ -638,8 +638,8 @@ pub fn stream_imu_series(
     let mut survey = Keeping {
         bag: Bag::new(format),
         kinds: match gnss {
-            true => &[MessageType::Temperature, MessageType::NavSatFix],
-            false => &[MessageType::Temperature],
+            true => &[MessageType::NavSatFix],
+            false => &[],
         },
     };
     super::read_bag_into(path, format, &mut survey)?;
@@ -652,7 +652,7 @@ pub fn stream_imu_series(
         .unwrap_or(usize::MAX);
     let temperature = temperature_topic(&bag, choice.temperature, &input)?;
     let temperatures = match temperature {
-        Some(t) => Some(temperature_records(t, &input)?),
+        Some(t) => Some(stream_temperatures(path, &bag, t, &input)?),
         None => None,
     };
     let mut samples = Samples {
@@ -724,4 +724,85 @@ pub fn stream_imu_extract(
         time: TIME_NOTE,
     };
     Ok((extract, streamed.bag))
+}
+
+/// The sink of the temperature pass: topic `target`'s messages decoded and checked as
+/// [`temperature_records`] does, 16 bytes a message.
+struct Temperatures {
+    bag: Bag,
+    target: usize,
+    name: String,
+    records: Vec<(Timestamp, f64)>,
+}
+
+impl Sink for Temperatures {
+    fn topic_index(&mut self, name: &str, type_name: &str, encoding: Encoding) -> usize {
+        self.bag.topic_index(name, type_name, encoding)
+    }
+
+    fn wants(&self, k: usize) -> bool {
+        k == self.target
+    }
+
+    fn push(
+        &mut self,
+        k: usize,
+        _log_time_ns: i64,
+        offset: u64,
+        data: &[u8],
+        input: &str,
+    ) -> Result<(), ReadError> {
+        let index = self.bag.topics[k].count;
+        self.bag.count(k);
+        let t = decode_temperature(data, &self.bag.topics[k].encoding, input, offset)?;
+        if t.temperature_c.is_nan() {
+            return Ok(());
+        }
+        if let Some(problem) = temperature_problem(t.temperature_c) {
+            return Err(topic_error(
+                input,
+                format!("at byte {offset}: {} message {index}: {problem}", self.name),
+            ));
+        }
+        self.records
+            .push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
+        Ok(())
+    }
+
+    fn count(&mut self, k: usize) {
+        self.bag.count(k);
+    }
+}
+
+/// The (stamps, °C) of `topic` of `bag` (the survey of the bag at `path`), in stamp order, read
+/// in a pass of their own as [`temperature_records`] reads them from a bag in memory.
+fn stream_temperatures(
+    path: &Path,
+    bag: &Bag,
+    topic: &Topic,
+    input: &str,
+) -> Result<(Vec<Timestamp>, Vec<f64>), ReadError> {
+    let mut sink = Temperatures {
+        bag: Bag::new(bag.format),
+        target: bag
+            .topics
+            .iter()
+            .position(|t| std::ptr::eq(t, topic))
+            .unwrap_or(usize::MAX),
+        name: topic.name.clone(),
+        records: Vec::new(),
+    };
+    super::read_bag_into(path, bag.format, &mut sink)?;
+    let mut records = sink.records;
+    records.sort_by_key(|&(time, _)| time);
+    if records.is_empty() {
+        return Err(topic_error(
+            input,
+            format!(
+                "temperature topic {} has no temperature ({} messages, every one NaN)",
+                topic.name, topic.count
+            ),
+        ));
+    }
+    Ok(records.into_iter().unzip())
 }

@@ -795,3 +795,43 @@ fn a_ros1_record_header_longer_than_16_mib_is_refused_before_it_is_read() {
          bytes any recorder writes (a corrupt length field)"
     );
 }
+
+#[test]
+fn a_streamed_bag_refuses_a_temperature_in_kelvin_naming_the_message_as_read_whole() {
+    use thermonav_io::ros::extract::stream_imu_series;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ros");
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
+    let first = expected["temperature"][3]["temperature_c"]
+        .as_f64()
+        .unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    for name in ["static_none.mcap", "static.bag"] {
+        let mut bytes = std::fs::read(dir.join(name)).unwrap();
+        let at = bytes
+            .windows(8)
+            .position(|w| w == first.to_le_bytes())
+            .unwrap();
+        bytes[at..at + 8].copy_from_slice(&298.15f64.to_le_bytes());
+        let path = tmp.path().join(name);
+        std::fs::write(&path, &bytes).unwrap();
+        let choice = TopicChoice {
+            imu: Some("/imu/data"),
+            ..TopicChoice::default()
+        };
+        let streamed = stream_imu_series(&path, choice, options(8, false), &mut |_| Ok(()))
+            .unwrap_err()
+            .to_string();
+        let format = BagFormat::detect(&bytes).unwrap();
+        let bag = decode_bag(&bytes, &path.display().to_string(), format).unwrap();
+        let whole = imu_series(&bag, choice, &path.display().to_string())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(streamed, whole, "{name}");
+        assert!(
+            streamed.contains("/imu/temperature message 3: temperature 298.15 °C")
+                && streamed.contains("in kelvin?"),
+            "{streamed}"
+        );
+    }
+}
