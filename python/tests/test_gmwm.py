@@ -96,7 +96,7 @@ def test_bad_settings_and_data_are_refused():
         thermonav.gmwm(x, RATE_HZ, model="wn+xx")
     with pytest.raises(ThermonavError, match="sensor"):
         thermonav.gmwm(x, RATE_HZ, sensor="magnetometer")
-    with pytest.raises(ThermonavError, match="10 replicates"):
+    with pytest.raises(ThermonavError, match="10 to 1000 bootstrap replicates, got 3"):
         thermonav.gmwm(x, RATE_HZ, replicates=3)
     y = x.copy()
     y[9] = np.nan
