@@ -248,3 +248,15 @@ fn at_chunk(
     };
     at(input, chunk_offset, format_args!("the {name} chunk {what}"))
 }
+
+/// The words of a zstd decoder's refusal: ruzstd prints its frame-header errors with Rust's
+/// debug text (`MagicNumberReadError(Error { .. })`); their own display says it in words.
+pub fn zstd_error_text(error: &ruzstd::decoding::errors::FrameDecoderError) -> String {
+    use ruzstd::decoding::errors::FrameDecoderError as Refusal;
+    match error {
+        Refusal::ReadFrameHeaderError(e) => e.to_string(),
+        Refusal::FrameHeaderError(e) => e.to_string(),
+        Refusal::DictionaryDecodeError(e) => e.to_string(),
+        other => other.to_string(),
+    }
+}

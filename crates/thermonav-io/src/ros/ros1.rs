@@ -278,7 +278,10 @@ impl<S: Sink> Reader<'_, S> {
                     super::bytes::at(
                         input,
                         offset,
-                        format_args!("the zstd chunk does not decompress: {e}"),
+                        format_args!(
+                            "the zstd chunk does not decompress: {}",
+                            super::bytes::zstd_error_text(&e)
+                        ),
                     )
                 })?,
             ),

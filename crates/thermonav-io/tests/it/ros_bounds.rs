@@ -835,3 +835,24 @@ fn a_streamed_bag_refuses_a_temperature_in_kelvin_naming_the_message_as_read_who
         );
     }
 }
+
+// Issue 37, a minor point: a zstd chunk that is not a zstd frame is refused in words, not with
+// the decoder's debug text (`MagicNumberReadError(Error { .. })`).
+#[test]
+fn a_zstd_chunk_that_is_not_a_zstd_frame_is_refused_in_words() {
+    let bag = [
+        mcap_head(),
+        mcap_chunk("zstd", 16, b"not a zstd frame"),
+        mcap_tail(),
+    ]
+    .concat();
+    let (err, _) = refusal(&bag, "notzstd.mcap", BagFormat::Ros2Mcap);
+    assert!(
+        err.contains("notzstd.mcap") && err.contains("the zstd chunk does not decompress"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("Error {") && !err.contains("ReadError("),
+        "{err}"
+    );
+}
