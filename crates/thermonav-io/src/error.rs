@@ -71,12 +71,15 @@ pub enum ReadErrorKind {
         limit_bytes: u64,
     },
     /// A header name that the format does not know.
-    #[error("unknown column \"{name}\" (expected one of {expected})")]
+    #[error("unknown column \"{name}\" (expected one of {expected}){hint}")]
     UnknownColumn {
         /// The name found in the header.
         name: String,
         /// The names the format accepts.
         expected: &'static str,
+        /// When the header is another of our CSVs (IMU, GNSS, trajectory): ": this looks like
+        /// a GNSS CSV: was it meant for --gnss?"; else empty.
+        hint: String,
     },
     /// Two header names give the same quantity (`gx_rad_s` and `gx_deg_s`, or `t_s` twice).
     #[error("columns {first} and {second} give the same quantity")]

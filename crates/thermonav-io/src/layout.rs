@@ -130,7 +130,7 @@ impl Layout {
         let mut time_column = None;
         for name in header.split(',').map(str::trim) {
             let index = layout.names.len();
-            let target = target_of(name, schema)?;
+            let target = target_of(name, schema).map_err(|e| with_kind_hint(e, header, schema))?;
             let claimed = match target {
                 Target::Time => &mut time_column,
                 Target::Value { slot, .. } => &mut layout.slot_columns[slot],
@@ -220,7 +220,64 @@ fn target_of(name: &str, schema: &Schema) -> Result<Target, ReadErrorKind> {
         .ok_or_else(|| ReadErrorKind::UnknownColumn {
             name: name.to_owned(),
             expected: schema.expected,
+            hint: String::new(),
         })
+}
+
+/// A kind of CSV our readers take: its name, a test of a column only it has, and the option
+/// that takes it on `integrate` and `evaluate`.
+type CsvKind = (&'static str, fn(&str) -> bool, &'static str);
+
+/// The kinds, in the order they are recognised (a trajectory has lat_deg too).
+const CSV_KINDS: [CsvKind; 3] = [
+    (
+        "an IMU CSV",
+        |name| {
+            ["gx_", "gy_", "gz_", "ax_", "ay_", "az_"]
+                .iter()
+                .any(|p| name.starts_with(p))
+        },
+        "--imu",
+    ),
+    (
+        "a trajectory CSV (a reference or a solution)",
+        |name| matches!(name, "roll_deg" | "pitch_deg" | "yaw_deg"),
+        "--reference",
+    ),
+    (
+        "a GNSS CSV",
+        |name| name == "lat_deg" || name.starts_with("sd_"),
+        "--gnss",
+    ),
+];
+
+/// The kind whose column is among `names`, if any.
+fn kind_of<'a>(names: impl Iterator<Item = &'a str> + Clone) -> Option<&'static CsvKind> {
+    CSV_KINDS.iter().find(|(_, has, _)| names.clone().any(has))
+}
+
+/// An unknown column's error with a hint when the header is another kind of our CSVs than
+/// the reader's (files given to the wrong option).
+fn with_kind_hint(error: ReadErrorKind, header: &str, schema: &Schema) -> ReadErrorKind {
+    let ReadErrorKind::UnknownColumn { name, expected, .. } = error else {
+        return error;
+    };
+    let found = kind_of(header.split(',').map(str::trim));
+    let own = kind_of(schema.columns.iter().map(|c| c.name));
+    let hint = match (found, own) {
+        (Some(found), own) if own.map(|o| o.0) != Some(found.0) => {
+            format!(
+                ": this looks like {}: was it meant for {}?",
+                found.0, found.2
+            )
+        }
+        _ => String::new(),
+    };
+    ReadErrorKind::UnknownColumn {
+        name,
+        expected,
+        hint,
+    }
 }
 
 fn missing(name: &'static str, alternatives: &'static str) -> ReadErrorKind {

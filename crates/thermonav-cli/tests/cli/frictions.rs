@@ -479,3 +479,73 @@ fn report_of_a_folder_evaluate_wrote_is_the_tournament() {
         "{stderr}"
     );
 }
+
+/// Row 15: files given to the wrong options are named as what they look like, with the
+/// option they were probably meant for, by integrate and evaluate.
+#[test]
+fn swapped_files_are_recognised_and_the_option_suggested() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = vessel(dir.path());
+    let [imu, gnss, reference] = ["imu.csv", "gnss.csv", "reference.csv"].map(|f| v.join(f));
+    let profile = ["--profile", "builtin:temperature-sensitive"];
+    let solution = dir.path().join("s.csv");
+    let integrate = |imu: &Path, gnss: &Path| {
+        let args = [
+            "integrate",
+            "--imu",
+            arg(imu),
+            "--gnss",
+            arg(gnss),
+            "--out",
+            arg(&solution),
+        ];
+        outcome(&thermonav(&[&args[..], &profile].concat()))
+    };
+    let evaluate = |imu: &Path, gnss: &Path, reference: &Path| {
+        let out = dir.path().join("e");
+        let args = [
+            "evaluate",
+            "--imu",
+            arg(imu),
+            "--gnss",
+            arg(gnss),
+            "--reference",
+            arg(reference),
+            "--out",
+            arg(&out),
+        ];
+        outcome(&thermonav(&[&args[..], &profile].concat()))
+    };
+    let cases = [
+        (
+            integrate(&gnss, &imu),
+            "gnss.csv:1: unknown column \"lat_deg\"",
+            "looks like a GNSS CSV: was it meant for --gnss?",
+        ),
+        (
+            integrate(&imu, &reference),
+            "reference.csv:1: unknown column \"roll_deg\"",
+            "looks like a trajectory CSV (a reference or a solution): was it meant for --reference?",
+        ),
+        (
+            evaluate(&gnss, &imu, &reference),
+            "gnss.csv:1: unknown column \"lat_deg\"",
+            "was it meant for --gnss?",
+        ),
+        (
+            evaluate(&reference, &gnss, &imu),
+            "reference.csv:1",
+            "was it meant for --reference?",
+        ),
+        (
+            evaluate(&imu, &gnss, &imu),
+            "imu.csv:1: unknown column \"gx_rad_s\"",
+            "looks like an IMU CSV: was it meant for --imu?",
+        ),
+    ];
+    for ((status, _, stderr), place, hint) in cases {
+        assert_eq!(status, 1, "{stderr}");
+        assert!(stderr.contains(place) && stderr.contains(hint), "{stderr}");
+    }
+    assert!(!solution.exists());
+}
