@@ -8,10 +8,11 @@ use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::experiment::{DEFAULT_OUTAGES, MAX_REPLICATES};
 use thermonav::evaluation::shard::Shard;
-use thermonav::nav::engine::BiasHypotheses;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::outage::OutageSpec;
-use thermonav::nav::run_options::RunOptions;
+use thermonav::nav::run_options::{
+    RunOptionError, RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
+};
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::static_alignment::StaticAlignment;
 use thermonav::nav::time_offset::TimeOffsetSearch;
@@ -252,13 +253,14 @@ fn operating_temperature(args: &RunOptionArgs) -> Result<Option<f64>, Failure> {
         .transpose()
 }
 
-/// The run options of `integrate` and `evaluate`, resolved the one way for both.
+/// The run options of `integrate` and `evaluate`, resolved the one way for both: shaped here,
+/// checked by the library's [`RunOptions::validate`].
 pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
-    Ok(RunOptions {
+    let options = RunOptions {
         gauss_markov: args.model.into(),
-        process_noise_scale: positive("--process-noise-scale", args.process_noise_scale)?,
-        velocity_sd_m_s: velocity_sd(&args.velocity_sd_m_s)?,
-        gate_probability: gate_of(args.gate_probability)?,
+        process_noise_scale: args.process_noise_scale,
+        velocity_sd_m_s: velocity_sd_of(&args.velocity_sd_m_s).map_err(usage)?,
+        gate_probability: gate_of(args.gate_probability).map_err(usage)?,
         gate_window: args.gate_window,
         aiding: Aiding {
             position: true,
@@ -266,10 +268,18 @@ pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
             heading: !args.no_heading,
         },
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
-        max_imu_gap_s: positive("--max-imu-gap-s", args.max_imu_gap_s)?,
-        covariance_interval_s: 1.0 / rate("--covariance-rate-hz", args.covariance_rate_hz)?,
-        bias_hypotheses: bias_hypotheses(args.bias_hypotheses)?,
-    })
+        max_imu_gap_s: args.max_imu_gap_s,
+        covariance_interval_s: interval_of_rate("covariance_rate_hz", args.covariance_rate_hz)
+            .map_err(usage)?,
+        bias_hypotheses: bias_hypotheses_of(args.bias_hypotheses).map_err(usage)?,
+    };
+    options.validate().map_err(usage)?;
+    Ok(options)
+}
+
+/// A run option's refusal as a usage error, in the command line's words.
+fn usage(e: RunOptionError) -> Failure {
+    Failure::Usage(anyhow!("{}", e.as_flag()))
 }
 
 /// `integrate`'s engine: the run options with its filter, output rate, smoother and static
@@ -282,7 +292,7 @@ fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<Engine
     }
     Ok(options.engine(EngineSettings {
         filter: args.filter.into(),
-        output_interval_s: 1.0 / rate("--output-rate-hz", args.output_rate_hz)?,
+        output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz).map_err(usage)?,
         smooth: args.smooth,
         static_alignment: match args.no_static_alignment {
             true => StaticAlignment::Off,
@@ -290,66 +300,6 @@ fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<Engine
         },
         ..EngineSettings::default()
     }))
-}
-
-/// `--bias-hypotheses N`: none for 1, the default split with N members otherwise.
-fn bias_hypotheses(members: usize) -> Result<Option<BiasHypotheses>, Failure> {
-    if members == 1 {
-        return Ok(None);
-    }
-    let hypotheses = BiasHypotheses {
-        members,
-        ..BiasHypotheses::default()
-    };
-    hypotheses
-        .split()
-        .map_err(|e| Failure::Usage(anyhow!("--bias-hypotheses {members}: {e}")))?;
-    Ok(Some(hypotheses))
-}
-
-/// The fastest covariance and output rates, Hz: above the fastest MEMS logs (1-4 kHz), a
-/// step or an epoch more often than the IMU samples is empty work; `--output-rate-hz 1e9` kept
-/// a run busy for minutes stepping through empty output times.
-pub const MAX_RATE_HZ: f64 = 5000.0;
-
-/// A positive rate of at most [`MAX_RATE_HZ`].
-fn rate(name: &str, rate_hz: f64) -> Result<f64, Failure> {
-    match positive(name, rate_hz)? {
-        r if r <= MAX_RATE_HZ => Ok(r),
-        r => Err(Failure::Usage(anyhow!(
-            "{name} {r} is above {MAX_RATE_HZ} Hz: a filter step or output epoch more often than any IMU samples does nothing"
-        ))),
-    }
-}
-
-/// `--velocity-sd-m-s`: one value for every axis, or north,east,down.
-fn velocity_sd(values: &[f64]) -> Result<[f64; 3], Failure> {
-    let sd = match values {
-        [v] => [*v; 3],
-        [n, e, d] => [*n, *e, *d],
-        _ => {
-            return Err(Failure::Usage(anyhow!(
-                "--velocity-sd-m-s takes one value or three (north,east,down)"
-            )));
-        }
-    };
-    for v in sd {
-        positive("--velocity-sd-m-s", v)?;
-    }
-    Ok(sd)
-}
-
-/// The gate from `--gate-probability`: `None` (accept all) at 1.
-fn gate_of(probability: f64) -> Result<Option<f64>, Failure> {
-    if probability == 1.0 {
-        Ok(None)
-    } else if probability > 0.0 && probability < 1.0 {
-        Ok(Some(probability))
-    } else {
-        Err(Failure::Usage(anyhow!(
-            "--gate-probability {probability} must be in (0, 1], 1 meaning no gate"
-        )))
-    }
 }
 
 /// The three input files of a tournament.

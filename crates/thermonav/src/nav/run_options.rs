@@ -52,7 +52,162 @@ impl Default for RunOptions {
     }
 }
 
+/// The fastest covariance and output rates, Hz: above the fastest MEMS logs (1-4 kHz), a
+/// step or an epoch more often than the IMU samples is empty work (an output rate of 1e9 Hz
+/// kept a run busy for minutes stepping through empty output times).
+pub const MAX_RATE_HZ: f64 = 5000.0;
+
+/// A run option out of its range: its name (Python's keyword; the CLI's flag is the same with
+/// dashes), the value given and what was expected.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{name} {value}: {expected}")]
+pub struct RunOptionError {
+    /// The option, snake_case (`process_noise_scale`).
+    pub name: &'static str,
+    /// The value given, as text.
+    pub value: String,
+    /// What was expected.
+    pub expected: String,
+}
+
+impl RunOptionError {
+    fn new(name: &'static str, value: impl std::fmt::Display, expected: impl Into<String>) -> Self {
+        Self {
+            name,
+            value: value.to_string(),
+            expected: expected.into(),
+        }
+    }
+
+    /// The refusal in the command line's words (`--process-noise-scale 0: ...`).
+    pub fn as_flag(&self) -> String {
+        format!(
+            "--{} {}: {}",
+            self.name.replace('_', "-"),
+            self.value,
+            self.expected
+        )
+    }
+}
+
+/// `value` when it is finite and positive.
+///
+/// # Errors
+/// [`RunOptionError`] naming `name`.
+pub fn positive(name: &'static str, value: f64) -> Result<f64, RunOptionError> {
+    match value.is_finite() && value > 0.0 {
+        true => Ok(value),
+        false => Err(RunOptionError::new(
+            name,
+            value,
+            "expected a positive number",
+        )),
+    }
+}
+
+/// The GNSS velocity sd from one value (every axis) or three (north, east, down), m/s.
+///
+/// # Errors
+/// Another count of values, or one that is not positive.
+pub fn velocity_sd_of(values: &[f64]) -> Result<[f64; 3], RunOptionError> {
+    let sd = match values {
+        [v] => [*v; 3],
+        [n, e, d] => [*n, *e, *d],
+        _ => {
+            let given: Vec<String> = values.iter().map(f64::to_string).collect();
+            return Err(RunOptionError::new(
+                "velocity_sd_m_s",
+                given.join(","),
+                "expected one value or three (north, east, down)",
+            ));
+        }
+    };
+    for v in sd {
+        positive("velocity_sd_m_s", v)?;
+    }
+    Ok(sd)
+}
+
+/// The innovation gate of a probability in (0, 1]: `None` (accept every update) at 1.
+///
+/// # Errors
+/// A probability outside (0, 1].
+pub fn gate_of(probability: f64) -> Result<Option<f64>, RunOptionError> {
+    match probability {
+        1.0 => Ok(None),
+        p if p > 0.0 && p < 1.0 => Ok(Some(p)),
+        p => Err(RunOptionError::new(
+            "gate_probability",
+            p,
+            "expected a probability in (0, 1], 1 meaning no gate",
+        )),
+    }
+}
+
+/// The step, s, of a rate in (0, [`MAX_RATE_HZ`]] Hz (`name`: `covariance_rate_hz`,
+/// `output_rate_hz`).
+///
+/// # Errors
+/// A rate that is not positive or above [`MAX_RATE_HZ`].
+pub fn interval_of_rate(name: &'static str, rate_hz: f64) -> Result<f64, RunOptionError> {
+    match positive(name, rate_hz)? {
+        r if r <= MAX_RATE_HZ => Ok(1.0 / r),
+        r => Err(RunOptionError::new(
+            name,
+            r,
+            format!(
+                "above {MAX_RATE_HZ} Hz: a filter step or output epoch more often than any IMU samples does nothing"
+            ),
+        )),
+    }
+}
+
+/// The Gaussian sum of `members` over the z-gyro bias (1: one filter, `None`).
+///
+/// # Errors
+/// A count that [`BiasHypotheses::split`] refuses.
+pub fn bias_hypotheses_of(members: usize) -> Result<Option<BiasHypotheses>, RunOptionError> {
+    if members == 1 {
+        return Ok(None);
+    }
+    let hypotheses = BiasHypotheses {
+        members,
+        ..BiasHypotheses::default()
+    };
+    match hypotheses.split() {
+        Ok(_) => Ok(Some(hypotheses)),
+        Err(e) => Err(RunOptionError::new(
+            "bias_hypotheses",
+            members,
+            e.to_string(),
+        )),
+    }
+}
+
 impl RunOptions {
+    /// Checks every option against its range, as the CLI and Python read them: the one place
+    /// these checks are written.
+    ///
+    /// # Errors
+    /// The first option out of range, named.
+    pub fn validate(&self) -> Result<(), RunOptionError> {
+        positive("process_noise_scale", self.process_noise_scale)?;
+        for v in self.velocity_sd_m_s {
+            positive("velocity_sd_m_s", v)?;
+        }
+        if let Some(p) = self.gate_probability {
+            gate_of(p)?;
+        }
+        positive("max_imu_gap_s", self.max_imu_gap_s)?;
+        let covariance_rate_hz =
+            1.0 / positive("covariance_interval_s", self.covariance_interval_s)?;
+        interval_of_rate("covariance_rate_hz", covariance_rate_hz)?;
+        if let Some(h) = &self.bias_hypotheses {
+            bias_hypotheses_of(h.members)?;
+        }
+        Ok(())
+    }
+
     /// The options `engine` runs with, with the family and the white-noise scale.
     pub fn of_engine(
         engine: &EngineSettings,
@@ -93,6 +248,68 @@ impl RunOptions {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn options_out_of_range_are_refused_naming_the_option() {
+        assert!(RunOptions::default().validate().is_ok());
+        let refused = |o: RunOptions| o.validate().unwrap_err().name;
+        let d = RunOptions::default;
+        assert_eq!(
+            refused(RunOptions {
+                process_noise_scale: 0.0,
+                ..d()
+            }),
+            "process_noise_scale"
+        );
+        assert_eq!(
+            refused(RunOptions {
+                velocity_sd_m_s: [0.1, -0.1, 0.1],
+                ..d()
+            }),
+            "velocity_sd_m_s"
+        );
+        assert_eq!(
+            refused(RunOptions {
+                gate_probability: Some(1.5),
+                ..d()
+            }),
+            "gate_probability"
+        );
+        assert_eq!(
+            refused(RunOptions {
+                max_imu_gap_s: f64::NAN,
+                ..d()
+            }),
+            "max_imu_gap_s"
+        );
+        assert_eq!(
+            refused(RunOptions {
+                covariance_interval_s: 1e-9,
+                ..d()
+            }),
+            "covariance_rate_hz"
+        );
+        let four = BiasHypotheses {
+            members: 4,
+            ..BiasHypotheses::default()
+        };
+        assert_eq!(
+            refused(RunOptions {
+                bias_hypotheses: Some(four),
+                ..d()
+            }),
+            "bias_hypotheses"
+        );
+        assert_eq!(velocity_sd_of(&[0.2]).unwrap(), [0.2; 3]);
+        assert_eq!(
+            velocity_sd_of(&[0.1, 0.2]).unwrap_err().as_flag(),
+            "--velocity-sd-m-s 0.1,0.2: expected one value or three (north, east, down)"
+        );
+        assert_eq!(gate_of(1.0).unwrap(), None);
+        assert_eq!(interval_of_rate("output_rate_hz", 10.0).unwrap(), 0.1);
+        assert!(interval_of_rate("output_rate_hz", 1e9).is_err());
+        assert_eq!(bias_hypotheses_of(1).unwrap(), None);
+    }
 
     #[test]
     fn the_defaults_give_the_default_engine_back() {
