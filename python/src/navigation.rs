@@ -16,7 +16,7 @@ use thermonav::evaluation::experiment::{
 use thermonav::evaluation::metrics::EpochError;
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::scenario::{RecordPlan, ScenarioError, scenario_of_records};
-use thermonav::nav::engine::{Aiding, BiasHypotheses, EngineSettings, FilterKind};
+use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::report::RunReport;
@@ -24,7 +24,9 @@ use thermonav::nav::run::{
     ModelTemperature, NoiseModel, RunError, RunInput, RunSettings, Start, operating_temperature_c,
     prepare,
 };
-use thermonav::nav::run_options::RunOptions;
+use thermonav::nav::run_options::{
+    RunOptionError, RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
+};
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::nav::solution::SolutionEpoch;
@@ -274,19 +276,17 @@ impl RunKeywords {
     /// The run options, resolved the one way for both functions.
     fn options(&self) -> PyResult<RunOptions> {
         let d = RunOptions::default();
-        let positive_or = |name, value: Option<f64>, default| match value {
-            Some(v) => positive(name, v),
-            None => Ok(default),
-        };
-        Ok(RunOptions {
+        let options = RunOptions {
             gauss_markov: gauss_markov_of(self.model.as_deref())?,
-            process_noise_scale: positive_or(
-                "process_noise_scale",
-                self.process_noise_scale,
-                d.process_noise_scale,
-            )?,
-            velocity_sd_m_s: velocity_sd(self.velocity_sd_m_s.as_deref(), d.velocity_sd_m_s)?,
-            gate_probability: gate_of(self.gate_probability, d.gate_probability)?,
+            process_noise_scale: self.process_noise_scale.unwrap_or(d.process_noise_scale),
+            velocity_sd_m_s: match self.velocity_sd_m_s.as_deref() {
+                Some(values) => velocity_sd_of(values).map_err(refused)?,
+                None => d.velocity_sd_m_s,
+            },
+            gate_probability: match self.gate_probability {
+                Some(p) => gate_of(p).map_err(refused)?,
+                None => d.gate_probability,
+            },
             gate_window: self.gate_window.unwrap_or(d.gate_window),
             aiding: Aiding {
                 position: true,
@@ -294,29 +294,24 @@ impl RunKeywords {
                 heading: self.heading.unwrap_or(d.aiding.heading),
             },
             geometry: geometry_of(self.lever_arm_m, self.baseline)?,
-            max_imu_gap_s: positive_or("max_imu_gap_s", self.max_imu_gap_s, d.max_imu_gap_s)?,
+            max_imu_gap_s: self.max_imu_gap_s.unwrap_or(d.max_imu_gap_s),
             covariance_interval_s: match self.covariance_rate_hz {
-                Some(r) => 1.0 / positive("covariance_rate_hz", r)?,
+                Some(r) => interval_of_rate("covariance_rate_hz", r).map_err(refused)?,
                 None => d.covariance_interval_s,
             },
-            bias_hypotheses: bias_hypotheses(self.bias_hypotheses)?,
-        })
+            bias_hypotheses: match self.bias_hypotheses {
+                Some(n) => bias_hypotheses_of(n).map_err(refused)?,
+                None => None,
+            },
+        };
+        options.validate().map_err(refused)?;
+        Ok(options)
     }
 }
 
-/// `bias_hypotheses=N`: none for 1 (or not given), the default split with N members otherwise.
-fn bias_hypotheses(members: Option<usize>) -> PyResult<Option<BiasHypotheses>> {
-    match members {
-        None | Some(1) => Ok(None),
-        Some(members) => {
-            let hypotheses = BiasHypotheses {
-                members,
-                ..BiasHypotheses::default()
-            };
-            (hypotheses.split()).map_err(|e| error(format!("bias_hypotheses {members}: {e}")))?;
-            Ok(Some(hypotheses))
-        }
-    }
+/// A run option's refusal, in the keyword's name (the library's words).
+fn refused(e: RunOptionError) -> PyErr {
+    error(e.to_string())
 }
 
 /// `integrate`'s engine: the run options with its filter, output rate and smoother.
@@ -340,36 +335,12 @@ fn integrate_engine(
     Ok(options.engine(EngineSettings {
         filter,
         output_interval_s: match output_rate_hz {
-            Some(r) => 1.0 / positive("output_rate_hz", r)?,
+            Some(r) => interval_of_rate("output_rate_hz", r).map_err(refused)?,
             None => d.output_interval_s,
         },
         smooth,
         ..d
     }))
-}
-
-/// One value for every axis, or north, east, down (m/s).
-fn velocity_sd(values: Option<&[f64]>, default: [f64; 3]) -> PyResult<[f64; 3]> {
-    match values {
-        None => Ok(default),
-        Some([v]) => Ok([*v; 3]),
-        Some([n, e, d]) => Ok([*n, *e, *d]),
-        Some(_) => Err(error(
-            "velocity_sd_m_s takes one value or three (north, east, down)",
-        )),
-    }
-}
-
-/// The gate: `None` (accept all) at 1.
-fn gate_of(probability: Option<f64>, default: Option<f64>) -> PyResult<Option<f64>> {
-    match probability {
-        None => Ok(default),
-        Some(1.0) => Ok(None),
-        Some(p) if p > 0.0 && p < 1.0 => Ok(Some(p)),
-        Some(p) => Err(error(format!(
-            "gate_probability {p} must be in (0, 1], 1 meaning no gate"
-        ))),
-    }
 }
 
 /// Solution epochs as columns: `t_ns`, `t_s`, the trajectory CSV's (lat_deg .. yaw_deg), the
@@ -485,13 +456,6 @@ pub fn integrate<'py>(
     let out = integrate_result(py, &report, &solution, notes)?;
     out.set_item("run_options", to_python(py, &options)?)?;
     Ok(out)
-}
-
-fn positive(name: &str, value: f64) -> PyResult<f64> {
-    match value.is_finite() && value > 0.0 {
-        true => Ok(value),
-        false => Err(error(format!("{name} {value}: expected a positive number"))),
-    }
 }
 
 type RunResult = (RunReport, thermonav::nav::solution::Solution, Vec<String>);

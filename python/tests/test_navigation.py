@@ -190,3 +190,15 @@ def test_integrate_and_gmwm_let_other_threads_run(data):
         worker.join()
         # Holding the GIL would stop this loop for the whole call (see test_threads.py).
         assert len(ticks) > 5 and np.diff(ticks).max() < max(0.5 * alone_s, 0.02)
+
+
+def test_run_keywords_are_checked_by_the_library_as_the_cli_checks_them(data):
+    # The library's RunOptions::validate is the one check: a negative velocity sd (which the
+    # Python keywords once let through) and an output rate of 1e9 Hz are refused by name.
+    imu, gnss = data["imu"], data["gnss"]
+    with pytest.raises(ThermonavError, match=r"velocity_sd_m_s -1: expected a positive number"):
+        thermonav.integrate(imu, gnss, bank=data["bank"], velocity_sd_m_s=[-1.0])
+    with pytest.raises(ThermonavError, match=r"output_rate_hz 1000000000: above 5000 Hz"):
+        thermonav.integrate(imu, gnss, bank=data["bank"], output_rate_hz=1e9)
+    with pytest.raises(ThermonavError, match=r"gate_probability 2: expected a probability in \(0, 1\]"):
+        thermonav.evaluate(imu, gnss, data["reference"], bank=data["bank"], gate_probability=2.0)
