@@ -134,6 +134,8 @@ fn run_rows(s: &RunReport) -> Vec<Row> {
             ),
         ),
         ("initial state", initial_state_text(s)),
+        ("static alignment", s.static_alignment.words()),
+        ("GNSS position sd", s.gnss_sd.words()),
         ("initial bias sd", initial_bias_text(s)),
         ("outages", s.outages.len().to_string()),
         ("IMU samples", s.imu_samples.to_string()),

@@ -549,3 +549,137 @@ fn swapped_files_are_recognised_and_the_option_suggested() {
     }
     assert!(!solution.exists());
 }
+
+/// A walk: still for 12 s, then 1.4 m/s to the north-east for 60 s, simulated in `dir/NAME`.
+fn still_then_walk(dir: &Path, name: &str) -> PathBuf {
+    let motion = write_file(
+        dir,
+        "walk.toml",
+        "initial_speed_m_s = 0.0\ninitial_heading_deg = 30.0\n[start]\nlat_deg = 45.0\nlon_deg = 7.0\nh_m = 300.0\n[[segment]]\nduration_s = 12.0\n[[segment]]\nduration_s = 1.0\nacceleration_m_s2 = 1.4\n[[segment]]\nduration_s = 60.0\n",
+    );
+    let out = dir.join(name);
+    let args = [
+        "simulate",
+        "vessel",
+        "--motion",
+        arg(&motion),
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--out",
+        arg(&out),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    out
+}
+
+/// The GNSS CSV at `from` with only its first `columns` columns, written to `to`; its rows.
+fn gnss_columns(from: &Path, to: &Path, columns: usize) -> usize {
+    let text = std::fs::read_to_string(from).unwrap();
+    let cut: Vec<String> = text
+        .lines()
+        .map(|l| l.split(',').take(columns).collect::<Vec<_>>().join(","))
+        .collect();
+    std::fs::write(to, cut.join("\n") + "\n").unwrap();
+    cut.len() - 1
+}
+
+/// `integrate --json` of `imu` and `gnss` with the built-in profile: the summary and the text.
+fn integrate_both(dir: &Path, imu: &Path, gnss: &Path) -> (serde_json::Value, String) {
+    let out = dir.join("sol.csv");
+    let args = [
+        "integrate",
+        "--imu",
+        arg(imu),
+        "--gnss",
+        arg(gnss),
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--out",
+        arg(&out),
+    ];
+    let (status, text, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    let (_, doc, _) = outcome(&thermonav(&[&args[..], &["--json"]].concat()));
+    (json(&doc), text)
+}
+
+/// Rows 9 and 10: a walk that starts still, with and without dual-antenna headings and sd
+/// columns: the static alignment's decision with its reason, and the GNSS sds used, are
+/// printed and in --json.
+#[test]
+fn the_still_start_decision_and_the_gnss_sd_used_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let walk = still_then_walk(dir.path(), "walk");
+    let imu = walk.join("imu.csv");
+    // With headings the alignment takes the first fix: the still span is cut there.
+    let (doc, text) = integrate_both(dir.path(), &imu, &walk.join("gnss.csv"));
+    let decision = &doc["static_alignment"];
+    assert_eq!(decision["decision"], "too_short", "{decision}");
+    assert_eq!(decision["ended_by"], "alignment_fix", "{decision}");
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("static alignment"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        row.contains("not used")
+            && row.contains("at least 5 s needed")
+            && row.contains("came first"),
+        "{row}"
+    );
+    assert_eq!(doc["gnss_sd"]["source"], "file");
+    // Positions alone (course over ground): the still span is not cut by the alignment; the
+    // decision is used, or not with the reason that ended the span (here the IMU's 1 s
+    // windows of the warming sensor depart from each other: the text says so).
+    let positions = dir.path().join("positions.csv");
+    let fixes = gnss_columns(&walk.join("gnss.csv"), &positions, 7);
+    let (doc, text) = integrate_both(dir.path(), &imu, &positions);
+    let decision = &doc["static_alignment"];
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("static alignment"))
+        .unwrap_or_else(|| panic!("{text}"));
+    let still_s = decision["still_s"].as_f64().unwrap();
+    assert!(still_s <= 12.0, "{decision}");
+    match decision["decision"].as_str().unwrap() {
+        "used" => assert!(
+            still_s >= 5.0 && row.contains("used: the platform stood still"),
+            "{row}"
+        ),
+        "too_short" => {
+            let reason = match decision["ended_by"].as_str().unwrap() {
+                "imu_changed" => "departed from the earlier ones",
+                "fixes_moved" => "the fixes left",
+                other => panic!("{other}: {decision}"),
+            };
+            assert!(
+                still_s < 5.0 && row.contains("not used") && row.contains(reason),
+                "{row}"
+            );
+            let fixes_still_s = decision["fixes_still_s"].as_f64().unwrap();
+            assert!((10.0..=14.0).contains(&fixes_still_s), "{decision}");
+        }
+        other => panic!("{other}: {decision}"),
+    }
+    // Row 9: no sd columns: the default is used on every fix, and said so with its values.
+    let bare = dir.path().join("bare.csv");
+    assert_eq!(gnss_columns(&walk.join("gnss.csv"), &bare, 4), fixes);
+    let (doc, text) = integrate_both(dir.path(), &imu, &bare);
+    let sd = &doc["gnss_sd"];
+    assert_eq!(sd["source"], "default", "{sd}");
+    assert_eq!(sd["fixes"].as_u64(), Some(fixes as u64));
+    assert_eq!(sd["fixes_with_default_sd"].as_u64(), Some(fixes as u64));
+    let default = thermonav::nav::engine::EngineSettings::default().default_position_sd_m;
+    assert_eq!(sd["default_position_sd_ned_m"], serde_json::json!(default));
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("GNSS position sd"))
+        .unwrap_or_else(|| panic!("{text}"));
+    let [n, e, d] = default;
+    assert!(
+        row.contains(&format!(
+            "default {n} m north, {e} m east, {d} m down on {fixes} of {fixes} fixes"
+        )),
+        "{row}"
+    );
+}

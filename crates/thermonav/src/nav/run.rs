@@ -32,7 +32,9 @@ use super::schedule::{
 };
 use super::sensor_model::{BankChoice, ImuStochasticModel, ScaleFactorPrior, SensorModelError};
 use super::solution::Solution;
-use super::static_alignment::{StaticAlignment, StillStart, attitude_at, still_start};
+use super::static_alignment::{
+    StaticAlignment, StillDecision, StillStart, attitude_at, still_start_decided,
+};
 use crate::frames::{Body, Vector};
 use crate::gnss::GnssFix;
 use crate::imu::{Channel, ImuSeries};
@@ -592,6 +594,8 @@ pub struct StartFound {
     pub course_baseline: Option<CourseBaseline>,
     /// The still span that levelled the start and gave the gyro biases, if there was one.
     pub still_start: Option<StillStart>,
+    /// Whether static alignment was used, and if not, why.
+    pub still_decision: StillDecision,
 }
 
 impl StartFound {
@@ -617,10 +621,17 @@ pub(super) fn initial_estimate(
             HeadingSource::DualAntenna => (InitialSource::DualAntennaHeading, None),
             HeadingSource::Course(c) => (InitialSource::CourseOverGround, Some(c)),
         };
-        let still_start = match engine.static_alignment {
-            StaticAlignment::WhenStill => still_start(increments, gnss, alignment.nav.time),
-            StaticAlignment::Off => None,
+        let decided = match engine.static_alignment {
+            StaticAlignment::WhenStill => still_start_decided(increments, gnss, alignment.nav.time),
+            StaticAlignment::Off => Err(StillDecision::Off),
         };
+        let still_decision = match &decided {
+            Ok(still) => StillDecision::Used {
+                still_s: still.duration_s,
+            },
+            Err(decision) => *decision,
+        };
+        let still_start = decided.ok();
         let initial = match &still_start {
             Some(still) => levelled_start(&alignment.nav, still, increments, &engine.geometry),
             None => uncorrected(alignment.nav),
@@ -630,6 +641,7 @@ pub(super) fn initial_estimate(
             source,
             course_baseline,
             still_start,
+            still_decision,
         });
     };
     let first = increments.first().map(|i| i.time);
@@ -643,6 +655,7 @@ pub(super) fn initial_estimate(
         source: InitialSource::Reference,
         course_baseline: None,
         still_start: None,
+        still_decision: StillDecision::FromReference,
     })
 }
 
@@ -695,7 +708,9 @@ impl PreparedRun {
             progress,
         )
         .map_err(RunError::Nav)?;
+        let gnss_sd = super::report::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
         Ok(RunOutcome {
+            gnss_sd,
             processing_s: started.elapsed().as_secs_f64(),
             models: self.models,
             compensation: self.compensation,
@@ -704,6 +719,7 @@ impl PreparedRun {
             initial: self.start.source,
             course_baseline: self.start.course_baseline,
             still_start: self.start.still_start,
+            still_decision: self.start.still_decision,
             uncertainty: self.uncertainty,
             bias_source: self.bias_source,
         })
@@ -727,6 +743,10 @@ pub struct RunOutcome {
     pub course_baseline: Option<CourseBaseline>,
     /// The still span that levelled the start and gave the gyro biases, if any.
     pub still_start: Option<StillStart>,
+    /// Whether static alignment was used, and if not, why.
+    pub still_decision: StillDecision,
+    /// Where the GNSS position sds came from.
+    pub gnss_sd: super::report::GnssSdUse,
     /// The initial standard deviations of the error states.
     pub uncertainty: InitialUncertainty,
     /// Where the initial bias sds came from.

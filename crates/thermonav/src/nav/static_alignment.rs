@@ -206,18 +206,146 @@ fn agreeing_prefix(windows: &[Window]) -> usize {
     kept
 }
 
+/// What ended a still span too short to level the start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StillEnd {
+    /// The fixes left the still radius of the first one.
+    FixesMoved,
+    /// A 1 s window's mean rate or specific force departed from the earlier ones' (a turn on
+    /// the spot, a jolt).
+    ImuChanged,
+    /// The alignment fix came first.
+    AlignmentFix,
+}
+
+/// Whether the start was levelled from a still span, and if not, why.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "decision", rename_all = "snake_case")]
+pub enum StillDecision {
+    /// Levelled from a still span of `still_s`.
+    Used {
+        /// Its length, s.
+        still_s: f64,
+    },
+    /// Static alignment was switched off.
+    Off,
+    /// The run starts from a reference point, not from an alignment.
+    FromReference,
+    /// No IMU sample or no GNSS fix at the start.
+    NoData,
+    /// Fewer than two fixes within the still radius of the first fix (the platform moves from
+    /// the first fix on).
+    FixesMove {
+        /// The still radius, m.
+        radius_m: f64,
+    },
+    /// Still for less than [`MIN_STILL_S`].
+    TooShort {
+        /// The IMU span found still, s.
+        still_s: f64,
+        /// How long the fixes stayed within the still radius, s.
+        fixes_still_s: f64,
+        /// The still radius, m.
+        radius_m: f64,
+        /// What ended it.
+        ended_by: StillEnd,
+    },
+}
+
+impl StillDecision {
+    /// The decision in words, with its reason.
+    pub fn words(&self) -> String {
+        match *self {
+            StillDecision::Used { still_s } => {
+                format!(
+                    "used: the platform stood still for {:.1} s at the start",
+                    still_s.max(0.0)
+                )
+            }
+            StillDecision::Off => "off (--no-static-alignment)".into(),
+            StillDecision::FromReference => "not used: the run starts from the reference".into(),
+            StillDecision::NoData => "not used: no IMU sample or GNSS fix at the start".into(),
+            StillDecision::FixesMove { radius_m } => format!(
+                "not used: the second fix already lies beyond {radius_m:.2} m of the first (the still radius, {STILL_RADIUS_SD:.2} horizontal sds): the platform moved from the start"
+            ),
+            StillDecision::TooShort {
+                still_s,
+                fixes_still_s,
+                radius_m,
+                ended_by,
+            } => {
+                let ended = match ended_by {
+                    StillEnd::FixesMoved => format!(
+                        "the fixes left the {radius_m:.2} m still radius after {fixes_still_s:.1} s (the last 1 s window before that is dropped)"
+                    ),
+                    StillEnd::ImuChanged => format!(
+                        "a 1 s window's mean rate or specific force departed from the earlier ones by more than {STILL_TEST_SD} standard errors (a turn, a jolt; the fixes stayed within {radius_m:.2} m for {fixes_still_s:.1} s)"
+                    ),
+                    StillEnd::AlignmentFix => {
+                        "the fix the alignment starts from (the first with a dual-antenna heading, or the end of the course baseline) came first".to_string()
+                    }
+                };
+                format!(
+                    "not used: still for only {:.1} s, at least {MIN_STILL_S} s needed: {ended}",
+                    still_s.max(0.0)
+                )
+            }
+        }
+    }
+}
+
 /// The still span at the start of the record, if the platform stood still for at least
 /// [`MIN_STILL_S`] before `until` (the alignment fix's time), with the latitude of the fixes.
 pub fn still_start(imu: &[Increment], gnss: &[GnssFix], until: Timestamp) -> Option<StillStart> {
-    let imu_start = imu.first()?.time;
-    let (first_fix, last_still) = still_fixes_until(gnss, imu_start)?;
+    still_start_decided(imu, gnss, until).ok()
+}
+
+/// [`still_start`], or why there is none.
+///
+/// # Errors
+/// The [`StillDecision`] saying why the start is not still.
+pub fn still_start_decided(
+    imu: &[Increment],
+    gnss: &[GnssFix],
+    until: Timestamp,
+) -> Result<StillStart, StillDecision> {
+    let imu_start = imu.first().ok_or(StillDecision::NoData)?.time;
+    let first = gnss.iter().find(|f| f.time >= imu_start);
+    let first = first.ok_or(StillDecision::NoData)?;
+    let radius_m =
+        (STILL_RADIUS_SD * super::alignment::horizontal_sd_m(first)).max(STILL_RADIUS_MIN_M);
+    let (first_fix, last_still) =
+        still_fixes_until(gnss, imu_start).ok_or(StillDecision::FixesMove { radius_m })?;
     let to = last_still.min(until);
-    let windows = windows_in(imu, first_fix.max(imu_start), to);
-    let windows = &windows[..agreeing_prefix(&windows)];
+    let all = windows_in(imu, first_fix.max(imu_start), to);
+    let windows = &all[..agreeing_prefix(&all)];
     let duration_s: f64 = windows.iter().map(|w| w.dt_s).sum();
     if duration_s < MIN_STILL_S {
-        return None;
+        let ended_by = if windows.len() < all.len() {
+            StillEnd::ImuChanged
+        } else if until < last_still {
+            StillEnd::AlignmentFix
+        } else {
+            StillEnd::FixesMoved
+        };
+        return Err(StillDecision::TooShort {
+            still_s: duration_s,
+            fixes_still_s: (last_still - first_fix).as_seconds(),
+            radius_m,
+            ended_by,
+        });
     }
+    still_span(windows, gnss, first_fix, duration_s).ok_or(StillDecision::NoData)
+}
+
+/// The still span of `windows` (at least [`MIN_STILL_S`] long).
+fn still_span(
+    windows: &[Window],
+    gnss: &[GnssFix],
+    first_fix: Timestamp,
+    duration_s: f64,
+) -> Option<StillStart> {
     let rates: Vec<_> = windows.iter().map(Window::mean_rate).collect();
     let forces: Vec<_> = windows.iter().map(Window::mean_force).collect();
     let (mean_rate, rate_se) = mean_and_se(&rates);

@@ -324,7 +324,9 @@ impl PreparedStream {
             imu_samples: tail.imu_samples,
             smoothed: tail.smoothed,
         };
+        let gnss_sd = super::report::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
         let outcome = RunOutcome {
+            gnss_sd,
             processing_s: started.elapsed().as_secs_f64(),
             models: self.models,
             compensation: self.compensation,
@@ -333,6 +335,7 @@ impl PreparedStream {
             initial: self.start.source,
             course_baseline: self.start.course_baseline,
             still_start: self.start.still_start,
+            still_decision: self.start.still_decision,
             uncertainty: self.uncertainty,
             bias_source: self.bias_source,
         };
