@@ -132,65 +132,6 @@ impl From<&Outage> for OutageJson {
     }
 }
 
-/// Where a run's GNSS position standard deviations came from.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct GnssSdUse {
-    /// `file` (every fix has its sds), `default` (none has: the default was used for all), or
-    /// `file_and_default` (some have).
-    pub source: GnssSdSource,
-    /// Fixes in the record.
-    pub fixes: usize,
-    /// Fixes without sds, given the default.
-    pub fixes_with_default_sd: usize,
-    /// The default, north/east/down, m (the engine's `default_position_sd_m`).
-    pub default_position_sd_ned_m: [f64; 3],
-}
-
-/// Which sds a run's fixes carried.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GnssSdSource {
-    /// Every fix's own.
-    File,
-    /// The default for every fix.
-    Default,
-    /// Some fixes' own, the default for the others.
-    FileAndDefault,
-}
-
-impl GnssSdUse {
-    /// The sds of `fixes` with `default_position_sd_ned_m` for those without.
-    pub fn of(fixes: &[crate::gnss::GnssFix], default_position_sd_ned_m: [f64; 3]) -> Self {
-        let without = fixes
-            .iter()
-            .filter(|f| f.position_sd_ned_m.is_none())
-            .count();
-        let source = match without {
-            0 => GnssSdSource::File,
-            n if n == fixes.len() => GnssSdSource::Default,
-            _ => GnssSdSource::FileAndDefault,
-        };
-        Self {
-            source,
-            fixes: fixes.len(),
-            fixes_with_default_sd: without,
-            default_position_sd_ned_m,
-        }
-    }
-
-    /// In words, with the default's values when it was used.
-    pub fn words(&self) -> String {
-        let [n, e, d] = self.default_position_sd_ned_m;
-        match self.source {
-            GnssSdSource::File => format!("the file's, on all {} fixes", self.fixes),
-            _ => format!(
-                "default {n} m north, {e} m east, {d} m down on {} of {} fixes (no sd_n_m, sd_e_m, sd_u_m in the file)",
-                self.fixes_with_default_sd, self.fixes
-            ),
-        }
-    }
-}
-
 /// What a run reports.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunReport {
@@ -216,7 +157,7 @@ pub struct RunReport {
     /// Whether static alignment was used, and if not, why (`decision` and its numbers).
     pub static_alignment: super::static_alignment::StillDecision,
     /// Where the GNSS position sds came from: the file's, or the default for fixes without.
-    pub gnss_sd: GnssSdUse,
+    pub gnss_sd: crate::gnss::GnssSdUse,
     /// The initial bias standard deviations and where they came from.
     pub initial_bias_sd: InitialBiasJson,
     /// The Gaussian sum the z-gyro bias prior was split into (absent: one filter).

@@ -708,7 +708,7 @@ impl PreparedRun {
             progress,
         )
         .map_err(RunError::Nav)?;
-        let gnss_sd = super::report::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
+        let gnss_sd = crate::gnss::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
         Ok(RunOutcome {
             gnss_sd,
             processing_s: started.elapsed().as_secs_f64(),
@@ -746,7 +746,7 @@ pub struct RunOutcome {
     /// Whether static alignment was used, and if not, why.
     pub still_decision: StillDecision,
     /// Where the GNSS position sds came from.
-    pub gnss_sd: super::report::GnssSdUse,
+    pub gnss_sd: crate::gnss::GnssSdUse,
     /// The initial standard deviations of the error states.
     pub uncertainty: InitialUncertainty,
     /// Where the initial bias sds came from.

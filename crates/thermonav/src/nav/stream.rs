@@ -324,7 +324,7 @@ impl PreparedStream {
             imu_samples: tail.imu_samples,
             smoothed: tail.smoothed,
         };
-        let gnss_sd = super::report::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
+        let gnss_sd = crate::gnss::GnssSdUse::of(&self.gnss, self.engine.default_position_sd_m);
         let outcome = RunOutcome {
             gnss_sd,
             processing_s: started.elapsed().as_secs_f64(),
