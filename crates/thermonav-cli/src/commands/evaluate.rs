@@ -22,6 +22,7 @@ use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::outside::{OutsideResult, score_outside};
 use thermonav::evaluation::scenario::Scenario;
 use thermonav::evaluation::shard::Shard;
+use thermonav::gnss::{GnssSdSource, GnssSdUse};
 use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::Outage;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
@@ -99,6 +100,10 @@ fn run_filters(
     solutions: &[Solution],
 ) -> Result<EvaluationFile, Failure> {
     let (tournament, main) = prepare(s, run)?;
+    let gnss_sd = GnssSdUse::of(&main.gnss, main.settings.default_position_sd_m);
+    if gnss_sd.source != GnssSdSource::File {
+        eprintln!("note: GNSS position sd: {}", gnss_sd.words());
+    }
     let outside = score_all(solutions, &main.reference, windows(&main))?;
     run_and_write(
         &tournament,

@@ -683,3 +683,27 @@ fn the_still_start_decision_and_the_gnss_sd_used_are_reported() {
         "{row}"
     );
 }
+
+/// Row 9, evaluate: a GNSS CSV without sd columns is run with the default sd, said on stderr
+/// with its values and the number of fixes (counted here); with sd columns nothing is said.
+#[test]
+fn evaluate_says_when_the_default_gnss_sd_is_used() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = vessel(dir.path());
+    let bare = dir.path().join("bare");
+    std::fs::create_dir(&bare).unwrap();
+    let fixes = gnss_columns(&v.join("gnss.csv"), &bare.join("gnss.csv"), 4);
+    for f in ["imu.csv", "reference.csv"] {
+        std::fs::copy(v.join(f), bare.join(f)).unwrap();
+    }
+    let (status, _, stderr) = evaluate(&bare, &dir.path().join("e1"), &["--json"]);
+    assert_eq!(status, 0, "{stderr}");
+    let [n, e, d] = thermonav::nav::engine::EngineSettings::default().default_position_sd_m;
+    let said = format!(
+        "GNSS position sd: default {n} m north, {e} m east, {d} m down on {fixes} of {fixes} fixes"
+    );
+    assert!(stderr.contains(&said), "{stderr}");
+    let (status, _, stderr) = evaluate(&v, &dir.path().join("e2"), &[]);
+    assert_eq!(status, 0, "{stderr}");
+    assert!(!stderr.contains("GNSS position sd"), "{stderr}");
+}
