@@ -1418,6 +1418,10 @@ pub struct PlotArgs {
     /// GNSS outages to highlight, as for `integrate` (trajectory).
     #[arg(long, default_value = "none")]
     pub outages: OutageSpec,
+    /// trajectory: the IMU record the solution came from; `--outages` then spans it as
+    /// `integrate` does (`rel:` from its first IMU increment), else the solution's points.
+    #[arg(long)]
+    pub imu: Option<PathBuf>,
     /// Filter whose models to draw (outage-errors): ukf or ekf; default the report's first.
     #[arg(long)]
     pub filter: Option<String>,

@@ -3,7 +3,7 @@
 use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, outage_errors, rms_series};
-use crate::inputs::{read_bank, read_rates, thermal_calibration_of};
+use crate::inputs::{read_bank, read_imu_input, read_rates, thermal_calibration_of};
 use crate::settings::paths::Io;
 use anyhow::anyhow;
 use serde::Deserialize;
@@ -12,13 +12,15 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use thermonav::geo::position::Geodetic;
 use thermonav::imu::Channel;
-use thermonav::nav::outage::Outages;
+use thermonav::nav::outage::{OutageSpec, Outages};
+use thermonav::nav::run::increments_of;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::allan::DeviationKind;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
+use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
-use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
+use thermonav_io::{ImuOptions, Strictness, read_trajectory_file, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{
     AllanCurve, ConfidenceBand, NoiseTerm, NoiseTermReading, allan_curves_of_entry,
@@ -70,7 +72,10 @@ fn lowercase_extension(path: &Path) -> Option<String> {
 pub fn run(args: &PlotArgs) -> Result<(), Failure> {
     Io::new()
         .input("INPUT", &args.input)
-        .optional_inputs([("--record", args.record.as_ref())])
+        .optional_inputs([
+            ("--record", args.record.as_ref()),
+            ("--imu", args.imu.as_ref()),
+        ])
         .output("figure", &args.out)
         .check()?;
     let format = image_format(&args.out)?;
@@ -447,9 +452,16 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
             args.input.display()
         )));
     };
+    let span = match &args.imu {
+        Some(imu) => imu_span(imu)?,
+        None => {
+            note_origin(&args.outages, first.time);
+            (first.time, last.time)
+        }
+    };
     let outages = args
         .outages
-        .resolve((first.time, last.time))
+        .resolve(span)
         .map_err(|e| anyhow!("--outages: {e}"))
         .usage()?;
     let title = format!("Trajectory, {}", file_name(&args.input));
@@ -458,6 +470,28 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
         &local_trajectory(&points),
         &outage_windows(&outages),
     ))
+}
+
+/// The span `integrate` lays its outages over: the IMU record's first increment to its last.
+fn imu_span(imu: &Path) -> Result<(Timestamp, Timestamp), Failure> {
+    let series = read_imu_input(imu, &ImuOptions::default())?;
+    let increments = increments_of(&series)
+        .map_err(|e| anyhow!("{}: {e}", imu.display()))
+        .data()?;
+    match (increments.first(), increments.last()) {
+        (Some(first), Some(last)) => Ok((first.time, last.time)),
+        _ => Err(anyhow!("{}: no IMU interval", imu.display())).data(),
+    }
+}
+
+/// Without `--imu`, says what `rel:` counts from here and how to count as integrate did.
+fn note_origin(outages: &OutageSpec, first: Timestamp) {
+    if matches!(outages, OutageSpec::FromStart(_)) {
+        eprintln!(
+            "note: --outages rel: counts here from the solution's first point (t_s {:.3}); integrate counts from the first IMU increment: give --imu IMU.csv to draw the windows where integrate laid them",
+            first.as_seconds()
+        );
+    }
 }
 
 /// The position of a trajectory point.

@@ -707,3 +707,69 @@ fn evaluate_says_when_the_default_gnss_sd_is_used() {
     assert_eq!(status, 0, "{stderr}");
     assert!(!stderr.contains("GNSS position sd"), "{stderr}");
 }
+
+/// Row 4: `plot trajectory --outages rel:...` of an integrate solution counts from the IMU's
+/// first increment with `--imu`, as integrate did; without it, it says what it counts from.
+#[test]
+fn plot_trajectory_counts_rel_outages_as_integrate_with_imu() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = vessel(dir.path());
+    let solution = dir.path().join("sol.csv");
+    let outages = "rel:100+30";
+    let (imu, gnss) = (v.join("imu.csv"), v.join("gnss.csv"));
+    let args = [
+        "integrate",
+        "--imu",
+        arg(&imu),
+        "--gnss",
+        arg(&gnss),
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--outages",
+        outages,
+        "--out",
+        arg(&solution),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    let first_solution_s: f64 = std::fs::read_to_string(&solution)
+        .unwrap()
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let plot = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let args = [
+            "plot",
+            "trajectory",
+            arg(&solution),
+            "--outages",
+            outages,
+            "--out",
+            arg(&out),
+        ];
+        let (status, _, stderr) = outcome(&thermonav(&[&args[..], extra].concat()));
+        assert_eq!(status, 0, "{stderr}");
+        (std::fs::read_to_string(out).unwrap(), stderr)
+    };
+    let (alone, stderr) = plot("alone.svg", &[]);
+    assert!(
+        stderr.contains("rel: counts here from the solution's first point")
+            && stderr.contains("--imu"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(&format!("{first_solution_s:.3}")),
+        "{stderr}"
+    );
+    let (with_imu, stderr) = plot("imu.svg", &["--imu", arg(&imu)]);
+    assert!(!stderr.contains("note"), "{stderr}");
+    // The solution starts after the IMU (alignment), so the windows move with the origin.
+    assert!(first_solution_s > 0.5, "{first_solution_s}");
+    assert_ne!(alone, with_imu);
+}
