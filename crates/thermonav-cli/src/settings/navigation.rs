@@ -292,7 +292,8 @@ fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<Engine
     }
     Ok(options.engine(EngineSettings {
         filter: args.filter.into(),
-        output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz).map_err(usage)?,
+        output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz)
+            .map_err(usage)?,
         smooth: args.smooth,
         static_alignment: match args.no_static_alignment {
             true => StaticAlignment::Off,
