@@ -773,3 +773,51 @@ fn plot_trajectory_counts_rel_outages_as_integrate_with_imu() {
     assert!(first_solution_s > 0.5, "{first_solution_s}");
     assert_ne!(alone, with_imu);
 }
+
+/// `path`'s CSV with `shift_s` added to every t_s, written to `to`.
+fn shifted(path: &Path, to: &Path, shift_s: f64) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let mut out = format!("{}\n", lines.next().unwrap());
+    for line in lines {
+        let (t, rest) = line.split_once(',').unwrap();
+        let _ = writeln!(out, "{:.9},{rest}", t.parse::<f64>().unwrap() + shift_s);
+    }
+    std::fs::write(to, out).unwrap();
+}
+
+/// Row 4, integrate: windows before data on Unix time suggest rel:, which then works.
+#[test]
+fn outages_before_clock_time_data_suggest_rel() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = vessel(dir.path());
+    let (imu, gnss) = (dir.path().join("imu.csv"), dir.path().join("gnss.csv"));
+    shifted(&v.join("imu.csv"), &imu, 1.7e9);
+    shifted(&v.join("gnss.csv"), &gnss, 1.7e9);
+    let out = dir.path().join("sol.csv");
+    let run = |outages: &str| {
+        let args = [
+            "integrate",
+            "--imu",
+            arg(&imu),
+            "--gnss",
+            arg(&gnss),
+            "--profile",
+            "builtin:temperature-sensitive",
+            "--outages",
+            outages,
+            "--out",
+            arg(&out),
+        ];
+        outcome(&thermonav(&args))
+    };
+    let (status, _, stderr) = run("every:40,10,30,3");
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("outage 40-50 s is not inside the data")
+            && stderr.contains("put rel: before the specification"),
+        "{stderr}"
+    );
+    let (status, _, stderr) = run("rel:every:40,10,30,3");
+    assert_eq!(status, 0, "{stderr}");
+}

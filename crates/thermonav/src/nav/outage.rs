@@ -45,7 +45,10 @@ pub enum OutageError {
         second_start_s: f64,
     },
     /// A window lies outside the data.
-    #[error("outage {start_s}-{end_s} s is not inside the data ({data_start_s}-{data_end_s} s)")]
+    #[error(
+        "outage {start_s}-{end_s} s is not inside the data ({data_start_s}-{data_end_s} s){}",
+        rel_hint(.start_s, .data_start_s)
+    )]
     OutsideData {
         /// Window start, s.
         start_s: f64,
@@ -364,6 +367,20 @@ fn parse_start_duration(item: &str) -> Result<(f64, f64), String> {
         .ok_or_else(|| format!("\"{}\" is not START+DURATION", item.trim()))?;
     Ok((finite_number(start)?, finite_number(duration)?))
 }
+
+/// For a window before data whose times do not start near 0 (a clock's seconds, Unix or GPS
+/// time): the hint to count from the first IMU sample with `rel:`.
+fn rel_hint(start_s: &f64, data_start_s: &f64) -> String {
+    if *start_s >= *data_start_s || *data_start_s < REL_HINT_AFTER_S {
+        return String::new();
+    }
+    format!(
+        ": the data's t_s start at {data_start_s} s, not near 0: to count seconds from the first IMU sample, put rel: before the specification (rel:every:..., rel:START+DURATION)"
+    )
+}
+
+/// Data that start later than this, s, are on a clock's scale (not seconds from the start).
+const REL_HINT_AFTER_S: f64 = 1.0e5;
 
 impl OutageSpec {
     /// Every window must last a positive time.
