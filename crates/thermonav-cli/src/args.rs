@@ -692,7 +692,7 @@ pub enum ReadingArg {
     Auto,
     /// The whole record in memory.
     InMemory,
-    /// In pieces, in memory independent of the record length (see the README).
+    /// In pieces, in memory independent of the record length (see the user guide, docs/user-guide.md).
     Streaming,
 }
 
@@ -711,7 +711,7 @@ pub enum BankAction {
     Show(BankShowArgs),
     /// Write the bank as another tool's configuration: its thermal calibration as autopilot
     /// parameters (px4-tc, ardupilot-tcal), or its noise model at a temperature as a filter's
-    /// or simulator's noise block (the other formats; see the README's table).
+    /// or simulator's noise block (the other formats; see the table in docs/user-guide.md).
     Export(BankExportArgs),
     /// Check the bank's thermal calibration against a record (block means against the
     /// prediction and its 95 % band): how much it removes, and whether its band holds.

@@ -331,20 +331,20 @@ fn first_outage_figure(
 /// The north, east and heading RMS per model against temperature (Figures 13-15).
 fn rms_figures(models: &[Value], filters: &[String]) -> Vec<Block> {
     [
-        ("rms_north_m", "north RMS error", "m"),
-        ("rms_east_m", "east RMS error", "m"),
-        ("rms_heading_deg", "heading RMS error", "deg"),
+        ("rms_north_m", "north", "m"),
+        ("rms_east_m", "east", "m"),
+        ("rms_heading_deg", "heading", "deg"),
     ]
     .iter()
     .map(|(key, quantity, unit)| {
         figure(
             rms_versus_temperature_figure(
-                &format!("{quantity} per model"),
+                &format!("RMS {quantity} error per model"),
                 quantity,
                 unit,
                 &rms_series(models, filters, key),
             ),
-            &format!("{quantity} against the model's temperature (Figures 13-15)"),
+            &format!("RMS {quantity} error against the model's temperature (Figures 13-15)"),
         )
     })
     .collect()

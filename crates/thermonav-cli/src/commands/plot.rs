@@ -608,7 +608,7 @@ fn rms_temperature_svg(args: &PlotArgs) -> Result<String, Failure> {
     let (json, filters) = evaluation(args)?;
     let (key, quantity, unit) = metric_columns(args.metric);
     let series = rms_series(&models_of(&json), &filters, key);
-    let title = format!("{quantity} per model");
+    let title = format!("RMS {quantity} error per model");
     Ok(rms_versus_temperature_figure(
         &title_or(args, title),
         quantity,
@@ -620,8 +620,8 @@ fn rms_temperature_svg(args: &PlotArgs) -> Result<String, Failure> {
 /// The report key, the quantity's name and its unit of a `--metric`.
 fn metric_columns(metric: MetricArg) -> (&'static str, &'static str, &'static str) {
     match metric {
-        MetricArg::North => ("rms_north_m", "north RMS error", "m"),
-        MetricArg::East => ("rms_east_m", "east RMS error", "m"),
-        MetricArg::Heading => ("rms_heading_deg", "heading RMS error", "deg"),
+        MetricArg::North => ("rms_north_m", "north", "m"),
+        MetricArg::East => ("rms_east_m", "east", "m"),
+        MetricArg::Heading => ("rms_heading_deg", "heading", "deg"),
     }
 }
