@@ -223,17 +223,20 @@ pub fn imu_series(
     let mut series = ImuSeries::new(SampleKind::Rates);
     let mut lags = Vec::with_capacity(topic.messages.len());
     for (k, m) in topic.messages.iter().enumerate() {
-        let imu = decode_imu(&m.data, &topic.encoding, input, m.offset)?;
-        let frd = |v: [f64; 3]| [v[0], -v[1], -v[2]];
-        let sample = ImuSample {
-            time: Timestamp::from_nanos(imu.stamp_ns),
-            gyro: frd(imu.angular_velocity),
-            accel: frd(imu.linear_acceleration),
-            temperature_c: None,
+        let at = MessagePlace {
+            topic: &topic.name,
+            index: k,
+            offset: m.offset,
         };
-        check_sample(&series, &sample, topic, k, m.offset, input)?;
+        let (sample, stamp_ns) = imu_message_sample(
+            &m.data,
+            &topic.encoding,
+            at,
+            series.time.last().copied(),
+            input,
+        )?;
         series.push(&sample);
-        lags.push(imu.stamp_ns.saturating_sub(m.log_time_ns));
+        lags.push(stamp_ns.saturating_sub(m.log_time_ns));
     }
     if series.is_empty() {
         return Err(topic_error(
@@ -265,35 +268,79 @@ pub fn imu_series(
     })
 }
 
-/// A sample's values as every reader checks them ([`imu_sample_problem`]: finite, within
-/// 1e15 SI) and its time after the previous one; message `k` of `topic`, at file offset
-/// `offset`.
-fn check_sample(
-    series: &ImuSeries,
-    sample: &ImuSample,
-    topic: &Topic,
-    k: usize,
+/// Where a message is: its topic, its index in the topic and the file offset of its record.
+#[derive(Debug, Clone, Copy)]
+struct MessagePlace<'a> {
+    topic: &'a str,
+    index: usize,
     offset: u64,
+}
+
+/// An Imu message as a sample in FRD (ROS body axes x forward, y left, z up), checked as every
+/// reader checks a sample ([`imu_sample_problem`]: finite, within 1e15 SI) and to come after
+/// `previous`; with its header stamp, ns. The one decoding of the bag read whole and streamed.
+fn imu_message_sample(
+    data: &[u8],
+    encoding: &Encoding,
+    at: MessagePlace<'_>,
+    previous: Option<Timestamp>,
     input: &str,
-) -> Result<(), ReadError> {
-    let name = &topic.name;
-    if let Some(problem) = imu_sample_problem(sample.gyro, sample.accel, sample.temperature_c) {
+) -> Result<(ImuSample, i64), ReadError> {
+    let MessagePlace {
+        topic: name,
+        index,
+        offset,
+    } = at;
+    let imu = decode_imu(data, encoding, input, offset)?;
+    let frd = |v: [f64; 3]| [v[0], -v[1], -v[2]];
+    let sample = ImuSample {
+        time: Timestamp::from_nanos(imu.stamp_ns),
+        gyro: frd(imu.angular_velocity),
+        accel: frd(imu.linear_acceleration),
+        temperature_c: None,
+    };
+    if let Some(problem) = imu_sample_problem(sample.gyro, sample.accel, None) {
         return Err(topic_error(
             input,
-            format!("at byte {offset}: {name} message {k}: {problem} (in FRD)"),
+            format!("at byte {offset}: {name} message {index}: {problem} (in FRD)"),
         ));
     }
-    match series.time.last() {
-        Some(&previous) if sample.time <= previous => Err(topic_error(
+    match previous {
+        Some(previous) if sample.time <= previous => Err(topic_error(
             input,
             format!(
-                "at byte {offset}: {name} message {k} is stamped {:.9} s, not after the previous \
-             message's {:.9} s",
+                "at byte {offset}: {name} message {index} is stamped {:.9} s, not after the \
+                 previous message's {:.9} s",
                 sample.time.as_seconds(),
                 previous.as_seconds()
             ),
         )),
-        _ => Ok(()),
+        _ => Ok((sample, imu.stamp_ns)),
+    }
+}
+
+/// A Temperature message as (stamp, °C), checked as every reader checks a temperature
+/// ([`temperature_problem`]); `None` for a NaN, "not measured". The one decoding of the bag
+/// read whole and streamed.
+fn temperature_message(
+    data: &[u8],
+    encoding: &Encoding,
+    at: MessagePlace<'_>,
+    input: &str,
+) -> Result<Option<(Timestamp, f64)>, ReadError> {
+    let t = decode_temperature(data, encoding, input, at.offset)?;
+    if t.temperature_c.is_nan() {
+        return Ok(None);
+    }
+    match temperature_problem(t.temperature_c) {
+        Some(problem) => Err(topic_error(
+            input,
+            format!(
+                "at byte {}: {} message {}: {problem}",
+                at.offset, at.topic, at.index
+            ),
+        )),
+        None => Ok(Some((Timestamp::from_nanos(t.stamp_ns), t.temperature_c))),
     }
 }
 
@@ -335,20 +382,12 @@ fn temperature_records(
 ) -> Result<(Vec<Timestamp>, Vec<f64>), ReadError> {
     let mut records = Vec::with_capacity(topic.messages.len());
     for (k, m) in topic.messages.iter().enumerate() {
-        let t = decode_temperature(&m.data, &topic.encoding, input, m.offset)?;
-        if t.temperature_c.is_nan() {
-            continue;
-        }
-        if let Some(problem) = temperature_problem(t.temperature_c) {
-            return Err(topic_error(
-                input,
-                format!(
-                    "at byte {}: {} message {k}: {problem}",
-                    m.offset, topic.name
-                ),
-            ));
-        }
-        records.push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
+        let at = MessagePlace {
+            topic: &topic.name,
+            index: k,
+            offset: m.offset,
+        };
+        records.extend(temperature_message(&m.data, &topic.encoding, at, input)?);
     }
     records.sort_by_key(|&(time, _)| time);
     if records.is_empty() {
@@ -567,35 +606,16 @@ impl Sink for Samples<'_> {
     ) -> Result<(), ReadError> {
         let index = self.bag.topics[k].count;
         self.bag.count(k);
-        let imu = decode_imu(data, &self.bag.topics[k].encoding, input, offset)?;
-        let frd = |v: [f64; 3]| [v[0], -v[1], -v[2]];
-        let sample = ImuSample {
-            time: Timestamp::from_nanos(imu.stamp_ns),
-            gyro: frd(imu.angular_velocity),
-            accel: frd(imu.linear_acceleration),
-            temperature_c: None,
+        let at = MessagePlace {
+            topic: &self.name,
+            index,
+            offset,
         };
-        let name = &self.name;
-        if let Some(problem) = imu_sample_problem(sample.gyro, sample.accel, None) {
-            return Err(topic_error(
-                input,
-                format!("at byte {offset}: {name} message {index}: {problem} (in FRD)"),
-            ));
-        }
-        if let Some(previous) = self.last.filter(|&p| sample.time <= p) {
-            return Err(topic_error(
-                input,
-                format!(
-                    "at byte {offset}: {name} message {index} is stamped {:.9} s, not after the \
-                     previous message's {:.9} s",
-                    sample.time.as_seconds(),
-                    previous.as_seconds()
-                ),
-            ));
-        }
+        let encoding = &self.bag.topics[k].encoding;
+        let (sample, stamp_ns) = imu_message_sample(data, encoding, at, self.last, input)?;
         self.last = Some(sample.time);
         if let Some(lags) = &mut self.lags {
-            lags.push(imu.stamp_ns.saturating_sub(log_time_ns));
+            lags.push(stamp_ns.saturating_sub(log_time_ns));
         }
         self.piece.push(&sample);
         match self.piece.len() >= self.piece_len {
@@ -754,18 +774,14 @@ impl Sink for Temperatures {
     ) -> Result<(), ReadError> {
         let index = self.bag.topics[k].count;
         self.bag.count(k);
-        let t = decode_temperature(data, &self.bag.topics[k].encoding, input, offset)?;
-        if t.temperature_c.is_nan() {
-            return Ok(());
-        }
-        if let Some(problem) = temperature_problem(t.temperature_c) {
-            return Err(topic_error(
-                input,
-                format!("at byte {offset}: {} message {index}: {problem}", self.name),
-            ));
-        }
+        let at = MessagePlace {
+            topic: &self.name,
+            index,
+            offset,
+        };
+        let encoding = &self.bag.topics[k].encoding;
         self.records
-            .push((Timestamp::from_nanos(t.stamp_ns), t.temperature_c));
+            .extend(temperature_message(data, encoding, at, input)?);
         Ok(())
     }
 
