@@ -260,3 +260,34 @@ pub fn zstd_error_text(error: &ruzstd::decoding::errors::FrameDecoderError) -> S
         other => other.to_string(),
     }
 }
+
+/// The decompressor of a chunk of `compression` (none, lz4, bz2, else zstd: [`chunk_bounds`]
+/// admits only these four) over its stored bytes: the one place both bag readers make it.
+/// `offset` is the chunk record's, for the refusal of a zstd chunk that is not a zstd frame.
+///
+/// # Errors
+/// A zstd chunk whose frame header does not read, in words ([`zstd_error_text`]).
+pub fn chunk_decoder<'r>(
+    compression: &str,
+    stored: &'r mut dyn std::io::Read,
+    input: &str,
+    offset: u64,
+) -> Result<Box<dyn std::io::Read + 'r>, ReadError> {
+    Ok(match compression {
+        "" | "none" => Box::new(stored),
+        "lz4" => Box::new(lz4_flex::frame::FrameDecoder::new(stored)),
+        "bz2" => Box::new(bzip2_rs::DecoderReader::new(stored)),
+        _ => Box::new(
+            ruzstd::decoding::StreamingDecoder::new(stored).map_err(|e| {
+                at(
+                    input,
+                    offset,
+                    format_args!(
+                        "the zstd chunk does not decompress: {}",
+                        zstd_error_text(&e)
+                    ),
+                )
+            })?,
+        ),
+    })
+}

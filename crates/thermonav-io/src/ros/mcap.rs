@@ -284,23 +284,7 @@ impl<S: Sink> Reader<'_, S> {
         (offset, records_at): (u64, u64),
     ) -> Result<(u64, bool), ReadError> {
         let input = self.input;
-        let decoder: Box<dyn Read + '_> = match compression {
-            "" | "none" => Box::new(stored),
-            "zstd" => Box::new(
-                ruzstd::decoding::StreamingDecoder::new(stored).map_err(|e| {
-                    super::bytes::at(
-                        input,
-                        offset,
-                        format_args!(
-                            "the zstd chunk does not decompress: {}",
-                            super::bytes::zstd_error_text(&e)
-                        ),
-                    )
-                })?,
-            ),
-            "lz4" => Box::new(lz4_flex::frame::FrameDecoder::new(stored)),
-            _ => Box::new(bzip2_rs::DecoderReader::new(stored)),
-        };
+        let decoder = super::bytes::chunk_decoder(compression, stored, input, offset)?;
         let origin = Origin::Chunk {
             offset,
             compression,
