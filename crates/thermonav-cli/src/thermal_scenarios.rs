@@ -149,6 +149,8 @@ pub struct ClaimComparison {
     pub mean_difference_m: f64,
     /// Paired t-test p-value.
     pub p_value: Option<f64>,
+    /// 95 % interval of the mean of worse − better, m (`None` without a test).
+    pub ci95_difference_m: Option<[f64; 2]>,
     /// The claim's model is better with p below [`CLAIM_P_VALUE`].
     pub holds: bool,
     /// Replicates the measured effect (mean over sd of the paired differences) needs for
@@ -638,10 +640,19 @@ fn comparison(contrasts: &[Contrast], better: &str, worse: &str) -> ClaimCompari
     let found = contrasts.iter().find(|c| {
         (c.better == better && c.worse == worse) || (c.better == worse && c.worse == better)
     });
-    let (mean_difference_m, p_value) = match found {
-        Some(c) if c.better == better => (c.mean_difference_m, c.test.map(|t| t.p_value)),
-        Some(c) => (-c.mean_difference_m, c.test.map(|t| t.p_value)),
-        None => (f64::NAN, None),
+    let (mean_difference_m, p_value, ci95_difference_m) = match found {
+        Some(c) if c.better == better => (
+            c.mean_difference_m,
+            c.test.map(|t| t.p_value),
+            c.test.map(|t| t.ci95_difference),
+        ),
+        Some(c) => (
+            -c.mean_difference_m,
+            c.test.map(|t| t.p_value),
+            c.test
+                .map(|t| [-t.ci95_difference[1], -t.ci95_difference[0]]),
+        ),
+        None => (f64::NAN, None, None),
     };
     let replicates_needed = found.and_then(|c| c.test).and_then(|t| {
         pairs_for_power(
@@ -662,6 +673,7 @@ fn comparison(contrasts: &[Contrast], better: &str, worse: &str) -> ClaimCompari
             0.0
         },
         p_value,
+        ci95_difference_m,
     }
 }
 
