@@ -6,6 +6,10 @@ use crate::figure_data::{number, text};
 use serde_json::Value;
 use thermonav_plot::html::Table;
 
+/// The start of the navigation section's heading (its temperature follows; the summary links
+/// to the section by it).
+pub const NAVIGATION_HEADING: &str = "Navigation through GNSS outages";
+
 /// One metric of a model: its mean with the 95 % interval when replicated, else the value, else
 /// `failed`.
 fn cell(v: &Value, key: &str) -> String {

@@ -6,7 +6,8 @@
 
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, number, outage_errors, rms_series, text};
-use crate::html_ranking::ranking_table;
+use crate::html_ranking::{NAVIGATION_HEADING, ranking_table};
+use crate::html_summary::{SummarySources, findings};
 use crate::inputs::read_bank;
 use anyhow::anyhow;
 use serde_json::Value;
@@ -43,8 +44,14 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
         sections.extend(crate::html_temperature::temperature_sections(d));
         sections.extend(crate::html_temperature::held_out_check_section(dir, d)?);
     }
+    let summary = findings(&SummarySources {
+        evaluation: evaluation.as_ref(),
+        demo: demo.as_ref(),
+        sections: &sections,
+    });
     let page = Page {
         title: "thermonav report".into(),
+        summary,
         sections,
     };
     let out = dir.join("report.html");
@@ -61,9 +68,16 @@ fn write_tournament_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
         .data()?;
     let mut run = run_section(dir, None);
     run.blocks.push(paragraph(TOURNAMENT_ONLY));
+    let sections = vec![run, navigation_section(dir, dir, &evaluation)?];
+    let summary = findings(&SummarySources {
+        evaluation: Some(&evaluation),
+        demo: None,
+        sections: &sections,
+    });
     let page = Page {
         title: "thermonav report: tournament".into(),
-        sections: vec![run, navigation_section(dir, dir, &evaluation)?],
+        summary,
+        sections,
     };
     let out = dir.join("report.html");
     write_html(&out, &render_page(&page))?;
@@ -194,7 +208,10 @@ fn models_section(bank: &ModelBank) -> Section {
     let mut blocks = vec![paragraph(
         "Overlapping Allan deviation of each static record with its confidence band and the IEEE 952 noise terms, then the bias correlation time of each channel against temperature for the three Gauss-Markov estimators, with 95 % intervals.",
     )];
-    blocks.extend(bank.entries.iter().map(allan_figure));
+    blocks.push(Block::SmallMultiples {
+        caption: "Allan deviation at each temperature of the bank (gyros above, accelerometers below); zoom in for the labels".into(),
+        figures: bank.entries.iter().map(allan_figure).collect(),
+    });
     blocks.push(correlation_figure(bank));
     blocks.extend(bank.thermal.as_ref().map(thermal_figure));
     Section {
@@ -204,16 +221,16 @@ fn models_section(bank: &ModelBank) -> Section {
 }
 
 /// The Allan deviation figure of one bank entry.
-fn allan_figure(entry: &TemperatureEntry) -> Block {
+fn allan_figure(entry: &TemperatureEntry) -> InlineFigure {
     let title = format!("Allan deviation at {:.1} °C", entry.temperature_c);
-    figure(
-        allan_deviation_figure(
+    InlineFigure {
+        svg: allan_deviation_figure(
             &title,
             &allan_curves_of_entry(entry),
             DisplayUnits::Navigation,
         ),
-        &title,
-    )
+        caption: title,
+    }
 }
 
 /// Bias against temperature of the unit's thermal calibration.
@@ -259,7 +276,7 @@ fn navigation_section(dir: &Path, evaluation_dir: &Path, e: &Value) -> Result<Se
     blocks.push(Block::Table(significance_table(e)));
     Ok(Section {
         heading: format!(
-            "Navigation through GNSS outages at {:.1} °C",
+            "{NAVIGATION_HEADING} at {:.1} °C",
             number(e, "operating_temperature_c").unwrap_or(f64::NAN)
         ),
         blocks,

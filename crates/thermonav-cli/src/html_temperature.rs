@@ -36,18 +36,21 @@ fn numbers(v: &Value, key: &str) -> Vec<Option<f64>> {
         .collect()
 }
 
-/// The matrix as a figure (one line per survey temperature) and a table.
-fn matrix_section(m: &Value) -> Section {
-    let models: Vec<f64> = numbers(m, "model_temperatures_c")
-        .into_iter()
-        .flatten()
-        .collect();
-    let surveys: Vec<f64> = numbers(m, "survey_temperatures_c")
-        .into_iter()
-        .flatten()
-        .collect();
-    let rows: Vec<Vec<Option<f64>>> = m
-        .get("mean_horizontal_m")
+/// The start of a scenario section's heading (the scenario's name follows).
+pub const SCENARIO_HEADING: &str = "Temperature in the loop: ";
+
+/// The heading of the matrix section.
+pub const MATRIX_HEADING: &str =
+    "Survey temperature × model temperature (the paper's Figures 13-15 as a matrix)";
+
+/// The numbers under `key` of the matrix, those that are numbers.
+fn finite_numbers(m: &Value, key: &str) -> Vec<f64> {
+    numbers(m, key).into_iter().flatten().collect()
+}
+
+/// The matrix's mean horizontal errors, one row per survey temperature.
+fn matrix_rows(m: &Value) -> Vec<Vec<Option<f64>>> {
+    m.get("mean_horizontal_m")
         .and_then(Value::as_array)
         .map_or(&[][..], Vec::as_slice)
         .iter()
@@ -55,17 +58,32 @@ fn matrix_section(m: &Value) -> Section {
             row.as_array()
                 .map_or(Vec::new(), |r| r.iter().map(Value::as_f64).collect())
         })
-        .collect();
-    let series: Vec<RmsSeries> = surveys
+        .collect()
+}
+
+/// The matrix as a figure: one line per survey temperature against the model's temperature.
+pub fn matrix_figure(m: &Value) -> InlineFigure {
+    let models = finite_numbers(m, "model_temperatures_c");
+    let series: Vec<RmsSeries> = finite_numbers(m, "survey_temperatures_c")
         .iter()
-        .zip(&rows)
+        .zip(&matrix_rows(m))
         .map(|(t, row)| survey_series(*t, &models, row))
         .collect();
+    InlineFigure {
+        svg: rms_versus_temperature_figure("Mean horizontal error per survey temperature", "horizontal", "m", &series),
+        caption: "Mean of per-outage RMS horizontal error of every fixed bank model (x: the model's temperature), one line per survey temperature".into(),
+    }
+}
+
+/// The matrix as a figure and a table.
+fn matrix_section(m: &Value) -> Section {
+    let models = finite_numbers(m, "model_temperatures_c");
+    let surveys = finite_numbers(m, "survey_temperatures_c");
     let mut header = vec!["survey °C".to_string()];
     header.extend(models.iter().map(|t| format!("model {t} °C, m")));
     let table_rows = surveys
         .iter()
-        .zip(&rows)
+        .zip(&matrix_rows(m))
         .map(|(t, row)| {
             let mut cells = vec![format!("{t}")];
             cells.extend(
@@ -76,14 +94,13 @@ fn matrix_section(m: &Value) -> Section {
         })
         .collect();
     Section {
-        heading: "Survey temperature × model temperature (the paper's Figures 13-15 as a matrix)".into(),
+        heading: MATRIX_HEADING.into(),
         blocks: vec![
-            Block::Figure(InlineFigure {
-                svg: rms_versus_temperature_figure("Mean horizontal error per survey temperature", "horizontal", "m", &series),
-                caption: "Mean of per-outage RMS horizontal error of every fixed bank model (x: the model's temperature), one line per survey temperature".into(),
-            }),
+            Block::Figure(matrix_figure(m)),
             Block::Table(Table {
-                caption: "Mean of per-outage RMS horizontal error, m, over shifted-outage replicates".into(),
+                caption:
+                    "Mean of per-outage RMS horizontal error, m, over shifted-outage replicates"
+                        .into(),
                 header,
                 rows: table_rows,
             }),
@@ -119,7 +136,7 @@ fn scenario_section(scenario: &Value) -> Section {
         .and_then(Value::as_array)
         .map_or(&[][..], Vec::as_slice);
     Section {
-        heading: format!("Temperature in the loop: {}", text("/name")),
+        heading: format!("{SCENARIO_HEADING}{}", text("/name")),
         blocks: vec![
             Block::Paragraph(format!("Claim ({verdict}): {}.", text("/claim/statement"))),
             Block::Table(comparison_table(scenario)),

@@ -12,6 +12,7 @@ mod figure_data;
 mod fir_design;
 mod html_ranking;
 mod html_report;
+mod html_summary;
 mod html_temperature;
 mod inputs;
 mod integration;

@@ -55,6 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }));
     }
     let page = Page {
+        summary: Vec::new(),
         title: "thermonav-plot gallery".into(),
         sections: vec![Section {
             heading: "Synthetic data".into(),

@@ -18,6 +18,7 @@ mod outside;
 mod plots;
 mod real_data;
 mod reliability;
+mod report_page;
 mod run_options;
 mod runaway;
 mod shapes;

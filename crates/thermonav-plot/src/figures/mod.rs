@@ -5,6 +5,7 @@
 
 pub mod allan;
 pub mod autocorrelation;
+pub mod claims;
 pub mod correlation;
 pub mod navigation;
 pub mod thermal;

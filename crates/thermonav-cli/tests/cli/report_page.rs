@@ -1,0 +1,150 @@
+//! Issue 38 row 19: the page `demo` writes opens with its answer. Its summary (each claim's
+//! statement, verdict and paired difference with its interval and p, and the figure that shows
+//! it) comes before every other figure, a table of contents follows, the Allan figures are small
+//! multiples in one grid, and the page is one self-contained file.
+
+use crate::{arg, outcome, thermonav};
+use serde_json::Value;
+use std::path::Path;
+
+/// The JSON document at `path`.
+fn json_file(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("readable")).expect("JSON")
+}
+
+/// The markup from `start` to the end of the element it opens (the first `</tag>` after it;
+/// the summary's cards nest articles, not sections).
+fn element<'a>(html: &'a str, start: &str, tag: &str) -> &'a str {
+    let from = html
+        .find(start)
+        .unwrap_or_else(|| panic!("{start} in the page"));
+    let close = format!("</{tag}>");
+    let to = html[from..].find(&close).expect("closed") + from;
+    &html[from..to]
+}
+
+/// The text of the verdict in the summary card headed `heading`.
+fn verdict_of<'a>(summary: &'a str, heading: &str) -> &'a str {
+    let card = element(summary, &format!("<h3>{heading}</h3>"), "article");
+    let after = &card[card.find("class=\"verdict").expect("a verdict")..];
+    let text = &after[after.find('>').expect("tag") + 1..];
+    &text[..text.find('<').expect("end")]
+}
+
+/// `text` with its first letter in upper case.
+fn capitalised(text: &str) -> String {
+    let mut chars = text.chars();
+    chars
+        .next()
+        .map_or(String::new(), |c| c.to_uppercase().chain(chars).collect())
+}
+
+/// `text` as the page writes it (markup characters as entities).
+fn escaped(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace('\'', "&#39;")
+}
+
+/// Every `attribute="..."` value in the page.
+fn attribute_values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {
+    let needle = format!(" {attribute}=\"");
+    html.match_indices(&needle)
+        .map(|(at, _)| {
+            let value = &html[at + needle.len()..];
+            &value[..value.find('"').expect("closed")]
+        })
+        .collect()
+}
+
+#[test]
+fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("demo");
+    let (status, _, stderr) = outcome(&thermonav(&["demo", "--quick", "--out", arg(&out)]));
+    assert_eq!(status, 0, "{stderr}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+
+    // The summary comes first: before the contents, the first section and every figure
+    // outside it.
+    let summary = element(&html, "<section id=\"summary\"", "section");
+    let summary_at = html.find(summary).unwrap();
+    let summary_end = summary_at + summary.len();
+    assert!(html[..summary_at].find("<figure").is_none());
+    assert!(html[..summary_at].find("<table").is_none());
+    let contents = html
+        .find("<nav id=\"contents\"")
+        .expect("a table of contents");
+    let first_section = html.find("<section id=\"section-1\"").expect("sections");
+    assert!(summary_end < contents && contents < first_section);
+    assert!(html[summary_end..].find("<figure").unwrap() + summary_end > first_section);
+
+    // Each claim of the demo: its statement and verdict, as demo.json has them.
+    let demo = json_file(&out.join("demo.json"));
+    for key in ["temperature_matters", "warming_survey"] {
+        let scenario = &demo["temperature_scenarios"][key];
+        let name = escaped(&capitalised(scenario["name"].as_str().unwrap()));
+        let holds = scenario["claim"]["holds"].as_bool().unwrap();
+        let expected = if holds { "holds" } else { "does not hold" };
+        assert_eq!(verdict_of(summary, &name), expected, "{name}");
+        let statement = escaped(&capitalised(
+            scenario["claim"]["statement"].as_str().unwrap(),
+        ));
+        assert!(summary.contains(&statement), "{statement}");
+        let interval = scenario["claim"]["comparisons"][0]["ci95_difference_m"].as_array();
+        assert_eq!(
+            interval.map(Vec::len),
+            Some(2),
+            "demo.json keeps the interval"
+        );
+    }
+    // The paper's set-up (a): the winner against the runner-up on the horizontal error.
+    let evaluation = json_file(&out.join("evaluation/evaluation.json"));
+    let tests = evaluation["significance"]["tests"].as_array().unwrap();
+    let horizontal = tests
+        .iter()
+        .find(|t| t["metric"] == "rms_horizontal")
+        .unwrap();
+    let significant = horizontal["significant"].as_bool().unwrap();
+    let expected = if significant {
+        "holds"
+    } else {
+        "does not hold"
+    };
+    assert_eq!(verdict_of(summary, "The paper&#39;s set-up (a)"), expected);
+    let card = element(summary, "<h3>The paper&#39;s set-up (a)</h3>", "article");
+    let p = horizontal["test"]["p_value"].as_f64().unwrap();
+    assert!(card.contains(&format!("paired p = {p:.1e}")), "{card}");
+    assert!(summary.matches("95 % CI").count() >= 3 && summary.matches("<svg").count() == 3);
+    assert!(summary.matches("<a href=\"#section-").count() == 3);
+
+    // The Allan figures: one grid, one figure per temperature of the bank.
+    let bank = json_file(&out.join("bank.json"));
+    let grid = element(&html, "<div class=\"multiples\"", "div");
+    let entries = bank["entries"].as_array().unwrap().len();
+    assert_eq!(
+        grid.matches("<figcaption>Allan deviation at").count(),
+        entries
+    );
+
+    // One self-contained file: links only to its own anchors, no script, stylesheet, image or
+    // font from elsewhere.
+    for attribute in ["src", "href", "xlink:href"] {
+        for value in attribute_values(&html, attribute) {
+            assert!(value.starts_with('#'), "{attribute}=\"{value}\"");
+        }
+    }
+    for forbidden in [
+        "<script",
+        "<link",
+        "<img",
+        "<iframe",
+        "@import",
+        "url(http",
+        "@font-face",
+    ] {
+        assert!(!html.contains(forbidden), "{forbidden}");
+    }
+}
