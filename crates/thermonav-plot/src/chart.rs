@@ -724,6 +724,12 @@ fn draw_interval(
     }
 }
 
+/// The opacity of a band's fill (and of its legend swatch).
+const BAND_OPACITY: &str = "0.2";
+
+/// The opacity of a span's fill (and of its legend swatch).
+const SPAN_OPACITY: &str = "0.35";
+
 fn draw_band(
     svg: &mut SvgWriter,
     frame: &Frame,
@@ -752,7 +758,7 @@ fn draw_band(
                 ("class", "band".into()),
                 ("points", points_attribute(&outline)),
                 ("fill", fill.0.into()),
-                ("fill-opacity", "0.2".into()),
+                ("fill-opacity", BAND_OPACITY.into()),
                 ("stroke", "none".into()),
             ],
         );
@@ -774,7 +780,7 @@ fn draw_spans(svg: &mut SvgWriter, frame: &Frame, ranges: &[(f64, f64)], fill: C
                 ("width", coordinate((x1 - x0).abs())),
                 ("height", coordinate(a.height)),
                 ("fill", fill.0.into()),
-                ("fill-opacity", "0.35".into()),
+                ("fill-opacity", SPAN_OPACITY.into()),
             ],
         );
     }
@@ -823,24 +829,25 @@ fn draw_swatch(svg: &mut SvgWriter, layer: &Layer, (x, y): (f64, f64)) {
             svg.empty("line", &attributes);
             draw_marker(svg, "legend-swatch", mid, *marker);
         }
-        Layer::Band { .. } | Layer::Spans { .. } => {
-            let fill = match layer {
-                Layer::Spans { fill, .. } => *fill,
-                _ => palette::INK,
-            };
-            svg.empty(
-                "rect",
-                &[
-                    ("x", coordinate(x)),
-                    ("y", coordinate(y - 6.0)),
-                    ("width", "24".into()),
-                    ("height", "12".into()),
-                    ("fill", fill.0.into()),
-                    ("fill-opacity", "0.3".into()),
-                ],
-            );
-        }
+        Layer::Band { fill, .. } => draw_area_swatch(svg, (x, y), *fill, BAND_OPACITY),
+        Layer::Spans { fill, .. } => draw_area_swatch(svg, (x, y), *fill, SPAN_OPACITY),
     }
+}
+
+/// A legend swatch for a shaded area: a rectangle of its fill at its opacity.
+fn draw_area_swatch(svg: &mut SvgWriter, (x, y): (f64, f64), fill: Color, opacity: &str) {
+    svg.empty(
+        "rect",
+        &[
+            ("class", "legend-swatch".into()),
+            ("x", coordinate(x)),
+            ("y", coordinate(y - 6.0)),
+            ("width", "24".into()),
+            ("height", "12".into()),
+            ("fill", fill.0.into()),
+            ("fill-opacity", opacity.into()),
+        ],
+    );
 }
 
 #[cfg(test)]
@@ -944,6 +951,45 @@ mod tests {
         assert_eq!(svg.texts("legend-entry"), ["EKF", "UKF <b>"]);
         assert_eq!(svg.texts("axis-label x"), ["x (m)"]);
         assert_eq!(svg.texts("axis-label y"), ["y (m)"]);
+    }
+
+    /// Issue 38 row 18: a band's legend swatch has the band's colour and opacity (it was
+    /// grey whatever the band's colour), and so has a span's.
+    #[test]
+    fn area_swatches_have_the_colour_and_opacity_of_their_area() {
+        let blue = palette::series_color(0);
+        let orange = palette::HIGHLIGHT;
+        let text = one_panel(
+            Axis::linear("x (m)"),
+            Axis::linear("y (m)"),
+            vec![
+                Layer::Band {
+                    name: "95 % band".into(),
+                    x: vec![0.0, 1.0],
+                    low: vec![0.0, 0.5],
+                    high: vec![1.0, 1.5],
+                    fill: blue,
+                },
+                Layer::Spans {
+                    name: "outages".into(),
+                    ranges: vec![(0.2, 0.4)],
+                    fill: orange,
+                },
+            ],
+        );
+        let svg = ParsedSvg::parse(&text);
+        let paint = |node: &roxmltree::Node| {
+            (
+                node.attribute("fill").unwrap().to_string(),
+                node.attribute("fill-opacity").unwrap().to_string(),
+            )
+        };
+        let swatches: Vec<_> = svg.with_class("legend-swatch").iter().map(paint).collect();
+        let band = paint(&svg.with_class("band")[0]);
+        let span = paint(&svg.with_class("span")[0]);
+        assert_eq!(band.0, blue.0);
+        assert_eq!(span.0, orange.0);
+        assert_eq!(swatches, [band, span]);
     }
 
     #[test]

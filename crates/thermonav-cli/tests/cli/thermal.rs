@@ -218,13 +218,27 @@ fn bank_show_prints_the_thermal_table_and_plot_draws_it() {
         "gx",
     ];
     assert_eq!(outcome(&thermonav(&args)).0, 0);
-    assert_eq!(
-        std::fs::read_to_string(&one)
-            .unwrap()
-            .matches("class=\"panel\"")
-            .count(),
-        1
-    );
+    let text = std::fs::read_to_string(&one).unwrap();
+    assert_eq!(text.matches("class=\"panel\"").count(), 1);
+    // Issue 38 row 18: the band's legend swatch has the band's colour (it was grey).
+    let band = ["fill", "fill-opacity"].map(|a| attribute_of(&text, "<polygon class=\"band\"", a));
+    let swatch =
+        ["fill", "fill-opacity"].map(|a| attribute_of(&text, "<rect class=\"legend-swatch\"", a));
+    assert_eq!(swatch, band);
+}
+
+/// The value of `attribute` in the first element of `svg` that starts with `start`.
+fn attribute_of<'a>(svg: &'a str, start: &str, attribute: &str) -> &'a str {
+    let at = svg
+        .find(start)
+        .unwrap_or_else(|| panic!("{start} in the figure"));
+    let element = &svg[at..at + svg[at..].find('>').expect("closed")];
+    let needle = format!(" {attribute}=\"");
+    let value = &element[element
+        .find(&needle)
+        .unwrap_or_else(|| panic!("{attribute}"))
+        + needle.len()..];
+    &value[..value.find('"').expect("quoted")]
 }
 
 /// Runs `args` and checks a failure: `code`, nothing on stdout, no panic, stderr naming each
