@@ -31,8 +31,10 @@
 //! predicts the left-out blocks that lie within their temperature range (outside it every
 //! method clamps to the range's end, and the score would measure the range, not the model).
 //! A fold's score is the mean square of those residuals about their own mean (the shape,
-//! since a leg's level also holds the power-on's offset); a candidate's score is the mean over
-//! folds. The choice follows the one-standard-error rule, paired across folds: the simplest
+//! since a leg's level also holds the power-on's offset); for a stretch of one leg, whose
+//! power-on kept the other stretches, about that power-on's fitted offset instead (within a
+//! leg the stretch's level is the leg's shape, and the other stretches fix the offset). A
+//! candidate's score is the mean over folds. The choice follows the one-standard-error rule, paired across folds: the simplest
 //! candidate (fewest terms: order, plus one for the lag; T alone first on a tie) whose mean
 //! excess over the best candidate's fold scores is within the standard error of that excess,
 //! or within [`MIN_RELATIVE_GAIN`] of the best score. So a term that does not predict
@@ -430,6 +432,8 @@ struct HeldOut {
     fold_mean_squares: Vec<f64>,
     /// Σ (r − r̄_fold)² and the count of residuals, over the folds.
     shape_ss: f64,
+    /// Σ (r − centre)² over the folds, the centre as the fold's score takes it.
+    scored_ss: f64,
     residuals: usize,
     /// r̄_fold − offset of its power-on in the fold's fit, where that power-on kept other
     /// folds.
@@ -448,17 +452,22 @@ fn segments(n: usize) -> Vec<u32> {
 
 /// Each fold left out in turn: the candidate fitted on the others predicts the held-out
 /// blocks that lie within the others' temperature range (outside it every method clamps, and
-/// the score would measure the range, not the model).
+/// the score would measure the range, not the model). A fold scores its residuals about their
+/// own mean, except under [`ChoiceRule::LeaveOneSegmentOut`] when its power-on kept other
+/// stretches: there the fold's level is that power-on's fitted offset, so the score sees
+/// whether the curve carries the level across the left-out stretch.
 fn held_out(
     blocks: &[&SweepBlock],
     fold: &[u32],
     channel: Channel,
     c: Candidate,
+    rule: ChoiceRule,
 ) -> Option<HeldOut> {
     let labels: BTreeSet<u32> = fold.iter().copied().collect();
     let mut out = HeldOut {
         fold_mean_squares: Vec::new(),
         shape_ss: 0.0,
+        scored_ss: 0.0,
         residuals: 0,
         levels: Vec::new(),
     };
@@ -484,11 +493,18 @@ fn held_out(
             .collect();
         let mean = r.iter().sum::<f64>() / r.len() as f64;
         let ss: f64 = r.iter().map(|x| (x - mean).powi(2)).sum();
-        out.fold_mean_squares.push(ss / r.len() as f64);
-        out.shape_ss += ss;
-        out.residuals += r.len();
         let power_on = test[0].power_on;
-        if train.iter().any(|b| b.power_on == power_on) {
+        let offset_known = train.iter().any(|b| b.power_on == power_on);
+        let centre = match (rule, offset_known) {
+            (ChoiceRule::LeaveOneSegmentOut, true) => fit.calibration.offset_of(power_on),
+            _ => mean,
+        };
+        let scored: f64 = r.iter().map(|x| (x - centre).powi(2)).sum();
+        out.fold_mean_squares.push(scored / r.len() as f64);
+        out.shape_ss += ss;
+        out.scored_ss += scored;
+        out.residuals += r.len();
+        if offset_known {
             out.levels.push(mean - fit.calibration.offset_of(power_on));
         }
     }
@@ -501,7 +517,18 @@ impl HeldOut {
         self.fold_mean_squares.iter().sum::<f64>() / self.fold_mean_squares.len() as f64
     }
 
+    /// The spread of its predictions. Within one leg a stretch's level is part of the leg's
+    /// shape, so under [`ChoiceRule::LeaveOneSegmentOut`] the shape spread is the scored one
+    /// (about the power-on's offset) and there is no separate level spread.
     fn spread(&self, rule: ChoiceRule, legs: usize) -> PredictionSpread {
+        if rule == ChoiceRule::LeaveOneSegmentOut {
+            return PredictionSpread {
+                shape_sd: (self.scored_ss / self.residuals.max(1) as f64).sqrt(),
+                level_sd: None,
+                rule,
+                legs,
+            };
+        }
         let dof = self
             .residuals
             .saturating_sub(self.fold_mean_squares.len())
@@ -532,7 +559,7 @@ fn scored_candidates(
     Candidate::all()
         .into_iter()
         .filter(|c| rule == ChoiceRule::LeaveOneLegOut || !c.lag)
-        .map(|c| (c, held_out(all, &fold, channel, c)))
+        .map(|c| (c, held_out(all, &fold, channel, c, rule)))
         .collect()
 }
 
