@@ -62,8 +62,18 @@ fn lead_words(lead_m: f64, ci95_m: Option<[f64; 2]>, p: Option<f64>) -> String {
     let interval = ci95_m.map_or(String::new(), |[low, high]| {
         format!(" (95 % CI {low:.1} to {high:.1} m)")
     });
-    let p = p.map_or("no paired test".into(), |p| format!("paired p = {p:.1e}"));
+    let p = p.map_or("no paired test".into(), |p| {
+        format!("paired p = {}", p_words(p))
+    });
     format!("{lead_m:.1} m{interval}, {p}")
+}
+
+/// A p-value as people read it: three decimals from 0.01 on, else in powers of ten (1.6e-3).
+fn p_words(p: f64) -> String {
+    match p >= 0.01 {
+        true => format!("{p:.3}"),
+        false => format!("{p:.1e}"),
+    }
 }
 
 /// The test of the winner against the runner-up on the horizontal error, with its filter.
@@ -254,7 +264,7 @@ fn claim_figure(scenario: &Value, comparisons: &[Value]) -> InlineFigure {
         .unwrap_or_default();
     InlineFigure {
         svg: paired_leads_figure(
-            "The claim's paired comparisons",
+            &format!("Paired leads of {better}"),
             "rival's horizontal error − claimed model's (m)",
             &series,
         ),

@@ -111,11 +111,15 @@ th:first-child,td:first-child{text-align:left}tbody tr:nth-child(even){backgroun
 figure{margin:1.2rem 0}figure svg{display:block;max-width:100%;height:auto}\
 figcaption{font-size:0.875rem;color:#57606a;margin-top:0.3rem}\
 .summary h2{margin-top:0.4rem}\
-.findings{display:grid;grid-template-columns:repeat(auto-fit,minmax(270px,1fr));gap:0.8rem}\
-.finding{border:1px solid #d0d7de;border-radius:6px;padding:0.6rem 0.8rem;font-size:0.875rem}\
-.finding p{margin:0.3rem 0}.finding figure{margin:0.4rem 0 0}\
-.verdict{display:inline-block;font-weight:700;padding:0 0.5rem;border-radius:4px}\
+table.findings{width:100%;margin:0.4rem 0 0.8rem}\
+.findings th,.findings td{text-align:left;vertical-align:top;padding:0.35rem 0.6rem}\
+.findings th[scope=row]{background:none;width:13%}\
+.findings td:nth-child(2){width:34%}.findings td:nth-child(4){width:42%}\
+.verdict{display:inline-block;font-weight:700;padding:0 0.5rem;border-radius:4px;\
+white-space:nowrap}\
 .verdict.holds{background:#dafbe1;color:#116329}.verdict.fails{background:#ffebe9;color:#a40e26}\
+.summary-figures{display:grid;grid-template-columns:repeat(auto-fit,minmax(460px,1fr));\
+gap:0.6rem 1rem}.summary-figures figure{margin:0}\
 .evidence{font-variant-numeric:tabular-nums}\
 .contents ol{columns:2;column-gap:2rem;margin:0.3rem 0;padding-left:1.4rem}\
 .multiples{display:grid;grid-template-columns:repeat(auto-fill,minmax(280px,1fr));\
@@ -179,55 +183,60 @@ fn numbered_figure(figure: &InlineFigure, figures: &mut usize) -> String {
     figure_markup(figure, *figures)
 }
 
-/// The summary section (nothing without findings).
+/// The summary section (nothing without findings): a table of the findings, one row each
+/// (name linking to the details, statement, verdict, evidence), then their figures side by
+/// side, each captioned with its finding's name.
 fn summary_markup(findings: &[Finding], figures: &mut usize) -> String {
     if findings.is_empty() {
         return String::new();
     }
-    let cards: String = findings
+    let rows: String = findings.iter().map(finding_row).collect();
+    let grid: String = findings
         .iter()
-        .map(|f| finding_markup(f, figures))
+        .filter_map(|f| {
+            let figure = f.figure.as_ref()?;
+            Some(numbered_figure(
+                &InlineFigure {
+                    svg: figure.svg.clone(),
+                    caption: format!("{}: {}", f.heading, figure.caption),
+                },
+                figures,
+            ))
+        })
         .collect();
     format!(
-        "<section id=\"summary\" class=\"summary\">\n<h2>Summary</h2>\n<div class=\"findings\">\n{cards}</div>\n</section>\n"
+        "<section id=\"summary\" class=\"summary\">\n<h2>Summary</h2>\n\
+         <table class=\"findings\">\n<thead>\n<tr><th>claim</th><th>statement</th><th>verdict</th>\
+         <th>what it rests on</th></tr>\n</thead>\n<tbody>\n{rows}</tbody>\n</table>\n\
+         <div class=\"summary-figures\">\n{grid}</div>\n</section>\n"
     )
 }
 
-/// One finding as a card: heading, verdict, statement, evidence, figure, link to details.
-fn finding_markup(finding: &Finding, figures: &mut usize) -> String {
-    let mut out = format!(
-        "<article class=\"finding\">\n<h3>{}</h3>\n",
-        escape_markup(&finding.heading)
-    );
-    if let Some((words, outcome)) = &finding.verdict {
-        let class = match outcome {
-            Outcome::Holds => "holds",
-            Outcome::Fails => "fails",
-        };
-        let _ = writeln!(
-            out,
-            "<p><span class=\"verdict {class}\">{}</span></p>",
-            escape_markup(words)
-        );
-    }
-    let _ = writeln!(
-        out,
-        "<p class=\"statement\">{}</p>\n<p class=\"evidence\">{}</p>",
+/// One finding as a row: its name (a link to its details), statement, verdict and evidence.
+fn finding_row(finding: &Finding) -> String {
+    let name = escape_markup(&finding.heading);
+    let name = match finding.details {
+        Some(index) => format!("<a href=\"#{}\">{name}</a>", section_anchor(index)),
+        None => name,
+    };
+    let verdict = finding
+        .verdict
+        .as_ref()
+        .map_or(String::new(), |(words, outcome)| {
+            let class = match outcome {
+                Outcome::Holds => "holds",
+                Outcome::Fails => "fails",
+            };
+            format!(
+                "<span class=\"verdict {class}\">{}</span>",
+                escape_markup(words)
+            )
+        });
+    format!(
+        "<tr><th scope=\"row\">{name}</th><td>{}</td><td>{verdict}</td><td class=\"evidence\">{}</td></tr>\n",
         escape_markup(&finding.statement),
         escape_markup(&finding.evidence)
-    );
-    if let Some(figure) = &finding.figure {
-        out.push_str(&numbered_figure(figure, figures));
-    }
-    if let Some(index) = finding.details {
-        let _ = writeln!(
-            out,
-            "<p><a href=\"#{}\">Details</a></p>",
-            section_anchor(index)
-        );
-    }
-    out.push_str("</article>\n");
-    out
+    )
 }
 
 /// The table of contents: the summary and every section (nothing for a one-section page).

@@ -12,8 +12,8 @@ fn json_file(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("readable")).expect("JSON")
 }
 
-/// The markup from `start` to the end of the element it opens (the first `</tag>` after it;
-/// the summary's cards nest articles, not sections).
+/// The markup from `start` to the end of the element it is in (the first `</tag>` after it;
+/// none of the elements looked for nest their own kind).
 fn element<'a>(html: &'a str, start: &str, tag: &str) -> &'a str {
     let from = html
         .find(start)
@@ -23,9 +23,14 @@ fn element<'a>(html: &'a str, start: &str, tag: &str) -> &'a str {
     &html[from..to]
 }
 
-/// The text of the verdict in the summary card headed `heading`.
+/// The summary's row of the finding named `heading` (a link to its section).
+fn row_of<'a>(summary: &'a str, heading: &str) -> &'a str {
+    element(summary, &format!("\">{heading}</a></th>"), "tr")
+}
+
+/// The text of the verdict in the summary's row of the finding named `heading`.
 fn verdict_of<'a>(summary: &'a str, heading: &str) -> &'a str {
-    let card = element(summary, &format!("<h3>{heading}</h3>"), "article");
+    let card = row_of(summary, heading);
     let after = &card[card.find("class=\"verdict").expect("a verdict")..];
     let text = &after[after.find('>').expect("tag") + 1..];
     &text[..text.find('<').expect("end")]
@@ -114,9 +119,14 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
         "does not hold"
     };
     assert_eq!(verdict_of(summary, "The paper&#39;s set-up (a)"), expected);
-    let card = element(summary, "<h3>The paper&#39;s set-up (a)</h3>", "article");
+    let card = row_of(summary, "The paper&#39;s set-up (a)");
     let p = horizontal["test"]["p_value"].as_f64().unwrap();
-    assert!(card.contains(&format!("paired p = {p:.1e}")), "{card}");
+    let p = if p >= 0.01 {
+        format!("{p:.3}")
+    } else {
+        format!("{p:.1e}")
+    };
+    assert!(card.contains(&format!("paired p = {p}")), "{card}");
     assert!(summary.matches("95 % CI").count() >= 3 && summary.matches("<svg").count() == 3);
     assert!(summary.matches("<a href=\"#section-").count() == 3);
 
