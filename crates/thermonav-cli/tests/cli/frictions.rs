@@ -470,6 +470,10 @@ fn report_of_a_folder_evaluate_wrote_is_the_tournament() {
         assert!(html.contains(&label), "{label} not in the report");
     }
     assert!(html.contains("tournament alone") && !html.contains("Allan deviation at"));
+    // Row 19: this report too opens with its answer, the ranking's verdict.
+    let summary = html.find("<section id=\"summary\"").expect("a summary");
+    assert!(summary < html.find("<figure").unwrap());
+    assert!(html[summary..].contains(">The tournament</a>") && html.contains("class=\"verdict"));
     let empty = dir.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
     let (status, _, stderr) = outcome(&thermonav(&["report", arg(&empty)]));
