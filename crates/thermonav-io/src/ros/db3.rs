@@ -20,6 +20,17 @@ use std::path::Path;
 /// rosbag2 bag); a row whose columns are not of the types above, or that names an unknown
 /// topic id.
 pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
+    let mut bag = Bag::new(BagFormat::Ros2Db3);
+    read_db3(bytes, input, &mut bag)?;
+    Ok(bag)
+}
+
+/// Reads the bytes of a rosbag2 `.db3` file into `sink`: its topics, then each message row, its
+/// data handed over when the sink wants it (else counted).
+///
+/// # Errors
+/// Those of [`decode_db3`]; the sink's.
+pub fn read_db3<S: Sink>(bytes: &[u8], input: &str, sink: &mut S) -> Result<(), ReadError> {
     let db = Database::open(bytes, input)?;
     let schema = db.schema()?;
     let root = |name: &str| {
@@ -44,7 +55,6 @@ pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
             })
     };
     let (topics_root, messages_root) = (root("topics")?, root("messages")?);
-    let mut bag = Bag::new(BagFormat::Ros2Db3);
     let mut by_id: HashMap<i64, usize> = HashMap::new();
     db.rows(topics_root, &mut |row| {
         let id = integer_or_rowid(&row, 0, input, "topics.id")?;
@@ -54,7 +64,7 @@ pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
             "cdr" => Encoding::Cdr,
             other => Encoding::Other(other.to_string()),
         };
-        by_id.insert(id, bag.topic_index(&name, &type_name, encoding));
+        by_id.insert(id, sink.topic_index(&name, &type_name, encoding));
         Ok(())
     })?;
     db.rows(messages_root, &mut |row| {
@@ -68,7 +78,8 @@ pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
             )
         })?;
         match row.values.get(3) {
-            Some(Value::Blob(data)) => bag.push(k, timestamp, row.offset, data, input)?,
+            Some(Value::Blob(_)) if !sink.wants(k) => sink.count(k),
+            Some(Value::Blob(data)) => sink.push(k, timestamp, row.offset, data, input)?,
             _ => {
                 return Err(column_error(
                     &row,
@@ -79,7 +90,7 @@ pub fn decode_db3(bytes: &[u8], input: &str) -> Result<Bag, ReadError> {
         }
         Ok(())
     })?;
-    Ok(bag)
+    Ok(())
 }
 
 /// An error about a row.

@@ -204,6 +204,33 @@ pub struct TopicChoice<'a> {
     pub gnss: Option<&'a str>,
 }
 
+/// A [`TopicChoice`] that owns its names: the topics a command line chose, kept in settings.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct TopicNames {
+    /// The IMU topic (`--topic`).
+    pub imu: Option<String>,
+    /// The temperature topic (`--temperature-topic`).
+    pub temperature: Option<String>,
+    /// The GNSS topic (`--gnss-topic`).
+    pub gnss: Option<String>,
+}
+
+impl TopicNames {
+    /// The choice these names make.
+    pub fn choice(&self) -> TopicChoice<'_> {
+        TopicChoice {
+            imu: self.imu.as_deref(),
+            temperature: self.temperature.as_deref(),
+            gnss: self.gnss.as_deref(),
+        }
+    }
+
+    /// True when no topic is named (each is the only one of its type).
+    pub fn is_empty(&self) -> bool {
+        self.imu.is_none() && self.temperature.is_none() && self.gnss.is_none()
+    }
+}
+
 /// How temperatures are assigned.
 const NEAREST: &str =
     "nearest sensor_msgs/Temperature message in time (header stamps; ties to the earlier)";

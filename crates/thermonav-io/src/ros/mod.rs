@@ -14,6 +14,11 @@
 //! thermonav's series: the sample time is the message's **header stamp**, not the record (log)
 //! time, and the ROS body axes (REP 103: x forward, y left, z up) become FRD.
 //!
+//! A ROS 2 bag folder (`metadata.yaml` and its storage files, as `ros2 bag record` writes it,
+//! [`folder`]) reads as one bag: the files one after the other, in the order the metadata lists
+//! them, into the same [`Sink`], so topics of the same name and type are one topic and header
+//! stamps must go on increasing from one file to the next.
+//!
 //! Every error is a [`ReadError`] naming the file and the byte offset (of the record, or of the
 //! chunk record for what lies inside a compressed chunk) and what was expected there. No length
 //! field is trusted: each is checked against the bytes that are left before anything is taken.
@@ -21,6 +26,7 @@
 pub mod bytes;
 pub mod db3;
 pub mod extract;
+pub mod folder;
 pub mod mcap;
 pub mod messages;
 pub mod ros1;
@@ -245,14 +251,21 @@ fn log_time(ns: u64, at: &bytes::Cursor<'_>) -> Result<i64, ReadError> {
 
 /// Reads a bag in `format`, or the one its magic bytes tell when `None`. An MCAP file or a
 /// ROS 1 bag is read record by record through a buffer (memory follows the messages kept, not
-/// the file); a db3 and a gzip-compressed file are read whole.
+/// the file); a db3 and a gzip-compressed file are read whole. A ROS 2 bag folder is read in
+/// its metadata's storage (`format` is not used), file after file ([`read_bag_into`]).
 ///
 /// # Errors
-/// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; a file of no bag format; those of the
-/// format's reader.
+/// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; a file of no bag format; a folder that is
+/// no bag folder ([`folder::read_bag_folder`]); those of the format's reader.
 pub fn read_bag_file(path: impl AsRef<Path>, format: Option<BagFormat>) -> Result<Bag, ReadError> {
     let path = path.as_ref();
     let input = path.display().to_string();
+    if path.is_dir() {
+        let format = folder::read_bag_folder(path)?.format;
+        let mut bag = Bag::new(format);
+        read_bag_into(path, format, &mut bag)?;
+        return Ok(bag);
+    }
     // A gzip-compressed bag is read whole, under the gzip reader's expansion bound.
     let streamed = !crate::is_compressed(path);
     let format = match (format, streamed) {
@@ -283,38 +296,58 @@ fn read_whole_bag(path: &Path, format: Option<BagFormat>) -> Result<Bag, ReadErr
     decode_bag(&bytes, &input, format)
 }
 
-/// Reads the MCAP file or ROS 1 bag at `path` into `sink`, record by record.
+/// Reads the bag at `path` into `sink`: an MCAP file or ROS 1 bag record by record; a db3
+/// whole (its rows then go into `sink` as they are decoded); a ROS 2 bag folder file by file,
+/// in the order its metadata lists them, each in the folder's storage (`format` is not used).
 ///
 /// # Errors
-/// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; those of [`mcap::read_mcap`].
+/// [`ReadErrorKind::Open`]/[`ReadErrorKind::Read`]; those of [`folder::read_bag_folder`] and
+/// of the format's reader, naming the storage file.
 pub fn read_bag_into<S: Sink>(
     path: &Path,
     format: BagFormat,
     sink: &mut S,
 ) -> Result<(), ReadError> {
+    if !path.is_dir() {
+        return read_storage_into(path, format, sink);
+    }
+    let folder = folder::read_bag_folder(path)?;
+    for file in &folder.files {
+        read_storage_into(file, folder.format, sink)?;
+    }
+    Ok(())
+}
+
+/// Reads the bag file at `path`, in `format`, into `sink`.
+fn read_storage_into<S: Sink>(
+    path: &Path,
+    format: BagFormat,
+    sink: &mut S,
+) -> Result<(), ReadError> {
     let input = path.display().to_string();
+    if format == BagFormat::Ros2Db3 {
+        let (bytes, input) = crate::read_whole_file(path)?;
+        db3::refuse_pending_wal(path, &input)?;
+        return db3::read_db3(&bytes, &input, sink);
+    }
     let file = crate::open_input(path).map_err(|e| open_error(&input, e))?;
     let file_bytes = std::fs::metadata(path).map_or(0, |m| m.len());
     match format {
-        BagFormat::Ros2Mcap => mcap::read_mcap(file, file_bytes, &input, sink),
         BagFormat::Ros1Bag => ros1::read_ros1(file, file_bytes, &input, sink),
-        other => Err(ReadError::new(
-            input,
-            None,
-            ReadErrorKind::Unusable(format!(
-                "a {} bag is not read record by record (ros2-mcap and ros1-bag are)",
-                other.name()
-            )),
-        )),
+        _ => mcap::read_mcap(file, file_bytes, &input, sink),
     }
 }
 
-/// The format of the bag at `path`, told by its first bytes.
+/// The format of the bag at `path`, told by its first bytes, or for a ROS 2 bag folder by its
+/// `metadata.yaml`.
 ///
 /// # Errors
-/// The file cannot be opened or read; it starts like no bag.
+/// The file cannot be opened or read; it starts like no bag; a folder that is no bag folder.
 pub fn detect_file(path: &Path, input: &str) -> Result<BagFormat, ReadError> {
     use std::io::Read;
+    if path.is_dir() {
+        return Ok(folder::read_bag_folder(path)?.format);
+    }
     let mut head = Vec::new();
     crate::open_input(path)
         .and_then(|file| file.take(16).read_to_end(&mut head))
