@@ -132,6 +132,8 @@ pub enum Command {
 pub struct CompensateArgs {
     /// The record: an IMU CSV with temp_c, a ROS bag, a DataFlash log or a PX4 ULog.
     pub record: PathBuf,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     /// The bank whose thermal calibration is taken off.
     #[arg(long)]
     pub bank: PathBuf,
@@ -177,8 +179,11 @@ pub struct EvaluateArgs {
     /// The GNSS CSV.
     #[arg(long, requires = "imu")]
     pub gnss: Option<PathBuf>,
-    /// The reference trajectory CSV (truth), covering every outage. It may start after the
-    /// first GNSS fix (the runs then start at its first point, as integrate --initial-from).
+    /// The reference, covering every outage: our trajectory CSV, a GNSS CSV, an RTKLIB .pos or
+    /// a KF-GINS .nav, told by the content. With attitude (trajectory CSV, .nav) the runs start
+    /// from it and heading is scored; fixes (GNSS CSV, .pos) score position only and the runs
+    /// align from GNSS. It may start after the first GNSS fix (the runs then start at its
+    /// first point, as integrate --initial-from).
     #[arg(long, required = true)]
     pub reference: Option<PathBuf>,
     /// The temperature model bank (JSON).
@@ -418,8 +423,9 @@ pub struct IntegrateArgs {
     /// spread:COUNT,DURATION (seconds on the files' t_s scale).
     #[arg(long, default_value = "none")]
     pub outages: OutageSpec,
-    /// Start from this reference trajectory's state at the first GNSS epoch instead of
-    /// aligning from GNSS and the accelerometers (evaluate always starts from --reference).
+    /// Start from this reference's state at the first GNSS epoch instead of aligning from GNSS
+    /// and the accelerometers: a trajectory CSV or a KF-GINS .nav (one with attitude; evaluate
+    /// starts from a --reference that has one).
     #[arg(long)]
     pub initial_from: Option<PathBuf>,
     /// Solution output rate, Hz. Integrate only: it shapes the solution file; a tournament
@@ -482,9 +488,12 @@ pub enum TausArg {
 /// Arguments of `allan`.
 #[derive(Debug, Args)]
 pub struct AllanArgs {
-    /// The IMU CSV (rates), or a ROS bag (.mcap, .db3, .bag: its only sensor_msgs/Imu topic, in
-    /// FRD), or an ArduPilot DataFlash log (.bin: its only IMU instance).
+    /// The IMU CSV (rates), or a ROS bag (.mcap, .db3, .bag, or a ROS 2 bag folder: its
+    /// sensor_msgs/Imu topic, in FRD), or an ArduPilot DataFlash log (.bin: its only IMU
+    /// instance).
     pub file: PathBuf,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
     #[command(flatten)]
@@ -509,9 +518,11 @@ pub struct AllanArgs {
 /// Arguments of `gmwm`.
 #[derive(Debug, Args)]
 pub struct GmwmArgs {
-    /// The IMU CSV (rates, raw: white noise must not be filtered away), or a ROS bag, or an
-    /// ArduPilot DataFlash log.
+    /// The IMU CSV (rates, raw: white noise must not be filtered away), or a ROS bag (a file
+    /// or a ROS 2 bag folder), or an ArduPilot DataFlash log.
     pub file: PathBuf,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     /// The composite, e.g. wn+rw+2gm or wn+qn+gm (wn, qn, rw, dr, gm, kgm), or auto: the
     /// candidate with the smallest Wavelet Information Criterion.
     #[arg(long, default_value = "auto")]
@@ -564,11 +575,13 @@ pub struct ArArgs {
 /// Arguments of `characterize`.
 #[derive(Debug, Args)]
 pub struct CharacterizeArgs {
-    /// Static IMU CSVs, one per temperature point; or ROS bags (.mcap, .db3, .bag: the only
-    /// sensor_msgs/Imu topic, in FRD, temp_c from the only sensor_msgs/Temperature topic); or
-    /// ArduPilot DataFlash logs (.bin: the only IMU instance, temp_c from its T).
+    /// Static IMU CSVs, one per temperature point; or ROS bags (.mcap, .db3, .bag, or ROS 2
+    /// bag folders: the sensor_msgs/Imu topic, in FRD, temp_c from the sensor_msgs/Temperature
+    /// topic); or ArduPilot DataFlash logs (.bin: the only IMU instance, temp_c from its T).
     #[arg(required_unless_present_any = ["manifest", "sweep"], conflicts_with = "manifest")]
     pub files: Vec<PathBuf>,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     #[command(flatten)]
     pub rotation: ImuRotationArgs,
     #[command(flatten)]
@@ -725,6 +738,8 @@ pub struct BankCheckArgs {
     pub bank: PathBuf,
     /// The record: an IMU CSV with temp_c, a ROS bag, a DataFlash log or a PX4 ULog.
     pub record: PathBuf,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     /// Block length of the block means, s (each block's t_s is its middle).
     #[arg(long, default_value_t = thermonav::stoch::thermal::check::DEFAULT_CHECK_BLOCK_S)]
     pub block_s: f64,
@@ -1251,6 +1266,20 @@ pub struct ImuRotationArgs {
     pub imu_rotation: Option<Mounting>,
 }
 
+/// `--topic` and `--temperature-topic`, shared by every command that reads an IMU record that
+/// may be a ROS bag (a file, or a ROS 2 bag folder with its metadata.yaml).
+#[derive(Debug, Clone, Default, Args)]
+pub struct BagTopicArgs {
+    /// ROS bags: the sensor_msgs/Imu topic (default: the only one holding messages; several
+    /// are listed).
+    #[arg(long)]
+    pub topic: Option<String>,
+    /// ROS bags: the sensor_msgs/Temperature topic for temp_c (default: the only one holding
+    /// messages, if any).
+    #[arg(long)]
+    pub temperature_topic: Option<String>,
+}
+
 /// `--rate-hz` of the static analyses: the sample rate of a record without times.
 #[derive(Debug, Clone, Args)]
 pub struct SampleRateArgs {
@@ -1290,15 +1319,11 @@ pub struct ConvertArgs {
     /// px4-ulog, ROS bags, dataflash: also write the GNSS fixes to this canonical GNSS CSV.
     #[arg(long)]
     pub gnss_out: Option<PathBuf>,
-    /// ROS bags: the sensor_msgs/Imu topic (default: the only one; several are listed).
-    #[arg(long)]
-    pub topic: Option<String>,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     /// ROS bags: the sensor_msgs/NavSatFix topic for --gnss-out (default: the only one).
     #[arg(long)]
     pub gnss_topic: Option<String>,
-    /// ROS bags: the sensor_msgs/Temperature topic for temp_c (default: the only one, if any).
-    #[arg(long)]
-    pub temperature_topic: Option<String>,
     /// dataflash: the IMU instance (the I column of IMU records; IMU2, IMU3 of older logs are 1
     /// and 2) (default: the only one; several are listed).
     #[arg(long)]
@@ -1347,8 +1372,8 @@ pub enum PlotKind {
     CorrelationTime,
     /// Autocovariance of one channel of an IMU CSV with the fitted Gauss-Markov curve.
     Autocorrelation,
-    /// East versus north of a trajectory CSV (reference or `integrate` solution), the parts
-    /// inside --outages highlighted.
+    /// East versus north of a trajectory (a reference in any form --reference takes, or an
+    /// `integrate` solution), the parts inside --outages highlighted.
     Trajectory,
     /// North, east and heading errors in the first outage, one line per model, from an
     /// `evaluate` report (evaluation.json) for the filter --filter.
@@ -1435,6 +1460,8 @@ pub struct PlotArgs {
     /// ULog).
     #[arg(long)]
     pub record: Option<PathBuf>,
+    #[command(flatten)]
+    pub topics: BagTopicArgs,
     /// thermal-check: the block length, s.
     #[arg(long, default_value_t = thermonav::stoch::thermal::check::DEFAULT_CHECK_BLOCK_S)]
     pub block_s: f64,

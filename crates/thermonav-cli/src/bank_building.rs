@@ -11,6 +11,7 @@ use std::path::Path;
 use thermonav::imu::ImuSeries;
 use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
+use thermonav_io::ros::extract::TopicNames;
 use thermonav_io::{FileSplit, ImuOptions, write_json_atomically};
 
 /// The temperature of a record: given, or the mean of its temp_c column.
@@ -27,13 +28,13 @@ fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result
     crate::inputs::recorded_temperature(path, mean)
 }
 
-/// Characterises one file, read as `imu` says, whole in memory or streamed as `reading` says;
-/// the entry records the mounting.
+/// Characterises one file, read as `imu` says (a bag's topics as `topics` choose), whole in
+/// memory or streamed as `reading` says; the entry records the mounting.
 pub fn characterize_file(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    (reading, imu, spares): (ReadingArg, &ImuOptions, &SpareSeries),
+    (reading, imu, spares): (ReadingArg, (&ImuOptions, &TopicNames), &SpareSeries),
 ) -> Result<TemperatureEntry, Failure> {
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
@@ -41,10 +42,10 @@ pub fn characterize_file(
     );
     let whole = crate::inputs::is_whole_log(path);
     let mut entry = match !whole && streams(path, reading) {
-        true => characterize_streaming(path, given, settings, (&name, imu))?,
+        true => characterize_streaming(path, given, settings, (&name, imu.0, imu.1))?,
         false => characterize_in_memory(path, given, settings, (&name, imu, spares))?,
     };
-    entry.imu_rotation = crate::settings::imu::rotation_text(imu);
+    entry.imu_rotation = crate::settings::imu::rotation_text(imu.0);
     Ok(entry)
 }
 
@@ -53,7 +54,7 @@ fn characterize_in_memory(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    (name, imu, spares): (&str, &ImuOptions, &SpareSeries),
+    (name, imu, spares): (&str, (&ImuOptions, &TopicNames), &SpareSeries),
 ) -> Result<TemperatureEntry, Failure> {
     let series = crate::inputs::read_imu_input_into(path, imu, spares.take())?;
     let temperature_c = temperature_of(path, &series, given)?;
@@ -150,7 +151,8 @@ pub fn build_bank_reading(
         .enumerate()
         .map(|(k, path)| {
             let given = temperatures.get(k).copied();
-            let entry = characterize_file(path, given, settings, (reading, &imu, &spares));
+            let read = (&imu, &inputs.thermal.topics);
+            let entry = characterize_file(path, given, settings, (reading, read, &spares));
             progress.inc(1);
             entry
         })

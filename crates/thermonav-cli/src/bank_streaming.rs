@@ -12,7 +12,7 @@ use thermonav::imu::{ImuSeries, SampleKind};
 use thermonav::stoch::bank::TemperatureEntry;
 use thermonav::stoch::characterize::CharacterizeSettings;
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
-use thermonav_io::ros::extract::{StreamOptions, TopicChoice, stream_imu_series};
+use thermonav_io::ros::extract::{StreamOptions, TopicNames, stream_imu_series};
 use thermonav_io::{GravityCheck, ImuOptions, ImuReader, ReadError, ReadErrorKind, Strictness};
 
 /// Files at least this large are streamed under `--reading auto` (1 GiB: about 12 M rows of
@@ -31,18 +31,18 @@ pub fn streams(path: &Path, reading: ReadingArg) -> bool {
     }
 }
 
-/// Characterises the record in `path`, read as `imu` says, in pieces; `name` is its source
-/// label.
+/// Characterises the record in `path`, read as `imu` says (a bag's topics as `topics` choose),
+/// in pieces; `name` is its source label.
 pub fn characterize_streaming(
     path: &Path,
     given: Option<f64>,
     settings: &CharacterizeSettings,
-    (name, imu): (&str, &ImuOptions),
+    (name, imu, topics): (&str, &ImuOptions, &TopicNames),
 ) -> Result<TemperatureEntry, Failure> {
     let mut stream = StreamingCharacterizer::new(settings.clone(), StreamingSettings::default());
     let mut gravity = GravityCheck::default();
     match crate::inputs::is_streamed_bag(path) {
-        true => feed_bag(path, imu, &mut stream, &mut gravity)?,
+        true => feed_bag(path, (imu, topics), &mut stream, &mut gravity)?,
         false => {
             let reader = ImuReader::open_with(path, Strictness::Strict, imu).data()?;
             check_all_six(&reader, path)?;
@@ -84,13 +84,13 @@ fn feed(
     })
 }
 
-/// Pushes the IMU of the MCAP or ROS 1 bag at `path` (its only `sensor_msgs/Imu` topic, `temp_c` from
-/// its only temperature topic, as a bag is read in memory) into the characterisation and the
-/// gravity check in pieces as the bag is read record by record: memory is a piece and the
-/// temperature messages, whatever the bag's length.
+/// Pushes the IMU of the MCAP or ROS 1 bag at `path` (its `sensor_msgs/Imu` topic and `temp_c`
+/// from its temperature topic, chosen by `topics` as when a bag is read in memory) into the
+/// characterisation and the gravity check in pieces as the bag is read record by record:
+/// memory is a piece and the temperature messages, whatever the bag's length.
 fn feed_bag(
     path: &Path,
-    imu: &ImuOptions,
+    (imu, topics): (&ImuOptions, &TopicNames),
     stream: &mut StreamingCharacterizer,
     gravity: &mut GravityCheck,
 ) -> Result<(), Failure> {
@@ -108,7 +108,7 @@ fn feed_bag(
         stamp_lags: false,
         gnss: false,
     };
-    let read = stream_imu_series(path, TopicChoice::default(), pieces, &mut |piece| {
+    let read = stream_imu_series(path, topics.choice(), pieces, &mut |piece| {
         gravity.add(&piece);
         stream.push(&piece).map_err(|e| {
             let text = format!("{}: {e}", path.display());
@@ -123,14 +123,7 @@ fn feed_bag(
     if let Some(refusal) = refused {
         return Err(refusal).data();
     }
-    match read {
-        Ok(_) => Ok(()),
-        Err(e) => Err(anyhow!(
-            "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
-             --temperature-topic T2 --out imu.csv)"
-        ))
-        .data(),
-    }
+    read.map(|_| ()).map_err(crate::inputs::bag_failure)
 }
 
 /// The refusal of a record of a subset of the channels: streaming characterises all six.

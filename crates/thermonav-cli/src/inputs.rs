@@ -12,7 +12,8 @@ use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav_io::profile::read_profile;
 use thermonav_io::ros::BagFormat;
-use thermonav_io::ros::extract::{TopicChoice, imu_series, stream_imu_extract};
+use thermonav_io::ros::extract::{TopicChoice, TopicNames, imu_series, stream_imu_extract};
+use thermonav_io::ros::folder::read_bag_folder;
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_into};
 
 /// A record's mean temp_c when it is a temperature a sensor is characterised at (else the
@@ -49,14 +50,15 @@ fn no_thermal(path: &Path) -> Failure {
     ))
 }
 
-/// Reads an IMU record (a CSV as `options` say, a ROS bag or a DataFlash log) of rates and its nominal sample
-/// rate, Hz; `purpose` names what needs rates in the error for a file of increments.
+/// Reads an IMU record (a CSV as `options` say, a ROS bag (its topics as `topics` choose) or a
+/// DataFlash log) of rates and its nominal sample rate, Hz; `purpose` names what needs rates in
+/// the error for a file of increments.
 pub fn read_rates(
     path: &Path,
     purpose: &str,
-    options: &ImuOptions,
+    (options, topics): (&ImuOptions, &TopicNames),
 ) -> Result<(ImuSeries, f64), Failure> {
-    let series = read_imu_input(path, options)?;
+    let series = read_imu_input(path, options, topics)?;
     if series.kind == Some(SampleKind::Increments) {
         return Err(Failure::Data(anyhow!(
             "{}: {purpose} needs rates; the file holds increments",
@@ -97,25 +99,38 @@ pub fn readable_twice(path: &Path, command: &str) -> Result<(), Failure> {
     }
 }
 
-/// An IMU record: a canonical IMU CSV read as `options` say, or a ROS bag (told by its magic
-/// bytes) whose only `sensor_msgs/Imu` topic is read in FRD, with `temp_c` from its only
-/// temperature topic. A bag carries its own times and axes: a mounting or a rate for it is
-/// refused (convert the bag, then rotate the CSV).
-pub fn read_imu_input(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Failure> {
-    read_imu_input_into(path, options, None)
+/// An IMU record: a canonical IMU CSV read as `options` say, or a ROS bag (a file told by its
+/// magic bytes, or a ROS 2 bag folder told by its metadata.yaml) whose `sensor_msgs/Imu` topic
+/// (`--topic`, else the only one holding messages) is read in FRD, with `temp_c` from its
+/// temperature topic (`--temperature-topic`, else the only one, if any). A bag carries its own
+/// times and axes: a mounting or a rate for it is refused (convert the bag, then rotate the
+/// CSV); topics for a file that is no bag are refused.
+pub fn read_imu_input(
+    path: &Path,
+    options: &ImuOptions,
+    topics: &TopicNames,
+) -> Result<ImuSeries, Failure> {
+    read_imu_input_into(path, (options, topics), None)
 }
 
 /// [`read_imu_input`], a CSV into the columns of `spare` (a series done with; see
 /// [`thermonav_io::read_imu_file_into`]).
 pub fn read_imu_input_into(
     path: &Path,
-    options: &ImuOptions,
+    (options, topics): (&ImuOptions, &TopicNames),
     spare: Option<ImuSeries>,
 ) -> Result<ImuSeries, Failure> {
+    let bag = bag_format_at(path)?;
+    if bag.is_none() && !topics.is_empty() {
+        return Err(Failure::Usage(anyhow!(
+            "{}: --topic and --temperature-topic choose the topics of a ROS bag, and this is              not one (a bag file, or a ROS 2 bag folder with its metadata.yaml)",
+            path.display()
+        )));
+    }
     if is_dataflash(path) {
         return read_dataflash_imu(path, options);
     }
-    match bag_format_of(path) {
+    match bag {
         Some(_) if options.mounting.is_some() || options.rate_hz.is_some() => {
             Err(Failure::Data(anyhow!(
                 "{}: a ROS bag has its own times and is read in FRD from ROS body axes: \
@@ -124,7 +139,7 @@ pub fn read_imu_input_into(
                 path.display()
             )))
         }
-        Some(format) => read_bag_imu(path, format),
+        Some(format) => read_bag_imu(path, format, topics.choice()),
         None => read_imu_file_into(path, Strictness::Strict, options, spare).data(),
     }
 }
@@ -174,39 +189,59 @@ fn read_dataflash_imu(path: &Path, options: &ImuOptions) -> Result<ImuSeries, Fa
     }
 }
 
-/// The bag format of the file at `path`, told by its first bytes (`None`: not a bag, not a
+/// The bag format of `path`: of a file, told by its first bytes (`None`: not a bag, not a
 /// regular file (a pipe is never read ahead: its bytes would be gone for the CSV reader), or
-/// unreadable, for the CSV reader to name).
-pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
-    BagFormat::detect(&head_of(path, 16)?)
-}
-
-/// True when the file at `path` is an MCAP bag or a ROS 1 bag that is not gzip-compressed: one
-/// read record by record, which `characterize` can stream
-/// ([`thermonav_io::ros::extract::stream_imu_series`]).
-pub fn is_streamed_bag(path: &Path) -> bool {
-    matches!(
-        bag_format_of(path),
-        Some(BagFormat::Ros2Mcap | BagFormat::Ros1Bag)
-    ) && !thermonav_io::is_compressed(path)
-}
-
-/// The IMU of a bag, its topic chosen as [`imu_series`] does without options.
-/// An MCAP or ROS 1 bag is read record by record: memory is the series, not the bag.
-fn read_bag_imu(path: &Path, format: BagFormat) -> Result<ImuSeries, Failure> {
-    let input = path.display().to_string();
-    let extract = match format != BagFormat::Ros2Db3 && is_streamed_bag(path) {
-        true => stream_imu_extract(path, TopicChoice::default()).map(|(extract, _)| extract),
-        false => thermonav_io::ros::read_bag_file(path, Some(format))
-            .and_then(|bag| imu_series(&bag, TopicChoice::default(), &input)),
-    };
-    match extract {
-        Ok(extract) => Ok(extract.series),
-        Err(e) => Err(Failure::Data(anyhow!(
-            "{e} (to choose the topics, convert the bag first: thermonav convert BAG --topic T \
-             --temperature-topic T2 --out imu.csv)"
-        ))),
+/// unreadable, for the CSV reader to name); of a folder, the storage its metadata.yaml names.
+///
+/// # Errors
+/// A folder that is no ROS 2 bag folder (no metadata.yaml, or one that does not read), naming
+/// the folder or the file and what was expected.
+pub fn bag_format_at(path: &Path) -> Result<Option<BagFormat>, Failure> {
+    match path.is_dir() {
+        true => Ok(Some(read_bag_folder(path).data()?.format)),
+        false => Ok(head_of(path, 16).and_then(|head| BagFormat::detect(&head))),
     }
+}
+
+/// [`bag_format_at`], `None` for a folder that is no bag folder (for the reader to name).
+pub fn bag_format_of(path: &Path) -> Option<BagFormat> {
+    bag_format_at(path).ok().flatten()
+}
+
+/// True when `path` is an MCAP bag or a ROS 1 bag that is not gzip-compressed (read record by
+/// record), or a ROS 2 bag folder (read file after file, an MCAP file record by record, a db3
+/// file whole): one that `characterize` can stream
+/// ([`thermonav_io::ros::extract::stream_imu_series`]), and whose refusals name the storage
+/// file they are about.
+pub fn is_streamed_bag(path: &Path) -> bool {
+    match bag_format_of(path) {
+        Some(_) if path.is_dir() => true,
+        Some(BagFormat::Ros2Mcap | BagFormat::Ros1Bag) => !thermonav_io::is_compressed(path),
+        _ => false,
+    }
+}
+
+/// The IMU of a bag, its topics chosen by `choice` as [`imu_series`] does.
+/// An MCAP or ROS 1 bag is read record by record: memory is the series, not the bag.
+fn read_bag_imu(
+    path: &Path,
+    format: BagFormat,
+    choice: TopicChoice<'_>,
+) -> Result<ImuSeries, Failure> {
+    let input = path.display().to_string();
+    let extract = match is_streamed_bag(path) {
+        true => stream_imu_extract(path, choice).map(|(extract, _)| extract),
+        false => thermonav_io::ros::read_bag_file(path, Some(format))
+            .and_then(|bag| imu_series(&bag, choice, &input)),
+    };
+    extract.map(|e| e.series).map_err(bag_failure)
+}
+
+/// A bag's refusal as a data error, pointing to the options that choose its topics.
+pub fn bag_failure(e: thermonav_io::ReadError) -> Failure {
+    Failure::Data(anyhow!(
+        "{e} (the topics are chosen with --topic T and --temperature-topic T2)"
+    ))
 }
 
 /// The name that selects the built-in temperature-sensitive profile instead of a file.

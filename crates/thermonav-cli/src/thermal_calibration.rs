@@ -15,6 +15,7 @@ use thermonav::stoch::thermal::{
     FitSettings, PowerOnRecord, RecordMean, SensorDevices, ThermalCalibration, bank_power_on,
     calibrate, calibrate_level_unit, merge_records, power_on_records, record_mean, sweep_records,
 };
+use thermonav_io::ros::extract::TopicNames;
 use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_scale};
 use thermonav_io::ulog::read_ulog_file;
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
@@ -45,6 +46,8 @@ pub struct ThermalInputs {
     pub site: Site,
     /// How the records are read (the bank's records' mounting and rate).
     pub imu: ImuOptions,
+    /// The topics of the records that are ROS bags.
+    pub topics: TopicNames,
 }
 
 impl Default for ThermalInputs {
@@ -56,6 +59,7 @@ impl Default for ThermalInputs {
             sweep_instance: 0,
             site: default_site(),
             imu: ImuOptions::default(),
+            topics: TopicNames::default(),
         }
     }
 }
@@ -87,7 +91,7 @@ pub fn calibrate_bank(
     let mut devices = Vec::new();
     for (k, files) in inputs.sweeps.iter().enumerate() {
         for file in files {
-            let sweep = sweep_series(file, inputs.sweep_instance, &inputs.imu)?;
+            let sweep = sweep_series(file, inputs.sweep_instance, (&inputs.imu, &inputs.topics))?;
             devices.extend(sweep.devices);
             parts.push(sweep_of(
                 &sweep.series,
@@ -114,12 +118,16 @@ pub struct Sweep {
     pub devices: Option<SensorDevices>,
 }
 
-/// The sweep in `path`: an IMU CSV, a bag or a DataFlash log, or a PX4 ULog's raw sensors of
-/// `instance`.
-pub fn sweep_series(path: &Path, instance: u8, imu: &ImuOptions) -> Result<Sweep, Failure> {
+/// The sweep in `path`: an IMU CSV, a bag (its topics as `topics` choose) or a DataFlash log,
+/// or a PX4 ULog's raw sensors of `instance`.
+pub fn sweep_series(
+    path: &Path,
+    instance: u8,
+    (imu, topics): (&ImuOptions, &TopicNames),
+) -> Result<Sweep, Failure> {
     crate::inputs::readable_twice(path, "characterize --sweep")?;
     if !is_ulog(path) {
-        let series = crate::inputs::read_imu_input(path, imu)?;
+        let series = crate::inputs::read_imu_input(path, imu, topics)?;
         return Ok(Sweep {
             series,
             devices: None,

@@ -433,7 +433,8 @@ fn held_out_check(bank: &ModelBank, record: &Path, out: &Path) -> Result<HeldOut
         .thermal
         .as_ref()
         .ok_or_else(|| Failure::Data(anyhow!("the demo's bank has no thermal calibration")))?;
-    let series = crate::thermal_calibration::sweep_series(record, 0, &Default::default())?.series;
+    let read = (&Default::default(), &Default::default());
+    let series = crate::thermal_calibration::sweep_series(record, 0, read)?.series;
     let checks = check_record(calibration, &series, HELD_OUT_BLOCK_S, None)
         .map_err(|e| anyhow!("{}: {e}", record.display()))
         .data()?;

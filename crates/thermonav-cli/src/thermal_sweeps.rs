@@ -60,7 +60,7 @@ pub fn calibrate_sweeps_alone(inputs: &ThermalInputs) -> Result<ThermalCalibrati
 
 /// A sweep piece read, with a temperature column and rates (not increments).
 fn read_sweep(path: &Path, inputs: &ThermalInputs) -> Result<Sweep, Failure> {
-    let sweep = sweep_series(path, inputs.sweep_instance, &inputs.imu)?;
+    let sweep = sweep_series(path, inputs.sweep_instance, (&inputs.imu, &inputs.topics))?;
     if sweep.series.temperature_c.is_none() {
         return Err(Failure::Data(anyhow!(
             "{}: a temperature sweep needs a temp_c column",

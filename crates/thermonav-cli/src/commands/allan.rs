@@ -48,7 +48,9 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
     if args.kind != DeviationKind::Adev {
         return run_family(args, &options);
     }
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", &options)?;
+    let topics = crate::settings::imu::topics(&args.topics);
+    let read = (&options, &topics);
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", read)?;
     let doc = AllanJson {
         file: args.file.display().to_string(),
         imu_rotation: crate::settings::imu::rotation_text(&options),
@@ -170,7 +172,9 @@ fn run_family(args: &AllanArgs, options: &ImuOptions) -> Result<(), Failure> {
 
 /// Every channel's curve of `args.kind`.
 fn family_doc(args: &AllanArgs, options: &ImuOptions) -> Result<FamilyJson, Failure> {
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", options)?;
+    let topics = crate::settings::imu::topics(&args.topics);
+    let read = (options, &topics);
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", read)?;
     let curves = family_curves(args, &series, rate_hz)?;
     Ok(FamilyJson {
         file: args.file.display().to_string(),

@@ -41,7 +41,10 @@ pub fn run(args: &CompensateArgs) -> Result<(), Failure> {
     let mut series = crate::thermal_calibration::sweep_series(
         &args.record,
         args.instance,
-        &ImuOptions::default(),
+        (
+            &ImuOptions::default(),
+            &crate::settings::imu::topics(&args.topics),
+        ),
     )?
     .series;
     let done = compensate_record(&calibration, &mut series, args.power_on)

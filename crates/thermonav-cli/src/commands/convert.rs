@@ -332,8 +332,12 @@ fn parse_date(text: &str) -> anyhow::Result<(i32, u32, u32)> {
 const SNIFF_BYTES: u64 = 64 * 1024;
 
 /// The format of `input` told from its first lines, when only one format fits.
+/// A folder is a ROS 2 bag folder, in the storage its metadata.yaml names.
 fn detect_format(input: &Path, tag: &Path) -> Result<ForeignFormatArg, Failure> {
     crate::inputs::readable_twice(input, "convert")?;
+    if let Some(bag) = crate::inputs::bag_format_at(input)?.filter(|_| input.is_dir()) {
+        return Ok(ros::format_arg(bag));
+    }
     let head = read_head(input)?;
     format_of_content(&head, tag)
         .map_err(|why| {

@@ -38,7 +38,11 @@ struct Job(f64, Vec<ModelSpec>, BootstrapSettings);
 pub fn run(args: &GmwmArgs) -> Result<(), Failure> {
     let candidates = candidates(&args.model)?;
     let settings = settings(args)?;
-    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM", &Default::default())?;
+    let read = (
+        &Default::default(),
+        &crate::settings::imu::topics(&args.topics),
+    );
+    let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM", read)?;
     let doc = document(args, &series, Job(rate_hz, candidates, settings))?;
     if args.json {
         return print_json(&doc);

@@ -1,9 +1,10 @@
 //! `thermonav plot`: a figure from a file thermonav wrote, as SVG (or PNG).
 
-use crate::args::{MetricArg, PlotArgs, PlotKind, UnitsArg};
+use crate::args::{BagTopicArgs, MetricArg, PlotArgs, PlotKind, UnitsArg};
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, outage_errors, rms_series};
 use crate::inputs::{read_bank, read_imu_input, read_rates, thermal_calibration_of};
+use crate::settings::imu::topics;
 use crate::settings::paths::Io;
 use anyhow::anyhow;
 use serde::Deserialize;
@@ -338,7 +339,8 @@ fn thermal_check_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Fai
     })?;
     crate::settings::positive("--block-s", args.block_s)?;
     let calibration = crate::inputs::read_thermal_calibration(&args.input)?;
-    let series = crate::thermal_calibration::sweep_series(record, 0, &Default::default())?.series;
+    let read = (&ImuOptions::default(), &topics(&args.topics));
+    let series = crate::thermal_calibration::sweep_series(record, 0, read)?.series;
     let checks =
         thermonav::stoch::thermal::check::check_record(&calibration, &series, args.block_s, None)
             .map_err(|e| anyhow!("{}: {e}", record.display()))
@@ -383,7 +385,8 @@ fn not_calibrated(path: &Path) -> Failure {
 fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
     let channel = channel_of(args.channel.as_deref().unwrap_or("gx"))?;
     check_max_lag(args.max_lag_s)?;
-    let (series, rate_hz) = read_rates(&args.input, "the autocovariance", &Default::default())?;
+    let read = (&ImuOptions::default(), &topics(&args.topics));
+    let (series, rate_hz) = read_rates(&args.input, "the autocovariance", read)?;
     let y = series.channel(channel);
     let max_lag = ((args.max_lag_s * rate_hz).round() as usize)
         .min(y.len().saturating_sub(1))
@@ -453,7 +456,7 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
         )));
     };
     let span = match &args.imu {
-        Some(imu) => imu_span(imu)?,
+        Some(imu) => imu_span(imu, &args.topics)?,
         None => {
             note_origin(&args.outages, first.time);
             (first.time, last.time)
@@ -473,8 +476,8 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
 }
 
 /// The span `integrate` lays its outages over: the IMU record's first increment to its last.
-fn imu_span(imu: &Path) -> Result<(Timestamp, Timestamp), Failure> {
-    let series = read_imu_input(imu, &ImuOptions::default())?;
+fn imu_span(imu: &Path, choice: &BagTopicArgs) -> Result<(Timestamp, Timestamp), Failure> {
+    let series = read_imu_input(imu, &ImuOptions::default(), &topics(choice))?;
     let increments = increments_of(&series)
         .map_err(|e| anyhow!("{}: {e}", imu.display()))
         .data()?;

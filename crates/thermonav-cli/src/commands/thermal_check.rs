@@ -33,7 +33,10 @@ pub fn run(args: &BankCheckArgs) -> Result<(), Failure> {
     let record = crate::thermal_calibration::sweep_series(
         &args.record,
         args.instance,
-        &ImuOptions::default(),
+        (
+            &ImuOptions::default(),
+            &crate::settings::imu::topics(&args.topics),
+        ),
     )?;
     let checks = check_record(&calibration, &record.series, args.block_s, args.power_on)
         .map_err(|e| anyhow!("{}: {e}", args.record.display()))

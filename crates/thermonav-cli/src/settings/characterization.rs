@@ -60,9 +60,9 @@ pub struct LotJob {
 #[derive(Debug, Clone)]
 pub enum CharacterizeJob {
     /// One bank.
-    Bank(BankJob),
+    Bank(Box<BankJob>),
     /// A lot.
-    Lot(LotJob),
+    Lot(Box<LotJob>),
 }
 
 /// Resolves `characterize`.
@@ -76,14 +76,14 @@ pub fn characterize(args: &CharacterizeArgs) -> Result<CharacterizeJob, Failure>
         )));
     }
     match &args.manifest {
-        Some(manifest) => Ok(CharacterizeJob::Lot(LotJob {
+        Some(manifest) => Ok(CharacterizeJob::Lot(Box::new(LotJob {
             manifest: manifest.clone(),
             units: unit_choice(args),
             conditioning,
             reading: reading(args)?,
             out: args.out.clone(),
-        })),
-        None => bank_job(args, conditioning, imu).map(CharacterizeJob::Bank),
+        }))),
+        None => bank_job(args, conditioning, imu).map(|job| CharacterizeJob::Bank(Box::new(job))),
     }
 }
 
@@ -146,6 +146,7 @@ fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
         sweep_instance: args.sweep_instance,
         site: chamber_site(args)?,
         imu: ImuOptions::default(),
+        topics: super::imu::topics(&args.topics),
     })
 }
 

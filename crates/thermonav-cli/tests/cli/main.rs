@@ -1,6 +1,7 @@
 //! End-to-end tests of the `thermonav` command: exit codes, error messages, outputs.
 
 mod bad_input;
+mod bag_folders;
 mod bank_export;
 mod commands;
 mod convert;

@@ -48,16 +48,17 @@ pub fn format_arg(format: BagFormat) -> ForeignFormatArg {
 /// The topic options of `args`.
 fn choice(args: &ConvertArgs) -> TopicChoice<'_> {
     TopicChoice {
-        imu: args.topic.as_deref(),
-        temperature: args.temperature_topic.as_deref(),
+        imu: args.topics.topic.as_deref(),
+        temperature: args.topics.temperature_topic.as_deref(),
         gnss: args.gnss_topic.as_deref(),
     }
 }
 
 /// Refuses the topic options for a format that is not a bag.
 pub fn reject_topics(format: ForeignFormatArg, args: &ConvertArgs) -> Result<(), Failure> {
-    let given =
-        args.topic.is_some() || args.gnss_topic.is_some() || args.temperature_topic.is_some();
+    let given = args.topics.topic.is_some()
+        || args.gnss_topic.is_some()
+        || args.topics.temperature_topic.is_some();
     match given && bag_format(format).is_none() {
         true => Err(anyhow!(
             "--topic, --gnss-topic and --temperature-topic go with --format ros2-mcap, ros2-db3 or ros1-bag only"
@@ -69,14 +70,14 @@ pub fn reject_topics(format: ForeignFormatArg, args: &ConvertArgs) -> Result<(),
 
 /// The IMU of the bag and the bag (its topics, and the messages of the GNSS topics): an MCAP
 /// or ROS 1 bag not gzip-compressed is read record by record (memory is the series, not the
-/// bag).
+/// bag), a ROS 2 bag folder file after file.
 fn read_imu(
     format: ForeignFormatArg,
     args: &ConvertArgs,
     input: &str,
 ) -> Result<(ImuExtract, Bag), Failure> {
     let format = bag_format(format);
-    let streamed = format.is_none_or(|f| f != BagFormat::Ros2Db3);
+    let streamed = format.is_none_or(|f| f != BagFormat::Ros2Db3) || args.input.is_dir();
     if streamed && crate::inputs::is_streamed_bag(&args.input) {
         return stream_imu_extract(&args.input, choice(args)).data();
     }
