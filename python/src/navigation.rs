@@ -507,9 +507,12 @@ fn error_columns<'py>(py: Python<'py>, errors: &[Vec<EpochError>]) -> PyResult<B
         .flat_map(|(k, e)| std::iter::repeat_n(k as u32 + 1, e.len()))
         .collect();
     out.set_item("outage", array(py, outage))?;
-    let rows: Vec<[f64; 6]> = errors.iter().flatten().map(EpochError::values).collect();
-    for (k, name) in EpochError::COLUMNS.into_iter().enumerate() {
-        out.set_item(name, array(py, rows.iter().map(|r| r[k]).collect()))?;
+    let rows: Vec<Vec<f64>> = errors.iter().flatten().map(EpochError::values).collect();
+    // Without heading errors (a position-only reference) the rows are one shorter.
+    let columns = rows.first().map_or(EpochError::COLUMNS.len(), Vec::len);
+    for (k, name) in EpochError::COLUMNS[..columns].iter().enumerate() {
+        let column: Vec<f64> = rows.iter().filter_map(|r| r.get(k).copied()).collect();
+        out.set_item(*name, array(py, column))?;
     }
     Ok(out)
 }

@@ -160,19 +160,21 @@ pub fn errors_csv_path(evaluation_dir: &Path, stored: &Path) -> std::path::PathB
         .unwrap_or_else(|| stored.to_path_buf())
 }
 
-/// The rows of an errors CSV in the first outage, as numbers (complete rows only).
+/// The rows of an errors CSV in the first outage, as numbers (complete rows only: seven
+/// fields, or six without the heading of a position-only reference).
 fn first_outage_rows(csv: &str) -> Vec<Vec<f64>> {
     csv.lines()
         .skip(1)
         .filter(|l| l.starts_with("1,"))
         .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
-        .filter(|v: &Vec<f64>| v.len() == 7)
+        .filter(|v: &Vec<f64>| v.len() == 6 || v.len() == 7)
         .collect()
 }
 
-/// One model's time, north, east and heading errors from its error rows.
+/// One model's time, north, east and heading errors from its error rows (no heading when
+/// the rows have none).
 fn model_errors(model: String, rows: &[Vec<f64>]) -> ModelErrors {
-    let column = |k: usize| rows.iter().map(|r| r[k]).collect();
+    let column = |k: usize| rows.iter().filter_map(|r| r.get(k).copied()).collect();
     ModelErrors {
         model,
         time_s: column(2),

@@ -4,7 +4,7 @@
 
 use crate::figure_data::{number, text};
 use serde_json::Value;
-use thermonav_plot::html::Table;
+use thermonav_plot::html::{Block, Table};
 
 /// The start of the navigation section's heading (its temperature follows; the summary links
 /// to the section by it).
@@ -21,8 +21,16 @@ fn cell(v: &Value, key: &str) -> String {
             number(ci, "high").unwrap_or(f64::NAN)
         ),
         (None, Some(x)) => format!("{x:.2}"),
+        (None, None) if v.get("failure").is_none_or(Value::is_null) => "not scored".into(),
         (None, None) => "failed".into(),
     }
+}
+
+/// The report's word on what was not scored (heading, against a position-only reference),
+/// when something was not.
+pub fn not_scored_note(evaluation: &Value) -> Option<Block> {
+    let note = evaluation.pointer("/reference/not_scored")?.as_str()?;
+    Some(Block::Paragraph(format!("Not scored: {note}.")))
 }
 
 /// The INS-only errors of every model, one row per model.

@@ -6,7 +6,7 @@
 
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, number, outage_errors, rms_series, text};
-use crate::html_ranking::{NAVIGATION_HEADING, ranking_table};
+use crate::html_ranking::{NAVIGATION_HEADING, not_scored_note, ranking_table};
 use crate::html_summary::{SummarySources, findings};
 use crate::inputs::read_bank;
 use anyhow::anyhow;
@@ -16,7 +16,7 @@ use thermonav::geo::position::Geodetic;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, TemperatureEntry};
 use thermonav::stoch::thermal::ThermalCalibration;
 use thermonav::trajectory::TrajectoryPoint;
-use thermonav_io::{Strictness, read_trajectory_file, write_atomically};
+use thermonav_io::write_atomically;
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{allan_curves_of_entry, allan_deviation_figure};
 use thermonav_plot::figures::correlation::{correlation_time_figure, correlation_time_series};
@@ -273,6 +273,7 @@ fn navigation_section(dir: &Path, evaluation_dir: &Path, e: &Value) -> Result<Se
     blocks.extend(rms_figures(models, &filters));
     blocks.extend(innovations_block(dir)?);
     blocks.push(Block::Table(ranking_table(models)));
+    blocks.extend(not_scored_note(e));
     blocks.push(Block::Table(significance_table(e)));
     Ok(Section {
         heading: format!(
@@ -385,7 +386,7 @@ fn innovations_block(dir: &Path) -> Result<Option<Block>, Failure> {
 /// The reference trajectory in north/east metres from its first point, thinned to about 4000
 /// points.
 fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
-    let points = read_trajectory_file(path, Strictness::Strict).data()?;
+    let points = crate::reference_input::read_reference(path)?.points;
     let origin = points
         .first()
         .map(geodetic)

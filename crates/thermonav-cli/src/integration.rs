@@ -13,7 +13,7 @@ use thermonav::nav::solution::Solution;
 use thermonav::nav::stream::is_streamable;
 use thermonav::nav::time_offset::{estimate_time_offset, shifted};
 use thermonav_io::solution::write_innovations_file;
-use thermonav_io::{Strictness, read_gnss_file, read_imu_file_with, read_trajectory_file};
+use thermonav_io::{Strictness, read_gnss_file, read_imu_file_with};
 
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
@@ -38,7 +38,17 @@ fn integrate_in_memory(
         read_imu_file_with(&settings.imu, Strictness::Strict, &settings.imu_options).data()?;
     let gnss = read_gnss_file(&settings.gnss, Strictness::Strict).data()?;
     let reference = match &settings.initial_from {
-        Some(path) => Some(read_trajectory_file(path, Strictness::Strict).data()?),
+        Some(path) => {
+            let run = series
+                .time
+                .first()
+                .copied()
+                .zip(series.time.last().copied());
+            Some(crate::reference_input::read_start_reference(
+                path,
+                (run, &settings.imu),
+            )?)
+        }
         None => None,
     };
     let start = reference.as_deref().map_or(Start::Align, Start::Reference);

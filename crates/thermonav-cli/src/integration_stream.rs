@@ -19,6 +19,7 @@ use thermonav::nav::stream::{PreparedStream, RecordSurvey, StreamRunError, prepa
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::imu::GravityCheck;
+use thermonav_io::reference::ReferenceKind;
 use thermonav_io::solution::SolutionFilesWriter;
 use thermonav_io::trajectory::TrajectoryReader;
 use thermonav_io::{ImuReader, ReadError, Strictness, read_gnss_file};
@@ -118,6 +119,12 @@ fn stream_failure(error: StreamRunError<ReadError>, settings: &IntegrateSettings
     }
 }
 
+/// Whether the reference at `path` is our trajectory CSV (read row by row below).
+fn is_trajectory_csv(path: &std::path::Path) -> Result<bool, Failure> {
+    let kind = crate::reference_input::reference_kind(path)?;
+    Ok(kind == ReferenceKind::TrajectoryCsv)
+}
+
 /// The one reference point a run starts from (`--initial-from`): the last in the file at or
 /// before the first fix (the first increment without fixes), or the first; every row read and
 /// checked as the whole-file reader does. `None` without `--initial-from`; an empty `Vec` for
@@ -130,17 +137,28 @@ fn starting_point(
     let Some(path) = &settings.initial_from else {
         return Ok(None);
     };
+    if !is_trajectory_csv(path)? {
+        // A .nav is read whole (the run picks its point); a position-only kind is refused.
+        let run = (survey.increment_span(), settings.imu.as_path());
+        return crate::reference_input::read_start_reference(path, run).map(Some);
+    }
     let at: Option<Timestamp> = gnss
         .first()
         .map(|f| f.time)
         .or(survey.first_increment_time());
-    let (mut first, mut chosen) = (None, None);
+    let (mut first, mut last, mut chosen) = (None, None, None);
     for point in TrajectoryReader::open(path, Strictness::Strict).data()? {
         let point = point.data()?;
         first = first.or(Some(point));
+        last = Some(point.time);
         if at.is_some_and(|t| point.time <= t) {
             chosen = Some(point);
         }
+    }
+    if let Some(span) = first.map(|p| p.time).zip(last) {
+        let reference = (span, ReferenceKind::TrajectoryCsv, path.as_path());
+        let run = (survey.increment_span(), settings.imu.as_path());
+        crate::reference_input::check_span_overlap(reference, run)?;
     }
     Ok(Some(chosen.or(first).into_iter().collect()))
 }

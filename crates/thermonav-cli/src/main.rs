@@ -22,6 +22,7 @@ mod loaded_noise;
 mod noise_units;
 mod production_lot;
 mod progress;
+mod reference_input;
 mod report;
 mod settings;
 mod thermal_calibration;

@@ -5,6 +5,7 @@
 
 use crate::failure::{Classify, Failure};
 use crate::inputs::operating_temperature;
+use crate::reference_input::{check_overlap, read_reference};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -25,10 +26,10 @@ use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::outage::{Outage, OutageSpec};
 use thermonav::nav::run::RunInput;
 use thermonav::nav::run_options::RunOptions;
-use thermonav::trajectory::TrajectoryPoint;
+use thermonav::trajectory::{ReferenceContent, TrajectoryPoint};
 use thermonav_io::{
-    ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, read_trajectory_file,
-    write_atomically, write_json_atomically,
+    ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, write_atomically,
+    write_json_atomically,
 };
 
 /// `evaluation.json`: the report and where it was written.
@@ -64,7 +65,9 @@ pub type EchoText = (Option<String>, Option<RunOptions>);
 /// The scenario of the files (start from the reference at the first fix, default initial
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
 /// under `records` beside the raw one, and with the truth's bias subtracted for the oracle)
-/// and the operating temperature (given, or the IMU's mean temp_c).
+/// and the operating temperature (given, or the IMU's mean temp_c). The reference may be any
+/// kind [`crate::reference_input`] reads; one of positions only is checked to overlap the
+/// IMU record, and the runs then start aligned from GNSS and score no heading.
 pub fn scenario_from_files(
     files: &ScenarioFiles,
     engine: EngineSettings,
@@ -74,10 +77,24 @@ pub fn scenario_from_files(
 ) -> Result<(Scenario, f64), Failure> {
     let series = read_imu_file_with(&files.imu, Strictness::Strict, &files.imu_options).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
-    let reference = read_trajectory_file(&files.reference, Strictness::Strict).data()?;
+    let reference = read_reference(&files.reference)?;
+    let run = series
+        .time
+        .first()
+        .copied()
+        .zip(series.time.last().copied());
+    check_overlap((&reference, &files.reference), (run, &files.imu))?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
-    let scenario = scenario_of_records(&series, gnss, reference, (&engine, outages), records)
-        .map_err(|e| scenario_failure(e, files))?;
+    let content = reference.content();
+    let scenario =
+        scenario_of_records(&series, gnss, reference.points, (&engine, outages), records)
+            .map_err(|e| scenario_failure(e, files))?;
+    let scenario = match content {
+        ReferenceContent::Full => scenario,
+        ReferenceContent::PositionOnly => scenario
+            .with_position_only_reference()
+            .map_err(|e| scenario_failure(e, files))?,
+    };
     Ok((scenario, operating_c))
 }
 
@@ -165,11 +182,11 @@ pub fn write_outcome(
 /// Scores only outside solutions (no filter runs) and writes their error CSVs and
 /// `out/evaluation.json`.
 pub fn write_outside_only(
-    outages: &[Outage],
+    (outages, content): (&[Outage], ReferenceContent),
     outside: &[OutsideResult],
     out: &Path,
 ) -> Result<EvaluationFile, Failure> {
-    let report = TournamentReport::outside_only(outages, outside);
+    let report = TournamentReport::outside_only(outages, outside, content);
     let errors: Vec<_> = outside_errors(outside).collect();
     write_evaluation(report, &errors, (out, (None, None)))
 }
@@ -259,11 +276,18 @@ fn write_errors(out: &Path, stem: &str, errors: &[Vec<EpochError>]) -> Result<Pa
     Ok(relative)
 }
 
+/// The error table: a `heading_deg` column only when the errors have one (none against a
+/// position-only reference).
 fn write_error_rows(
     out: &mut impl std::io::Write,
     errors: &[Vec<EpochError>],
 ) -> Result<(), WriteError> {
-    writeln!(out, "outage,{}", EpochError::COLUMNS.join(","))?;
+    let first = errors.iter().flatten().next();
+    let content = match first.is_some_and(|e| e.heading_deg.is_none()) {
+        true => ReferenceContent::PositionOnly,
+        false => ReferenceContent::Full,
+    };
+    writeln!(out, "outage,{}", EpochError::columns(content).join(","))?;
     for (k, outage) in errors.iter().enumerate() {
         for e in outage {
             write!(out, "{}", k + 1)?;
@@ -296,6 +320,9 @@ pub fn print_tournament_table(file: &EvaluationFile) {
     }
     if r.filters.is_empty() {
         print_filter_table(r, None);
+    }
+    if let Some(not_scored) = r.reference.not_scored {
+        println!("\nnot scored: {not_scored}");
     }
     if r.models.iter().any(|m| m.filter.is_none()) {
         println!(
@@ -381,11 +408,13 @@ fn row_label(m: &ModelReport) -> String {
     }
 }
 
-/// The mean ± half-width over replicates, or the single run's value, or "diverged".
+/// The mean ± half-width over replicates, or the single run's value, or "diverged" (or
+/// "not scored" for the heading against a position-only reference).
 fn table_cell(m: &ModelReport, metric: Metric, mark: &str) -> String {
     match (m.ci95.get(metric.key()), m.value(metric)) {
         (Some(c), _) => format!("{:.2} ±{:.2}{mark}", c.mean, (c.high - c.low) / 2.0),
         (None, Some(x)) => format!("{x:.2}{mark}"),
+        (None, None) if m.failure.is_none() => "not scored ".into(),
         (None, None) => "diverged ".into(),
     }
 }
@@ -421,6 +450,7 @@ mod tests {
     use super::*;
 
     fn epoch(heading_deg: f64) -> EpochError {
+        let heading_deg = Some(heading_deg);
         EpochError {
             time_s: 12.5,
             since_outage_start_s: 2.5,
@@ -442,5 +472,21 @@ mod tests {
         assert_eq!(row, format!("1,12.5,2.5,1,-2,{},0.25", 5f64.sqrt()));
         let error = write_error_rows(&mut Vec::new(), &[vec![epoch(f64::NAN)]]).unwrap_err();
         assert!(error.to_string().contains("NaN"), "{error}");
+    }
+
+    // Issue 38 row 3: against a position-only reference the table has no heading column.
+    #[test]
+    fn errors_without_heading_have_no_heading_column() {
+        let mut out = Vec::new();
+        let position_only = EpochError {
+            heading_deg: None,
+            ..epoch(0.0)
+        };
+        write_error_rows(&mut out, &[vec![position_only]]).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let mut lines = text.lines();
+        let header = "outage,t_s,since_outage_start_s,north_m,east_m,horizontal_m";
+        assert_eq!(lines.next(), Some(header));
+        assert_eq!(lines.next().unwrap().split(',').count(), 6);
     }
 }

@@ -29,6 +29,8 @@
 //!   writers, [`kf_gins_write`]);
 //! - [`outside_solution`]: KF-GINS, RTKLIB and our own solutions read as trajectories, to score
 //!   other tools beside ours;
+//! - [`reference`]: a reference trajectory from our trajectory or GNSS CSV, an RTKLIB `.pos`
+//!   or a KF-GINS `.nav`, the kind told by the content;
 //! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
 //! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
 //!   GNSS of a flight log ([`ulog::px4`]);
@@ -99,6 +101,7 @@ pub mod outside_solution;
 pub mod parsers;
 pub mod profile;
 pub mod raw_imu;
+pub mod reference;
 pub mod ros;
 mod rows;
 pub mod rtklib_pos;

@@ -186,6 +186,7 @@ fn survey(
             .iter()
             .map(TrajectoryPoint::from_nav_state)
             .collect(),
+        reference_content: Default::default(),
         initial: uncorrected(start.nav),
         initial_covariance: InitialUncertainty::default().covariance(),
         settings,

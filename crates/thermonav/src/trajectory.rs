@@ -10,6 +10,26 @@ use crate::geo::position::Geodetic;
 use crate::ins::state::NavState;
 use crate::time::Timestamp;
 
+/// What a reference trajectory holds, and so what can be scored against it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReferenceContent {
+    /// Position, velocity and attitude (a trajectory CSV, a KF-GINS `.nav`): position and
+    /// heading errors are scored, and a run can start from it.
+    #[default]
+    Full,
+    /// Positions only (GNSS fixes, an RTK solution): position errors are scored; heading and
+    /// attitude are not, and a run cannot take its attitude from it.
+    PositionOnly,
+}
+
+impl ReferenceContent {
+    /// Whether heading errors are scored against such a reference.
+    pub fn scores_heading(self) -> bool {
+        self == Self::Full
+    }
+}
+
 /// One epoch of a reference trajectory.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrajectoryPoint {

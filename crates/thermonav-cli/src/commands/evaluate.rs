@@ -7,6 +7,7 @@
 use crate::args::{EvaluateAction, EvaluateArgs};
 use crate::failure::{Classify, Failure};
 use crate::loaded_noise::load_noise;
+use crate::reference_input::{read_reference, span_of};
 use crate::report::print_json;
 use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use crate::tournament_files::{
@@ -18,6 +19,7 @@ use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datasheet_model_of};
 use thermonav::evaluation::experiment::{Replicates, Tournament, TournamentPlan};
+use thermonav::evaluation::metrics::Reference;
 use thermonav::evaluation::oracle::TrueModel;
 use thermonav::evaluation::outside::{OutsideResult, score_outside};
 use thermonav::evaluation::scenario::Scenario;
@@ -27,10 +29,10 @@ use thermonav::nav::engine::EngineSettings;
 use thermonav::nav::outage::Outage;
 use thermonav::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use thermonav::trajectory::TrajectoryPoint;
+use thermonav_io::Strictness;
 use thermonav_io::outside_solution::read_solution_file;
 use thermonav_io::profile::read_profile;
 use thermonav_io::truth::read_truth_file;
-use thermonav_io::{Strictness, read_trajectory_file};
 
 /// An outside solution read: its input and its trajectory.
 type Solution = (OutsideInput, Vec<TrajectoryPoint>);
@@ -104,7 +106,7 @@ fn run_filters(
     if gnss_sd.source != GnssSdSource::File {
         eprintln!("note: GNSS position sd: {}", gnss_sd.words());
     }
-    let outside = score_all(solutions, &main.reference, windows(&main))?;
+    let outside = score_all(solutions, main.reference(), windows(&main))?;
     run_and_write(
         &tournament,
         &main,
@@ -163,10 +165,9 @@ fn windows(main: &Scenario) -> &[Outage] {
 
 /// Only the outside solutions, against the reference, with the outages laid over its span.
 fn score_alone(s: &EvaluateSettings, solutions: &[Solution]) -> Result<EvaluationFile, Failure> {
-    let reference = read_trajectory_file(&s.reference, Strictness::Strict).data()?;
-    let span = match (reference.first(), reference.last()) {
-        (Some(a), Some(b)) => (a.time, b.time),
-        _ => return Err(anyhow!("{}: no point", s.reference.display())).data(),
+    let reference = read_reference(&s.reference)?;
+    let Some(span) = span_of(&reference.points) else {
+        return Err(anyhow!("{}: no point", s.reference.display())).data();
     };
     let outages = s
         .outages
@@ -178,8 +179,12 @@ fn score_alone(s: &EvaluateSettings, solutions: &[Solution]) -> Result<Evaluatio
             )
         })
         .usage()?;
-    let outside = score_all(solutions, &reference, outages.windows())?;
-    write_outside_only(outages.windows(), &outside, &s.out)
+    let scored = Reference {
+        points: &reference.points,
+        content: reference.content(),
+    };
+    let outside = score_all(solutions, scored, outages.windows())?;
+    write_outside_only((outages.windows(), scored.content), &outside, &s.out)
 }
 
 /// Every --solution read (all before any is scored, so a bad file fails early).
@@ -194,7 +199,7 @@ fn read_solutions(inputs: &[OutsideInput]) -> Result<Vec<Solution>, Failure> {
 /// Every solution scored against `reference` in `outages`, errors naming its file.
 fn score_all(
     solutions: &[Solution],
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     outages: &[Outage],
 ) -> Result<Vec<OutsideResult>, Failure> {
     let score = |(input, points): &Solution| {

@@ -21,7 +21,7 @@ use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
-use thermonav_io::{ImuOptions, Strictness, read_trajectory_file, write_atomically};
+use thermonav_io::{ImuOptions, write_atomically};
 use thermonav_plot::figures::DisplayUnits;
 use thermonav_plot::figures::allan::{
     AllanCurve, ConfidenceBand, NoiseTerm, NoiseTermReading, allan_curves_of_entry,
@@ -448,7 +448,7 @@ fn drawn_autocovariance(channel: Channel, gamma: &[f64], dt_s: f64) -> Autocovar
 
 /// The trajectory in north/east metres from its first point, with the `--outages` windows.
 fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
-    let points = read_trajectory_file(&args.input, Strictness::Strict).data()?;
+    let points = crate::reference_input::read_reference(&args.input)?.points;
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
         return Err(Failure::Data(anyhow!(
             "{}: no trajectory point",

@@ -18,6 +18,7 @@ mod oracle;
 mod outside;
 mod plots;
 mod real_data;
+mod references;
 mod reliability;
 mod report_page;
 mod run_options;

@@ -77,12 +77,13 @@ pub struct ModelErrors {
     pub north_m: Vec<f64>,
     /// East position error, m.
     pub east_m: Vec<f64>,
-    /// Heading error, deg.
+    /// Heading error, deg (empty when scored against a position-only reference).
     pub heading_deg: Vec<f64>,
 }
 
 /// North, east and heading errors during an outage, one line per model (Figures 10-12); the
-/// outage interval is shaded.
+/// outage interval is shaded. Without any heading error (a position-only reference) the
+/// heading panel is left out.
 pub fn outage_errors_figure(
     title: &str,
     models: &[ModelErrors],
@@ -102,14 +103,14 @@ pub fn outage_errors_figure(
             .collect(),
         shaded: outage_s.map(|range| ("GNSS outage".to_owned(), vec![range])),
     };
-    line_chart_figure(
-        title,
-        &[
-            panel("north", "m", |m| &m.north_m),
-            panel("east", "m", |m| &m.east_m),
-            panel("heading", "deg", |m| &m.heading_deg),
-        ],
-    )
+    let mut panels = vec![
+        panel("north", "m", |m| &m.north_m),
+        panel("east", "m", |m| &m.east_m),
+    ];
+    if models.iter().any(|m| !m.heading_deg.is_empty()) {
+        panels.push(panel("heading", "deg", |m| &m.heading_deg));
+    }
+    line_chart_figure(title, &panels)
 }
 
 /// RMS error at each temperature: the temperature a model stands for (the paper's Figures

@@ -325,6 +325,7 @@ impl Tournament {
             excluded: self.excluded.clone(),
             replicates: 1 + replicates.extra(),
             replicates_differ_by: replicates.differ_by().into(),
+            reference_content: main.reference_content,
         }
     }
 }

@@ -3,13 +3,15 @@
 //! At every solution epoch inside an outage the reference is interpolated linearly in time
 //! (latitude, longitude, height, and yaw on the circle); the north and east errors are the
 //! NED components of the solution's position relative to it, the heading error is the
-//! wrapped yaw difference.
+//! wrapped yaw difference. Against a position-only reference ([`ReferenceContent::PositionOnly`])
+//! no heading error exists: every heading figure is absent (`None`, left out of the JSON and of
+//! the error tables), never a number made up from a yaw the reference does not hold.
 
 use crate::geo::position::Geodetic;
 use crate::nav::outage::Outage;
 use crate::nav::solution::SolutionEpoch;
 use crate::time::Timestamp;
-use crate::trajectory::TrajectoryPoint;
+use crate::trajectory::{ReferenceContent, TrajectoryPoint};
 use crate::units::wrap_pi;
 use serde::Serialize;
 
@@ -26,8 +28,10 @@ pub struct EpochError {
     pub east_m: f64,
     /// Horizontal distance, m.
     pub horizontal_m: f64,
-    /// Solution minus reference heading, wrapped to (−180, 180], deg.
-    pub heading_deg: f64,
+    /// Solution minus reference heading, wrapped to (−180, 180], deg; absent against a
+    /// position-only reference.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<f64>,
 }
 
 impl EpochError {
@@ -41,16 +45,26 @@ impl EpochError {
         "heading_deg",
     ];
 
-    /// The values in the order of [`EpochError::COLUMNS`].
-    pub fn values(&self) -> [f64; 6] {
-        [
+    /// The values in the order of [`EpochError::COLUMNS`], the heading left out when absent
+    /// (see [`EpochError::columns`]).
+    pub fn values(&self) -> Vec<f64> {
+        let position = [
             self.time_s,
             self.since_outage_start_s,
             self.north_m,
             self.east_m,
             self.horizontal_m,
-            self.heading_deg,
-        ]
+        ];
+        position.into_iter().chain(self.heading_deg).collect()
+    }
+
+    /// The column names of errors scored against a reference holding `content`: without
+    /// attitude, no `heading_deg`.
+    pub fn columns(content: ReferenceContent) -> &'static [&'static str] {
+        match content {
+            ReferenceContent::Full => &Self::COLUMNS,
+            ReferenceContent::PositionOnly => &Self::COLUMNS[..5],
+        }
     }
 }
 
@@ -69,16 +83,18 @@ pub struct OutageMetrics {
     pub rms_east_m: f64,
     /// RMS horizontal error, m.
     pub rms_horizontal_m: f64,
-    /// RMS heading error, deg.
-    pub rms_heading_deg: f64,
+    /// RMS heading error, deg (absent against a position-only reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_heading_deg: Option<f64>,
     /// Largest |north error|, m.
     pub max_north_m: f64,
     /// Largest |east error|, m.
     pub max_east_m: f64,
     /// Largest horizontal error, m.
     pub max_horizontal_m: f64,
-    /// Largest |heading error|, deg.
-    pub max_heading_deg: f64,
+    /// Largest |heading error|, deg (absent against a position-only reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_heading_deg: Option<f64>,
 }
 
 /// Figures of a whole run over all its outages.
@@ -90,16 +106,20 @@ pub struct RunMetrics {
     pub rms_east_m: f64,
     /// Mean over outages of the per-outage RMS horizontal error, m.
     pub rms_horizontal_m: f64,
-    /// Mean over outages of the per-outage RMS heading error, deg.
-    pub rms_heading_deg: f64,
+    /// Mean over outages of the per-outage RMS heading error, deg (absent against a
+    /// position-only reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_heading_deg: Option<f64>,
     /// RMS over outages of the per-outage maximum horizontal error, m (KF-GINS's figure).
     pub max_drift_horizontal_m: f64,
     /// RMS over outages of the per-outage maximum |north error|, m.
     pub rms_of_max_north_m: f64,
     /// RMS over outages of the per-outage maximum |east error|, m.
     pub rms_of_max_east_m: f64,
-    /// RMS over outages of the per-outage maximum |heading error|, deg.
-    pub rms_of_max_heading_deg: f64,
+    /// RMS over outages of the per-outage maximum |heading error|, deg (absent against a
+    /// position-only reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_of_max_heading_deg: Option<f64>,
     /// Per outage.
     pub per_outage: Vec<OutageMetrics>,
 }
@@ -141,14 +161,15 @@ impl Metric {
         }
     }
 
-    /// The value of this metric in `m`.
-    pub fn of(self, m: &RunMetrics) -> f64 {
+    /// The value of this metric in `m` (none for the heading against a position-only
+    /// reference).
+    pub fn of(self, m: &RunMetrics) -> Option<f64> {
         match self {
-            Metric::RmsNorth => m.rms_north_m,
-            Metric::RmsEast => m.rms_east_m,
-            Metric::RmsHorizontal => m.rms_horizontal_m,
+            Metric::RmsNorth => Some(m.rms_north_m),
+            Metric::RmsEast => Some(m.rms_east_m),
+            Metric::RmsHorizontal => Some(m.rms_horizontal_m),
             Metric::RmsHeading => m.rms_heading_deg,
-            Metric::MaxDriftHorizontal => m.max_drift_horizontal_m,
+            Metric::MaxDriftHorizontal => Some(m.max_drift_horizontal_m),
         }
     }
 }
@@ -267,12 +288,31 @@ impl Pose {
     }
 }
 
+/// A reference trajectory and what it holds (whether its yaw is a heading to score).
+#[derive(Debug, Clone, Copy)]
+pub struct Reference<'a> {
+    /// Its points (attitude zero and unused when position-only).
+    pub points: &'a [TrajectoryPoint],
+    /// What it holds.
+    pub content: ReferenceContent,
+}
+
+impl<'a> Reference<'a> {
+    /// A reference with position, velocity and attitude.
+    pub fn full(points: &'a [TrajectoryPoint]) -> Self {
+        Self {
+            points,
+            content: ReferenceContent::Full,
+        }
+    }
+}
+
 /// The errors at the solution epochs inside `outage`.
 ///
 /// # Errors
 /// [`MetricsError`] when the reference does not cover the outage or no epoch falls in it.
 pub fn outage_errors(
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     epochs: &[SolutionEpoch],
     outage: &Outage,
 ) -> Result<Vec<EpochError>, MetricsError> {
@@ -288,7 +328,7 @@ pub fn outage_errors(
 /// # Errors
 /// As [`outage_errors`].
 pub fn pose_errors(
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     inside: impl Iterator<Item = Pose>,
     outage: &Outage,
 ) -> Result<Vec<EpochError>, MetricsError> {
@@ -299,13 +339,16 @@ pub fn pose_errors(
         first_s,
         last_s,
     };
-    let (Some(first), Some(last)) = (reference.first(), reference.last()) else {
+    let points = reference.points;
+    let (Some(first), Some(last)) = (points.first(), points.last()) else {
         return Err(coverage(f64::NAN, f64::NAN));
     };
+    let scores_heading = reference.content.scores_heading();
     let errors = inside
         .map(|pose| {
-            let (position, yaw) = reference_at(reference, pose.time)
+            let (position, yaw) = reference_at(points, pose.time)
                 .ok_or_else(|| coverage(first.time.as_seconds(), last.time.as_seconds()))?;
+            let yaw = scores_heading.then_some(yaw);
             Ok(epoch_error(&pose, &position, yaw, outage))
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -315,8 +358,8 @@ pub fn pose_errors(
     }
 }
 
-/// The error of `pose` against the reference `position` and `yaw` at its time.
-fn epoch_error(pose: &Pose, position: &Geodetic, yaw: f64, outage: &Outage) -> EpochError {
+/// The error of `pose` against the reference `position` and `yaw` (if it has one) at its time.
+fn epoch_error(pose: &Pose, position: &Geodetic, yaw: Option<f64>, outage: &Outage) -> EpochError {
     let d = pose.position.ned_from(position);
     EpochError {
         time_s: pose.time.as_seconds(),
@@ -324,7 +367,7 @@ fn epoch_error(pose: &Pose, position: &Geodetic, yaw: f64, outage: &Outage) -> E
         north_m: d.x(),
         east_m: d.y(),
         horizontal_m: d.x().hypot(d.y()),
-        heading_deg: wrap_pi(pose.yaw_rad - yaw).to_degrees(),
+        heading_deg: yaw.map(|yaw| wrap_pi(pose.yaw_rad - yaw).to_degrees()),
     }
 }
 
@@ -337,9 +380,16 @@ fn max_abs(values: impl Iterator<Item = f64>) -> f64 {
     values.fold(0.0, |m: f64, v| m.max(v.abs()))
 }
 
+/// The heading errors of `errors`, when every one has one (none against a position-only
+/// reference).
+fn heading_errors(errors: &[EpochError]) -> Option<Vec<f64>> {
+    errors.iter().map(|e| e.heading_deg).collect()
+}
+
 /// The figures of one outage from its epoch errors.
 pub fn outage_metrics(outage: &Outage, errors: &[EpochError]) -> OutageMetrics {
     let of = |f: fn(&EpochError) -> f64| errors.iter().map(f);
+    let heading = heading_errors(errors);
     OutageMetrics {
         start_s: outage.start.as_seconds(),
         end_s: outage.end.as_seconds(),
@@ -347,11 +397,11 @@ pub fn outage_metrics(outage: &Outage, errors: &[EpochError]) -> OutageMetrics {
         rms_north_m: rms(of(|e| e.north_m)),
         rms_east_m: rms(of(|e| e.east_m)),
         rms_horizontal_m: rms(of(|e| e.horizontal_m)),
-        rms_heading_deg: rms(of(|e| e.heading_deg)),
+        rms_heading_deg: heading.as_deref().map(|h| rms(h.iter().copied())),
         max_north_m: max_abs(of(|e| e.north_m)),
         max_east_m: max_abs(of(|e| e.east_m)),
         max_horizontal_m: max_abs(of(|e| e.horizontal_m)),
-        max_heading_deg: max_abs(of(|e| e.heading_deg)),
+        max_heading_deg: heading.as_deref().map(|h| max_abs(h.iter().copied())),
     }
 }
 
@@ -366,15 +416,18 @@ pub fn run_metrics(per_outage: Vec<OutageMetrics>) -> Result<RunMetrics, Metrics
     let n = per_outage.len() as f64;
     let mean = |f: fn(&OutageMetrics) -> f64| per_outage.iter().map(f).sum::<f64>() / n;
     let rms_of = |f: fn(&OutageMetrics) -> f64| rms(per_outage.iter().map(f));
+    let heading = |f: fn(&OutageMetrics) -> Option<f64>| -> Option<Vec<f64>> {
+        per_outage.iter().map(f).collect()
+    };
     Ok(RunMetrics {
         rms_north_m: mean(|o| o.rms_north_m),
         rms_east_m: mean(|o| o.rms_east_m),
         rms_horizontal_m: mean(|o| o.rms_horizontal_m),
-        rms_heading_deg: mean(|o| o.rms_heading_deg),
+        rms_heading_deg: heading(|o| o.rms_heading_deg).map(|h| h.iter().sum::<f64>() / n),
         max_drift_horizontal_m: rms_of(|o| o.max_horizontal_m),
         rms_of_max_north_m: rms_of(|o| o.max_north_m),
         rms_of_max_east_m: rms_of(|o| o.max_east_m),
-        rms_of_max_heading_deg: rms_of(|o| o.max_heading_deg),
+        rms_of_max_heading_deg: heading(|o| o.max_heading_deg).map(|h| rms(h.into_iter())),
         per_outage,
     })
 }
@@ -384,7 +437,7 @@ pub fn run_metrics(per_outage: Vec<OutageMetrics>) -> Result<RunMetrics, Metrics
 /// # Errors
 /// As [`outage_errors`] and [`run_metrics`].
 pub fn evaluate_solution(
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     epochs: &[SolutionEpoch],
     outages: &[Outage],
 ) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {
@@ -398,7 +451,7 @@ pub fn evaluate_solution(
 /// # Errors
 /// As [`evaluate_solution`].
 pub fn evaluate_trajectory(
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     points: &[TrajectoryPoint],
     outages: &[Outage],
 ) -> Result<(RunMetrics, Vec<Vec<EpochError>>), MetricsError> {

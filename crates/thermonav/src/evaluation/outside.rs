@@ -8,11 +8,11 @@
 //! outside solution and one of ours written as a trajectory score alike.
 
 use super::experiment::Replicates;
-use super::metrics::{MetricsError, evaluate_trajectory};
+use super::metrics::{MetricsError, Reference, evaluate_trajectory};
 use super::report::{ModelReport, SignificanceReport, TournamentReport, outage_spans};
 use super::tournament::Evaluated;
 use crate::nav::outage::Outage;
-use crate::trajectory::TrajectoryPoint;
+use crate::trajectory::{ReferenceContent, TrajectoryPoint};
 use std::collections::BTreeMap;
 
 /// An outside solution scored.
@@ -55,7 +55,7 @@ pub enum OutsideError {
 pub fn score_outside(
     label: &str,
     points: &[TrajectoryPoint],
-    reference: &[TrajectoryPoint],
+    reference: Reference,
     outages: &[Outage],
 ) -> Result<OutsideResult, OutsideError> {
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
@@ -94,11 +94,11 @@ pub fn outside_model_report(result: &OutsideResult) -> ModelReport {
         rms_north_m: Some(m.rms_north_m),
         rms_east_m: Some(m.rms_east_m),
         rms_horizontal_m: Some(m.rms_horizontal_m),
-        rms_heading_deg: Some(m.rms_heading_deg),
+        rms_heading_deg: m.rms_heading_deg,
         max_drift_horizontal_m: Some(m.max_drift_horizontal_m),
         rms_of_max_north_m: Some(m.rms_of_max_north_m),
         rms_of_max_east_m: Some(m.rms_of_max_east_m),
-        rms_of_max_heading_deg: Some(m.rms_of_max_heading_deg),
+        rms_of_max_heading_deg: m.rms_of_max_heading_deg,
         per_outage: m.per_outage.clone(),
         ci95: Default::default(),
         innovations: Vec::new(),
@@ -109,12 +109,17 @@ pub fn outside_model_report(result: &OutsideResult) -> ModelReport {
 impl TournamentReport {
     /// The report of outside solutions alone (no filter ran): their rows, the outages, no
     /// ranking, no replicate.
-    pub fn outside_only(outages: &[Outage], outside: &[OutsideResult]) -> Self {
+    pub fn outside_only(
+        outages: &[Outage],
+        outside: &[OutsideResult],
+        content: ReferenceContent,
+    ) -> Self {
         Self {
             operating_temperature_c: None,
             gauss_markov_source: None,
             filters: Vec::new(),
             outages: outage_spans(outages),
+            reference: super::report::ReferenceScoring::of(content),
             models: outside.iter().map(outside_model_report).collect(),
             excluded: Vec::new(),
             best: BTreeMap::new(),

@@ -11,6 +11,7 @@ use crate::nav::engine::FilterKind;
 use crate::nav::outage::Outage;
 use crate::nav::solution::InnovationStatistics;
 use crate::stoch::bank::GaussMarkovSource;
+use crate::trajectory::ReferenceContent;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -65,6 +66,9 @@ pub struct ShardFrame {
     pub replicates: usize,
     /// How they differ, in words.
     pub replicates_differ_by: String,
+    /// What the reference held (older shard files: a full reference).
+    #[serde(default)]
+    pub reference_content: ReferenceContent,
 }
 
 impl ShardFrame {
@@ -94,7 +98,9 @@ pub struct ModelReport {
     pub rms_east_m: Option<f64>,
     /// Mean of per-outage RMS horizontal error, m.
     pub rms_horizontal_m: Option<f64>,
-    /// Mean of per-outage RMS heading error, deg.
+    /// Mean of per-outage RMS heading error, deg (absent against a position-only reference,
+    /// and for a failed run).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rms_heading_deg: Option<f64>,
     /// RMS of per-outage maximum horizontal error, m.
     pub max_drift_horizontal_m: Option<f64>,
@@ -102,7 +108,8 @@ pub struct ModelReport {
     pub rms_of_max_north_m: Option<f64>,
     /// RMS of per-outage maximum |east error|, m.
     pub rms_of_max_east_m: Option<f64>,
-    /// RMS of per-outage maximum |heading error|, deg.
+    /// RMS of per-outage maximum |heading error|, deg (absent as the RMS heading error).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rms_of_max_heading_deg: Option<f64>,
     /// Per outage of the main run.
     pub per_outage: Vec<OutageMetrics>,
@@ -140,6 +147,30 @@ pub struct SignificanceReport {
     pub horizontal_contrasts: Vec<Contrast>,
 }
 
+/// What the reference held and so what was scored: position always; heading only against
+/// a reference with attitude.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct ReferenceScoring {
+    /// What the reference held.
+    pub content: ReferenceContent,
+    /// What was not scored, in words (absent when everything was).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub not_scored: Option<&'static str>,
+}
+
+/// Why heading is not scored against a position-only reference.
+pub const HEADING_NOT_SCORED: &str = "heading and attitude: the reference holds positions only (GNSS or RTK fixes), so only position errors are scored";
+
+impl ReferenceScoring {
+    /// The scoring against a reference holding `content`.
+    pub fn of(content: ReferenceContent) -> Self {
+        Self {
+            content,
+            not_scored: (!content.scores_heading()).then_some(HEADING_NOT_SCORED),
+        }
+    }
+}
+
 /// The whole report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TournamentReport {
@@ -152,6 +183,8 @@ pub struct TournamentReport {
     pub filters: Vec<FilterKind>,
     /// Outages of the main run.
     pub outages: Vec<OutageSpan>,
+    /// What the reference held, and what was therefore not scored.
+    pub reference: ReferenceScoring,
     /// Every model through every filter, candidate-major.
     pub models: Vec<ModelReport>,
     /// Candidates that could not be built.
@@ -220,6 +253,7 @@ pub(super) fn report_of(
         operating_temperature_c: Some(frame.operating_temperature_c),
         gauss_markov_source: Some(frame.gauss_markov_source),
         outages: frame.outages.clone(),
+        reference: ReferenceScoring::of(frame.reference_content),
         excluded: frame.excluded.clone(),
         best: (filters.first())
             .map(|f| best_labels(&ranking, *f))
@@ -315,11 +349,11 @@ fn model_report(result: &ModelResult, ci95: &[(Metric, MeanInterval)]) -> ModelR
         rms_north_m: pick(|m| m.rms_north_m),
         rms_east_m: pick(|m| m.rms_east_m),
         rms_horizontal_m: pick(|m| m.rms_horizontal_m),
-        rms_heading_deg: pick(|m| m.rms_heading_deg),
+        rms_heading_deg: metrics.and_then(|m| m.rms_heading_deg),
         max_drift_horizontal_m: pick(|m| m.max_drift_horizontal_m),
         rms_of_max_north_m: pick(|m| m.rms_of_max_north_m),
         rms_of_max_east_m: pick(|m| m.rms_of_max_east_m),
-        rms_of_max_heading_deg: pick(|m| m.rms_of_max_heading_deg),
+        rms_of_max_heading_deg: metrics.and_then(|m| m.rms_of_max_heading_deg),
         per_outage: metrics.map(|m| m.per_outage.clone()).unwrap_or_default(),
         ci95: ci95.iter().map(|(m, ci)| (m.key(), *ci)).collect(),
         innovations: ok.map(|e| e.innovations.clone()).unwrap_or_default(),

@@ -4,7 +4,7 @@
 //! taken from the reference at the first fix. What `thermonav evaluate` and the Python
 //! package's `evaluate` both do between reading their files and running the tournament.
 
-use super::metrics::{MetricsError, check_reference_covers};
+use super::metrics::{MetricsError, Reference, check_reference_covers};
 use super::oracle::{OracleError, TrueModel};
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
@@ -14,12 +14,12 @@ use crate::nav::alignment::{InitialUncertainty, uncorrected};
 use crate::nav::engine::{EngineSettings, NavError, check_inputs, increments_from_series};
 use crate::nav::error_state::Estimate;
 use crate::nav::outage::OutageSpec;
-use crate::nav::run::{RunError, RunInput, with_outages};
+use crate::nav::run::{RunError, RunInput, Start, initial_estimate, with_outages};
 use crate::nav::schedule::{
     Compensation, CompensationOutcome, ScheduleError, TemperatureTrack, compensate_record,
 };
 use crate::stoch::thermal::ThermalCalibration;
-use crate::trajectory::TrajectoryPoint;
+use crate::trajectory::{ReferenceContent, TrajectoryPoint};
 
 /// The data and settings every candidate is run on.
 #[derive(Debug, Clone)]
@@ -38,12 +38,45 @@ pub struct Scenario {
     pub gnss: Vec<GnssFix>,
     /// Reference trajectory (covering every outage).
     pub reference: Vec<TrajectoryPoint>,
+    /// What the reference holds: position only, the runs start aligned and no heading is
+    /// scored.
+    pub reference_content: ReferenceContent,
     /// Initial estimate.
     pub initial: Estimate,
     /// Initial covariance.
     pub initial_covariance: SystemMatrix,
     /// Filter settings, outages included (the filter kind is set per run).
     pub settings: EngineSettings,
+}
+
+impl Scenario {
+    /// The reference the runs are scored against.
+    pub fn reference(&self) -> Reference<'_> {
+        Reference {
+            points: &self.reference,
+            content: self.reference_content,
+        }
+    }
+
+    /// The scenario against a reference of positions only: every run starts from the
+    /// alignment `integrate` makes (GNSS heading or course over ground, levelled from a still
+    /// start), not from the reference's attitude, which it does not hold, and no heading is
+    /// scored.
+    ///
+    /// # Errors
+    /// [`ScenarioError::Run`] when the data cannot be aligned.
+    pub fn with_position_only_reference(self) -> Result<Self, ScenarioError> {
+        let found = initial_estimate(Start::Align, &self.increments, &self.gnss, &self.settings)
+            .map_err(ScenarioError::Run)?;
+        Ok(Self {
+            initial: found.initial,
+            initial_covariance: found
+                .uncertainty(InitialUncertainty::default())
+                .covariance(),
+            reference_content: ReferenceContent::PositionOnly,
+            ..self
+        })
+    }
 }
 
 /// The IMU side of a scenario, from a record.
@@ -203,6 +236,7 @@ pub fn scenario_of(
         temperature: imu.temperature,
         gnss,
         reference,
+        reference_content: ReferenceContent::Full,
         initial: uncorrected(initial.nav_state()),
         initial_covariance: InitialUncertainty::default().covariance(),
         settings,

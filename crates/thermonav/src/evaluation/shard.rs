@@ -264,15 +264,19 @@ fn check_stored_figures(name: &str, shard: &TournamentShard) -> Result<(), Merge
     for run in &shard.runs {
         let Ok(stored) = &run.outcome else { continue };
         let m = &stored.metrics;
+        // A heading figure is absent against a position-only reference: nothing to check.
         let whole = [
             ("rms_north_m", m.rms_north_m),
             ("rms_east_m", m.rms_east_m),
             ("rms_horizontal_m", m.rms_horizontal_m),
-            ("rms_heading_deg", m.rms_heading_deg),
+            ("rms_heading_deg", m.rms_heading_deg.unwrap_or(0.0)),
             ("max_drift_horizontal_m", m.max_drift_horizontal_m),
             ("rms_of_max_north_m", m.rms_of_max_north_m),
             ("rms_of_max_east_m", m.rms_of_max_east_m),
-            ("rms_of_max_heading_deg", m.rms_of_max_heading_deg),
+            (
+                "rms_of_max_heading_deg",
+                m.rms_of_max_heading_deg.unwrap_or(0.0),
+            ),
         ];
         let outages = m.per_outage.iter().flat_map(|o| {
             [
@@ -281,11 +285,17 @@ fn check_stored_figures(name: &str, shard: &TournamentShard) -> Result<(), Merge
                 ("per_outage.rms_north_m", o.rms_north_m),
                 ("per_outage.rms_east_m", o.rms_east_m),
                 ("per_outage.rms_horizontal_m", o.rms_horizontal_m),
-                ("per_outage.rms_heading_deg", o.rms_heading_deg),
+                (
+                    "per_outage.rms_heading_deg",
+                    o.rms_heading_deg.unwrap_or(0.0),
+                ),
                 ("per_outage.max_north_m", o.max_north_m),
                 ("per_outage.max_east_m", o.max_east_m),
                 ("per_outage.max_horizontal_m", o.max_horizontal_m),
-                ("per_outage.max_heading_deg", o.max_heading_deg),
+                (
+                    "per_outage.max_heading_deg",
+                    o.max_heading_deg.unwrap_or(0.0),
+                ),
             ]
         });
         // Outage times may be negative (before the record's first sample); the magnitudes not.

@@ -41,7 +41,10 @@ pub struct ModelResult {
 impl ModelResult {
     /// The value of `metric`, when the run succeeded.
     pub fn value(&self, metric: Metric) -> Option<f64> {
-        self.outcome.as_ref().ok().map(|e| metric.of(&e.metrics))
+        self.outcome
+            .as_ref()
+            .ok()
+            .and_then(|e| metric.of(&e.metrics))
     }
 }
 
@@ -97,7 +100,7 @@ fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> Mo
         )
         .map_err(|e| e.to_string())?;
         let (metrics, errors) = evaluate_solution(
-            &scenario.reference,
+            scenario.reference(),
             &solution.epochs,
             settings.outages.windows(),
         )

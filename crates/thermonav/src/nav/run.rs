@@ -608,7 +608,7 @@ impl StartFound {
 /// The start: aligned from GNSS (with the course baseline when the heading came from one,
 /// levelled from the still span at the record's start when there is one), or the reference
 /// point at the first fix.
-pub(super) fn initial_estimate(
+pub fn initial_estimate(
     start: Start,
     increments: &[Increment],
     gnss: &[GnssFix],

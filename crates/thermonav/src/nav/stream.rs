@@ -121,7 +121,7 @@ impl RecordSurvey {
     }
 
     /// Times of the first and the last increment.
-    fn increment_span(&self) -> Option<(Timestamp, Timestamp)> {
+    pub fn increment_span(&self) -> Option<(Timestamp, Timestamp)> {
         Some((self.second?, self.last?))
     }
 }
