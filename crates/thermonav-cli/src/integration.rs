@@ -6,6 +6,7 @@
 use crate::failure::{Classify, Failure};
 use crate::integration_outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
 use crate::loaded_noise::{LoadedNoise, load_noise};
+use crate::reference_input::record_span;
 use crate::settings::navigation::{IntegrateSettings, SolutionFiles};
 use thermonav::nav::report::RunReport;
 use thermonav::nav::run::{PreparedRun, RunError, RunOutcome, Start, prepare};
@@ -39,15 +40,8 @@ fn integrate_in_memory(
     let gnss = read_gnss_file(&settings.gnss, Strictness::Strict).data()?;
     let reference = match &settings.initial_from {
         Some(path) => {
-            let run = series
-                .time
-                .first()
-                .copied()
-                .zip(series.time.last().copied());
-            Some(crate::reference_input::read_start_reference(
-                path,
-                (run, &settings.imu),
-            )?)
+            let run = (record_span(&series), settings.imu.as_path());
+            Some(crate::reference_input::read_start_reference(path, run)?)
         }
         None => None,
     };

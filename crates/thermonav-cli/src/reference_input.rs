@@ -5,6 +5,7 @@
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::Path;
+use thermonav::imu::ImuSeries;
 use thermonav::time::Timestamp;
 use thermonav::trajectory::{ReferenceContent, TrajectoryPoint};
 use thermonav_io::Strictness;
@@ -56,6 +57,11 @@ pub fn span_of(points: &[TrajectoryPoint]) -> Option<(Timestamp, Timestamp)> {
 
 /// The span of an IMU record's times, if it has any.
 pub type RunSpan = Option<(Timestamp, Timestamp)>;
+
+/// The first and last sample time of `series`.
+pub fn record_span(series: &ImuSeries) -> RunSpan {
+    Some((*series.time.first()?, *series.time.last()?))
+}
 
 /// Refuses a reference whose time does not overlap the run's (the IMU record `imu` spanning
 /// `run`), naming both files and both time ranges, with a hint when the two are on

@@ -5,7 +5,7 @@
 
 use crate::failure::{Classify, Failure};
 use crate::inputs::operating_temperature;
-use crate::reference_input::{check_overlap, read_reference};
+use crate::reference_input::{check_overlap, read_reference, record_span};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -78,12 +78,8 @@ pub fn scenario_from_files(
     let series = read_imu_file_with(&files.imu, Strictness::Strict, &files.imu_options).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_reference(&files.reference)?;
-    let run = series
-        .time
-        .first()
-        .copied()
-        .zip(series.time.last().copied());
-    check_overlap((&reference, &files.reference), (run, &files.imu))?;
+    let run = (record_span(&series), files.imu.as_path());
+    check_overlap((&reference, &files.reference), run)?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
     let content = reference.content();
     let scenario =
