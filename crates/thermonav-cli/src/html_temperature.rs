@@ -155,7 +155,7 @@ fn comparison_table(scenario: &Value) -> Table {
         .map(comparison_row)
         .collect();
     Table {
-        caption: "The claim's paired comparisons (mean over the replicates of the worse model's horizontal error minus the better one's; each must be positive with p < 0.01); a last row of \"truth scheduled compensated\" is the oracle, the simulator's true model on the record without the true bias(T): what no model can beat".into(),
+        caption: "The claim's paired comparisons (mean over the replicates of the worse model's horizontal error minus the better one's; each must be positive with p < 0.01); a last row of \"truth scheduled\" or \"truth scheduled on calibrated\" is the oracle, the simulator's true noise models scheduled on the record the claimed model runs on: what no noise model can beat".into(),
         header: [
             "model",
             "against",

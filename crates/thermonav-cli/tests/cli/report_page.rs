@@ -130,6 +130,32 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
     assert!(summary.matches("95 % CI").count() >= 3 && summary.matches("<svg").count() == 3);
     assert!(summary.matches("<a href=\"#section-").count() == 3);
 
+    // Each claim's oracle runs on the record its claimed model runs on: (b)'s the true models
+    // on the raw record, (c)'s on the record compensated with the bank's own calibration (so
+    // the bound asks what (c) asks, scheduling, not also a better compensation), and the
+    // oracles are ranked apart.
+    let bound_of = |key: &str| {
+        demo["temperature_scenarios"][key]["claim"]["oracle_bound"]["better"]
+            .as_str()
+            .map(str::to_owned)
+    };
+    assert_eq!(
+        bound_of("temperature_matters").as_deref(),
+        Some("truth scheduled")
+    );
+    assert_eq!(
+        bound_of("warming_survey").as_deref(),
+        Some("truth scheduled on calibrated")
+    );
+    let warming = json_file(&out.join("temperature/warming_survey/evaluation.json"));
+    let kinds: Vec<&str> = (warming["models"].as_array().unwrap().iter())
+        .map(|m| m["kind"].as_str().unwrap())
+        .collect();
+    assert!(kinds.contains(&"oracle_on_calibrated") && kinds.contains(&"oracle_compensated"));
+    for label in warming["best"].as_object().unwrap().values() {
+        assert!(!label.as_str().unwrap().starts_with("truth"), "{label}");
+    }
+
     // The Allan figures: one grid, one figure per temperature of the bank.
     let bank = json_file(&out.join("bank.json"));
     let grid = element(&html, "<div class=\"multiples\"", "div");

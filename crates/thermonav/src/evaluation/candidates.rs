@@ -15,7 +15,9 @@
 //!   step), and the scheduled bank on the compensated record (the compensated ones only when
 //!   the bank holds a calibration);
 //! - **oracle** ([`oracle_candidates`]), when the caller has the simulator's truth: the true
-//!   model scheduled, on the raw record and on the record without the true bias(T);
+//!   model scheduled, on the raw record, on the record without the true bias(T), and on the
+//!   record compensated with the bank's own calibration (what the true noise models add when
+//!   the compensation is ours: the bound of a claim about scheduling on that record);
 //! - **profile** ([`profile_candidates`]), for a sensor without a chamber campaign: a sensor
 //!   profile's model at each of its table temperatures and at the operating temperature, and
 //!   the profile scheduled by temperature.
@@ -75,6 +77,9 @@ pub enum CandidateKind {
     Oracle,
     /// The true model scheduled, on the record with the true repeatable bias subtracted.
     OracleCompensated,
+    /// The true model scheduled, on the record compensated with the bank's thermal
+    /// calibration (as the compensated candidates run).
+    OracleOnCalibrated,
     /// A trajectory computed by another tool, scored beside the candidates (see
     /// [`super::outside`]); not a model of ours, so it is not ranked.
     Outside,
@@ -141,6 +146,7 @@ impl CandidateKind {
             | CandidateKind::ScheduledCompensated { .. }
             | CandidateKind::Oracle
             | CandidateKind::OracleCompensated
+            | CandidateKind::OracleOnCalibrated
             | CandidateKind::Outside => None,
         }
     }
@@ -149,7 +155,9 @@ impl CandidateKind {
     pub fn is_oracle(self) -> bool {
         matches!(
             self,
-            CandidateKind::Oracle | CandidateKind::OracleCompensated
+            CandidateKind::Oracle
+                | CandidateKind::OracleCompensated
+                | CandidateKind::OracleOnCalibrated
         )
     }
 
@@ -375,7 +383,9 @@ pub fn thermal_candidates(
 }
 
 /// The oracle's candidates over the record's temperature range `range_c`: the true model
-/// scheduled on the raw record, and on the record with the true repeatable bias subtracted.
+/// scheduled on the raw record, on the record with the true repeatable bias subtracted, and
+/// on the record compensated with the bank's calibration (the caller keeps the last two only
+/// where those records are made).
 pub fn oracle_candidates(
     truth: &TrueModel,
     range_c: [f64; 2],
@@ -389,6 +399,11 @@ pub fn oracle_candidates(
             "truth scheduled compensated",
             CandidateKind::OracleCompensated,
             Record::OracleCompensated,
+        ),
+        (
+            "truth scheduled on calibrated",
+            CandidateKind::OracleOnCalibrated,
+            Record::Compensated,
         ),
     ];
     for (label, kind, record) in runs {

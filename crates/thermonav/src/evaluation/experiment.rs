@@ -345,12 +345,15 @@ fn plan_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
             ),
         };
         // With compensation off no candidate runs on a compensated record, the oracle's
-        // neither.
+        // neither; on the record compensated with the bank's calibration only where the bank
+        // holds one.
         let compensates = plan.thermal.compensation != Compensation::Off;
-        candidates.extend(
-            more.into_iter()
-                .filter(|c| compensates || c.kind != CandidateKind::OracleCompensated),
-        );
+        let calibrated = matches!(plan.noise, CandidateSource::Bank(b) if b.thermal.is_some());
+        candidates.extend(more.into_iter().filter(|c| match c.kind {
+            CandidateKind::OracleCompensated => compensates,
+            CandidateKind::OracleOnCalibrated => compensates && calibrated,
+            _ => true,
+        }));
         excluded.extend(left_out);
     }
     (candidates, excluded)
