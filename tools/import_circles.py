@@ -38,7 +38,7 @@ The module-level graph has each crate's top-level modules (`src/<module>.rs` or 
 as nodes; a file edge between files of two different top-level modules is a module edge (the
 root file is not a node). A module circle whose modules are all single files is the file circle
 already printed, and is not printed again. Some top-level modules are generic (`GENERIC`): the
-library's `filter` may take from no module of the crate but `statistics`.
+library's `filter` may take from no module of the crate but `statistics`, and `optimise` from none.
 
 Circles are the strongly connected components (Tarjan) of more than one node, printed with the
 names behind each edge inside them. Compared with `farm-studio look` on 2c6e0d4, which reports
@@ -72,8 +72,9 @@ RELATIVE_PATH = re.compile(r"(?<![\w:])(" + IDENT + r"(?:\s*::\s*" + IDENT + r")
 KEYWORDS = {"crate", "super", "self", "Self"}
 
 # Top-level modules of a crate that may take nothing from the rest of the crate but the
-# modules listed: the generic filter knows no domain (no IMU, no bank, no production lot).
-GENERIC = {"crates/thermonav/src": {"filter": {"statistics"}}}
+# modules listed: the generic filter knows no domain (no IMU, no bank, no production lot), and
+# the general optimisers know nothing of what they optimise.
+GENERIC = {"crates/thermonav/src": {"filter": {"statistics"}, "optimise": set()}}
 
 
 def code_only(text):

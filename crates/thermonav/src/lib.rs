@@ -173,6 +173,8 @@
 //! - [`gnss`]: GNSS fixes: position, optional velocity, precision and dual-antenna heading.
 //! - [`trajectory`]: reference trajectory points: position, velocity, attitude.
 //! - [`mounting`]: the IMU's mounting in the body (an axis mapping or roll, pitch, yaw).
+//! - [`optimise`]: general optimisers (Nelder-Mead, Newton, Brent, golden section,
+//!   Levenberg-Marquardt), knowing nothing of what they optimise.
 //! - [`signal`]: Kaiser FIR design, zero-phase filtering, decimation, timestamp checks.
 //! - [`stoch`]: autocorrelation, AR estimators, Gauss-Markov models, Allan variance, the
 //!   temperature model bank.
@@ -190,6 +192,7 @@ pub mod imu;
 pub mod ins;
 pub mod mounting;
 pub mod nav;
+pub mod optimise;
 pub mod rng;
 pub mod sensor;
 pub mod signal;

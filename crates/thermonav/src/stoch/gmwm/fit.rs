@@ -5,12 +5,14 @@ use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 use super::GmwmError;
-use super::levenberg_marquardt::{LeastSquares, LmSettings, central_differences, minimise};
 use super::model::{
     ModelSpec, Term, composite_wavelet_variances, gauss_markov_factors, sum_over_terms,
     term_wavelet_variances,
 };
 use super::theory::ScaleFactors;
+use crate::optimise::levenberg_marquardt::{
+    LeastSquares, LmSettings, central_differences, minimise,
+};
 use crate::stoch::wavelet_variance::WaveletVariance;
 
 /// The empirical moments a fit matches: scales τ_j (samples), ν̂²_j and their standard

@@ -21,7 +21,6 @@
 
 mod bootstrap;
 mod fit;
-pub mod levenberg_marquardt;
 mod mapping;
 mod model;
 mod simulate;

@@ -72,6 +72,7 @@ use super::{
     ChannelCalibration, FitSettings, LaggedBias, OrderChoice, PowerOnRecord, ThermalError,
 };
 use crate::imu::Channel;
+use crate::optimise::golden_section::golden_section_minimum;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 use std::collections::{BTreeMap, BTreeSet};
@@ -370,7 +371,7 @@ fn fit_candidate(blocks: &[&SweepBlock], channel: Channel, c: Candidate) -> Opti
         .0;
     let lo = grid[best.saturating_sub(1)].0;
     let hi = grid[(best + 1).min(grid.len() - 1)].0;
-    let tau = golden_minimum(&rss, lo, hi, 40);
+    let tau = golden_section_minimum(rss, lo, hi, 40);
     let at = fit_with_tau(blocks, channel, c.order, tau)?;
     Some(if at.rss <= grid[best].1 {
         at
@@ -394,27 +395,6 @@ fn widen_to_samples(calibration: &mut ChannelCalibration, blocks: &[&SweepBlock]
         });
     let range = &mut calibration.bias.temperature_range_c;
     *range = [range[0].min(lo), range[1].max(hi)];
-}
-
-/// Golden-section search for a minimum of `f` on [lo, hi].
-fn golden_minimum(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, steps: usize) -> f64 {
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (hi - g * (hi - lo), lo + g * (hi - lo));
-    let (mut fa, mut fb) = (f(a), f(b));
-    for _ in 0..steps {
-        if fa <= fb {
-            hi = b;
-            (b, fb) = (a, fa);
-            a = hi - g * (hi - lo);
-            fa = f(a);
-        } else {
-            lo = a;
-            (a, fa) = (b, fb);
-            b = lo + g * (hi - lo);
-            fb = f(b);
-        }
-    }
-    if fa <= fb { a } else { b }
 }
 
 /// A held-out block's prediction by a fold's fit, without the power-on's offset (shapes need

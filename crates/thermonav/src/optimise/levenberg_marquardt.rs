@@ -1,8 +1,8 @@
 //! A small Levenberg-Marquardt minimiser of Σ r_i(θ)² with a central-difference Jacobian
 //! (Marquardt 1963, with his scaling of the damping by diag(JᵀJ); Nocedal & Wright 2006, §10.3).
 //!
-//! The workspace has a two-dimensional Nelder-Mead (`noisy_gauss_markov::nelder_mead`); GMWM
-//! needs up to a dozen coordinates and has a least-squares structure, which LM exploits.
+//! Beside it, [`super::nelder_mead`] is two-dimensional; GMWM's fit needs up to a dozen
+//! coordinates and has a least-squares structure, which LM exploits.
 
 use nalgebra::{DMatrix, DVector};
 
