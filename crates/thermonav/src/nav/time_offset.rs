@@ -17,6 +17,7 @@ use super::run::{NoiseModel, RunError, RunSettings, Start, prepare};
 use super::solution::InnovationRecord;
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
+use crate::optimise::golden_section::golden_section_maximum;
 use crate::time::Duration;
 use serde::Serialize;
 
@@ -63,41 +64,6 @@ pub struct TimeOffsetEstimate {
 /// rejected update's density still says how well the candidate offset explains the fix).
 pub fn innovation_log_likelihood(records: &[InnovationRecord]) -> f64 {
     records.iter().map(|r| r.log_likelihood).sum()
-}
-
-/// The maximum of `f` on [lo, hi] by golden-section search, to an interval of `tolerance`:
-/// (x, f(x), evaluations). `f` is taken to be unimodal on the bracket.
-///
-/// # Errors
-/// The first error of `f`.
-pub fn golden_section_maximum<E>(
-    f: &mut dyn FnMut(f64) -> Result<f64, E>,
-    lo: f64,
-    hi: f64,
-    tolerance: f64,
-) -> Result<(f64, f64, usize), E> {
-    let ratio = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (lo, hi);
-    let mut c = b - ratio * (b - a);
-    let mut d = a + ratio * (b - a);
-    let (mut fc, mut fd) = (f(c)?, f(d)?);
-    let mut evaluations = 2;
-    while b - a > tolerance {
-        if fc >= fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - ratio * (b - a);
-            fc = f(c)?;
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + ratio * (b - a);
-            fd = f(d)?;
-        }
-        evaluations += 1;
-    }
-    Ok(match fc >= fd {
-        true => (c, fc, evaluations),
-        false => (d, fd, evaluations),
-    })
 }
 
 /// The sd of a maximum-likelihood estimate from the log-likelihood at x − h, x and x + h:
@@ -173,27 +139,6 @@ pub fn estimate_time_offset(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    // Oracle: a closed form. The maximum of −(x − 0.123)² + 4 on [−0.5, 0.5] is at 0.123; the
-    // search's interval shrinks below its tolerance, so the error is below the tolerance.
-    #[test]
-    fn golden_section_finds_the_maximum_of_a_parabola() {
-        let mut f = |x: f64| Ok::<_, ()>(4.0 - (x - 0.123) * (x - 0.123));
-        let (x, fx, n) = golden_section_maximum(&mut f, -0.5, 0.5, 1e-6).unwrap();
-        assert!((x - 0.123).abs() < 1e-6, "{x}");
-        assert!((fx - 4.0).abs() < 1e-11, "{fx}");
-        // ln(1e6)/ln(1.618) ≈ 28.7 shrinkings after the first two evaluations.
-        assert!((29..=32).contains(&n), "{n}");
-    }
-
-    // A maximum at the bracket's end is found there (a bracket that is too small shows up as
-    // an estimate on its edge).
-    #[test]
-    fn golden_section_on_a_monotone_function_ends_at_the_edge() {
-        let mut f = |x: f64| Ok::<_, ()>(x);
-        let (x, _, _) = golden_section_maximum(&mut f, -0.5, 0.5, 1e-4).unwrap();
-        assert!((x - 0.5).abs() < 1e-4, "{x}");
-    }
 
     // Oracle: the Gaussian log-likelihood −(x − μ)²/(2σ²) has −L'' = 1/σ² exactly, and the
     // central second difference of a quadratic is exact (to rounding).
