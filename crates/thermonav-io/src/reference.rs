@@ -87,8 +87,30 @@ impl ReferenceKind {
 /// The kinds a reference may be, for errors.
 const KINDS: &str = "a trajectory CSV (t_s,lat_deg,…,yaw_deg), a GNSS CSV (t_s,lat_deg,lon_deg,h_m,…), an RTKLIB .pos or a KF-GINS .nav";
 
+/// The 1-based number of the first line with text in `head` (the line a kind is told by).
+fn first_line_number(head: &[u8]) -> Option<u64> {
+    let text = String::from_utf8_lossy(head);
+    let index = text.lines().position(|l| !l.trim().is_empty())?;
+    Some(index as u64 + 1)
+}
+
+/// The first line as an error shows it: 60 characters at most, control characters and
+/// undecodable bytes escaped (a binary file's first bytes are no text to print).
+fn shown_line(first: &str) -> String {
+    first
+        .chars()
+        .take(60)
+        .flat_map(
+            |c| match c.is_control() || c == char::REPLACEMENT_CHARACTER {
+                true => c.escape_unicode().collect::<Vec<char>>(),
+                false => vec![c],
+            },
+        )
+        .collect()
+}
+
 fn unknown_kind(first: &str) -> ReadErrorKind {
-    let shown: String = first.chars().take(60).collect();
+    let shown = shown_line(first);
     ReadErrorKind::Unsupported {
         found: format!("a file whose first line is \"{shown}\""),
         expected: KINDS,
@@ -163,7 +185,7 @@ pub fn reference_kind_of_file(path: &Path) -> Result<ReferenceKind, ReadError> {
     crate::open_input(path)
         .and_then(|file| file.take(HEAD_BYTES).read_to_end(&mut head))
         .map_err(|e| ReadError::new(input.as_str(), None, ReadErrorKind::Open(e)))?;
-    ReferenceKind::of_head(&head).map_err(|k| ReadError::new(input, None, k))
+    ReferenceKind::of_head(&head).map_err(|k| ReadError::new(input, first_line_number(&head), k))
 }
 
 /// Reads a reference of `kind` from `reader` (named `input` in errors).
@@ -208,5 +230,25 @@ fn point_of_fix(fix: &GnssFix) -> TrajectoryPoint {
         roll_rad: 0.0,
         pitch_rad: 0.0,
         yaw_rad: 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // A binary file's first bytes are shown escaped: the error prints no control character
+    // and no undecodable byte, and the line it names is the first with text.
+    #[test]
+    fn a_binary_head_is_refused_with_its_bytes_escaped() {
+        let head = b"\n\x89PNG\r\n\x1a\n\x00\x00";
+        let Err(kind) = ReferenceKind::of_head(head) else {
+            panic!("a PNG is no reference")
+        };
+        let text = kind.to_string();
+        assert!(!text.chars().any(|c| c.is_control()), "{text:?}");
+        assert!(!text.contains(char::REPLACEMENT_CHARACTER), "{text:?}");
+        assert!(text.contains("\\u{fffd}PNG"), "{text}");
+        assert_eq!(first_line_number(head), Some(2));
     }
 }
