@@ -16,6 +16,7 @@ pub mod clock;
 pub mod errors;
 pub mod ideal_imu;
 pub mod motion;
+pub mod rover;
 pub mod temperature_program;
 pub mod unit;
 pub mod vessel;

@@ -1,6 +1,10 @@
 //! A harbour survey vessel: survey lines and turns at 1-6 m/s with wave-induced roll, pitch and
 //! heave; the true trajectory, the IMU (ideal increments through the sensor's error model at
 //! the operating temperature) and 1 Hz differential GNSS with dual-antenna heading.
+//!
+//! [`simulate_vessel_with`] adds what a slow vehicle's test needs on top of the sensor's own
+//! error model ([`ImuOffsets`]: a turn-on gyro bias per axis and an IMU-GNSS time offset);
+//! [`GnssHeading::None`] gives position-only fixes.
 
 use super::clock::SampleClock;
 use super::errors::{ChannelErrors, standard_normal};
@@ -33,6 +37,31 @@ pub struct GnssSettings {
     pub baseline_body_m: [f64; 3],
     /// Carrier-phase position noise of each antenna across the baseline, m.
     pub baseline_noise_m: f64,
+    /// Whether the fixes carry the baseline's heading.
+    pub heading: GnssHeading,
+}
+
+/// Whether the GNSS fixes carry a heading.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum GnssHeading {
+    /// Dual-antenna heading from the baseline (a survey vessel).
+    #[default]
+    DualAntenna,
+    /// Position-only fixes: one antenna (a rover, a car, a handheld receiver); the baseline
+    /// settings are then unused.
+    None,
+}
+
+/// What a run adds to the IMU record on top of the sensor's own error model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+pub struct ImuOffsets {
+    /// A turn-on gyro bias per body axis x, y, z, added to every gyro sample, rad/s.
+    pub gyro_bias_rad_s: [f64; 3],
+    /// The IMU-GNSS time offset, s, with the sign of `convert --time-offset-s` and
+    /// [`crate::nav::time_offset`]: the value **added** to the IMU times to put them on the
+    /// GNSS scale. The IMU's timestamps are written as true time − offset.
+    pub time_offset_s: f64,
 }
 
 impl Default for GnssSettings {
@@ -46,6 +75,7 @@ impl Default for GnssSettings {
             lever_arm_body_m: [0.3, 0.0, -2.5],
             baseline_body_m: [2.37, 0.0, 0.0],
             baseline_noise_m: 0.005,
+            heading: GnssHeading::DualAntenna,
         }
     }
 }
@@ -91,6 +121,16 @@ pub enum VesselError {
     #[error("GNSS setting {what} = {value} must be finite and positive")]
     Gnss {
         /// Which setting.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// An IMU offset is invalid.
+    #[error(
+        "IMU offset {what} = {value} must be finite (a time offset at most {MAX_TIME_OFFSET_S} s)"
+    )]
+    Offset {
+        /// Which offset.
         what: &'static str,
         /// The value.
         value: f64,
@@ -268,6 +308,55 @@ pub fn simulate_vessel(
     profile: &SensorProfile,
     run: &VesselRun,
 ) -> Result<VesselRecord, VesselError> {
+    simulate_vessel_with(profile, run, &ImuOffsets::default())
+}
+
+/// Simulates a vessel run whose IMU record also carries `offsets`: the gyro biases are
+/// added to the gyro samples and the IMU times are moved by −`time_offset_s` (the reference
+/// and the GNSS fixes stay on the true, GNSS, time scale).
+///
+/// # Errors
+/// [`VesselError`] for an invalid motion, profile, clock, GNSS setting or offset.
+pub fn simulate_vessel_with(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    offsets: &ImuOffsets,
+) -> Result<VesselRecord, VesselError> {
+    validate_offsets(offsets)?;
+    let mut record = simulate_vessel_on_gnss_time(profile, run, offsets)?;
+    let back = Duration::from_seconds(-offsets.time_offset_s).unwrap_or(Duration::ZERO);
+    for t in &mut record.imu.time {
+        *t = t.checked_add(back).unwrap_or(*t);
+    }
+    Ok(record)
+}
+
+/// Largest IMU-GNSS time offset [`simulate_vessel_with`] takes, s (an hour: far beyond any
+/// real clock mismatch, and well inside the timestamps' range).
+pub const MAX_TIME_OFFSET_S: f64 = 3600.0;
+
+fn validate_offsets(offsets: &ImuOffsets) -> Result<(), VesselError> {
+    let t = offsets.time_offset_s;
+    if !(t.is_finite() && t.abs() <= MAX_TIME_OFFSET_S) {
+        return Err(VesselError::Offset {
+            what: "time_offset_s",
+            value: t,
+        });
+    }
+    match offsets.gyro_bias_rad_s.iter().find(|b| !b.is_finite()) {
+        Some(&value) => Err(VesselError::Offset {
+            what: "gyro_bias_rad_s",
+            value,
+        }),
+        None => Ok(()),
+    }
+}
+
+fn simulate_vessel_on_gnss_time(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    offsets: &ImuOffsets,
+) -> Result<VesselRecord, VesselError> {
     profile.validate()?;
     validate_gnss(&run.gnss)?;
     if !run.temperature.is_valid() {
@@ -278,7 +367,7 @@ pub fn simulate_vessel(
         &mut named_rng(run.seed, "vessel/clock"),
     )?;
     let reference = generate_trajectory_at(&run.motion, &times)?;
-    let imu = measured_imu(profile, run, &reference);
+    let imu = measured_imu(profile, run, &reference, &offsets.gyro_bias_rad_s);
     let gnss = gnss_fixes(
         &reference,
         &run.gnss,
@@ -300,11 +389,13 @@ fn validate_gnss(g: &GnssSettings) -> Result<(), VesselError> {
         }
     };
     positive("rate_hz", g.rate_hz)?;
-    positive("baseline_noise_m", g.baseline_noise_m)?;
-    positive(
-        "baseline length",
-        g.baseline_body_m[0].hypot(g.baseline_body_m[1]),
-    )?;
+    if g.heading == GnssHeading::DualAntenna {
+        positive("baseline_noise_m", g.baseline_noise_m)?;
+        positive(
+            "baseline length",
+            g.baseline_body_m[0].hypot(g.baseline_body_m[1]),
+        )?;
+    }
     for (k, sd) in g.position_sd_ned_m.iter().enumerate() {
         positive(
             ["position_sd_n_m", "position_sd_e_m", "position_sd_d_m"][k],
@@ -328,8 +419,14 @@ pub fn sample_temperatures_c(run: &VesselRun, times: &[Timestamp]) -> Vec<f64> {
 /// The name of the survey's power-on (for [`SimulatedUnit::power_on_offset`]).
 pub const SURVEY_POWER_ON: &str = "vessel";
 
-/// IMU rates through each channel's error model at each sample's temperature.
-fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory) -> ImuSeries {
+/// IMU rates through each channel's error model at each sample's temperature, the gyros with
+/// `added_gyro_bias_rad_s` on top.
+fn measured_imu(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    reference: &Trajectory,
+    added_gyro_bias_rad_s: &[f64; 3],
+) -> ImuSeries {
     let increments = ideal_increments(reference);
     let mut series = ImuSeries::new(SampleKind::Rates);
     series.time = increments.iter().map(|i| i.time).collect();
@@ -337,10 +434,15 @@ fn measured_imu(profile: &SensorProfile, run: &VesselRun, reference: &Trajectory
     for channel in Channel::ALL {
         let mut rng: SimRng = named_rng(run.seed, &format!("vessel/{}", channel.name()));
         let p = &profile.channels[&channel];
+        let added = match channel.index() {
+            k @ 0..3 => added_gyro_bias_rad_s[k],
+            _ => 0.0,
+        };
         let constant = run.unit.fixed_bias(profile, channel)
             + run
                 .unit
-                .power_on_offset(profile, channel, run.seed, SURVEY_POWER_ON);
+                .power_on_offset(profile, channel, run.seed, SURVEY_POWER_ON)
+            + added;
         let mut errors = ChannelErrors::new(
             p,
             profile.reference_temperature_c,
@@ -412,10 +514,10 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
     let lever_n = state.attitude * Vector::<Body>::from_array(g.lever_arm_body_m);
     let noise = Vector::<Ned>::from_array(g.position_sd_ned_m.map(|sd| sd * standard_normal(rng)));
     let antenna = state.position.displaced(&(lever_n + noise));
-    let baseline_n = (state.attitude * Vector::<Body>::from_array(g.baseline_body_m)).to_array();
-    let across = g.baseline_noise_m * std::f64::consts::SQRT_2 * standard_normal(rng);
-    let length = baseline_n[0].hypot(baseline_n[1]);
-    let heading = baseline_n[1].atan2(baseline_n[0]) + across / length;
+    let heading = match g.heading {
+        GnssHeading::DualAntenna => Some(dual_antenna_heading(state, g, rng)),
+        GnssHeading::None => None,
+    };
     GnssFix {
         time: state.time,
         latitude_rad: antenna.latitude_rad,
@@ -423,10 +525,22 @@ fn gnss_fix(state: &NavState, g: &GnssSettings, rng: &mut SimRng) -> GnssFix {
         height_m: antenna.height_m,
         position_sd_ned_m: Some(g.position_sd_ned_m),
         velocity_ned_m_s: None,
-        heading: Some(HeadingObservation {
-            heading_rad: wrap_pi(heading),
-            sd_rad: g.heading_sd_rad(),
-        }),
+        heading,
+    }
+}
+
+/// The baseline's heading with the carrier-phase noise across it.
+fn dual_antenna_heading(
+    state: &NavState,
+    g: &GnssSettings,
+    rng: &mut SimRng,
+) -> HeadingObservation {
+    let baseline_n = (state.attitude * Vector::<Body>::from_array(g.baseline_body_m)).to_array();
+    let across = g.baseline_noise_m * std::f64::consts::SQRT_2 * standard_normal(rng);
+    let length = baseline_n[0].hypot(baseline_n[1]);
+    HeadingObservation {
+        heading_rad: wrap_pi(baseline_n[1].atan2(baseline_n[0]) + across / length),
+        sd_rad: g.heading_sd_rad(),
     }
 }
 

@@ -110,3 +110,43 @@ fn the_survey_stays_within_one_to_six_metres_per_second() {
         .fold((f64::MAX, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
     assert!(lo >= 0.99 && hi <= 6.01, "speeds {lo}..{hi}");
 }
+
+// Issue 38 row 13: what `simulate vessel` adds for a slow vehicle. Oracles: the definitions.
+// The same seed draws the same errors, so the record with offsets differs from the plain one
+// by the added gyro bias on the gyros, not at all on the accelerometers, and its IMU times by
+// exactly −offset (integer nanoseconds); position-only fixes carry no heading and the same
+// positions. The samples are quantised (0.05 deg/s, 8.7e-4 rad/s), so a sample moves by
+// whole steps and only the mean difference is the bias: with the white noise dithering the
+// quantiser, its error over 12 000 samples is about 8.7e-4 / √(12 · 12 000) = 2.3e-6 rad/s,
+// and 2e-5 rad/s (4 deg/h, some 9 of those) is the tolerance.
+#[test]
+fn the_offsets_move_the_imu_times_and_add_the_gyro_bias() {
+    use thermonav::sim::vessel::{GnssHeading, ImuOffsets, simulate_vessel_with};
+    let profile = adis16364_like();
+    let mut single = run(60.0);
+    single.gnss.heading = GnssHeading::None;
+    let plain = simulate_vessel(&profile, &single).unwrap();
+    let offsets = ImuOffsets {
+        gyro_bias_rad_s: [1e-4, -2e-4, -100f64.to_radians() / 3600.0],
+        time_offset_s: 0.25,
+    };
+    let moved = simulate_vessel_with(&profile, &single, &offsets).unwrap();
+    for (a, b) in plain.imu.time.iter().zip(&moved.imu.time) {
+        assert_eq!(a.as_nanos() - b.as_nanos(), 250_000_000);
+    }
+    for k in 0..3 {
+        let (a, b) = (&plain.imu.channels[k], &moved.imu.channels[k]);
+        let mean = a.iter().zip(b).map(|(a, b)| b - a).sum::<f64>() / a.len() as f64;
+        let added = offsets.gyro_bias_rad_s[k];
+        assert!((mean - added).abs() < 2e-5, "gyro {k}: {mean} vs {added}");
+    }
+    assert_eq!(plain.imu.channels[3..], moved.imu.channels[3..]);
+    assert_eq!(plain.gnss, moved.gnss);
+    assert!(plain.gnss.iter().all(|f| f.heading.is_none()));
+    assert_eq!(plain.reference, moved.reference);
+    let too_far = ImuOffsets {
+        time_offset_s: f64::NAN,
+        ..offsets
+    };
+    assert!(simulate_vessel_with(&profile, &single, &too_far).is_err());
+}
