@@ -16,7 +16,7 @@ use thermonav::signal::wavelet::threshold::{ThresholdRule, Thresholding};
 use thermonav::signal::wavelet::transform::ExtensionMode;
 use thermonav::sim::chamber::CampaignSettings;
 use thermonav::sim::unit::DEFAULT_SERIAL;
-use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, SurveySettings};
+use thermonav::sim::vessel::{DEFAULT_WARM_UP_TIME_CONSTANT_S, GnssSettings, SurveySettings};
 use thermonav::stoch::allan::{DEFAULT_CONFIDENCE, DeviationKind};
 use thermonav::stoch::bank::{GaussMarkovSource, Selection};
 use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM};
@@ -1041,8 +1041,32 @@ pub struct VesselArgs {
     pub unit_serial: u64,
     /// A motion-definition file (TOML: start, segments, optional waves) instead of the
     /// built-in harbour survey: cars and other platforms (see examples/motion/car.toml).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "speed_m_s")]
     pub motion: Option<PathBuf>,
+    /// A slow ground rover instead of the harbour survey, at this speed, m/s: 20 s still,
+    /// a 5 s pull-away, then 30 s straight legs joined by 90° turns at 6 deg/s, level.
+    #[arg(long)]
+    pub speed_m_s: Option<f64>,
+    /// GNSS fix rate, Hz.
+    #[arg(long, default_value_t = GnssSettings::default().rate_hz)]
+    pub gnss_rate_hz: f64,
+    /// GNSS position noise, m: one value (horizontal sd; the vertical is twice it) or three
+    /// (north, east, down sds). Default 0.5, 0.5, 1.0 (differential code).
+    #[arg(long, value_delimiter = ',')]
+    pub gnss_sd_m: Vec<f64>,
+    /// Heading in the GNSS fixes: dual-antenna (the 2.37 m baseline) or none (position-only
+    /// fixes from one antenna, as a rover's or a car's).
+    #[arg(long, value_enum, default_value_t = GnssHeadingArg::DualAntenna)]
+    pub gnss_heading: GnssHeadingArg,
+    /// A turn-on gyro bias added to every gyro sample, X,Y,Z body axes, deg/h (on top of the
+    /// profile's own biases; written to truth.json).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub gyro_bias_deg_h: Vec<f64>,
+    /// The IMU-GNSS time offset, s, with the sign of `convert --time-offset-s` and
+    /// `integrate --estimate-time-offset`: the value added to the IMU times puts them on the
+    /// GNSS scale (the IMU's timestamps are written as true time − offset; in truth.json).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub time_offset_s: f64,
     /// Sensor profile (TOML); default: the built-in ADIS16364-like profile.
     #[arg(long)]
     pub profile: Option<PathBuf>,
@@ -1052,6 +1076,15 @@ pub struct VesselArgs {
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `simulate vessel --gnss-heading`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum GnssHeadingArg {
+    /// Dual-antenna heading from the baseline.
+    DualAntenna,
+    /// Position-only fixes.
+    None,
 }
 
 /// Arguments of `simulate profile`.

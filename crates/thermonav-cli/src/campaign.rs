@@ -17,11 +17,12 @@ use thermonav::sim::chamber::{
     ChamberRun, ChamberTemperature, RunTruth, calgary, simulate_chamber_run,
 };
 use thermonav::sim::clock::SampleClock;
+use thermonav::sim::rover::rover_loops;
 use thermonav::sim::temperature_program::TemperatureProgram;
 use thermonav::sim::unit::RepeatableCurve;
 use thermonav::sim::vessel::{
-    GnssSettings, SURVEY_POWER_ON, SurveyTemperature, VesselError, VesselRun, harbour_survey,
-    simulate_vessel,
+    GnssHeading, GnssSettings, ImuOffsets, SURVEY_POWER_ON, SurveyTemperature, VesselError,
+    VesselRun, harbour_survey, simulate_vessel_with,
 };
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::motion::read_motion;
@@ -220,8 +221,10 @@ pub struct VesselSummary {
     pub imu_rate_hz: f64,
     /// The GNSS receiver.
     pub gnss: GnssSettings,
-    /// Heading sd of the dual-antenna fixes, deg.
-    pub heading_sd_deg: f64,
+    /// Heading sd of the dual-antenna fixes, deg; `None` for position-only fixes.
+    pub heading_sd_deg: Option<f64>,
+    /// The rover's speed, m/s, when the motion is the slow rover.
+    pub rover_speed_m_s: Option<f64>,
     /// Files written.
     pub files: VesselFiles,
 }
@@ -244,9 +247,10 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
         settings.thermal_lag_s,
     )?;
     let survey = &settings.survey;
-    let motion = match &settings.motion {
-        Some(path) => read_motion(path).data()?,
-        None => harbour_survey(survey.duration_s),
+    let motion = match (&settings.motion, settings.vehicle.rover_speed_m_s) {
+        (Some(path), _) => read_motion(path).data()?,
+        (None, Some(speed_m_s)) => rover_loops(survey.duration_s, speed_m_s),
+        (None, None) => harbour_survey(survey.duration_s),
     };
     let temperature = match &settings.temperature_file {
         Some(path) => {
@@ -263,7 +267,7 @@ pub fn vessel_run(settings: &VesselSettings) -> Result<(SensorProfile, VesselRun
         temperature,
         unit: settings.unit,
         clock: SampleClock::new(survey.imu_rate_hz, survey.imu_jitter_s, 0.0).usage()?,
-        gnss: GnssSettings::default(),
+        gnss: settings.vehicle.gnss,
         seed: settings.seed,
     };
     Ok((profile, run))
@@ -282,7 +286,8 @@ fn vessel_failure(error: VesselError, motion: Option<&Path>) -> Failure {
 pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary, Failure> {
     let (profile, run) = vessel_run(settings)?;
     let duration_s = run.motion.duration_s();
-    let record = simulate_vessel(&profile, &run)
+    let offsets = settings.vehicle.offsets;
+    let record = simulate_vessel_with(&profile, &run, &offsets)
         .map_err(|e| vessel_failure(e, settings.motion.as_deref()))?;
     create_folder(&settings.out)?;
     let files = VesselFiles {
@@ -308,13 +313,19 @@ pub fn simulate_vessel_files(settings: &VesselSettings) -> Result<VesselSummary,
         duration_s,
         imu_rate_hz: settings.survey.imu_rate_hz,
         gnss: run.gnss,
-        heading_sd_deg: run.gnss.heading_sd_rad().to_degrees(),
+        heading_sd_deg: heading_sd_deg(&run.gnss),
+        rover_speed_m_s: settings.vehicle.rover_speed_m_s,
         files,
     };
     write_json_atomically(settings.out.join("vessel.json"), &summary).data()?;
-    let truth = survey_truth(&profile, &run, &record.imu);
+    let truth = survey_truth(&profile, &run, &record.imu, offsets);
     write_json_atomically(settings.out.join("truth.json"), &truth).data()?;
     Ok(summary)
+}
+
+/// The dual-antenna heading's sd, deg; `None` for position-only fixes.
+fn heading_sd_deg(gnss: &GnssSettings) -> Option<f64> {
+    (gnss.heading == GnssHeading::DualAntenna).then(|| gnss.heading_sd_rad().to_degrees())
 }
 
 /// What `simulate vessel` writes to truth.json: the unit, its survey power-on and the true
@@ -335,12 +346,22 @@ pub struct SurveyTruth {
     /// (0: none); the oracle of `evaluate --truth` reads the repeatable error at the lagged
     /// temperature.
     pub thermal_lag_s: BTreeMap<Channel, f64>,
+    /// What `--gyro-bias-deg-h` and `--time-offset-s` added to the IMU record (gyro biases in
+    /// rad/s; the offset in s, added to the IMU times to put them on the GNSS scale).
+    pub imu_offsets: ImuOffsets,
+    /// The same gyro biases, deg/h.
+    pub added_gyro_bias_deg_h: [f64; 3],
 }
 
 /// Step of the truth's temperature grid, °C (the simulator re-reads Tc and σ every 0.1 °C).
 pub const TRUTH_GRID_STEP_C: f64 = thermonav::sim::errors::BIAS_PARAMETER_STEP_C;
 
-fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> SurveyTruth {
+fn survey_truth(
+    profile: &SensorProfile,
+    run: &VesselRun,
+    imu: &ImuSeries,
+    imu_offsets: ImuOffsets,
+) -> SurveyTruth {
     let curves = run.unit.repeatable_curves(profile);
     let power_on_offset = Channel::ALL
         .iter()
@@ -362,6 +383,8 @@ fn survey_truth(profile: &SensorProfile, run: &VesselRun, imu: &ImuSeries) -> Su
         power_on_offset,
         temperature: run.temperature.clone(),
         models,
+        added_gyro_bias_deg_h: imu_offsets.gyro_bias_rad_s.map(|b| b.to_degrees() * 3600.0),
+        imu_offsets,
     }
 }
 

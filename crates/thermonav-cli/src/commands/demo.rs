@@ -20,7 +20,7 @@ use crate::report::print_json;
 use crate::settings::navigation::{
     IntegrateSettings, ModelTemperature, NoiseSource, ScenarioFiles, SolutionFiles,
 };
-use crate::settings::simulation::{VesselSettings, chamber_settings};
+use crate::settings::simulation::{VehicleSettings, VesselSettings, chamber_settings};
 use crate::thermal_scenarios::{
     ScenarioPlan, ThermalScenarios, print_thermal_scenarios, run_thermal_scenarios,
 };
@@ -226,6 +226,7 @@ fn vessel_settings(args: &DemoArgs, p: &Plan) -> VesselSettings {
         motion: None,
         profile: None,
         seed: args.seed,
+        vehicle: VehicleSettings::default(),
     }
 }
 

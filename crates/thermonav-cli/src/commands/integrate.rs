@@ -8,12 +8,15 @@ use crate::integration::integrate;
 use crate::integration_outcome::Summary;
 use crate::report::{print_json, print_rows};
 use thermonav::nav::report::{FinalJson, InnovationJson, RunReport};
-use thermonav::nav::time_offset::TimeOffsetEstimate;
+use thermonav::nav::time_offset::{IntervalEnd, TimeOffsetEstimate};
 
 /// Runs `integrate`.
 pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
     let settings = crate::settings::navigation::integrate(args)?;
     let summary = integrate(&settings)?;
+    if let Some(warning) = time_offset_warning(&summary) {
+        eprintln!("warning: {warning}");
+    }
     if args.json {
         return print_json(&summary);
     }
@@ -22,6 +25,11 @@ pub fn run(args: &IntegrateArgs) -> Result<(), Failure> {
 }
 
 type Row = (&'static str, String);
+
+/// The time-offset search's warning when the data do not determine the offset.
+fn time_offset_warning(s: &Summary) -> Option<&str> {
+    s.time_offset.as_ref()?.warning.as_deref()
+}
 
 fn summary_rows(s: &Summary) -> Vec<Row> {
     let mut rows = run_rows(&s.run);
@@ -105,17 +113,29 @@ fn filter_text(s: &RunReport) -> String {
     }
 }
 
-/// The estimated IMU-GNSS time offset, in words.
+/// The estimated IMU-GNSS time offset, in words: the maximum, its likelihood-ratio interval
+/// (an open end said so), the dispersion the threshold allows for and the search's cost.
 fn time_offset_row(t: &TimeOffsetEstimate) -> Row {
+    let end = |e: IntervalEnd| match e {
+        IntervalEnd::Within { offset_s } => format!("{:+.1}", 1e3 * offset_s),
+        IntervalEnd::AtBracketEnd { offset_s } => {
+            format!("{:+.0} (open: bracket end)", 1e3 * offset_s)
+        }
+    };
     let sd = match t.time_offset_sd_s {
         Some(sd) => format!("sd {:.1} ms", 1e3 * sd),
-        None => "sd unknown: the likelihood is not concave there".to_string(),
+        None => "no sd: the interval is open".to_string(),
     };
     (
         "IMU time offset",
         format!(
-            "{:+.1} ms added to the IMU times ({sd}; {} runs over ±{:.0} ms)",
+            "{:+.1} ms added to the IMU times; 95 % likelihood-ratio interval {} to {} ms ({sd}; NIS dispersion {:.2}, drop {:.2}; {}; {} runs over ±{:.0} ms)",
             1e3 * t.time_offset_s,
+            end(t.lower),
+            end(t.upper),
+            t.dispersion,
+            t.likelihood_drop,
+            in_words(t.observability),
             t.runs,
             1e3 * t.bracket_s[1]
         ),

@@ -109,7 +109,7 @@ fn run_vessel(args: &VesselArgs) -> Result<(), Failure> {
 }
 
 /// The survey's files, sensor temperature and heading accuracy.
-fn vessel_rows(summary: &VesselSummary) -> [(&'static str, String); 5] {
+fn vessel_rows(summary: &VesselSummary) -> [(&'static str, String); 6] {
     [
         (
             "reference trajectory",
@@ -123,20 +123,37 @@ fn vessel_rows(summary: &VesselSummary) -> [(&'static str, String); 5] {
                 summary.imu_rate_hz
             ),
         ),
-        (
-            "GNSS",
-            format!(
-                "{} ({} Hz)",
-                summary.files.gnss.display(),
-                summary.gnss.rate_hz
-            ),
-        ),
+        ("GNSS", gnss_text(summary)),
+        ("motion", motion_text(summary)),
         ("sensor temperature", sensor_temperature(summary)),
-        (
-            "heading sd (2.37 m baseline)",
-            format!("{:.3} deg", summary.heading_sd_deg),
-        ),
+        ("GNSS heading", heading_text(summary)),
     ]
+}
+
+/// The GNSS file, rate and position sds.
+fn gnss_text(summary: &VesselSummary) -> String {
+    let [n, e, d] = summary.gnss.position_sd_ned_m;
+    format!(
+        "{} ({} Hz, position sd {n}, {e}, {d} m north, east, down)",
+        summary.files.gnss.display(),
+        summary.gnss.rate_hz
+    )
+}
+
+/// The built-in motion used.
+fn motion_text(summary: &VesselSummary) -> String {
+    match summary.rover_speed_m_s {
+        Some(v) => format!("slow rover at {v} m/s (still start, 30 s legs, 90 deg turns)"),
+        None => "harbour survey or --motion file".to_string(),
+    }
+}
+
+/// The dual-antenna heading's sd, or that the fixes carry none.
+fn heading_text(summary: &VesselSummary) -> String {
+    match summary.heading_sd_deg {
+        Some(sd) => format!("dual antenna, sd {sd:.3} deg (2.37 m baseline)"),
+        None => "none (position-only fixes)".to_string(),
+    }
 }
 
 /// The survey's temperature, or its range when it changes.

@@ -1,7 +1,7 @@
 //! Settings of `simulate chamber` and `simulate vessel`.
 
 use super::paths::Io;
-use crate::args::{ChamberArgs, VesselArgs};
+use crate::args::{ChamberArgs, GnssHeadingArg, VesselArgs};
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::PathBuf;
@@ -9,7 +9,9 @@ use thermonav::sim::chamber::{CampaignSettings, Ramp};
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::temperature_program::TemperatureProgram;
 use thermonav::sim::unit::SimulatedUnit;
-use thermonav::sim::vessel::{SurveySettings, SurveyTemperature};
+use thermonav::sim::vessel::{
+    GnssHeading, GnssSettings, ImuOffsets, MAX_TIME_OFFSET_S, SurveySettings, SurveyTemperature,
+};
 use thermonav_io::temperature_table::read_temperature_table;
 
 /// A chamber campaign to simulate and where to write it.
@@ -203,6 +205,88 @@ pub struct VesselSettings {
     pub profile: Option<PathBuf>,
     /// Seed of every draw.
     pub seed: u64,
+    /// The vehicle's speed, GNSS receiver and IMU offsets.
+    pub vehicle: VehicleSettings,
+}
+
+/// What `simulate vessel` varies for a slow vehicle; the default is the harbour survey's.
+#[derive(Debug, Clone, Default)]
+pub struct VehicleSettings {
+    /// A slow rover at this speed instead of the harbour survey, m/s.
+    pub rover_speed_m_s: Option<f64>,
+    /// The GNSS receiver.
+    pub gnss: GnssSettings,
+    /// The gyro biases and time offset added to the IMU record.
+    pub offsets: ImuOffsets,
+}
+
+/// Fastest `--speed-m-s`, m/s (a rover, a walk, a car in town: beyond it the harbour survey
+/// or a motion file fits better).
+pub const MAX_ROVER_SPEED_M_S: f64 = 30.0;
+
+/// `--speed-m-s`, `--gnss-*`, `--gyro-bias-deg-h` and `--time-offset-s`, checked.
+fn vehicle(args: &VesselArgs) -> Result<VehicleSettings, Failure> {
+    let speed = args.speed_m_s.map(rover_speed_m_s).transpose()?;
+    let time_offset_s = super::finite("--time-offset-s", args.time_offset_s)?;
+    if time_offset_s.abs() > MAX_TIME_OFFSET_S {
+        return Err(Failure::Usage(anyhow!(
+            "--time-offset-s {time_offset_s}: give at most {MAX_TIME_OFFSET_S} s either way"
+        )));
+    }
+    let gyro_bias_deg_h = match args.gyro_bias_deg_h.as_slice() {
+        [] => [0.0; 3],
+        values => super::triple("--gyro-bias-deg-h", values)?,
+    };
+    Ok(VehicleSettings {
+        rover_speed_m_s: speed,
+        gnss: gnss_settings(args)?,
+        offsets: ImuOffsets {
+            gyro_bias_rad_s: gyro_bias_deg_h.map(|b| (b / 3600.0).to_radians()),
+            time_offset_s,
+        },
+    })
+}
+
+fn rover_speed_m_s(speed: f64) -> Result<f64, Failure> {
+    match speed.is_finite() && speed > 0.0 && speed <= MAX_ROVER_SPEED_M_S {
+        true => Ok(speed),
+        false => Err(Failure::Usage(anyhow!(
+            "--speed-m-s {speed}: give above 0 and at most {MAX_ROVER_SPEED_M_S} m/s"
+        ))),
+    }
+}
+
+/// The receiver of `--gnss-rate-hz`, `--gnss-sd-m` and `--gnss-heading`.
+fn gnss_settings(args: &VesselArgs) -> Result<GnssSettings, Failure> {
+    let default = GnssSettings::default();
+    let rate_hz = args.gnss_rate_hz;
+    if !(rate_hz.is_finite() && rate_hz > 0.0 && rate_hz <= 100.0) {
+        return Err(Failure::Usage(anyhow!(
+            "--gnss-rate-hz {rate_hz}: give above 0 and at most 100 Hz"
+        )));
+    }
+    let position_sd_ned_m = match args.gnss_sd_m.as_slice() {
+        [] => default.position_sd_ned_m,
+        [horizontal] => [*horizontal, *horizontal, 2.0 * horizontal],
+        values => super::triple("--gnss-sd-m", values)?,
+    };
+    if !position_sd_ned_m
+        .iter()
+        .all(|sd| sd.is_finite() && *sd > 0.0)
+    {
+        return Err(Failure::Usage(anyhow!(
+            "--gnss-sd-m takes one or three positive sds, m"
+        )));
+    }
+    Ok(GnssSettings {
+        rate_hz,
+        position_sd_ned_m,
+        heading: match args.gnss_heading {
+            GnssHeadingArg::DualAntenna => GnssHeading::DualAntenna,
+            GnssHeadingArg::None => GnssHeading::None,
+        },
+        ..default
+    })
 }
 
 /// Resolves `simulate vessel`.
@@ -241,6 +325,7 @@ pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
         thermal_lag_s: thermal_lag(args.thermal_lag_s)?,
         profile: args.profile.clone(),
         seed: args.seed,
+        vehicle: vehicle(args)?,
     })
 }
 

@@ -25,6 +25,7 @@ mod run_options;
 mod runaway;
 mod shapes;
 mod shards;
+mod slow_rover;
 mod streaming;
 mod streaming_integrate;
 mod thermal;
