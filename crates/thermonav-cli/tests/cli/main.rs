@@ -17,6 +17,7 @@ mod noise_export;
 mod oracle;
 mod outside;
 mod plots;
+mod readme;
 mod real_data;
 mod references;
 mod reliability;

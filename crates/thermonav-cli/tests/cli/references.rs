@@ -352,51 +352,17 @@ fn integrate_starts_from_a_nav_refuses_fixes_and_plot_draws_a_pos() {
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
 }
 
-/// The first `sh` block after `heading` in the README.
-fn readme_block(heading: &str) -> String {
-    let readme = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
-    let text = std::fs::read_to_string(readme).unwrap();
-    let (_, after) = text.split_once(heading).expect("the README's heading");
-    let (_, block) = after
-        .split_once("```sh\n")
-        .expect("a block under the heading");
-    let (block, _) = block.split_once("```").expect("the block's end");
-    block.to_string()
-}
-
 /// The README's "GNSS + IMU (an RTK log) to the tournament" block, run as written by `sh -e`
 /// from a folder laid out as the repository's root (its `examples/`, and `../shared` beside
 /// it), with this build's `thermonav` first on the PATH: the RTK solution is the reference,
 /// position is scored in every outage, heading is said not to be, and the report is written.
 #[test]
 fn readme_rtk_log_to_the_tournament() {
-    let dir = tempfile::tempdir().unwrap();
-    let root = dir.path().join("thermonav");
-    std::fs::create_dir(&root).unwrap();
-    let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let shared = super::convert::shared_data("")
-        .parent()
-        .unwrap()
-        .to_path_buf();
-    std::os::unix::fs::symlink(repository.join("examples"), root.join("examples")).unwrap();
-    std::os::unix::fs::symlink(shared, dir.path().join("shared")).unwrap();
-    let block = readme_block("### GNSS + IMU (an RTK log) to the tournament");
-    let binary = Path::new(env!("CARGO_BIN_EXE_thermonav"));
-    let path = format!(
-        "{}:{}",
-        binary.parent().unwrap().display(),
-        std::env::var("PATH").unwrap_or_default()
-    );
-    let run = std::process::Command::new("sh")
-        .args(["-e", "-c", &block])
-        .current_dir(&root)
-        .env("PATH", path)
-        .output()
-        .unwrap();
-    let (status, stdout, stderr) = outcome(&run);
-    assert_eq!(status, 0, "{block}\n{stdout}\n{stderr}");
+    let checkout = crate::readme::checkout();
+    let heading = "### GNSS + IMU (an RTK log) to the tournament";
+    let stdout = crate::readme::run_block(&checkout.root, heading);
     assert!(stdout.contains("not scored: heading"), "{stdout}");
-    let ev = root.join("ev-rtk");
+    let ev = checkout.root.join("ev-rtk");
     let evaluation = json(&std::fs::read_to_string(ev.join("evaluation.json")).unwrap());
     assert_position_only(&evaluation, &ev);
     assert_eq!(evaluation["outages"].as_array().unwrap().len(), 6);
