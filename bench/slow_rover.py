@@ -12,7 +12,7 @@ truth's): the heading error against the filter's own heading sd (the share of ep
 against the truth (the unit's repeatable curve at the survey temperature + the survey's
 power-on offset + the added bias) in units of its sd.
 
-Usage: python3 bench/slow_rover.py [--seeds 20] [--duration-s 300] [--out DIR]
+Usage: python3 bench/slow_rover.py [--seeds 20] [--first-seed 1] [--duration-s 300] [--out DIR]
 Needs the release binary (cargo build --release -p thermonav-cli). Standard library only.
 """
 
@@ -127,6 +127,7 @@ def end_text(end):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--seeds", type=int, default=20)
+    p.add_argument("--first-seed", type=int, default=1, help="seeds first..first+seeds-1")
     p.add_argument("--duration-s", type=float, default=300.0)
     p.add_argument("--out", type=Path, default=None, help="keep the runs here (default: a temporary folder)")
     a = p.parse_args()
@@ -138,7 +139,7 @@ def main():
         results = []
         print("seed offset_ms estimate_ms interval_ms (| = open at the bracket's end) covered observability"
               " | heading in 3sd, sd@20m deg, max err deg | bgz est +- sd vs truth deg/h")
-        for seed in range(1, a.seeds + 1):
+        for seed in range(a.first_seed, a.first_seed + a.seeds):
             r = seed_result(work, profile, seed, a.duration_s)
             results.append(r)
             z = (r["bgz_estimate_deg_h"] - r["bgz_truth_deg_h"]) / r["bgz_sd_deg_h"]
