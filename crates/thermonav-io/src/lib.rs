@@ -29,7 +29,7 @@
 //!   writers, [`kf_gins_write`]);
 //! - [`outside_solution`]: KF-GINS, RTKLIB and our own solutions read as trajectories, to score
 //!   other tools beside ours;
-//! - [`reference`]: a reference trajectory from our trajectory or GNSS CSV, an RTKLIB `.pos`
+//! - [`reference`](mod@reference): a reference trajectory from our trajectory or GNSS CSV, an RTKLIB `.pos`
 //!   or a KF-GINS `.nav`, the kind told by the content;
 //! - [`raw_imu`]: raw IMU CSV timed by its RTKLIB time-tag file (`.tag`);
 //! - [`ulog`]: PX4 ULog (`.ulg`): any topic by field name, and the IMU (with temperature) and
