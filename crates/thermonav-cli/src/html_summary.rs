@@ -68,11 +68,13 @@ fn lead_words(lead_m: f64, ci95_m: Option<[f64; 2]>, p: Option<f64>) -> String {
     format!("{lead_m:.1} m{interval}, {p}")
 }
 
-/// A p-value as people read it: three decimals from 0.01 on, else in powers of ten (1.6e-3).
+/// A p-value as people read it: three decimals from 0.01 on, else in powers of ten with three
+/// digits (1.60e-3), so that a p just under 0.01 never reads as 1.0e-2 beside a verdict that
+/// needs p < 0.01.
 fn p_words(p: f64) -> String {
     match p >= 0.01 {
         true => format!("{p:.3}"),
-        false => format!("{p:.1e}"),
+        false => format!("{p:.2e}"),
     }
 }
 
@@ -317,5 +319,17 @@ fn matrix_finding(m: &Value, sections: &[Section]) -> Finding {
         evidence: format!("Best model per survey temperature: {}.", best.join(", ")),
         figure: Some(crate::html_temperature::matrix_figure(m)),
         details: section_starting(sections, crate::html_temperature::MATRIX_HEADING),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_p_just_under_the_threshold_never_reads_as_the_threshold() {
+        assert_eq!(p_words(0.00995), "9.95e-3");
+        assert_eq!(p_words(0.0016), "1.60e-3");
+        assert_eq!(p_words(0.658), "0.658");
     }
 }

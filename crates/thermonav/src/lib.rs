@@ -33,7 +33,7 @@
 //! rate). The whole test takes about a second in release mode (about ten in a debug build).
 //!
 //! ```
-//! use thermonav::evaluation::metrics::evaluate_solution;
+//! use thermonav::evaluation::metrics::{Reference, evaluate_solution};
 //! use thermonav::imu::Channel;
 //! use thermonav::nav::alignment::{InitialUncertainty, align_from_gnss, uncorrected};
 //! use thermonav::nav::engine::{EngineSettings, increments_from_series};
@@ -123,9 +123,9 @@
 //! let reference: Vec<TrajectoryPoint> =
 //!     field.reference.states.iter().map(TrajectoryPoint::from_nav_state).collect();
 //! let outages = settings.outages.windows();
-//! let (outage, errors) = evaluate_solution(&reference, &solution.epochs, outages)?;
+//! let (outage, errors) = evaluate_solution(Reference::full(&reference), &solution.epochs, outages)?;
 //! let aided_minute = Outages::from_start_duration(&[(120.0, 60.0)])?;
-//! let (aided, _) = evaluate_solution(&reference, &solution.epochs, aided_minute.windows())?;
+//! let (aided, _) = evaluate_solution(Reference::full(&reference), &solution.epochs, aided_minute.windows())?;
 //! assert!(aided.max_drift_horizontal_m < 3.0, "aided: {} m", aided.max_drift_horizontal_m);
 //! assert!(outage.max_drift_horizontal_m.is_finite());
 //! assert!(outage.max_drift_horizontal_m > 10.0 * aided.max_drift_horizontal_m);

@@ -124,7 +124,7 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
     let p = if p >= 0.01 {
         format!("{p:.3}")
     } else {
-        format!("{p:.1e}")
+        format!("{p:.2e}")
     };
     assert!(card.contains(&format!("paired p = {p}")), "{card}");
     assert!(summary.matches("95 % CI").count() >= 3 && summary.matches("<svg").count() == 3);

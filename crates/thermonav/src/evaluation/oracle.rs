@@ -10,7 +10,10 @@
 //!   subtracted and the true thermal scale-factor error divided out at each sample's
 //!   temperature (u = (y − b(T)) / (1 + s(T)·1e-6)), which is what a perfect thermal
 //!   calibration would remove. The survey's power-on offset stays in the record, as it would for any
-//!   calibration: the filter estimates it like every other candidate.
+//!   calibration: the filter estimates it like every other candidate;
+//! - **truth scheduled on calibrated**: the true model scheduled on the record compensated
+//!   with the bank's own thermal calibration, as the compensated candidates run (only with a
+//!   calibrated bank): what the true noise models add when the compensation is ours.
 //!
 //! The gap between a candidate and the oracle is what a better model could still gain.
 

@@ -49,7 +49,10 @@
 //!
 //! # Band
 //! A prediction's 95 % band is ±1.96·sqrt(s_shape² + s_level² + se(T)² + s_offset² + s_n²): s_shape
-//! the held-out residuals' sd about their folds' means, s_level the sd of the held-out legs' mean residuals from their
+//! the held-out residuals' sd about their folds' means (for stretches of one leg, about their
+//! power-on's fitted offset, as they are scored: within one leg a stretch's level is the leg's
+//! shape, so the band without the offset keeps it, and there is no s_level), s_level the sd of
+//! the held-out legs' mean residuals from their
 //! power-on's fitted offset (where that power-on kept other legs), se(T) the fitted curve's
 //! standard error, s_offset the uncertainty of the power-on's offset (its own sd, or the spread
 //! between power-ons for a new one), s_n the noise of the observed mean itself (its samples'
@@ -473,8 +476,12 @@ fn held_out(
             .collect();
         let mean = r.iter().sum::<f64>() / r.len() as f64;
         let ss: f64 = r.iter().map(|x| (x - mean).powi(2)).sum();
+        // A stretch of the segment rule may span two power-ons (legs of several sweeps that
+        // share no temperature): its level is then no single offset, and it is scored about
+        // its own mean, as a leg is.
         let power_on = test[0].power_on;
-        let offset_known = train.iter().any(|b| b.power_on == power_on);
+        let one_power_on = test.iter().all(|b| b.power_on == power_on);
+        let offset_known = one_power_on && train.iter().any(|b| b.power_on == power_on);
         let centre = match (rule, offset_known) {
             (ChoiceRule::LeaveOneSegmentOut, true) => fit.calibration.offset_of(power_on),
             _ => mean,
@@ -929,6 +936,49 @@ mod tests {
         let selection = cal.selection.as_ref().unwrap();
         assert_eq!(selection.chosen, ORDER_2_LAG, "{selection:?}");
         assert!((cal.lagged.as_ref().unwrap().lag.tau_s + 120.0).abs() < 0.5);
+    }
+
+    // One leg: each left-out stretch is scored about its power-on's offset, which the other
+    // stretches fix, so a curve that misplaces the stretch's level is penalised. Oracle: the
+    // closed form. The blocks read 4e-5 rad/s/°C · (T − 10) plus a bounded deterministic
+    // ripple of 1e-4 rad/s (sin 2.3k). Within a stretch (4 °C) the slope moves the reading by
+    // 4.6e-5 rad/s rms, under the ripple, but order 0 misplaces stretches 2 and 4 (means near
+    // 6 and 14 °C, the others' near 11 and 9 °C) by about 2e-4 rad/s, twice the ripple; a
+    // straight line does not.
+    #[test]
+    fn one_leg_stretches_are_scored_about_their_power_on_offset() {
+        let blocks: Vec<SweepBlock> = (0..50)
+            .map(|k| {
+                let t = 20.0 * (k as f64 + 0.5) / 50.0;
+                let value = 4e-5 * (t - 10.0) + 1e-4 * (2.3 * k as f64).sin();
+                SweepBlock {
+                    power_on: 1,
+                    leg: 1,
+                    t_s: 30.0 * (k as f64 + 0.5),
+                    temperature_c: t,
+                    sample_range_c: [t - 0.2, t + 0.2],
+                    rate_c_per_s: 20.0 / 1500.0,
+                    lagged_temperature_c: Vec::new(),
+                    samples: 60,
+                    values: BTreeMap::from([(Channel::Gx, value)]),
+                }
+            })
+            .collect();
+        let cal = calibrate_channel_from_sweeps(&blocks, Channel::Gx).unwrap();
+        let selection = cal.selection.as_ref().unwrap();
+        assert_eq!(selection.rule, ChoiceRule::LeaveOneSegmentOut);
+        let rms = |order: usize| {
+            (selection.scores.iter())
+                .find(|s| s.candidate.order == order && !s.candidate.lag)
+                .and_then(|s| s.held_out_rms)
+                .unwrap()
+        };
+        assert!(rms(0) > 1.5 * rms(1), "{} {}", rms(0), rms(1));
+        assert!(selection.chosen.order >= 1, "{selection:?}");
+        // Within one leg the level is the shape: no separate level spread, and the shape
+        // spread holds the level errors (at least the ripple's rms, 7e-5 rad/s).
+        assert_eq!(selection.spread.level_sd, None);
+        assert!(selection.spread.shape_sd > 5e-5, "{:?}", selection.spread);
     }
 
     #[test]
