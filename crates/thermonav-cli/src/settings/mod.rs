@@ -41,7 +41,9 @@ pub fn finite(name: &str, value: f64) -> Result<f64, Failure> {
 pub fn triple(name: &str, values: &[f64]) -> Result<[f64; 3], Failure> {
     match values {
         [x, y, z] if values.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
-        _ => Err(Failure::Usage(anyhow!("{name} takes three finite numbers"))),
+        _ => Err(Failure::Usage(anyhow!(
+            "{name} takes three finite numbers (x,y,z)"
+        ))),
     }
 }
 

@@ -35,8 +35,8 @@
 //! c = 1.92 · max(1, φ) + 2 r: the drop from a crest to the true offset's trough is a
 //! difference of two ripples, sd √2 r, and 2 r covers it about 92 % of the time one-sided.
 //! On 20 seeds of the slow rover (`bench/slow_rover.py`, docs/user-guide.md) the plain 1.92
-//! on the maximum's piece covered the offset in 15, the hull with 1.92 in 16, the hull with
-//! c above in 17 (measured from the same saved profiles).
+//! on the maximum's piece covered the offset in 15 of 20, the hull with 1.92 in 16 of 19, the
+//! hull with c above in 17 of 19 (18 of 20 when rerun; measured from the same saved profiles).
 //!
 //! **Open ends and warnings.** Where the set reaches an end of the bracket, that end is open
 //! ([`IntervalEnd::AtBracketEnd`]): the data allow offsets at least that far out. Where it
@@ -394,6 +394,9 @@ fn refine_maximum<E>(
     Ok(profile.best().unwrap_or(grid_best))
 }
 
+/// The most bisections of an interval end (2^-80 of a bracket is past f64's resolution).
+const MAX_BISECTIONS: usize = 80;
+
 /// The interval's end on the side of `bracket_end_s`: the outermost evaluated point on that
 /// side still at or above `floor` (the maximum itself when none is), then bisection between it
 /// and the next point beyond, which is below, to the tolerance, the end interpolated linearly
@@ -423,7 +426,12 @@ fn interval_end<E>(
             offset_s: bracket_end_s,
         });
     };
-    while (outside.offset_s - inside.offset_s).abs() > search.tolerance_s {
+    // Each step halves the gap; MAX_BISECTIONS of them pass f64's resolution, so a tolerance
+    // of 0 still ends.
+    for _ in 0..MAX_BISECTIONS {
+        if (outside.offset_s - inside.offset_s).abs() <= search.tolerance_s {
+            break;
+        }
         let middle = profile.evaluate(at, 0.5 * (inside.offset_s + outside.offset_s))?;
         match middle.log_likelihood < floor {
             true => outside = middle,
@@ -520,7 +528,7 @@ fn warning_of(observability: Observability, ends: [IntervalEnd; 2]) -> Option<St
             "the IMU-GNSS time offset is not observable from these data: the likelihood is flat over the whole bracket ({lo:+.0} to {hi:+.0} ms); the vehicle's accelerations and turns are too small against the fixes' noise. Set the offset from the hardware instead"
         )),
         Observability::Multimodal => Some(format!(
-            "the IMU-GNSS time offset is not observable from these data: the likelihood has more than one peak within the 95 % threshold over the bracket (main peak {lo:+.0} to {hi:+.0} ms). Set the offset from the hardware instead"
+            "the IMU-GNSS time offset is not observable from these data: the likelihood has more than one peak within the 95 % threshold over the bracket (the 95 % set spans {lo:+.0} to {hi:+.0} ms). Set the offset from the hardware instead"
         )),
     }
 }

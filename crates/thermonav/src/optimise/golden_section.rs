@@ -31,6 +31,9 @@ pub fn golden_section_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64, steps: u
     x
 }
 
+/// The most steps a search to a width takes (0.618^150 ≈ 3e-32).
+const MAX_WIDTH_STEPS: usize = 150;
+
 /// When a search stops.
 #[derive(Debug, Clone, Copy)]
 enum Stop {
@@ -44,7 +47,9 @@ impl Stop {
     /// Whether a search whose bracket is `width` wide after `steps` steps takes another.
     fn goes_on(self, width: f64, steps: usize) -> bool {
         match self {
-            Stop::Width(tolerance) => width > tolerance,
+            // Each step keeps 0.618 of the bracket: after MAX_WIDTH_STEPS it is below 1e-31 of
+            // its width, past f64's resolution, so a tolerance of 0 (or NaN) still ends.
+            Stop::Width(tolerance) => width > tolerance && steps < MAX_WIDTH_STEPS,
             Stop::Steps(last) => steps < last,
         }
     }
@@ -85,6 +90,16 @@ fn search<E>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // A tolerance of 0 still ends: after MAX_WIDTH_STEPS steps the bracket is below f64's
+    // resolution, and the point found is the parabola's maximum (0.123) to that resolution.
+    #[test]
+    fn a_zero_tolerance_search_ends_at_the_step_limit() {
+        let mut f = |x: f64| Ok::<_, ()>(4.0 - (x - 0.123) * (x - 0.123));
+        let (x, _, n) = golden_section_maximum(&mut f, -0.5, 0.5, 0.0).unwrap();
+        assert_eq!(n, MAX_WIDTH_STEPS + 2);
+        assert!((x - 0.123).abs() < 1e-7, "{x}");
+    }
 
     // Oracle: a closed form. The maximum of −(x − 0.123)² + 4 on [−0.5, 0.5] is at 0.123; the
     // search's interval shrinks below its tolerance, so the error is below the tolerance.
