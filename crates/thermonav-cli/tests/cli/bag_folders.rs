@@ -4,8 +4,7 @@
 //! record after the MCAP specification (unchunked, CDR little-endian, as rosbag2's mcap storage
 //! writes them without compression); the db3 file is the io crate's oracle bag.
 
-use crate::{arg, files_in, outcome, thermonav};
-use std::f64::consts::PI;
+use crate::{Normal, arg, files_in, outcome, thermonav};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thermonav_io::{Strictness, read_imu_file};
@@ -108,23 +107,6 @@ fn cdr_temperature(stamp_ns: u64, temperature_c: f64) -> Vec<u8> {
     out
 }
 
-/// A reproducible standard normal stream (xorshift64 and Box-Muller).
-struct Normal(u64);
-
-impl Normal {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-
-    fn next(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-    }
-}
-
 /// First header stamp, ns.
 const T0_NS: u64 = 1_700_000_000_000_000_000;
 /// Sample period of the IMU, ns (100 Hz).
@@ -132,8 +114,8 @@ const PERIOD_NS: u64 = 10_000_000;
 
 /// Sample `k` of a static IMU (white noise, level, z up) of seed `seed`: (gyro, accel).
 fn static_sample(noise: &mut Normal) -> ([f64; 3], [f64; 3]) {
-    let gyro = [0; 3].map(|_| 1e-3 * noise.next());
-    let accel = [0.0, 0.0, 9.80665].map(|g| g + 2e-2 * noise.next());
+    let gyro = [0; 3].map(|_| 1e-3 * noise.sample());
+    let accel = [0.0, 0.0, 9.80665].map(|g| g + 2e-2 * noise.sample());
     (gyro, accel)
 }
 

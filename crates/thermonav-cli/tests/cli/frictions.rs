@@ -2,7 +2,7 @@
 //! Each test repeats the user's step; expected values are worked out here from the files, not
 //! taken from our own code.
 
-use crate::{IMU_HEADER, arg, outcome, thermonav, write_file};
+use crate::{IMU_HEADER, Normal, arg, outcome, thermonav, vessel, write_file};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -11,23 +11,6 @@ use std::path::{Path, PathBuf};
 const HOUR_S: f64 = 3600.0;
 /// Standard gravity, m/s² per g.
 const G: f64 = 9.80665;
-
-/// A reproducible standard normal stream (xorshift64 and Box-Muller).
-struct Normal(u64);
-
-impl Normal {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-
-    fn next(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-    }
-}
 
 /// A static record at 100 Hz: white noise on every channel, plus a Gauss-Markov bias of Tc
 /// 5 s and `gm` times the white sd when `gm` > 0, az at −g, columns `columns` of the
@@ -48,8 +31,8 @@ fn static_imu(rows: usize, gm: f64, columns: Option<&[usize]>) -> String {
             let sd = if c < 3 { 2e-3 } else { 2e-2 };
             let mean = if c == 5 { -G } else { 0.0 };
             let drive = gm * sd * (1.0 - decay * decay).sqrt();
-            bias[c] = decay * bias[c] + drive * normal.next();
-            let _ = write!(text, ",{}", mean + bias[c] + sd * normal.next());
+            bias[c] = decay * bias[c] + drive * normal.sample();
+            let _ = write!(text, ",{}", mean + bias[c] + sd * normal.sample());
         }
         text.push('\n');
     }
@@ -408,24 +391,6 @@ fn exports_needing_a_gauss_markov_bias_write_the_allan_stand_in() {
     assert!(ob.contains("stand-in"), "{ob}");
     let largest = stand_ins[..3].iter().map(|s| s.0).fold(0.0, f64::max);
     close(numbers_of(&ob, "gbstd")[0], largest * deg_h, "ob gbstd");
-}
-
-/// A simulated 300 s vessel survey (imu.csv, gnss.csv, reference.csv) in `dir/v`.
-fn vessel(dir: &Path) -> PathBuf {
-    let out = dir.join("v");
-    let args = [
-        "simulate",
-        "vessel",
-        "--profile",
-        "builtin:temperature-sensitive",
-        "--duration-s",
-        "300",
-        "--out",
-        arg(&out),
-    ];
-    let (status, _, stderr) = outcome(&thermonav(&args));
-    assert_eq!(status, 0, "{stderr}");
-    out
 }
 
 /// `evaluate` of the survey in `v` with the built-in profile, the EKF and two outages.

@@ -94,3 +94,40 @@ pub fn files_in(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// A simulated 300 s vessel survey (imu.csv, gnss.csv, reference.csv) in `dir/v`.
+pub fn vessel(dir: &Path) -> PathBuf {
+    let out = dir.join("v");
+    let args = [
+        "simulate",
+        "vessel",
+        "--profile",
+        "builtin:temperature-sensitive",
+        "--duration-s",
+        "300",
+        "--out",
+        arg(&out),
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&args));
+    assert_eq!(status, 0, "{stderr}");
+    out
+}
+
+/// A reproducible standard normal stream (xorshift64 and Box-Muller).
+pub struct Normal(pub u64);
+
+impl Normal {
+    /// A uniform draw in (0, 1).
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    /// A standard normal draw.
+    pub fn sample(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    }
+}

@@ -4,7 +4,7 @@
 //! on another time scale than the IMU is refused with both time ranges. The fixtures are a
 //! simulated survey written in each form here; the README's RTK workflow is run as written.
 
-use crate::{arg, outcome, thermonav};
+use crate::{arg, outcome, thermonav, vessel};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -23,24 +23,6 @@ fn gpst_shift_s() -> i64 {
 
 fn json(text: &str) -> serde_json::Value {
     serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
-}
-
-/// A simulated 300 s vessel survey (imu.csv, gnss.csv, reference.csv) in `dir/v`.
-fn vessel(dir: &Path) -> PathBuf {
-    let out = dir.join("v");
-    let args = [
-        "simulate",
-        "vessel",
-        "--profile",
-        "builtin:temperature-sensitive",
-        "--duration-s",
-        "300",
-        "--out",
-        arg(&out),
-    ];
-    let (status, _, stderr) = outcome(&thermonav(&args));
-    assert_eq!(status, 0, "{stderr}");
-    out
 }
 
 /// `evaluate` of `imu` and `gnss` against `reference` with the built-in profile, the EKF and
