@@ -13,7 +13,7 @@ use super::candidates::{
 use super::oracle::TrueModel;
 use super::report::{FrameModel, ShardFrame, TournamentReport, outage_spans};
 use super::scenario::Scenario;
-use super::shard::{Shard, TournamentShard, merge_shards, stored_run};
+use super::shard::{Shard, ShardRun, TournamentShard, merge_shards, stored_run};
 use super::tournament::{ModelResult, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::{OutageError, OutageSpec};
@@ -22,6 +22,7 @@ use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
 use crate::sensor::SensorProfile;
 use crate::stoch::bank::{GaussMarkovSource, ModelBank};
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 
 /// The most replicates a tournament runs (each is a run of every candidate through every
@@ -274,14 +275,18 @@ impl Tournament {
                 runs: asked * per_replicate,
             });
         }
-        let mut runs = Vec::new();
-        for index in 0..asked {
+        // Replicates are made and run a few at a time (as many as the pool has threads, so
+        // that no more scenarios than that are held at once), each one's runs in parallel too:
+        // a simulated replicate is made on one core while another runs candidates. The runs
+        // keep their order, so the output does not depend on the schedule.
+        let pairs = (self.candidates.as_slice(), self.filters.as_slice());
+        let replicate_runs = |index: usize| -> Result<Vec<ShardRun>, TournamentError> {
             let first = index * per_replicate;
             let held: Vec<usize> = (0..per_replicate)
                 .filter(|p| shard.holds(first + p))
                 .collect();
             if held.is_empty() {
-                continue;
+                return Ok(Vec::new());
             }
             let made;
             let scenario = match index {
@@ -291,13 +296,20 @@ impl Tournament {
                     &made
                 }
             };
-            let pairs = (self.candidates.as_slice(), self.filters.as_slice());
             let mut results = run_selected(scenario, pairs, &held, on_done);
             if index > 0 {
                 drop_epoch_errors(&mut results);
             }
             let numbered = held.iter().zip(&results);
-            runs.extend(numbered.map(|(p, r)| stored_run(first + p, r)));
+            Ok(numbered.map(|(p, r)| stored_run(first + p, r)).collect())
+        };
+        let indices: Vec<usize> = (0..asked).collect();
+        let mut runs = Vec::new();
+        for group in indices.chunks(rayon::current_num_threads().max(1)) {
+            let made: Vec<_> = group.par_iter().map(|&k| replicate_runs(k)).collect();
+            for replicate in made {
+                runs.extend(replicate?);
+            }
         }
         Ok(TournamentShard {
             shard,

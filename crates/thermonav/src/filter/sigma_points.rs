@@ -92,12 +92,16 @@ pub fn unscented_transform<const M: usize>(
         .iter()
         .zip(&weights.mean)
         .fold(SVector::<f64, M>::zeros(), |acc, (p, w)| acc + p * *w);
-    let cov = points
-        .iter()
-        .zip(&weights.covariance)
-        .fold(*noise, |acc, (p, w)| {
-            let d = p - mean;
-            acc + d * d.transpose() * *w
-        });
+    // Accumulated in place, entry by entry, in the order of `acc + (d dᵀ) w`: the same
+    // rounding as the matrix expression without its three 21 × 21 temporaries per point.
+    let mut cov = *noise;
+    for (p, w) in points.iter().zip(&weights.covariance) {
+        let d = p - mean;
+        for j in 0..M {
+            for i in 0..M {
+                cov[(i, j)] += d[i] * d[j] * *w;
+            }
+        }
+    }
     (mean, super::symmetrize(&cov))
 }
