@@ -1107,6 +1107,11 @@ pub struct DemoArgs {
     /// Seed of every random draw.
     #[arg(long, default_value_t = DEFAULT_SEED)]
     pub seed: u64,
+    /// Keep the simulated chamber records (DIR/chamber/*.csv and DIR/temperature/chamber/:
+    /// about 360 MB with --quick, 2 GB without), which are otherwise removed once their banks
+    /// are built (their truth.json files stay).
+    #[arg(long)]
+    pub keep_records: bool,
     /// Print one JSON document instead of text.
     #[arg(long)]
     pub json: bool,
@@ -1115,7 +1120,7 @@ pub struct DemoArgs {
 /// Arguments of `inspect`.
 #[derive(Debug, Args)]
 pub struct InspectArgs {
-    /// The IMU CSV to inspect.
+    /// The IMU, GNSS or reference (trajectory) CSV to inspect, recognised by its header.
     pub file: PathBuf,
     /// Print one JSON document instead of text.
     #[arg(long)]

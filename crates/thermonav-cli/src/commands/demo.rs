@@ -146,6 +146,7 @@ struct DemoSummary {
     chamber_duration_s: f64,
     chamber_rate_hz: f64,
     bank: String,
+    chamber_records: ChamberRecords,
     recovery: Vec<Recovery>,
     ml_intervals_covering_truth: usize,
     ml_intervals: usize,
@@ -192,10 +193,11 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         &scenario_plan(args.quick, args.seed),
         &args.out.join("temperature"),
     )?;
+    let records = chamber_records(args)?;
     let summary = summarize(
         args,
         &p,
-        (&bank, &truth),
+        (&bank, &truth, records),
         (tournament, solution, scenarios),
         started,
     );
@@ -262,12 +264,80 @@ fn chamber_and_bank(args: &DemoArgs, p: &Plan) -> Result<(Vec<RunTruth>, ModelBa
     Ok((truth.temperatures, bank))
 }
 
+/// What became of the simulated chamber records once their banks were built.
+#[derive(Debug, Clone, Copy, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+enum ChamberRecords {
+    /// `--keep-records`: left where they were written.
+    Kept,
+    /// Removed (their truth.json files stay).
+    Removed {
+        /// Files removed.
+        files: usize,
+        /// Their total size, MB (10⁶ bytes).
+        size_mb: f64,
+    },
+}
+
+/// The chamber folders whose CSV records the demo removes.
+fn chamber_folders(out: &Path) -> [std::path::PathBuf; 2] {
+    [out.join("chamber"), out.join("temperature").join("chamber")]
+}
+
+/// Removes the simulated chamber records unless `--keep-records`, and says so.
+fn chamber_records(args: &DemoArgs) -> Result<ChamberRecords, Failure> {
+    if args.keep_records {
+        return Ok(ChamberRecords::Kept);
+    }
+    let (mut files, mut bytes) = (0, 0);
+    for folder in chamber_folders(&args.out) {
+        let (f, b) = remove_csv_records(&folder)?;
+        (files, bytes) = (files + f, bytes + b);
+    }
+    let size_mb = bytes as f64 / 1e6;
+    say(
+        args,
+        &format!(
+            "removed the {files} simulated chamber records ({size_mb:.0} MB) now that their banks are built; --keep-records keeps them"
+        ),
+    );
+    Ok(ChamberRecords::Removed { files, size_mb })
+}
+
+/// Removes the `.csv` files under `folder` (and the sub-folders they leave empty); returns
+/// how many and their bytes.
+fn remove_csv_records(folder: &Path) -> Result<(usize, u64), Failure> {
+    let (mut files, mut bytes) = (0, 0);
+    let entries = std::fs::read_dir(folder)
+        .map_err(|e| anyhow!("{}: {e}", folder.display()))
+        .data()?;
+    for entry in entries {
+        let path = entry
+            .map_err(|e| anyhow!("{}: {e}", folder.display()))
+            .data()?
+            .path();
+        if path.is_dir() {
+            let (f, b) = remove_csv_records(&path)?;
+            (files, bytes) = (files + f, bytes + b);
+            // Only an emptied folder goes; one holding anything else stays.
+            let _ = std::fs::remove_dir(&path);
+        } else if path.extension().is_some_and(|e| e == "csv") {
+            let size = path.metadata().map_or(0, |m| m.len());
+            std::fs::remove_file(&path)
+                .map_err(|e| anyhow!("cannot remove {}: {e}", path.display()))
+                .data()?;
+            (files, bytes) = (files + 1, bytes + size);
+        }
+    }
+    Ok((files, bytes))
+}
+
 /// The document of demo.json: the plan, the recovery of the true correlation times, the
 /// tournament and the solution.
 fn summarize(
     args: &DemoArgs,
     p: &Plan,
-    (bank, truth): (&ModelBank, &[RunTruth]),
+    (bank, truth, chamber_records): (&ModelBank, &[RunTruth], ChamberRecords),
     (tournament, solution, temperature_scenarios): (
         EvaluationFile,
         IntegrateSummary,
@@ -287,6 +357,7 @@ fn summarize(
         chamber_duration_s: p.duration_s,
         chamber_rate_hz: p.rate_hz,
         bank: args.out.join("bank.json").display().to_string(),
+        chamber_records,
         recovery,
         ml_intervals_covering_truth: judged.iter().filter(|&&inside| inside).count(),
         ml_intervals: judged.len(),

@@ -183,4 +183,41 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
     ] {
         assert!(!html.contains(forbidden), "{forbidden}");
     }
+
+    // Issue 38 row 18: the quick demo wrote 361 MB, nine tenths of it chamber records that
+    // only the banks need. They are removed once the banks are built (their truth stays, and
+    // demo.json says how much went); what a user goes on with (the survey, banks, evaluations,
+    // report) stays.
+    let records = &demo["chamber_records"];
+    assert_eq!(records["kind"], "removed", "{records}");
+    assert!(records["size_mb"].as_f64().unwrap() > 100.0, "{records}");
+    for folder in ["chamber", "temperature/chamber"] {
+        let left: Vec<_> = walk(&out.join(folder))
+            .into_iter()
+            .filter(|p| p.extension().is_some_and(|e| e == "csv"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+        assert!(out.join(folder).join("truth.json").is_file());
+    }
+    for kept in ["vessel/imu.csv", "vessel/gnss.csv", "vessel/reference.csv"] {
+        assert!(out.join(kept).is_file(), "{kept}");
+    }
+    let written: u64 = walk(&out).iter().map(|p| p.metadata().unwrap().len()).sum();
+    assert!(
+        written < 100_000_000,
+        "the quick demo wrote {written} bytes"
+    );
+}
+
+/// Every file under `folder`, at any depth.
+fn walk(folder: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(folder).unwrap() {
+        let path = entry.unwrap().path();
+        match path.is_dir() {
+            true => files.extend(walk(&path)),
+            false => files.push(path),
+        }
+    }
+    files
 }
