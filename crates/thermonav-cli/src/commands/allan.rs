@@ -5,16 +5,16 @@ use crate::args::AllanArgs;
 use crate::failure::{Classify, Failure};
 use crate::noise_units::{TermsJson, terms_json, terms_line};
 use crate::report::print_json;
+use crate::settings::analysis::{AllanSettings, resolve_allan};
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::stoch::allan::{
-    AllanCurve, DeviationCurve, DeviationKind, TauGrid, channel_deviations, confidence_intervals,
+    AllanCurve, DeviationCurve, DeviationKind, channel_deviations, confidence_intervals_with,
     overlapping_adev,
 };
 use thermonav::stoch::noise_terms::fit_noise_terms;
-use thermonav_io::ImuOptions;
 
 /// The JSON document of `allan --json`.
 #[derive(Debug, Serialize)]
@@ -43,20 +43,18 @@ struct ChannelJson {
 
 /// Runs `allan`.
 pub fn run(args: &AllanArgs) -> Result<(), Failure> {
-    check_confidence(args.confidence)?;
-    let options = crate::settings::imu::options(&args.rotation, &args.rate)?;
-    if args.kind != DeviationKind::Adev {
-        return run_family(args, &options);
+    let settings = resolve_allan(args)?;
+    if settings.kind != DeviationKind::Adev {
+        return run_family(args, &settings);
     }
-    let topics = crate::settings::imu::topics(&args.topics);
-    let read = (&options, &topics);
+    let read = (&settings.options, &settings.topics);
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", read)?;
     let doc = AllanJson {
         file: args.file.display().to_string(),
-        imu_rotation: crate::settings::imu::rotation_text(&options),
+        imu_rotation: crate::settings::imu::rotation_text(&settings.options),
         sample_rate_hz: rate_hz,
-        confidence: args.confidence,
-        channels: adev_channels(args, &series, rate_hz)?,
+        confidence: settings.ci.level,
+        channels: adev_channels(args, &settings, (&series, rate_hz))?,
     };
     if args.json {
         return print_json(&doc);
@@ -68,35 +66,24 @@ pub fn run(args: &AllanArgs) -> Result<(), Failure> {
 /// Every channel's overlapping Allan deviation, limits and terms.
 fn adev_channels(
     args: &AllanArgs,
-    series: &ImuSeries,
-    rate_hz: f64,
+    settings: &AllanSettings,
+    (series, rate_hz): (&ImuSeries, f64),
 ) -> Result<BTreeMap<&'static str, ChannelJson>, Failure> {
-    let grid: TauGrid = args.taus.into();
     let mut channels = BTreeMap::new();
     for channel in series.present_channels() {
         let y = series.channel(channel);
-        let curve = overlapping_adev(y, rate_hz, &grid)
+        let curve = overlapping_adev(y, rate_hz, &settings.grid)
             .map_err(|e| anyhow!("{}: channel {}: {e}", args.file.display(), channel.name()))
             .data()?;
-        let json = channel_json(y, curve, channel, args.confidence);
+        let json = channel_json(y, curve, channel, settings);
         channels.insert(channel.name(), json);
     }
     Ok(channels)
 }
 
-/// `--confidence` must lie strictly between 0 and 1.
-fn check_confidence(confidence: f64) -> Result<(), Failure> {
-    if !(confidence > 0.0 && confidence < 1.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--confidence {confidence} must lie strictly between 0 and 1"
-        )));
-    }
-    Ok(())
-}
-
 /// One channel's curve with its confidence limits, noise types and fitted noise terms.
-fn channel_json(y: &[f64], curve: AllanCurve, channel: Channel, confidence: f64) -> ChannelJson {
-    let ci = confidence_intervals(y, &curve, confidence);
+fn channel_json(y: &[f64], curve: AllanCurve, channel: Channel, s: &AllanSettings) -> ChannelJson {
+    let ci = confidence_intervals_with(y, &curve, &s.ci);
     let terms = terms_json(&fit_noise_terms(&curve, &ci), channel.sensor());
     ChannelJson {
         unit: channel.si_unit(SampleKind::Rates),
@@ -161,8 +148,8 @@ struct FamilyChannelJson {
 
 /// `allan --kind K` for a kind other than adev: each channel's curve, without confidence limits
 /// or noise terms (those are the overlapping Allan deviation's).
-fn run_family(args: &AllanArgs, options: &ImuOptions) -> Result<(), Failure> {
-    let doc = family_doc(args, options)?;
+fn run_family(args: &AllanArgs, settings: &AllanSettings) -> Result<(), Failure> {
+    let doc = family_doc(args, settings)?;
     if args.json {
         return print_json(&doc);
     }
@@ -171,16 +158,15 @@ fn run_family(args: &AllanArgs, options: &ImuOptions) -> Result<(), Failure> {
 }
 
 /// Every channel's curve of `args.kind`.
-fn family_doc(args: &AllanArgs, options: &ImuOptions) -> Result<FamilyJson, Failure> {
-    let topics = crate::settings::imu::topics(&args.topics);
-    let read = (options, &topics);
+fn family_doc(args: &AllanArgs, settings: &AllanSettings) -> Result<FamilyJson, Failure> {
+    let read = (&settings.options, &settings.topics);
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "Allan deviation", read)?;
-    let curves = family_curves(args, &series, rate_hz)?;
+    let curves = family_curves(args, settings, (&series, rate_hz))?;
     Ok(FamilyJson {
         file: args.file.display().to_string(),
-        imu_rotation: crate::settings::imu::rotation_text(options),
+        imu_rotation: crate::settings::imu::rotation_text(&settings.options),
         sample_rate_hz: rate_hz,
-        kind: args.kind,
+        kind: settings.kind,
         channels: curves.into_iter().map(family_channel).collect(),
     })
 }
@@ -188,9 +174,14 @@ fn family_doc(args: &AllanArgs, options: &ImuOptions) -> Result<FamilyJson, Fail
 /// Each channel with its curve.
 type Curves = Vec<(Channel, DeviationCurve)>;
 
-/// The curve of `args.kind` of every channel of `series`, or the first channel's error.
-fn family_curves(args: &AllanArgs, series: &ImuSeries, rate_hz: f64) -> Result<Curves, Failure> {
-    channel_deviations(args.kind, series, rate_hz, &args.taus.into())
+/// The curve of the chosen kind of every channel of `series`, or the first channel's error.
+fn family_curves(
+    args: &AllanArgs,
+    settings: &AllanSettings,
+    (series, rate_hz): (&ImuSeries, f64),
+) -> Result<Curves, Failure> {
+    let (kind, grid) = (settings.kind, &settings.grid);
+    channel_deviations(kind, series, rate_hz, grid)
         .map_err(|(c, e)| anyhow!("{}: channel {}: {e}", args.file.display(), c.name()))
         .data()
 }

@@ -3,14 +3,14 @@
 use crate::args::ArArgs;
 use crate::failure::{Classify, Failure};
 use crate::report::print_json;
+use crate::settings::analysis::{ArSettings, resolve_ar};
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
 use thermonav::signal::timestamps::interval_stats;
-use thermonav::stoch::ar::MAX_AR_ORDER;
-use thermonav::stoch::ar::order::{Criterion, Order, fit_ar_order};
+use thermonav::stoch::ar::order::{Order, fit_ar_order};
 use thermonav::stoch::ar::{ArError, ArMethod, ArModel, fit_ar};
 use thermonav::stoch::gauss_markov::{Ar1Estimate, GaussMarkovOutcome, ar_based};
 use thermonav_io::{Strictness, read_imu_file};
@@ -49,34 +49,9 @@ enum GaussMarkovJson {
     },
 }
 
-/// The `--order` option: a positive integer or `auto` (BIC up to `max_order`).
-fn order_of(text: &str, max_order: usize) -> Result<Order, Failure> {
-    match text {
-        "auto" if (1..=MAX_AR_ORDER).contains(&max_order) => Ok(Order::Auto {
-            criterion: Criterion::Bic,
-            max_order,
-        }),
-        "auto" => Err(Failure::Usage(anyhow!(
-            "--max-order {max_order}: expected 1 to {MAX_AR_ORDER}"
-        ))),
-        _ => fixed_order(text),
-    }
-}
-
-/// A fixed `--order`: an integer in 1..=[`MAX_AR_ORDER`].
-fn fixed_order(text: &str) -> Result<Order, Failure> {
-    match text.parse::<usize>() {
-        Ok(p) if (1..=MAX_AR_ORDER).contains(&p) => Ok(Order::Fixed(p)),
-        _ => Err(Failure::Usage(anyhow!(
-            "--order {text:?}: expected an integer from 1 to {MAX_AR_ORDER} (the fit costs samples × order²) or `auto`"
-        ))),
-    }
-}
-
 /// Runs `ar`.
 pub fn run(args: &ArArgs) -> Result<(), Failure> {
-    let order = order_of(&args.order, args.max_order)?;
-    let method: ArMethod = args.method.into();
+    let ArSettings { order, method } = resolve_ar(args)?;
     let series = read_imu_file(&args.file, Strictness::Strict).data()?;
     check_rates(&series, &args.file)?;
     let dt_s = median_interval_s(&series, &args.file)?;

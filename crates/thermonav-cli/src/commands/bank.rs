@@ -2,14 +2,13 @@
 //! `thermonav bank export`: its thermal calibration as autopilot parameters, or its noise
 //! model at a temperature as another tool's noise configuration.
 
-use crate::args::{BankAction, BankArgs, BankExportArgs, BankShowArgs, ExportKind};
+use crate::args::{BankExportArgs, BankShowArgs, ExportKind};
 use crate::bank_tables::{print_bank_table, significant};
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::{print_json, print_rows};
-use crate::settings::paths::Io;
+use crate::settings::bank::{ExportSettings, ShowSettings, resolve_export, resolve_show};
 use anyhow::anyhow;
-use clap::ValueEnum;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -17,7 +16,7 @@ use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Placement, SelectedModel, Selection};
 use thermonav::stoch::thermal::SensorDevices;
 use thermonav_io::noise_export::{
-    ExportOptions, ImuNoise, NoiseExportError, NoiseExportSummary, NoiseFormat, noise_config_text,
+    ImuNoise, NoiseExportError, NoiseExportSummary, NoiseFormat, noise_config_text,
     placement_words, write_noise_config,
 };
 use thermonav_io::thermal_parameters::{
@@ -26,89 +25,24 @@ use thermonav_io::thermal_parameters::{
 };
 use thermonav_plot::figures::DisplayUnits;
 
-/// Runs `bank`.
-pub fn run(args: &BankArgs) -> Result<(), Failure> {
-    match &args.action {
-        BankAction::Show(show) => run_show(show),
-        BankAction::Export(export) => run_export(export),
-        BankAction::Check(_) => unreachable_check(),
-    }
-}
-
-/// `bank check` is dispatched to its own command file by `commands::run`.
-fn unreachable_check() -> Result<(), Failure> {
-    Err(Failure::Usage(anyhow!(
-        "bank check is run by its own command"
-    )))
-}
-
-fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
-    export_io(args).check()?;
-    let kind = checked_kind(args)?;
+/// Runs `bank export`.
+pub fn run_export(args: &BankExportArgs) -> Result<(), Failure> {
+    let settings = resolve_export(args)?;
     let bank = read_bank(&args.bank)?;
-    match kind {
+    match settings.kind {
         ExportKind::Thermal(target) => export_thermal(&bank, target, args),
-        ExportKind::Noise(format) => export_noise(&bank, format, args),
+        ExportKind::Noise(format) => export_noise(&bank, format, &settings, args),
     }
-}
-
-/// The export's kind, with its options checked (usage errors, before any file is read): what
-/// a noise format needs, and no option of the other kind of export.
-fn checked_kind(args: &BankExportArgs) -> Result<ExportKind, Failure> {
-    let kind = ExportKind::from(args.format);
-    if let ExportKind::Noise(format) = kind {
-        format.check_options(&export_options(args)).usage()?;
-    }
-    match misplaced_option(kind, args) {
-        Some(option) => Err(not_applicable(option, args)),
-        None => Ok(kind),
-    }
-}
-
-/// An option of the other kind of export, if one was given.
-fn misplaced_option(kind: ExportKind, args: &BankExportArgs) -> Option<&'static str> {
-    match kind {
-        ExportKind::Noise(_) => thermal_option(args),
-        ExportKind::Thermal(_) => noise_option(args),
-    }
-}
-
-fn not_applicable(option: &str, args: &BankExportArgs) -> Failure {
-    let format = args.format.to_possible_value();
-    let format = format.map_or_else(String::new, |v| v.get_name().to_string());
-    Failure::Usage(anyhow!("{option} does not apply to --format {format}"))
-}
-
-/// A thermal-export option given, if any.
-fn thermal_option(args: &BankExportArgs) -> Option<&'static str> {
-    let given = [
-        ("--instance", args.instance.is_some()),
-        ("--device-id", args.device_id.is_some()),
-        ("--gyro-device-id", args.gyro_device_id.is_some()),
-        ("--accel-device-id", args.accel_device_id.is_some()),
-    ];
-    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
-}
-
-/// A noise-export option without a default given, if any.
-fn noise_option(args: &BankExportArgs) -> Option<&'static str> {
-    let given = [
-        ("--temperature-c", args.temperature_c.is_some()),
-        (
-            "--scale-factor-std-ppm",
-            args.scale_factor_std_ppm.is_some(),
-        ),
-    ];
-    given.into_iter().find(|(_, is)| *is).map(|(name, _)| name)
 }
 
 fn export_noise(
     bank: &ModelBank,
     format: NoiseFormat,
+    settings: &ExportSettings,
     args: &BankExportArgs,
 ) -> Result<(), Failure> {
-    let noise = noise_at_temperature(bank, args)?;
-    let text = noise_config_text(format, &noise, &export_options(args));
+    let noise = noise_at_temperature(bank, settings, args)?;
+    let text = noise_config_text(format, &noise, &settings.options);
     write_noise_config(&args.out, &text.map_err(|e| noise_failure(e, args))?).data()?;
     if args.json {
         return print_json(&NoiseExportSummary::new(format, &noise));
@@ -118,8 +52,12 @@ fn export_noise(
 }
 
 /// The bank's noise at the operating temperature.
-fn noise_at_temperature(bank: &ModelBank, args: &BankExportArgs) -> Result<ImuNoise, Failure> {
-    let (selection, source) = (args.method.into(), args.model.into());
+fn noise_at_temperature(
+    bank: &ModelBank,
+    settings: &ExportSettings,
+    args: &BankExportArgs,
+) -> Result<ImuNoise, Failure> {
+    let (selection, source) = (settings.selection, settings.source);
     ImuNoise::at_temperature(bank, args.temperature_c, selection, source)
         .map_err(|e| anyhow!("{}: {e}", args.bank.display()))
         .data()
@@ -132,14 +70,6 @@ fn print_noise_rows(noise: &ImuNoise, args: &BankExportArgs) {
         placement_words(noise.placement)
     );
     print_rows(&[("written", args.out.display().to_string()), ("at", at)]);
-}
-
-fn export_options(args: &BankExportArgs) -> ExportOptions {
-    ExportOptions {
-        bank_name: args.bank.display().to_string(),
-        rostopic: args.rostopic.clone(),
-        scale_factor_std_ppm: args.scale_factor_std_ppm,
-    }
 }
 
 fn noise_failure(error: NoiseExportError, args: &BankExportArgs) -> Failure {
@@ -158,12 +88,6 @@ fn export_thermal(
     }
     print_export_rows(&file.summary(), args);
     Ok(())
-}
-
-fn export_io(args: &BankExportArgs) -> Io {
-    Io::new()
-        .input("BANK", &args.bank)
-        .output("exported file", &args.out)
 }
 
 /// The bank's thermal calibration in the chosen target's parameters.
@@ -267,17 +191,21 @@ impl SelectedChannel {
     }
 }
 
-fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
+/// Runs `bank show`.
+pub fn run_show(args: &BankShowArgs) -> Result<(), Failure> {
+    let ShowSettings {
+        at_temperature_c,
+        selection,
+        source,
+    } = resolve_show(args)?;
     let bank = read_bank(&args.bank)?;
-    let Some(t) = args.at_temperature_c else {
+    let Some(t) = at_temperature_c else {
         if args.json {
             return print_json(&bank);
         }
         print_bank_table(&bank);
         return Ok(());
     };
-    let (selection, source): (Selection, GaussMarkovSource) =
-        (args.method.into(), args.model.into());
     let mut channels = BTreeMap::new();
     for channel in Channel::ALL {
         let model = bank

@@ -3,21 +3,21 @@
 
 use crate::args::ModeArg;
 use crate::failure::{Classify, Failure};
-use crate::fir_design::{FirDesign, describe, design};
+use crate::fir_design::{FirDesign, describe};
 use crate::report::{print_json, print_rows};
-use crate::settings::analysis::{FilterPlan, KaiserPlan, json_sidecar, resolve_filter};
+use crate::settings::analysis::{
+    FilterPlan, KaiserPlan, json_sidecar, resolve_filter, wavelet_level,
+};
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, ImuSeries, SampleKind};
-use thermonav::signal::decimate::{decimate_valid, decimation_factor};
+use thermonav::signal::decimate::decimate_valid;
 use thermonav::signal::kaiser::FirFilter;
 use thermonav::signal::timestamps::{TimingReport, check_timestamps};
-use thermonav::signal::wavelet::denoise::{DecompositionLevel, Denoised, WaveletDenoise, denoise};
-use thermonav::signal::zero_phase::{
-    ZeroPhaseMode, decimation_edge_samples, filter_for_mode, filter_zero_phase,
-};
+use thermonav::signal::wavelet::denoise::{Denoised, WaveletDenoise, denoise};
+use thermonav::signal::zero_phase::{ZeroPhaseMode, decimation_edge_samples, filter_zero_phase};
 use thermonav_io::{Strictness, read_imu_file, write_imu_file, write_json_atomically};
 
 /// The sidecar JSON written next to the output (and printed by `--json`).
@@ -112,11 +112,8 @@ pub fn run(args: &crate::args::FilterArgs) -> Result<(), Failure> {
 
 /// The Kaiser path: design at the file's rate (or --fs-hz), filter, decimate.
 fn run_kaiser(plan: &KaiserPlan, x: &ImuSeries, rate_hz: f64) -> Result<Conditioned, Failure> {
-    let (spec, designed) = design(plan.fs_hz.unwrap_or(rate_hz), &plan.kaiser)?;
-    let mode = plan.mode.into();
-    let filter = filter_for_mode(designed, &spec, mode);
-    let factor = resolve_decimation(plan, &filter)?;
-    let filtered = filter_series(x, &filter, mode, factor).data()?;
+    let (filter, factor) = plan.design_at(rate_hz)?;
+    let filtered = filter_series(x, &filter, plan.mode.into(), factor).data()?;
     Ok((filtered, kaiser_record(plan, &filter, factor)))
 }
 
@@ -148,18 +145,6 @@ fn shrink_channels(w: &WaveletDenoise, x: &ImuSeries) -> Result<Shrunk, Failure>
         out.channels[channel.index()] = shrunk.values;
     }
     Ok((out, channels))
-}
-
-/// The level for `rows` samples: a --level the record does not allow is a usage error, a
-/// record too short for one level a data error.
-fn wavelet_level(w: &WaveletDenoise, rows: usize, input: &Path) -> Result<usize, Failure> {
-    let level = (w.level_for(rows)).map_err(|e| anyhow!("{}: {rows} rows: {e}", input.display()));
-    match w.level {
-        DecompositionLevel::Fixed(l) => {
-            level.map_err(|e| Failure::Usage(e.context(format!("--level {l}"))))
-        }
-        DecompositionLevel::Max => level.map_err(Failure::Data),
-    }
 }
 
 fn channel_record(c: Channel, kind: Option<SampleKind>, d: &Denoised) -> WaveletChannelRecord {
@@ -206,15 +191,6 @@ fn mode_name(mode: ModeArg) -> &'static str {
         ModeArg::ZeroPhase => "zero-phase",
         ModeArg::Filtfilt => "filtfilt",
     }
-}
-
-/// The decimation factor (1 without `--decimate-to-hz`); the anti-alias rule was checked with
-/// the other arguments, before reading (`settings::analysis::resolve_filter`).
-fn resolve_decimation(plan: &KaiserPlan, filter: &FirFilter) -> Result<usize, Failure> {
-    let Some(target_hz) = plan.decimate_to_hz else {
-        return Ok(1);
-    };
-    decimation_factor(filter.sample_rate_hz(), target_hz).usage()
 }
 
 /// Filters every channel and keeps every `factor`-th sample, leaving out with decimation the

@@ -34,8 +34,9 @@ pub fn run(cli: Cli) -> Result<(), Failure> {
         Command::Gmwm(args) => gmwm::run(&args),
         Command::Characterize(args) => characterize::run(&args),
         Command::Bank(args) => match &args.action {
+            BankAction::Show(show) => bank::run_show(show),
+            BankAction::Export(export) => bank::run_export(export),
             BankAction::Check(check) => thermal_check::run(check),
-            _ => bank::run(&args),
         },
         Command::Lot(args) => lot::run(&args),
         Command::Simulate(args) => simulate::run(&args),

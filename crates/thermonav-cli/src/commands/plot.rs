@@ -1,11 +1,13 @@
 //! `thermonav plot`: a figure from a file thermonav wrote, as SVG (or PNG).
 
-use crate::args::{BagTopicArgs, MetricArg, PlotArgs, PlotKind, UnitsArg};
+use crate::args::{BagTopicArgs, MetricArg, PlotArgs};
 use crate::failure::{Classify, Failure};
 use crate::figure_data::{innovations_of, outage_errors, rms_series};
 use crate::inputs::{read_bank, read_imu_input, read_rates, thermal_calibration_of};
 use crate::settings::imu::topics;
-use crate::settings::paths::Io;
+use crate::settings::plot::{
+    Figure, ImageFormat, PlotSettings, bank_entry, outages_over, report_filter, resolve_plot,
+};
 use anyhow::anyhow;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -17,7 +19,6 @@ use thermonav::nav::outage::{OutageSpec, Outages};
 use thermonav::nav::run::increments_of;
 use thermonav::stoch::acf::{Demean, autocovariance};
 use thermonav::stoch::allan::DeviationKind;
-use thermonav::stoch::bank::ModelBank;
 use thermonav::stoch::gauss_markov::{GaussMarkovOutcome, LagWindow, fit_autocovariance};
 use thermonav::time::Timestamp;
 use thermonav::trajectory::TrajectoryPoint;
@@ -43,69 +44,34 @@ use thermonav_plot::png::svg_to_png;
 /// Most lags drawn on an autocovariance figure (the fit uses all of them).
 const MAX_DRAWN_LAGS: usize = 2000;
 
-/// The file format of a figure, from the extension of `--out`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum ImageFormat {
-    Svg,
-    Png,
-}
-
-/// The image format told by the extension of `--out`.
-fn image_format(path: &Path) -> Result<ImageFormat, Failure> {
-    match lowercase_extension(path).as_deref() {
-        Some("svg") => Ok(ImageFormat::Svg),
-        Some("png") => Ok(ImageFormat::Png),
-        _ => Err(Failure::Usage(anyhow!(
-            "--out {}: the figure file must end in .svg or .png",
-            path.display()
-        ))),
-    }
-}
-
-/// The extension of `path` in lower case, if it has one.
-fn lowercase_extension(path: &Path) -> Option<String> {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-}
-
 /// Runs `plot`.
 pub fn run(args: &PlotArgs) -> Result<(), Failure> {
-    Io::new()
-        .input("INPUT", &args.input)
-        .optional_inputs([
-            ("--record", args.record.as_ref()),
-            ("--imu", args.imu.as_ref()),
-        ])
-        .output("figure", &args.out)
-        .check()?;
-    let format = image_format(&args.out)?;
-    let svg = figure_svg(args, display_units(args.units))?;
-    let bytes = image_bytes(svg, format)?;
+    let settings = resolve_plot(args)?;
+    let svg = figure_svg(args, &settings)?;
+    let bytes = image_bytes(svg, settings.format)?;
     write_atomically(&args.out, |file| Ok(file.write_all(&bytes)?)).data()?;
     Ok(())
 }
 
-/// `--units` as the figures' display units.
-fn display_units(units: UnitsArg) -> DisplayUnits {
-    match units {
-        UnitsArg::Si => DisplayUnits::Si,
-        UnitsArg::Navigation => DisplayUnits::Navigation,
-    }
-}
-
-/// The SVG of the figure `args.kind`.
-fn figure_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    match args.kind {
-        PlotKind::Allan => allan_svg(args, units),
-        PlotKind::CorrelationTime => correlation_svg(args),
-        PlotKind::Autocorrelation => autocorrelation_svg(args, units),
-        PlotKind::Trajectory => trajectory_svg(args),
-        PlotKind::OutageErrors => outage_errors_svg(args),
-        PlotKind::RmsTemperature => rms_temperature_svg(args),
-        PlotKind::Innovations => innovations_svg(args),
-        PlotKind::ThermalBias => thermal_bias_svg(args, units),
-        PlotKind::ThermalCheck => thermal_check_svg(args, units),
+/// The SVG of the chosen figure.
+fn figure_svg(args: &PlotArgs, settings: &PlotSettings) -> Result<String, Failure> {
+    let units = settings.units;
+    match &settings.figure {
+        Figure::Allan => allan_svg(args, units),
+        Figure::CorrelationTime => correlation_svg(args),
+        &Figure::Autocorrelation { channel, max_lag_s } => {
+            autocorrelation_svg(args, (channel, max_lag_s), units)
+        }
+        Figure::Trajectory => trajectory_svg(args),
+        Figure::OutageErrors => outage_errors_svg(args),
+        Figure::RmsTemperature => rms_temperature_svg(args),
+        Figure::Innovations => innovations_svg(args),
+        Figure::ThermalBias { channel } => thermal_bias_svg(args, *channel, units),
+        Figure::ThermalCheck {
+            record,
+            block_s,
+            channel,
+        } => thermal_check_svg(args, (record, *block_s, *channel), units),
     }
 }
 
@@ -213,7 +179,7 @@ fn allan_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
 /// The Allan deviation of the bank entry chosen by `--temperature-c`.
 fn bank_allan_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
     let bank = read_bank(&args.input)?;
-    let entry = &bank.entries[entry_index(&bank, args.temperature_c, &args.input)?];
+    let entry = &bank.entries[bank_entry(&bank, args.temperature_c, &args.input)?];
     let title = format!(
         "Allan deviation, {} at {} °C",
         file_name(&args.input),
@@ -236,23 +202,6 @@ fn allan_json_of(json: serde_json::Value, path: &Path) -> Result<AllanJson, Fail
             )
         })
         .data()
-}
-
-/// The bank entry for `--temperature-c`; without it the bank must have one entry only.
-fn entry_index(
-    bank: &ModelBank,
-    temperature_c: Option<f64>,
-    path: &Path,
-) -> Result<usize, Failure> {
-    match (temperature_c, bank.entries.len()) {
-        (Some(t), _) => Ok(bank.nearest_index(t)),
-        (None, 1) => Ok(0),
-        (None, _) => Err(Failure::Usage(anyhow!(
-            "{}: the bank has entries at {:?} °C; choose one with --temperature-c",
-            path.display(),
-            bank.temperatures_c()
-        ))),
-    }
 }
 
 /// One channel of `allan --json` as a curve of `kind` with its confidence band and noise terms
@@ -324,28 +273,32 @@ fn correlation_svg(args: &PlotArgs) -> Result<String, Failure> {
 }
 
 /// Bias against temperature of the bank's thermal calibration.
-fn thermal_bias_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    let panels = thermal_panels(args)?;
+fn thermal_bias_svg(
+    args: &PlotArgs,
+    channel: Option<Channel>,
+    units: DisplayUnits,
+) -> Result<String, Failure> {
+    let panels = thermal_panels(args, channel)?;
     let title = format!("Bias against temperature, {}", file_name(&args.input));
     Ok(thermal_bias_figure(&title_or(args, title), &panels, units))
 }
 
+/// The record, block length (s) and channel of a thermal check.
+type CheckOptions<'a> = (&'a Path, f64, Option<Channel>);
+
 /// The bank's calibration checked against `--record`, for `--channel` or every channel.
-fn thermal_check_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    let record = args.record.as_ref().ok_or_else(|| {
-        Failure::Usage(anyhow!(
-            "plot thermal-check needs --record RECORD (the record checked)"
-        ))
-    })?;
-    crate::settings::positive("--block-s", args.block_s)?;
+fn thermal_check_svg(
+    args: &PlotArgs,
+    (record, block_s, channel): CheckOptions,
+    units: DisplayUnits,
+) -> Result<String, Failure> {
     let calibration = crate::inputs::read_thermal_calibration(&args.input)?;
     let read = (&ImuOptions::default(), &topics(&args.topics));
     let series = crate::thermal_calibration::sweep_series(record, 0, read)?.series;
     let checks =
-        thermonav::stoch::thermal::check::check_record(&calibration, &series, args.block_s, None)
+        thermonav::stoch::thermal::check::check_record(&calibration, &series, block_s, None)
             .map_err(|e| anyhow!("{}: {e}", record.display()))
             .data()?;
-    let channel = args.channel.as_deref().map(channel_of).transpose()?;
     let chosen: Vec<_> = (checks.iter())
         .filter(|(c, _)| channel.is_none_or(|k| k == **c))
         .map(|(&c, k)| (c, k))
@@ -364,10 +317,12 @@ fn thermal_check_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Fai
 }
 
 /// The panels of `--channel`, or of every calibrated channel, of the bank's calibration.
-fn thermal_panels(args: &PlotArgs) -> Result<Vec<ThermalBiasPanel>, Failure> {
+fn thermal_panels(
+    args: &PlotArgs,
+    channel: Option<Channel>,
+) -> Result<Vec<ThermalBiasPanel>, Failure> {
     let bank = read_bank(&args.input)?;
     let calibration = thermal_calibration_of(&bank, &args.input)?;
-    let channel = args.channel.as_deref().map(channel_of).transpose()?;
     Some(thermal_bias_panels(calibration, channel.as_slice()))
         .filter(|panels| !panels.is_empty())
         .ok_or_else(|| not_calibrated(&args.input))
@@ -382,13 +337,15 @@ fn not_calibrated(path: &Path) -> Failure {
 }
 
 /// The autocovariance of one channel with its first-order Gauss-Markov fit.
-fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, Failure> {
-    let channel = channel_of(args.channel.as_deref().unwrap_or("gx"))?;
-    check_max_lag(args.max_lag_s)?;
+fn autocorrelation_svg(
+    args: &PlotArgs,
+    (channel, max_lag_s): (Channel, f64),
+    units: DisplayUnits,
+) -> Result<String, Failure> {
     let read = (&ImuOptions::default(), &topics(&args.topics));
     let (series, rate_hz) = read_rates(&args.input, "the autocovariance", read)?;
     let y = series.channel(channel);
-    let max_lag = ((args.max_lag_s * rate_hz).round() as usize)
+    let max_lag = ((max_lag_s * rate_hz).round() as usize)
         .min(y.len().saturating_sub(1))
         .max(1);
     let gamma = autocovariance(y, max_lag, Demean::Subtract)
@@ -401,22 +358,6 @@ fn autocorrelation_svg(args: &PlotArgs, units: DisplayUnits) -> Result<String, F
         channel.name()
     );
     Ok(autocorrelation_figure(&title_or(args, title), &data, units))
-}
-
-/// The channel named by `--channel`.
-fn channel_of(name: &str) -> Result<Channel, Failure> {
-    Channel::from_name(name)
-        .ok_or_else(|| Failure::Usage(anyhow!("--channel {name}: not one of gx gy gz ax ay az")))
-}
-
-/// `--max-lag-s` must be a positive number.
-fn check_max_lag(max_lag_s: f64) -> Result<(), Failure> {
-    if !(max_lag_s.is_finite() && max_lag_s > 0.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--max-lag-s {max_lag_s} must be positive"
-        )));
-    }
-    Ok(())
 }
 
 /// The Gauss-Markov fit to the autocovariance up to its first zero crossing, when there is one.
@@ -462,11 +403,7 @@ fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
             (first.time, last.time)
         }
     };
-    let outages = args
-        .outages
-        .resolve(span)
-        .map_err(|e| anyhow!("--outages: {e}"))
-        .usage()?;
+    let outages = outages_over(&args.outages, span)?;
     let title = format!("Trajectory, {}", file_name(&args.input));
     Ok(trajectory_figure(
         &title_or(args, title),
@@ -577,7 +514,7 @@ fn models_of(json: &serde_json::Value) -> Vec<serde_json::Value> {
 /// The INS-only errors of every model in the first outage with the chosen filter.
 fn outage_errors_svg(args: &PlotArgs) -> Result<String, Failure> {
     let (json, filters) = evaluation(args)?;
-    let filter = chosen_filter(args.filter.as_ref(), &filters)?;
+    let filter = report_filter(args.filter.as_ref(), &filters)?;
     let errors = outage_errors(&models_of(&json), &filter, &folder_of(&args.input))?;
     let title = format!(
         "INS-only errors in the first outage ({})",
@@ -592,18 +529,6 @@ fn folder_of(file: &Path) -> PathBuf {
         Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
         _ => PathBuf::from("."),
     }
-}
-
-/// `--filter`, which must be one of the report's, or the report's primary filter.
-fn chosen_filter(chosen: Option<&String>, filters: &[String]) -> Result<String, Failure> {
-    let filter = chosen.cloned().unwrap_or_else(|| filters[0].clone());
-    if !filters.contains(&filter) {
-        return Err(Failure::Usage(anyhow!(
-            "--filter {filter}: the report has {}",
-            filters.join(", ")
-        )));
-    }
-    Ok(filter)
 }
 
 /// The RMS error of the chosen `--metric` per model against the model's temperature.

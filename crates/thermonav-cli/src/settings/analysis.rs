@@ -1,16 +1,26 @@
-//! Settings of the commands that read one file and write one (`filter`, `convert`): their
-//! outputs checked against their inputs before anything is read.
+//! Settings of the analysis commands: those that read one file and write one (`filter`,
+//! `convert`), their outputs checked against their inputs before anything is read, and those
+//! that read one record and print (`allan`, `ar`), their options checked by the library's
+//! types.
 
 use super::paths::Io;
 use crate::args::{
-    ConvertArgs, DEFAULT_FILTER_MODE, DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ, DenoiseArg,
-    FilterArgs, FilterKaiserArgs, KaiserArgs, ModeArg, WaveletArgs,
+    AllanArgs, ArArgs, ConvertArgs, DEFAULT_FILTER_MODE, DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ,
+    DenoiseArg, FilterArgs, FilterKaiserArgs, KaiserArgs, ModeArg, WaveletArgs,
 };
 use crate::failure::Failure;
+use crate::fir_design::design;
 use anyhow::anyhow;
 use std::path::{Path, PathBuf};
-use thermonav::signal::decimate::check_anti_alias;
+use thermonav::signal::decimate::{check_anti_alias, decimation_factor};
+use thermonav::signal::kaiser::FirFilter;
 use thermonav::signal::wavelet::denoise::{DecompositionLevel, WaveletDenoise};
+use thermonav::signal::zero_phase::filter_for_mode;
+use thermonav::stoch::allan::{CiSettings, DeviationKind, TauGrid};
+use thermonav::stoch::ar::ArMethod;
+use thermonav::stoch::ar::order::{Criterion, Order};
+use thermonav_io::ImuOptions;
+use thermonav_io::ros::extract::TopicNames;
 
 /// What `filter` runs, resolved from its options.
 #[derive(Debug, Clone, Copy)]
@@ -32,6 +42,36 @@ pub struct KaiserPlan {
     pub decimate_to_hz: Option<f64>,
     /// Design rate, Hz (default: the file's nominal rate).
     pub fs_hz: Option<f64>,
+}
+
+impl KaiserPlan {
+    /// The filter designed at `--fs-hz`, else at `file_rate_hz`, for the zero-phase mode,
+    /// and the decimation factor (1 without `--decimate-to-hz`). A design or a decimation the
+    /// rate does not allow is a usage error: [`resolve_filter`] finds it before reading when
+    /// `--fs-hz` is given, the command after reading the file's rate otherwise.
+    pub fn design_at(&self, file_rate_hz: f64) -> Result<(FirFilter, usize), Failure> {
+        let (spec, designed) = design(self.fs_hz.unwrap_or(file_rate_hz), &self.kaiser)?;
+        let filter = filter_for_mode(designed, &spec, self.mode.into());
+        let factor = match self.decimate_to_hz {
+            None => 1,
+            Some(target_hz) => decimation_factor(filter.sample_rate_hz(), target_hz)
+                .map_err(|e| Failure::Usage(anyhow!("--decimate-to-hz {target_hz}: {e}")))?,
+        };
+        Ok((filter, factor))
+    }
+}
+
+/// The level of `w` for a record of `rows` samples read from `input`: a `--level` the
+/// record's length does not allow is a usage error (the one check of `filter` that needs the
+/// record), a record too short for one level a data error.
+pub fn wavelet_level(w: &WaveletDenoise, rows: usize, input: &Path) -> Result<usize, Failure> {
+    let level = (w.level_for(rows)).map_err(|e| anyhow!("{}: {rows} rows: {e}", input.display()));
+    match w.level {
+        DecompositionLevel::Fixed(l) => {
+            level.map_err(|e| Failure::Usage(e.context(format!("--level {l}"))))
+        }
+        DecompositionLevel::Max => level.map_err(Failure::Data),
+    }
 }
 
 /// OUT.json: the record written beside an output file.
@@ -70,6 +110,9 @@ fn kaiser_plan(args: &FilterArgs) -> Result<KaiserPlan, Failure> {
     )?;
     let plan = kaiser_settings(&args.kaiser)?;
     check_anti_alias_of(&plan)?;
+    if let Some(fs_hz) = plan.fs_hz {
+        plan.design_at(fs_hz)?;
+    }
     Ok(plan)
 }
 
@@ -204,4 +247,75 @@ pub fn check_convert(args: &ConvertArgs, tag: &Path) -> Result<(), Failure> {
         None => io,
     }
     .check()
+}
+
+/// What `allan` runs, resolved from its options.
+#[derive(Debug, Clone)]
+pub struct AllanSettings {
+    /// How the record is read: its mounting and rate.
+    pub options: ImuOptions,
+    /// Which topics of a bag.
+    pub topics: TopicNames,
+    /// The τ grid.
+    pub grid: TauGrid,
+    /// The confidence limits' settings (level checked by the library).
+    pub ci: CiSettings,
+    /// Which member of the Allan family.
+    pub kind: DeviationKind,
+}
+
+/// `allan`: the confidence level (the library's rule: strictly between 0 and 1) and the
+/// record's reading options.
+pub fn resolve_allan(args: &AllanArgs) -> Result<AllanSettings, Failure> {
+    let ci = CiSettings {
+        level: args.confidence,
+        ..CiSettings::default()
+    };
+    ci.validate()
+        .map_err(|e| Failure::Usage(anyhow!("--confidence {}: {e}", args.confidence)))?;
+    Ok(AllanSettings {
+        options: super::imu::options(&args.rotation, &args.rate)?,
+        topics: super::imu::topics(&args.topics),
+        grid: args.taus.into(),
+        ci,
+        kind: args.kind,
+    })
+}
+
+/// What `ar` fits, resolved from its options.
+#[derive(Debug, Clone, Copy)]
+pub struct ArSettings {
+    /// The order, checked by the library.
+    pub order: Order,
+    /// The estimator.
+    pub method: ArMethod,
+}
+
+/// `ar`: `--order` (a number, or `auto`: BIC up to `--max-order`) checked by the library.
+pub fn resolve_ar(args: &ArArgs) -> Result<ArSettings, Failure> {
+    let order = ar_order(&args.order, args.max_order)?;
+    order.validate().map_err(|e| match order {
+        Order::Fixed(_) => Failure::Usage(anyhow!("--order {}: {e}", args.order)),
+        Order::Auto { .. } => Failure::Usage(anyhow!("--max-order {}: {e}", args.max_order)),
+    })?;
+    Ok(ArSettings {
+        order,
+        method: args.method.into(),
+    })
+}
+
+/// The `--order` text as an order: `auto` (BIC over 1..=max_order) or an integer.
+fn ar_order(text: &str, max_order: usize) -> Result<Order, Failure> {
+    if text == "auto" {
+        return Ok(Order::Auto {
+            criterion: Criterion::Bic,
+            max_order,
+        });
+    }
+    text.parse().map(Order::Fixed).map_err(|_| {
+        Failure::Usage(anyhow!(
+            "--order {text:?}: expected an integer from 1 to {} (the fit costs samples × order²) or `auto`",
+            thermonav::stoch::ar::MAX_AR_ORDER
+        ))
+    })
 }

@@ -5,10 +5,12 @@
 //! shows in `--help`.
 
 pub mod analysis;
+pub mod bank;
 pub mod characterization;
 pub mod imu;
 pub mod navigation;
 pub mod paths;
+pub mod plot;
 pub mod simulation;
 
 use crate::failure::Failure;

@@ -14,6 +14,7 @@ use thermonav::imu::{Channel, Sensor};
 use thermonav::nav::sensor_model::GaussMarkovParameters;
 use thermonav::stoch::bank::{
     BankError, GaussMarkovSource, ModelBank, Placement, Selection, TemperatureEntry,
+    check_operating_temperature,
 };
 use thermonav::stoch::noise_terms::BIAS_INSTABILITY_FACTOR;
 
@@ -296,9 +297,7 @@ fn operating_temperature_c(
             }),
         };
     };
-    if !t.is_finite() {
-        return Err(BankError::Temperature { temperature_c: t }.into());
-    }
+    check_operating_temperature(t)?;
     if t < low_c || t > high_c {
         let nearest_c = temps[bank.nearest_index(t)];
         return Err(NoiseExportError::OutsideRange {

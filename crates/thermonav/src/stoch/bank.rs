@@ -366,6 +366,19 @@ pub enum BankError {
     },
 }
 
+/// Checks an operating temperature, °C, before any bank is read: a finite number (a bank's
+/// range is checked against the bank).
+///
+/// # Errors
+/// [`BankError::Temperature`] for a NaN or an infinity.
+pub fn check_operating_temperature(temperature_c: f64) -> Result<(), BankError> {
+    if temperature_c.is_finite() {
+        Ok(())
+    } else {
+        Err(BankError::Temperature { temperature_c })
+    }
+}
+
 impl ModelBank {
     /// A bank from entries in any order.
     ///
@@ -496,9 +509,7 @@ impl ModelBank {
         source: GaussMarkovSource,
         selection: Selection,
     ) -> Result<SelectedModel, BankError> {
-        if !temperature_c.is_finite() {
-            return Err(BankError::Temperature { temperature_c });
-        }
+        check_operating_temperature(temperature_c)?;
         self.check_layout()?;
         let placement = self.placement(temperature_c, selection);
         match placement {
@@ -615,6 +626,23 @@ fn lerp(a: f64, b: f64, weight: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_operating_temperature_must_be_finite() {
+        for ok in [-40.0, 0.0, 85.0, f64::MAX] {
+            assert_eq!(check_operating_temperature(ok), Ok(()));
+        }
+        for bad in [f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(
+                check_operating_temperature(bad),
+                Err(BankError::Temperature { temperature_c: bad })
+            );
+        }
+        assert!(matches!(
+            check_operating_temperature(f64::NAN),
+            Err(BankError::Temperature { temperature_c }) if temperature_c.is_nan()
+        ));
+    }
 
     fn gm(tc: f64, sigma: f64) -> GaussMarkovEstimate {
         GaussMarkovEstimate::Model {

@@ -40,6 +40,16 @@ pub struct CiSettings {
     pub quantile: ChiSquareQuantile,
 }
 
+impl CiSettings {
+    /// Checks the settings: the level must lie strictly between 0 and 1.
+    ///
+    /// # Errors
+    /// [`AllanError::InvalidConfidenceLevel`] for a level outside (0, 1) or NaN.
+    pub fn validate(&self) -> Result<(), AllanError> {
+        validate_level(self.level)
+    }
+}
+
 impl Default for CiSettings {
     fn default() -> Self {
         Self {
@@ -230,6 +240,34 @@ mod tests {
         assert!((as_printed - 1.0).abs() < 3e-3);
         let shift = (0.27601 - 0.27061) * t / denominator;
         assert!((upper_normal_quantile_stable32(q) - (as_printed - shift)).abs() < 1e-15);
+    }
+
+    // The open interval (0, 1) by its ends and a NaN: the rule stated in the docs.
+    #[test]
+    fn validate_accepts_only_levels_strictly_between_0_and_1() {
+        let with = |level| CiSettings {
+            level,
+            ..CiSettings::default()
+        };
+        for ok in [
+            f64::MIN_POSITIVE,
+            DEFAULT_CONFIDENCE,
+            0.95,
+            1.0 - f64::EPSILON,
+        ] {
+            assert_eq!(with(ok).validate(), Ok(()), "{ok}");
+        }
+        for bad in [0.0, 1.0, -0.5, 1.5, f64::INFINITY] {
+            assert_eq!(
+                with(bad).validate(),
+                Err(AllanError::InvalidConfidenceLevel(bad)),
+                "{bad}"
+            );
+        }
+        assert!(matches!(
+            with(f64::NAN).validate(),
+            Err(AllanError::InvalidConfidenceLevel(l)) if l.is_nan()
+        ));
     }
 
     #[test]

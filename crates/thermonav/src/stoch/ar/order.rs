@@ -2,7 +2,7 @@
 //! from the fitted model's `noise_variance` σ̂²_p and the N samples:
 //! AIC(p) = N ln σ̂²_p + 2p, BIC(p) = N ln σ̂²_p + p ln N, FPE(p) = σ̂²_p (N + p + 1)/(N − p − 1).
 
-use super::{ArError, ArMethod, ArModel, fit_ar};
+use super::{ArError, ArMethod, ArModel, MAX_AR_ORDER, fit_ar};
 
 /// An information criterion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,6 +27,25 @@ pub enum Order {
         /// Largest order tried.
         max_order: usize,
     },
+}
+
+impl Order {
+    /// Checks the order before any fit: a fixed order, or the largest order `Auto` tries, in
+    /// 1..=[`MAX_AR_ORDER`].
+    ///
+    /// # Errors
+    /// [`ArError::ZeroOrder`] for 0, [`ArError::OrderTooHigh`] above [`MAX_AR_ORDER`].
+    pub fn validate(&self) -> Result<(), ArError> {
+        let order = match *self {
+            Order::Fixed(p) => p,
+            Order::Auto { max_order, .. } => max_order,
+        };
+        match order {
+            0 => Err(ArError::ZeroOrder),
+            p if p > MAX_AR_ORDER => Err(ArError::OrderTooHigh { order: p }),
+            _ => Ok(()),
+        }
+    }
 }
 
 impl Criterion {
@@ -72,5 +91,35 @@ pub fn fit_ar_order(x: &[f64], order: Order, method: ArMethod) -> Result<ArModel
             }
             best.map(|(_, m)| m).ok_or(ArError::ZeroOrder)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // The documented range 1..=MAX_AR_ORDER by its ends, for a fixed order and for auto's
+    // largest order.
+    #[test]
+    fn validate_accepts_orders_from_1_to_the_maximum() {
+        let auto = |max_order| Order::Auto {
+            criterion: Criterion::Bic,
+            max_order,
+        };
+        for p in [1, 10, MAX_AR_ORDER] {
+            assert_eq!(Order::Fixed(p).validate(), Ok(()));
+            assert_eq!(auto(p).validate(), Ok(()));
+        }
+        assert_eq!(Order::Fixed(0).validate(), Err(ArError::ZeroOrder));
+        assert_eq!(auto(0).validate(), Err(ArError::ZeroOrder));
+        let above = MAX_AR_ORDER + 1;
+        assert_eq!(
+            Order::Fixed(above).validate(),
+            Err(ArError::OrderTooHigh { order: above })
+        );
+        assert_eq!(
+            auto(above).validate(),
+            Err(ArError::OrderTooHigh { order: above })
+        );
     }
 }
