@@ -8,8 +8,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use thermonav::imu::{Channel, Sensor};
 use thermonav::stoch::allan::{
-    AllanCurve, AllanIntervals, DEFAULT_CONFIDENCE, DeviationKind, TauGrid, confidence_intervals,
-    deviation, overlapping_adev,
+    AllanCurve, AllanIntervals, CiSettings, DEFAULT_CONFIDENCE, DeviationKind, TauGrid,
+    confidence_intervals, deviation, overlapping_adev,
 };
 use thermonav::stoch::noise_terms::fit_noise_terms;
 use thermonav_io::noise_terms::terms_json;
@@ -37,14 +37,13 @@ fn tau_grid(taus: Option<&Bound<'_, PyAny>>) -> PyResult<TauGrid> {
     Ok(TauGrid::Explicit(taus.extract::<Vec<usize>>()?))
 }
 
-/// Refuses a confidence level outside (0, 1).
+/// Refuses a confidence level the library refuses (outside (0, 1)).
 fn check_confidence(confidence: f64) -> PyResult<()> {
-    if !(confidence > 0.0 && confidence < 1.0) {
-        return Err(error(format!(
-            "confidence {confidence} must lie strictly between 0 and 1"
-        )));
-    }
-    Ok(())
+    let settings = CiSettings {
+        level: confidence,
+        ..CiSettings::default()
+    };
+    (settings.validate()).map_err(|e| error(format!("confidence {confidence}: {e}")))
 }
 
 /// The overlapping Allan curve of `y` and its confidence limits.

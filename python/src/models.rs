@@ -8,15 +8,12 @@ use crate::{error, to_python};
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
-use thermonav::stoch::ar::order::{Criterion, Order, fit_ar_order};
+use thermonav::stoch::ar::order::{Criterion, DEFAULT_AUTO_MAX_ORDER, Order, fit_ar_order};
 use thermonav::stoch::ar::{ArMethod, ArModel, MAX_AR_ORDER, fit_ar};
 use thermonav::stoch::bank::GaussMarkovEstimate;
 use thermonav::stoch::characterize::{acf_model, ar1_estimate, estimate};
 use thermonav::stoch::gauss_markov::{LagWindow, ar_based};
 use thermonav::stoch::noisy_gauss_markov::fit_noisy_gauss_markov;
-
-/// Largest order `order="auto"` tries unless told, as `thermonav ar --max-order`.
-const DEFAULT_MAX_ORDER: usize = 10;
 
 /// The estimator called `name` (yule-walker, burg, covariance, modified-covariance).
 fn method_of(name: &str) -> PyResult<ArMethod> {
@@ -27,24 +24,31 @@ fn method_of(name: &str) -> PyResult<ArMethod> {
     })
 }
 
-/// The order: an integer in 1..=[`MAX_AR_ORDER`], or "auto" (BIC up to `max_order`).
+/// The order: an integer, or "auto" (BIC up to `max_order`), in the range the library's
+/// [`Order::validate`] accepts.
 fn order_of(order: &Bound<'_, PyAny>, max_order: usize) -> PyResult<Order> {
     let auto = order.cast::<PyString>().map(|s| s.to_string());
-    match auto.as_deref() {
-        Ok("auto") if (1..=MAX_AR_ORDER).contains(&max_order) => Ok(Order::Auto {
-            criterion: Criterion::Bic,
-            max_order,
-        }),
-        Ok("auto") => Err(error(format!(
-            "max_order {max_order}: expected 1 to {MAX_AR_ORDER}"
-        ))),
+    let (order, option) = match auto.as_deref() {
+        Ok("auto") => (
+            Order::Auto {
+                criterion: Criterion::Bic,
+                max_order,
+            },
+            format!("max_order {max_order}"),
+        ),
         _ => match order.extract::<usize>() {
-            Ok(p) if (1..=MAX_AR_ORDER).contains(&p) => Ok(Order::Fixed(p)),
-            _ => Err(error(format!(
-                "order {order}: expected an integer from 1 to {MAX_AR_ORDER} (the fit costs samples × order²) or \"auto\""
-            ))),
+            Ok(p) => (Order::Fixed(p), format!("order {p}")),
+            Err(_) => {
+                return Err(error(format!(
+                    "order {order}: expected an integer from 1 to {MAX_AR_ORDER} (the fit costs samples × order²) or \"auto\""
+                )));
+            }
         },
-    }
+    };
+    order
+        .validate()
+        .map_err(|e| error(format!("{option}: {e}")))?;
+    Ok(order)
 }
 
 /// The AR-based Gauss-Markov model of an AR(1) fit (the paper's eqs 8-10), with its c₁, as
@@ -57,7 +61,7 @@ fn ar_based_model<'py>(py: Python<'py>, ar1: &ArModel, dt_s: f64) -> PyResult<Bo
 
 /// An AR model of `x` (module docs of the Python package: `thermonav.ar`).
 #[pyfunction]
-#[pyo3(signature = (x, method="burg", order=None, max_order=DEFAULT_MAX_ORDER, dt_s=None))]
+#[pyo3(signature = (x, method="burg", order=None, max_order=DEFAULT_AUTO_MAX_ORDER, dt_s=None))]
 pub fn ar<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,

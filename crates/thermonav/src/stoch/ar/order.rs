@@ -15,6 +15,10 @@ pub enum Criterion {
     Fpe,
 }
 
+/// Largest order automatic selection tries unless told (`thermonav ar --max-order`, Python's
+/// `max_order`).
+pub const DEFAULT_AUTO_MAX_ORDER: usize = 10;
+
 /// Fixed order or automatic selection.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Order {
