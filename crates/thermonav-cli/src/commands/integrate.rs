@@ -126,11 +126,17 @@ fn time_offset_row(t: &TimeOffsetEstimate) -> Row {
         Some(sd) => format!("sd {:.1} ms", 1e3 * sd),
         None => "no sd: the interval is open".to_string(),
     };
+    let applied = match t.applied {
+        true => format!("{:+.1} ms added to the IMU times", 1e3 * t.time_offset_s),
+        false => format!(
+            "not determined, not applied (the IMU times as given, 0 ms); the likelihood's maximum at {:+.1} ms",
+            1e3 * t.time_offset_s
+        ),
+    };
     (
         "IMU time offset",
         format!(
-            "{:+.1} ms added to the IMU times; 95 % likelihood-ratio interval {} to {} ms ({sd}; NIS dispersion {:.2}, drop {:.2}; {}; {} runs over ±{:.0} ms)",
-            1e3 * t.time_offset_s,
+            "{applied}; 95 % likelihood-ratio interval {} to {} ms ({sd}; NIS dispersion {:.2}, drop {:.2}; {}; {} runs over ±{:.0} ms)",
             end(t.lower),
             end(t.upper),
             t.dispersion,

@@ -56,6 +56,7 @@
 //! Gaussian sum alike).
 
 use super::run::{NoiseModel, RunError, RunSettings, Start, prepare};
+use super::run_options::{RunOptionError, positive};
 use super::solution::InnovationRecord;
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
@@ -81,6 +82,35 @@ impl Default for TimeOffsetSearch {
             bracket_s: 0.5,
             tolerance_s: 0.002,
             grid_points: 21,
+        }
+    }
+}
+
+/// The widest half-bracket of the search, s: a larger offset is a clock-scale error, not a
+/// delay.
+pub const MAX_BRACKET_S: f64 = 10.0;
+
+impl TimeOffsetSearch {
+    /// The search over ±`bracket_s` (positive, at most [`MAX_BRACKET_S`]), its other
+    /// settings the defaults: what `integrate`, `evaluate` and the Python package search with.
+    ///
+    /// # Errors
+    /// A bracket that is not positive or beyond [`MAX_BRACKET_S`], named
+    /// `time_offset_bracket_s`.
+    pub fn with_bracket(bracket_s: f64) -> Result<Self, RunOptionError> {
+        const NAME: &str = "time_offset_bracket_s";
+        match positive(NAME, bracket_s)? {
+            b if b <= MAX_BRACKET_S => Ok(Self {
+                bracket_s: b,
+                ..Self::default()
+            }),
+            b => Err(RunOptionError {
+                name: NAME,
+                value: b.to_string(),
+                expected: format!(
+                    "beyond {MAX_BRACKET_S} s: a larger offset is a clock-scale error, not a delay"
+                ),
+            }),
         }
     }
 }
@@ -161,6 +191,13 @@ pub struct TimeOffsetEstimate {
     pub observability: Observability,
     /// What the user should know when they do not (also printed by `integrate`).
     pub warning: Option<String>,
+    /// Whether the run applies the estimate: only when the data determine the offset
+    /// ([`Observability::Resolved`]). Otherwise the estimate and its interval are for
+    /// information, and the run keeps the IMU times as given.
+    pub applied: bool,
+    /// The offset the run adds to the IMU times, s: the estimate when [`Self::applied`], else
+    /// 0 (the times as given).
+    pub applied_offset_s: f64,
     /// The innovations' dispersion φ = mean NIS per degree of freedom at the estimate.
     pub dispersion: f64,
     /// The profile's roughness r from run to run, natural log ([`roughness`]).
@@ -315,13 +352,16 @@ pub fn profile_time_offset<E>(
     let lower = interval_end(&mut profile, at, &best, floor, bracket_s[0], search)?;
     let upper = interval_end(&mut profile, at, &best, floor, bracket_s[1], search)?;
     let observability = observability_of(&profile.points, [lower, upper], floor);
+    let applied = observability == Observability::Resolved;
     Ok(TimeOffsetEstimate {
         time_offset_s: best.offset_s,
         lower,
         upper,
         time_offset_sd_s: equivalent_sd_s(lower, upper),
         observability,
-        warning: warning_of(observability, [lower, upper]),
+        warning: warning_of(observability, [lower, upper], best.offset_s),
+        applied,
+        applied_offset_s: if applied { best.offset_s } else { 0.0 },
         dispersion: best.nis_per_dof,
         roughness,
         likelihood_drop,
@@ -516,10 +556,11 @@ fn equivalent_sd_s(lower: IntervalEnd, upper: IntervalEnd) -> Option<f64> {
         .then(|| (upper.offset_s() - lower.offset_s()) / (2.0 * 1.959_963_984_540_054))
 }
 
-/// The warning for an offset the data do not determine.
-fn warning_of(observability: Observability, ends: [IntervalEnd; 2]) -> Option<String> {
+/// The warning for an offset the data do not determine, saying that the run does not apply
+/// the maximum at `best_s`.
+fn warning_of(observability: Observability, ends: [IntervalEnd; 2], best_s: f64) -> Option<String> {
     let [lo, hi] = ends.map(|e| 1e3 * e.offset_s());
-    match observability {
+    let why = match observability {
         Observability::Resolved => None,
         Observability::OpenOnOneSide => Some(format!(
             "the IMU-GNSS time offset's 95 % interval reaches the bracket's end ({lo:+.0} to {hi:+.0} ms, open on one side): widen --time-offset-bracket-s or treat the offset as unbounded on that side"
@@ -530,12 +571,27 @@ fn warning_of(observability: Observability, ends: [IntervalEnd; 2]) -> Option<St
         Observability::Multimodal => Some(format!(
             "the IMU-GNSS time offset is not observable from these data: the likelihood has more than one peak within the 95 % threshold over the bracket (the 95 % set spans {lo:+.0} to {hi:+.0} ms). Set the offset from the hardware instead"
         )),
-    }
+    }?;
+    Some(format!(
+        "{why}. Not applied: the run keeps the IMU times as given (offset 0 ms), not the likelihood's maximum at {:+.0} ms",
+        1e3 * best_s
+    ))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bracket_is_positive_and_at_most_ten_seconds() {
+        let search = TimeOffsetSearch::with_bracket(0.2).unwrap();
+        assert_eq!(search.bracket_s, 0.2);
+        assert_eq!(search.grid_points, TimeOffsetSearch::default().grid_points);
+        for bad in [0.0, -1.0, 10.5, f64::NAN] {
+            let e = TimeOffsetSearch::with_bracket(bad).unwrap_err();
+            assert_eq!(e.name, "time_offset_bracket_s", "{bad}");
+        }
+    }
 
     /// A Gaussian log-likelihood of mean `mean_s` and sd `sd_s`, with the dispersion `phi`.
     fn gaussian(mean_s: f64, sd_s: f64, phi: f64) -> impl FnMut(f64) -> Result<ProfilePoint, ()> {
@@ -574,6 +630,9 @@ mod tests {
         assert!((e.time_offset_sd_s.unwrap() - 0.02).abs() < 1e-3);
         assert_eq!(e.observability, Observability::Resolved);
         assert_eq!(e.warning, None);
+        // Determined: the run applies the estimate.
+        assert!(e.applied);
+        assert_eq!(e.applied_offset_s, e.time_offset_s);
         // 21 grid runs, about 10 golden-section runs and about 5 per end.
         assert!((30..=50).contains(&e.runs), "{}", e.runs);
         assert_eq!(e.runs, e.profile.len());
@@ -607,7 +666,13 @@ mod tests {
         assert_eq!(e.upper, IntervalEnd::AtBracketEnd { offset_s: 0.5 });
         assert_eq!(e.observability, Observability::FlatOverTheBracket);
         assert_eq!(e.time_offset_sd_s, None);
-        assert!(e.warning.unwrap().contains("not observable"));
+        assert!(e.warning.as_ref().unwrap().contains("not observable"));
+        // Not determined: the run keeps the times as given, and says so; the maximum (on the
+        // Gaussian's side of 0.1 s, so not 0) stays in the estimate for information.
+        assert!(!e.applied);
+        assert_eq!(e.applied_offset_s, 0.0);
+        assert!(e.time_offset_s > 0.05, "{}", e.time_offset_s);
+        assert!(e.warning.unwrap().contains("Not applied"));
     }
 
     // A maximum near one end (μ = 0.45 s, σ = 0.05 s): the interval's upper side passes the
@@ -623,7 +688,8 @@ mod tests {
             e.lower
         );
         assert_eq!(e.observability, Observability::OpenOnOneSide);
-        assert!(e.warning.is_some());
+        assert!(e.warning.unwrap().contains("Not applied"));
+        assert!(!e.applied && e.applied_offset_s == 0.0);
     }
 
     // Two equal peaks 0.6 s apart, each narrow (σ = 20 ms): the second peak's grid points
@@ -641,6 +707,7 @@ mod tests {
         let e = profile_time_offset(&mut at, &TimeOffsetSearch::default()).unwrap();
         assert_eq!(e.observability, Observability::Multimodal);
         assert!(e.warning.unwrap().contains("more than one peak"));
+        assert!(!e.applied && e.applied_offset_s == 0.0);
     }
 
     // Oracle: a ripple of ±a alternating from grid point to grid point has second
