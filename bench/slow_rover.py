@@ -153,7 +153,11 @@ def main():
         bias_inside = sum(abs(r["bgz_estimate_deg_h"] - r["bgz_truth_deg_h"]) <= 3 * r["bgz_sd_deg_h"] for r in results)
         print(f"time offset: the 95 % interval covers the simulated offset in {covered} of {len(results)} seeds "
               f"({sum(r['warned'] for r in results)} runs warned; mean {sum(r['runs'] for r in results) / len(results):.0f} filter runs each)")
+        kept = sum(r["heading_within_3sd"] >= 0.95 for r in results)
+        sd_small = sum(r["heading_sd_at_20m_deg"] is not None and r["heading_sd_at_20m_deg"] < 10.0 for r in results)
         print(f"heading: epochs inside 3 sd, median over seeds {100 * sorted(r['heading_within_3sd'] for r in results)[len(results) // 2]:.1f} %; "
+              f"95 % or more of the epochs inside 3 sd in {kept} of {len(results)} seeds; "
+              f"heading sd below 10 deg at 20 m travelled in {sd_small} of {len(results)}; "
               f"z-gyro bias within 3 sd of the truth at the end in {bias_inside} of {len(results)} seeds")
         if a.out:
             (work / "slow_rover.json").write_text(json.dumps(results, indent=1))
