@@ -691,8 +691,9 @@ mod tests {
     // Issue 38 row 14 (seeds 6, 18 and 20 of bench/slow_rover.py): 12 s at 0.4 m/s through a
     // 90° turn, fixes stated at 0.7 m. The arc (radius v/ω = 3.06 m) bows its chord by
     // R (1 − cos 45°) = 0.90 m, well inside the 4 sds (2.8 m) the residual check allows, but its
-    // halves' courses differ by 45°, 3 sds of that difference being about 14°: it is bent.
-    // The same 12 s driven straight is a baseline.
+    // halves' courses differ by 45°, 3 sds of that difference being 23° (each half's course sd
+    // σ/(v √Σ(t − t̄)²) is 5.4° over its 6 s): it is bent. The same 12 s driven straight is a
+    // baseline.
     #[test]
     fn a_turn_inside_a_long_noisy_stretch_is_no_baseline() {
         let (speed, rate, sd) = (0.4, 90f64.to_radians() / 12.0, 0.7);
