@@ -13,7 +13,7 @@ use crate::fir_design::design;
 use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::signal::decimate::{check_anti_alias, decimation_factor};
-use thermonav::signal::kaiser::FirFilter;
+use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
 use thermonav::signal::wavelet::denoise::{DecompositionLevel, WaveletDenoise};
 use thermonav::signal::zero_phase::filter_for_mode;
 use thermonav::stoch::allan::{CiSettings, DeviationKind, TauGrid};
@@ -109,6 +109,9 @@ fn kaiser_plan(args: &FilterArgs) -> Result<KaiserPlan, Failure> {
         &wavelet_options(&args.wavelet),
     )?;
     let plan = kaiser_settings(&args.kaiser)?;
+    let k = &plan.kaiser;
+    KaiserSpec::check_band(k.cutoff_hz, k.transition_hz, k.ripple_db)
+        .map_err(|e| Failure::Usage(e.into()))?;
     check_anti_alias_of(&plan)?;
     if let Some(fs_hz) = plan.fs_hz {
         plan.design_at(fs_hz)?;

@@ -76,6 +76,8 @@ fn filter_refuses_bad_options_before_reading() {
     for (extra, option) in cases {
         refused_before_reading(d, &filter(extra), option);
     }
+    // Without --fs-hz, the band's checks that need no rate: a negative cut-off.
+    refused_before_reading(d, &filter(&["--cutoff-hz=-5"]), "cut-off -5 Hz");
     // A cut-off above the --fs-hz Nyquist frequency: the design's own message.
     let args = filter(&["--cutoff-hz", "60", "--fs-hz", "100"]);
     refused_before_reading(d, &args, "60");

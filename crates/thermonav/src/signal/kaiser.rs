@@ -34,22 +34,19 @@ pub const MIN_RIPPLE_DB: f64 = 8.0;
 pub const MAX_TAPS: usize = 2_000_000;
 
 impl KaiserSpec {
-    /// A specification: sampling rate, pass-band edge, transition width (all Hz) and ripple /
-    /// attenuation (dB).
+    /// The checks of [`KaiserSpec::new`] that need no sampling rate, for a specification whose
+    /// rate is known later: cut-off and transition width finite and positive, ripple finite,
+    /// positive and at least [`MIN_RIPPLE_DB`].
     ///
     /// # Errors
-    /// [`SignalError::Spec`] when a value is not finite and positive, the cut-off is at or above
-    /// the Nyquist frequency, the transition band extends past Nyquist, or the ripple is below
-    /// 8 dB (outside Kaiser's formula).
-    pub fn new(
-        sample_rate_hz: f64,
+    /// [`SignalError::Spec`] naming the value, as [`KaiserSpec::new`] gives it.
+    pub fn check_band(
         cutoff_hz: f64,
         transition_width_hz: f64,
         ripple_db: f64,
-    ) -> Result<Self, SignalError> {
+    ) -> Result<(), SignalError> {
         let spec = |message: String| Err(SignalError::Spec { message });
         for (name, value) in [
-            ("sample rate", sample_rate_hz),
             ("cut-off", cutoff_hz),
             ("transition width", transition_width_hz),
         ] {
@@ -65,6 +62,29 @@ impl KaiserSpec {
                 "ripple {ripple_db} dB is below {MIN_RIPPLE_DB} dB, where Kaiser's formula does not apply"
             ));
         }
+        Ok(())
+    }
+
+    /// A specification: sampling rate, pass-band edge, transition width (all Hz) and ripple /
+    /// attenuation (dB).
+    ///
+    /// # Errors
+    /// [`SignalError::Spec`] when a value is not finite and positive, the cut-off is at or above
+    /// the Nyquist frequency, the transition band extends past Nyquist, or the ripple is below
+    /// 8 dB (outside Kaiser's formula).
+    pub fn new(
+        sample_rate_hz: f64,
+        cutoff_hz: f64,
+        transition_width_hz: f64,
+        ripple_db: f64,
+    ) -> Result<Self, SignalError> {
+        let spec = |message: String| Err(SignalError::Spec { message });
+        if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
+            return spec(format!(
+                "sample rate {sample_rate_hz} Hz must be finite and positive"
+            ));
+        }
+        Self::check_band(cutoff_hz, transition_width_hz, ripple_db)?;
         let nyquist_hz = sample_rate_hz / 2.0;
         if cutoff_hz >= nyquist_hz {
             return spec(format!(
@@ -283,5 +303,26 @@ mod too_long_tests {
         let message = design_kaiser_lowpass(&spec).unwrap_err().to_string();
         assert!(message.contains("about 7.251e202 taps"), "{message}");
         assert!(!message.contains("18446744073709551615"), "{message}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // check_band is new's verdict where the rate does not bind (1 MHz, far above every band
+    // here): the same values refused with the same message, the others accepted.
+    #[test]
+    fn check_band_refuses_what_new_refuses_without_a_rate() {
+        let values = [-1.0, 0.0, 0.5, 7.9, 8.0, 60.0, f64::NAN, f64::INFINITY];
+        for cutoff in values {
+            for transition in values {
+                for ripple in values {
+                    let band = KaiserSpec::check_band(cutoff, transition, ripple);
+                    let full = KaiserSpec::new(1e6, cutoff, transition, ripple).map(|_| ());
+                    assert_eq!(band, full, "{cutoff} {transition} {ripple}");
+                }
+            }
+        }
     }
 }
