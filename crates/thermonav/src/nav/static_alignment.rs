@@ -39,7 +39,7 @@ pub const STILL_RADIUS_SD: f64 = 4.0 * std::f64::consts::SQRT_2;
 pub const STILL_RADIUS_MIN_M: f64 = 0.05;
 
 /// Whether the start is levelled, and the gyro biases taken, from the platform at rest.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StaticAlignment {
     /// When the record starts with the platform still for [`MIN_STILL_S`] or more.
@@ -81,6 +81,9 @@ struct Window {
     dt_s: f64,
     angle: [f64; 3],
     velocity: [f64; 3],
+    /// Σ Δθ/dt and Σ Δv/dt of the samples (unweighted, for their scatter).
+    rate_sums: [f64; 3],
+    force_sums: [f64; 3],
     /// Σ (Δθ/dt)² and Σ (Δv/dt)² of the samples.
     rate_squares: [f64; 3],
     force_squares: [f64; 3],
@@ -92,10 +95,13 @@ impl Window {
         let dt_s = i.dt_s();
         let (a, v) = (i.delta_angle.to_array(), i.delta_velocity.to_array());
         for k in 0..3 {
+            let (rate, force) = (a[k] / dt_s, v[k] / dt_s);
             self.angle[k] += a[k];
             self.velocity[k] += v[k];
-            self.rate_squares[k] += (a[k] / dt_s).powi(2);
-            self.force_squares[k] += (v[k] / dt_s).powi(2);
+            self.rate_sums[k] += rate;
+            self.force_sums[k] += force;
+            self.rate_squares[k] += rate * rate;
+            self.force_squares[k] += force * force;
         }
         self.dt_s += dt_s;
         self.samples += 1;
@@ -110,22 +116,27 @@ impl Window {
         self.velocity.map(|v| v / self.dt_s)
     }
 
-    /// The standard error of a mean from the window's own samples: sample sd / √n (the
-    /// samples' mean taken as the time-weighted one, which they equal on a regular clock).
-    fn se_within(&self, mean: [f64; 3], squares: [f64; 3]) -> [f64; 3] {
+    /// The standard error of a mean from the window's own samples: sample sd / √n, the scatter
+    /// taken about the samples' own (unweighted) mean. About the time-weighted mean instead, a
+    /// jittered clock moves the two means apart by a little, and Σx²/n − x̄² then errs by about
+    /// 2 |x̄| times that: with gravity's 9.8 m/s² on an axis, as much as the variance itself
+    /// (issue 38 row 14: a still rover's second window "departed" by 5.8 of an sd 2.5 times
+    /// too small, and its 31 s still start was cut to 1 s).
+    fn se_within(&self, sums: [f64; 3], squares: [f64; 3]) -> [f64; 3] {
         let n = self.samples as f64;
         std::array::from_fn(|k| {
-            let variance = (squares[k] / n - mean[k] * mean[k]).max(0.0) * n / (n - 1.0).max(1.0);
+            let mean = sums[k] / n;
+            let variance = (squares[k] / n - mean * mean).max(0.0) * n / (n - 1.0).max(1.0);
             (variance / n).sqrt()
         })
     }
 
     fn rate_se(&self) -> [f64; 3] {
-        self.se_within(self.mean_rate(), self.rate_squares)
+        self.se_within(self.rate_sums, self.rate_squares)
     }
 
     fn force_se(&self) -> [f64; 3] {
-        self.se_within(self.mean_force(), self.force_squares)
+        self.se_within(self.force_sums, self.force_squares)
     }
 }
 
@@ -567,6 +578,32 @@ mod tests {
             pitch.to_degrees()
         );
         assert!((yaw - 1.0).abs() < 1e-12);
+    }
+
+    // Oracle: a two-pass sample sd. 200 samples on a jittered clock (4.9 and 5.1 ms in turn)
+    // of a specific force −9.8 ± 0.027 m/s², the + with the longer intervals: the samples' sd
+    // is 0.027 · √(200/199) and the standard error that over √200. (Their time-weighted mean
+    // is 5.4e-4 m/s² above the plain one, which about the weighted mean would put 2 · 9.8 ·
+    // 5.4e-4 = 0.011 m/s² into a variance of 7.3e-4: issue 38 row 14's cut still start.)
+    #[test]
+    fn a_jittered_clock_leaves_the_window_standard_error_alone() {
+        let mut window = Window::default();
+        let mut values = Vec::new();
+        let mut t = Timestamp::from_nanos(0);
+        for k in 0..200 {
+            let (dt_ns, value) = match k % 2 {
+                0 => (5_100_000, -9.8 + 0.027),
+                _ => (4_900_000, -9.8 - 0.027),
+            };
+            let dt = Duration::from_nanos(dt_ns);
+            t = t + dt;
+            window.add(&Increment::from_rates(t, dt, [0.0; 3], [0.0, 0.0, value]));
+            values.push(value);
+        }
+        let mean = values.iter().sum::<f64>() / 200.0;
+        let sd = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / 199.0).sqrt();
+        let se = window.force_se()[2];
+        assert!((se / (sd / 200f64.sqrt()) - 1.0).abs() < 1e-6, "{se}");
     }
 
     // A platform that moves from the first fix has no still start, and neither has one whose
