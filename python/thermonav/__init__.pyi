@@ -123,10 +123,17 @@ class GmwmFit(Record):
     ``wic`` (its wavelet information criterion); ``wavelet_variance`` with NumPy arrays
     ``scale_s`` (tau_j = 2^j / rate, s), ``variance_unit2``, ``ci_low_unit2``, ``ci_high_unit2``
     (the Haar wavelet variance and its 95 % chi-square limits, unit squared) and
-    ``implied_unit2`` (the selected model's); ``parameters``: name (unit in it, e.g.
-    ``white_noise_density_rad_per_s_sqrt_s``, ``gm1_correlation_time_s``,
-    ``gm1_sigma_rad_per_s``) to ``value``, ``ci_low``, ``ci_high`` (95 % parametric bootstrap);
-    ``candidates``: ``model``, ``wic``, ``objective``, best first.
+    ``implied_unit2`` (the fitted model's, without the absent processes);
+    ``reported_model`` (the selected model with the processes the record does not resolve left
+    out and the Gauss-Markov processes at its edges merged); ``parameters``: the reported
+    model's, name (unit in it, e.g. ``white_noise_density_rad_per_s_sqrt_s``,
+    ``gm1_correlation_time_s``, ``gm1_sigma_rad_per_s``) to ``value``, ``ci_low``, ``ci_high``
+    (95 % parametric bootstrap); ``merged``: ``process``, ``fitted_in``, ``into``
+    ("white_noise" or "random_walk"), ``correlation_time_s``,
+    ``correlation_time_sample_periods``, its sigma and density, ``reason``; ``absent``:
+    ``process``, ``fitted_in``, ``objective_rise``, ``degrees_of_freedom``, ``p_value``,
+    ``level``, ``reason``; ``candidates``: ``model``, ``wic``, ``objective``, best first;
+    ``not_fitted``: ``model``, ``reason``.
     """
     sample_rate_hz: float
     model: str
@@ -135,9 +142,13 @@ class GmwmFit(Record):
     unit: str
     selected_model: str
     wic: float
+    reported_model: str
     wavelet_variance: Record
     parameters: dict[str, Record]
+    merged: list[Record]
+    absent: list[Record]
     candidates: list[Record]
+    not_fitted: list[Record]
 
 class Integration(Record):
     """A GNSS/INS run: the keys of ``thermonav integrate --json`` (without the file names) and
@@ -405,6 +416,7 @@ def evaluate(
     bank: Path | None = None,
     profile: Path | None = None,
     *,
+    model_temperature_c: float | None = None,
     operating_temperature_c: float | None = None,
     model: GaussMarkovSource | None = None,
     filter: Literal["ekf", "ukf", "both"] = "both",
@@ -413,6 +425,7 @@ def evaluate(
     seed: int = 2009,
     lever_arm_m: Triple | None = None,
     baseline: Triple | None = None,
+    initial_from: Path | None = None,
     covariance_rate_hz: float | None = None,
     velocity_sd_m_s: float | Sequence[float] | None = None,
     gate_probability: float | None = None,
@@ -438,7 +451,11 @@ def evaluate(
     ``velocity_sd_m_s``, ``gate_probability``, ``gate_window``, ``covariance_rate_hz``,
     ``velocity``, ``heading``, ``lever_arm_m``, ``baseline``, ``max_imu_gap_s``,
     ``bias_hypotheses``, ``model``), reported resolved as ``run_options``; a keyword left at
-    ``None`` takes the library's default (``outages``: spread:8,100).
+    ``None`` takes the library's default (``outages``: spread:8,100). The candidates that
+    stand at one temperature (interpolated, compensated entry, profile) stand at
+    ``model_temperature_c`` or ``operating_temperature_c`` (one of them; default the IMU file's
+    mean temp_c); ``initial_from``: every run starts from this trajectory CSV instead of the
+    reference, as ``integrate``'s.
     """
 
 class Bank:

@@ -19,15 +19,21 @@ use thermonav_io::{Strictness, read_gnss_file, read_imu_file_with};
 /// Runs the filter on the files of `settings`, writes the outputs and returns the summary.
 pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     let noise = load_noise(&settings.noise, settings.thermal_from.as_deref())?;
+    let notes = noise.notes_on_record(&settings.imu, &settings.imu_options);
+    for note in &notes {
+        eprintln!("note: {} {}", settings.imu.display(), note.note);
+    }
     // The offset search runs the filter many times on the record read once.
     let survey = match settings.in_memory || settings.time_offset_search.is_some() {
         true => None,
         false => Some(crate::integration_stream::survey(settings)?),
     };
-    match survey.filter(|s| is_streamable(noise.model(), &settings.run, s)) {
+    let mut summary = match survey.filter(|s| is_streamable(noise.model(), &settings.run, s)) {
         Some(survey) => crate::integration_stream::integrate(settings, &noise, &survey),
         None => integrate_in_memory(settings, &noise),
-    }
+    }?;
+    summary.record_notes = notes;
+    Ok(summary)
 }
 
 /// [`integrate`] with the record read whole and the solution kept until it is written.
@@ -54,7 +60,7 @@ fn integrate_in_memory(
         None => None,
     };
     let series = match &time_offset {
-        Some(estimate) => shifted(&series, estimate.time_offset_s),
+        Some(estimate) => shifted(&series, estimate.applied_offset_s),
         None => series,
     };
     let prepared = prepare(series, gnss, noise.model(), start, &settings.run)

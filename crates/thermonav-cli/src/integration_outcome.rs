@@ -4,6 +4,7 @@
 
 use crate::failure::{Classify, Failure};
 use crate::inputs::{no_temperature, prefix};
+use crate::loaded_noise::RecordNote;
 use crate::settings::navigation::{IntegrateSettings, NoiseSource, SolutionFiles};
 use anyhow::anyhow;
 use serde::Serialize;
@@ -30,6 +31,9 @@ pub struct Summary {
     /// `--thermal-from`: the bank whose thermal calibration compensated the record.
     #[serde(skip_serializing_if = "Option::is_none")]
     thermal_from: Option<PathBuf>,
+    /// How the bank's records differ from the IMU record (its sample rate beyond the
+    /// tolerance): notes, printed as the run starts; empty when nothing differs.
+    pub record_notes: Vec<RecordNote>,
     /// How the IMU record was read: `streamed` (bounded memory, the files written as the
     /// filter went) or `whole` (a bank's thermal compensation, or `--in-memory`).
     pub imu_reading: ImuReading,
@@ -72,6 +76,7 @@ pub(crate) fn summarize(
         bank,
         profile,
         thermal_from: settings.thermal_from.clone(),
+        record_notes: vec![],
         imu_reading,
         time_offset: None,
         run_options: settings.run.options(),

@@ -6,12 +6,13 @@ use crate::report::print_json;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use thermonav::imu::{Channel, ImuSeries};
+use thermonav::imu::{Channel, ImuSeries, Sensor};
 use thermonav::stoch::gmwm::{BootstrapSettings, ModelSpec};
 use thermonav_io::gmwm::{
-    CandidateJson, GmwmChannelJson as ChannelJson, ParameterJson, WaveletVarianceJson,
-    candidates_of, gmwm_channel_json, interval_method,
+    AbsentJson, CandidateJson, GmwmChannelJson as ChannelJson, MergedJson, ParameterJson,
+    WaveletVarianceJson, candidates_of, gmwm_channel_json, interval_method,
 };
+use thermonav_io::noise_terms::term_units;
 
 #[derive(Debug, Serialize)]
 struct GmwmJson {
@@ -109,9 +110,22 @@ fn print_text(doc: &GmwmJson) {
 fn print_channel(name: &str, c: &ChannelJson) {
     let s = &c.selected;
     let title = format!("{name} [{}]  model {}", s.unit, s.selected_model);
-    println!("\n{title}  WIC {:.3}", s.wic);
+    let reported = match c.reported_model == s.selected_model {
+        true => String::new(),
+        false => format!("  reported as {}", c.reported_model),
+    };
+    println!("\n{title}  WIC {:.3}{reported}", s.wic);
     print_wavelet_variance(&c.wavelet_variance);
     print_parameters(&c.parameters);
+    let sensor = Channel::ALL
+        .iter()
+        .find(|ch| ch.name() == name)
+        .map(|ch| ch.sensor());
+    if let Some(line) = sensor.and_then(|s| white_noise_line(s, &c.parameters)) {
+        println!("{line}");
+    }
+    c.merged.iter().for_each(|m| println!("{}", merged_line(m)));
+    c.absent.iter().for_each(|a| println!("{}", absent_line(a)));
     if c.candidates.len() > 1 {
         print_candidates(&c.candidates);
     }
@@ -147,6 +161,46 @@ fn print_parameters(parameters: &BTreeMap<String, ParameterJson>) {
         };
         println!("{key:>40} {} {limits}", cells(&[p.value]));
     }
+}
+
+/// A merged process in one line: what it was and where it went, values with their units.
+fn merged_line(m: &MergedJson) -> String {
+    let values: Vec<String> = (m.values.iter())
+        .map(|(key, value)| format!("{key} {value:.4e}"))
+        .collect();
+    let into = serde_json::to_value(m.into).map_or_else(|_| String::new(), |v| v.to_string());
+    format!(
+        "merged into the {}: {} of {} (Tc {:.4e} s = {:.2} sample periods, {}): {}",
+        into.trim_matches('"').replace('_', " "),
+        m.process,
+        m.fitted_in,
+        m.correlation_time_s,
+        m.correlation_time_sample_periods,
+        values.join(", "),
+        m.reason
+    )
+}
+
+/// The reported white-noise density in the unit navigation engineers quote (deg/sqrt(h),
+/// m/s/sqrt(h)), as the Allan report gives it.
+fn white_noise_line(
+    sensor: Sensor,
+    parameters: &BTreeMap<String, ParameterJson>,
+) -> Option<String> {
+    let (_, white) = parameters
+        .iter()
+        .find(|(key, _)| key.starts_with("white_noise_density"))?;
+    let (si, edge, to_edge) = term_units(sensor)[1];
+    Some(format!(
+        "white noise N {:.4e} {si} = {:.4} {edge}",
+        white.value,
+        to_edge(white.value)
+    ))
+}
+
+/// An absent process in one line.
+fn absent_line(a: &AbsentJson) -> String {
+    format!("absent: {}: {}", a.process, a.reason)
 }
 
 fn print_wavelet_variance(w: &WaveletVarianceJson) {

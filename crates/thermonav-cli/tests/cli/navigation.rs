@@ -55,7 +55,7 @@ pub(crate) fn inputs(dir: &Path) -> (PathBuf, PathBuf) {
 }
 
 /// `integrate` on the vessel run with the bank's 25 °C model, writing `out`, with `extra`.
-fn integrate_args<'a>(
+pub(crate) fn integrate_args<'a>(
     vessel: &'a Path,
     bank: &'a Path,
     out: &'a Path,

@@ -28,7 +28,10 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::fit::GmwmFit;
-use super::model::{Parameter, physical_parameters};
+use super::model::{ModelSpec, Parameter, Term, physical_parameters};
+use super::resolution::{
+    MergedInto, MergedProcess, merge_plan, merged_processes, merged_terms, spec_of,
+};
 use super::simulate::simulate;
 use super::{GmwmError, fit_gmwm};
 use crate::rng::named_rng;
@@ -106,6 +109,14 @@ pub struct GmwmEstimate {
     /// Physical parameters with parametric-bootstrap intervals (robust Wald, log scale; none
     /// without a bootstrap).
     pub parameters: Vec<ParameterEstimate>,
+    /// The composite as reported: the Gauss-Markov processes of at most
+    /// [`super::WHITE_MERGE_SAMPLE_PERIODS`] merged into the white noise and those beyond the
+    /// record into the random walk ([`super::MergedProcess`]).
+    pub reported_model: ModelSpec,
+    /// Its physical parameters, the intervals from the replicates merged the same way.
+    pub reported: Vec<ParameterEstimate>,
+    /// The processes merged.
+    pub merged: Vec<MergedProcess>,
     /// The Wavelet Information Criterion (dimensionless; smaller is better): the objective
     /// plus the bootstrap optimism, or plus 2p without a bootstrap.
     pub wic: f64,
@@ -129,8 +140,14 @@ pub fn estimate_gmwm(
 ) -> Result<GmwmEstimate, GmwmError> {
     settings.validate()?;
     let fit = fit_gmwm(wv, model)?;
+    let plan = merge_plan(&fit.terms, wv.n_samples);
     if settings.replicates == 0 {
-        return Ok(estimate_without_bootstrap(fit, settings.confidence));
+        return Ok(estimate_without_bootstrap(
+            fit,
+            &plan,
+            wv,
+            settings.confidence,
+        ));
     }
     let replicates: Vec<Replicate> = (0..settings.replicates)
         .into_par_iter()
@@ -144,8 +161,13 @@ pub fn estimate_gmwm(
         });
     }
     let optimism = optimism(&fit.moment_sd, &replicates);
+    let each = |terms: &[Term]| terms.to_vec();
+    let reported = |terms: &[Term]| merged_terms(terms, &plan);
     let estimate = GmwmEstimate {
-        parameters: intervals(&fit, &replicates, settings.confidence),
+        parameters: intervals(&fit, &replicates, settings.confidence, each),
+        reported_model: spec_of(&reported(&fit.terms)),
+        reported: intervals(&fit, &replicates, settings.confidence, reported),
+        merged: merged_processes(&fit.terms, &plan, fit.dt_s, wv.n_samples),
         wic: fit.objective + optimism,
         optimism,
         replicates: replicates.len(),
@@ -159,19 +181,30 @@ pub fn estimate_gmwm(
 /// The fit without intervals, its WIC the asymptotic objective + 2p of a correctly specified
 /// model (see [`rank_by_asymptotic_wic`]): what `replicates = 0` asks for, in a fraction of a
 /// second where the bootstrap refits the whole record `replicates` times.
-fn estimate_without_bootstrap(fit: GmwmFit, confidence: f64) -> GmwmEstimate {
-    let parameters = physical_parameters(&fit.terms, fit.dt_s)
-        .iter()
-        .map(|p| ParameterEstimate {
-            kind: p.kind,
-            value: p.value,
-            ci_low: None,
-            ci_high: None,
-        })
-        .collect();
+fn estimate_without_bootstrap(
+    fit: GmwmFit,
+    plan: &[Option<MergedInto>],
+    wv: &WaveletVariance,
+    confidence: f64,
+) -> GmwmEstimate {
+    let point_estimates = |terms: &[Term]| -> Vec<ParameterEstimate> {
+        physical_parameters(terms, fit.dt_s)
+            .iter()
+            .map(|p| ParameterEstimate {
+                kind: p.kind,
+                value: p.value,
+                ci_low: None,
+                ci_high: None,
+            })
+            .collect()
+    };
+    let reported = merged_terms(&fit.terms, plan);
     let optimism = 2.0 * fit.model.n_parameters() as f64;
     GmwmEstimate {
-        parameters,
+        parameters: point_estimates(&fit.terms),
+        reported_model: spec_of(&reported),
+        reported: point_estimates(&reported),
+        merged: merged_processes(&fit.terms, plan, fit.dt_s, wv.n_samples),
         wic: fit.objective + optimism,
         optimism,
         replicates: 0,
@@ -189,7 +222,8 @@ fn check_finite_estimate(estimate: &GmwmEstimate) -> Result<(), GmwmError> {
     if !estimate.wic.is_finite() {
         return Err(non_finite("WIC".to_string()));
     }
-    match estimate.parameters.iter().find(|p| {
+    let mut all = estimate.parameters.iter().chain(&estimate.reported);
+    match all.find(|p| {
         let limits = [p.ci_low, p.ci_high].into_iter().flatten();
         !std::iter::once(p.value).chain(limits).all(f64::is_finite)
     }) {
@@ -198,10 +232,9 @@ fn check_finite_estimate(estimate: &GmwmEstimate) -> Result<(), GmwmError> {
     }
 }
 
-/// One bootstrap replicate: the refit's physical parameters, its implied ν²(θ̂*) and the
-/// replicate's ν̂*.
+/// One bootstrap replicate: the refit's processes, its implied ν²(θ̂*) and the replicate's ν̂*.
 struct Replicate {
-    physical: Vec<f64>,
+    terms: Vec<Term>,
     implied: Vec<f64>,
     empirical: Vec<f64>,
 }
@@ -213,23 +246,33 @@ fn replicate(wv: &WaveletVariance, fit: &GmwmFit, seed: u64, b: usize) -> Option
     let wv_star = haar_wavelet_variance(&y, 1.0 / wv.dt_s, levels, wv.confidence).ok()?;
     let refit = fit_gmwm(&wv_star, fit.model).ok()?;
     Some(Replicate {
-        physical: physical_parameters(&refit.terms, fit.dt_s)
-            .iter()
-            .map(|p| p.value)
-            .collect(),
+        terms: refit.terms,
         implied: refit.implied_variance,
         empirical: wv_star.variance,
     })
 }
 
-/// Robust Wald intervals on the log scale of each physical parameter ([`robust_log_wald`]).
-fn intervals(fit: &GmwmFit, replicates: &[Replicate], confidence: f64) -> Vec<ParameterEstimate> {
+/// Robust Wald intervals on the log scale ([`robust_log_wald`]) of each physical parameter of
+/// the processes `shown` makes of the fit's (and of each replicate's) processes.
+fn intervals(
+    fit: &GmwmFit,
+    replicates: &[Replicate],
+    confidence: f64,
+    shown: impl Fn(&[Term]) -> Vec<Term>,
+) -> Vec<ParameterEstimate> {
     let tail = (1.0 - confidence) / 2.0;
-    physical_parameters(&fit.terms, fit.dt_s)
+    let physical = |terms: &[Term]| -> Vec<f64> {
+        (physical_parameters(&shown(terms), fit.dt_s).iter())
+            .map(|p| p.value)
+            .collect()
+    };
+    let replicated: Vec<Vec<f64>> = replicates.iter().map(|r| physical(&r.terms)).collect();
+    physical_parameters(&shown(&fit.terms), fit.dt_s)
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            let (ci_low, ci_high) = robust_log_wald(p.value, replicates, k, tail);
+            let values: Vec<f64> = replicated.iter().map(|r| r[k]).collect();
+            let (ci_low, ci_high) = robust_log_wald(p.value, &values, tail);
             ParameterEstimate {
                 kind: p.kind,
                 value: p.value,
@@ -242,9 +285,9 @@ fn intervals(fit: &GmwmFit, replicates: &[Replicate], confidence: f64) -> Vec<Pa
 
 /// p̂ exp(∓z s), s the interquartile range of ln p* over 1.349 (the standard deviation of a
 /// normal with that range), z the normal quantile.
-fn robust_log_wald(value: f64, replicates: &[Replicate], k: usize, tail: f64) -> (f64, f64) {
+fn robust_log_wald(value: f64, replicated: &[f64], tail: f64) -> (f64, f64) {
     use statrs::distribution::{ContinuousCDF, Normal};
-    let mut logs: Vec<f64> = replicates.iter().map(|r| r.physical[k].ln()).collect();
+    let mut logs: Vec<f64> = replicated.iter().map(|v| v.ln()).collect();
     logs.sort_by(f64::total_cmp);
     let s = (quantile(&logs, 0.75) - quantile(&logs, 0.25)) / 1.349;
     let z = Normal::standard().inverse_cdf(1.0 - tail);

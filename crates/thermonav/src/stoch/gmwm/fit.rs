@@ -163,6 +163,23 @@ fn fit_of(wv: &WaveletVariance, model: ModelSpec, moments: &Moments, terms: Vec<
     }
 }
 
+/// The objective of `fit`'s composite without its `k`-th process, the others refitted by
+/// Levenberg-Marquardt from their values in `fit` and with `fit`'s weights, so that its rise
+/// over `fit.objective` is what leaving the process out costs. `wv` is the wavelet variance
+/// `fit` was fitted to.
+pub(super) fn objective_without(wv: &WaveletVariance, fit: &GmwmFit, k: usize) -> f64 {
+    let moments = Moments {
+        tau: wv.scale_samples.iter().map(|&t| t as f64).collect(),
+        nu: wv.variance.clone(),
+        sd: fit.moment_sd.clone(),
+    };
+    let start: Vec<Term> = (fit.terms.iter().enumerate())
+        .filter(|(i, _)| *i != k)
+        .map(|(_, t)| *t)
+        .collect();
+    moments.objective(&refine(&moments, &start))
+}
+
 /// Starts refined by Levenberg-Marquardt.
 const STARTS: usize = 4;
 

@@ -10,8 +10,10 @@
 //! variance stays positive); the Gauss-Markov processes are labelled by increasing correlation
 //! time. Starting values are automatic ([`fit_gmwm`]); intervals come from a parametric
 //! bootstrap ([`estimate_gmwm`]), and candidate composites are ranked by the Wavelet
-//! Information Criterion ([`select_model`]). Results are reported in physical units
-//! ([`Parameter`]).
+//! Information Criterion ([`select_model`]). The selected composite is reported with the
+//! processes the record does not resolve left out ([`resolve_selection`]) and the
+//! Gauss-Markov processes at the record's edges merged into the white noise or the random walk
+//! ([`GmwmEstimate::reported`]). Results are reported in physical units ([`Parameter`]).
 //!
 //! The R package gmwm (SMAC-Group) is the reference implementation of the method; it is not on
 //! this machine (CRAN is unreachable), so the oracles are the closed forms against their slow
@@ -23,6 +25,7 @@ mod bootstrap;
 mod fit;
 mod mapping;
 mod model;
+mod resolution;
 mod simulate;
 pub mod theory;
 
@@ -37,6 +40,10 @@ pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states}
 pub use model::{
     ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
     physical_parameters, terms_from_parameters,
+};
+pub use resolution::{
+    AbsentProcess, MergedInto, MergedProcess, RESOLUTION_LEVEL, ResolvedModel,
+    WHITE_MERGE_SAMPLE_PERIODS, resolve_selection,
 };
 pub use simulate::simulate;
 
