@@ -29,7 +29,7 @@ use serde::Serialize;
 
 use super::fit::GmwmFit;
 use super::model::{ModelSpec, Parameter, Term, physical_parameters};
-use super::resolution::{
+use super::merging::{
     MergedInto, MergedProcess, merge_plan, merged_processes, merged_terms, spec_of,
 };
 use super::simulate::simulate;

@@ -25,6 +25,7 @@ mod bootstrap;
 mod fit;
 mod mapping;
 mod model;
+mod merging;
 mod resolution;
 mod simulate;
 pub mod theory;
@@ -41,10 +42,8 @@ pub use model::{
     ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
     physical_parameters, terms_from_parameters,
 };
-pub use resolution::{
-    AbsentProcess, MergedInto, MergedProcess, RESOLUTION_LEVEL, ResolvedModel,
-    WHITE_MERGE_SAMPLE_PERIODS, resolve_selection,
-};
+pub use merging::{MergedInto, MergedProcess, WHITE_MERGE_SAMPLE_PERIODS};
+pub use resolution::{AbsentProcess, RESOLUTION_LEVEL, ResolvedModel, resolve_selection};
 pub use simulate::simulate;
 
 /// Why a GMWM fit cannot be made.
