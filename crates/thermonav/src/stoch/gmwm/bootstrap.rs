@@ -28,10 +28,10 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::fit::GmwmFit;
-use super::model::{ModelSpec, Parameter, Term, physical_parameters};
 use super::merging::{
     MergedInto, MergedProcess, merge_plan, merged_processes, merged_terms, spec_of,
 };
+use super::model::{ModelSpec, Parameter, Term, physical_parameters};
 use super::simulate::simulate;
 use super::{GmwmError, fit_gmwm};
 use crate::rng::named_rng;

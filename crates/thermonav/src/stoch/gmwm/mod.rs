@@ -24,8 +24,8 @@
 mod bootstrap;
 mod fit;
 mod mapping;
-mod model;
 mod merging;
+mod model;
 mod resolution;
 mod simulate;
 pub mod theory;
@@ -38,11 +38,11 @@ pub use bootstrap::{
 };
 pub use fit::{GmwmFit, fit_gmwm};
 pub use mapping::{Fold, MappedNoise, TauBand, band_scales, map_to_filter_states};
+pub use merging::{MergedInto, MergedProcess, WHITE_MERGE_SAMPLE_PERIODS};
 pub use model::{
     ModelSpec, ModelSpecError, Parameter, PhysicalParameter, Term, composite_wavelet_variance,
     physical_parameters, terms_from_parameters,
 };
-pub use merging::{MergedInto, MergedProcess, WHITE_MERGE_SAMPLE_PERIODS};
 pub use resolution::{AbsentProcess, RESOLUTION_LEVEL, ResolvedModel, resolve_selection};
 pub use simulate::simulate;
 

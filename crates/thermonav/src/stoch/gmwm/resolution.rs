@@ -12,7 +12,6 @@
 //! of freedom per parameter), and refits without it; each is reported as absent with that
 //! test.
 
-
 use serde::Serialize;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
