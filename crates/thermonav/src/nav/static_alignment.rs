@@ -596,7 +596,7 @@ mod tests {
                 _ => (4_900_000, -9.8 - 0.027),
             };
             let dt = Duration::from_nanos(dt_ns);
-            t = t + dt;
+            t += dt;
             window.add(&Increment::from_rates(t, dt, [0.0; 3], [0.0, 0.0, value]));
             values.push(value);
         }

@@ -3,8 +3,8 @@
 //!
 //! Processes the record does not resolve made `gmwm`'s numbers mislead on a real record
 //! (issue 38, row 6): the optimiser works on the logarithms of the variances, so a process the
-//! data do not need drifts towards zero and was printed as `1.03e-84`; and the WIC (objective
-//! + 2 per parameter, like the AIC) takes a process that lowers the objective by a little more
+//! data do not need drifts towards zero and was printed as `1.03e-84`; and the WIC (the
+//! objective plus 2 per parameter, like the AIC) takes a process that lowers the objective by a little more
 //! than 2, which a record without it does by chance (a white-noise and random-walk record got
 //! quantisation noise on one channel of six). [`resolve_selection`] leaves out, one at a time,
 //! every process (white noise apart) whose removal, the others refitted with the same weights,
