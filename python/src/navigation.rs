@@ -206,7 +206,8 @@ fn geometry_of(
     Ok(geometry)
 }
 
-/// Which temperature's model: fixed, or the operating temperature (given or the record's).
+/// Which temperature's model: fixed, or the operating temperature (given or the record's),
+/// checked by the library's [`ModelTemperature::of`].
 fn temperature_of(
     model_temperature_c: Option<f64>,
     operating_temperature_c: Option<f64>,
@@ -220,25 +221,7 @@ fn temperature_of(
         Some(select) => choice("select", select, &names)?,
         None => Selection::default(),
     };
-    match (model_temperature_c, operating_temperature_c) {
-        (Some(_), Some(_)) => Err(error(
-            "give model_temperature_c or operating_temperature_c, not both",
-        )),
-        (Some(t), None) => Ok(ModelTemperature::Fixed(finite("model_temperature_c", t)?)),
-        (None, given) => Ok(ModelTemperature::Operating {
-            given_c: given
-                .map(|t| finite("operating_temperature_c", t))
-                .transpose()?,
-            selection,
-        }),
-    }
-}
-
-fn finite(name: &str, value: f64) -> PyResult<f64> {
-    match value.is_finite() {
-        true => Ok(value),
-        false => Err(error(format!("{name} {value}: expected a finite number"))),
-    }
+    ModelTemperature::of(model_temperature_c, operating_temperature_c, selection).map_err(refused)
 }
 
 fn scheduling_of(schedule: bool) -> Scheduling {
@@ -303,6 +286,7 @@ impl RunKeywords {
                 Some(n) => bias_hypotheses_of(n).map_err(refused)?,
                 None => None,
             },
+            static_alignment: d.static_alignment,
         };
         options.validate().map_err(refused)?;
         Ok(options)
@@ -314,7 +298,8 @@ fn refused(e: RunOptionError) -> PyErr {
     error(e.to_string())
 }
 
-/// `integrate`'s engine: the run options with its filter, output rate and smoother.
+/// `integrate`'s own engine settings, beside the run options': its filter, output rate and
+/// smoother.
 fn integrate_engine(
     options: &RunOptions,
     filter: FilterKind,
@@ -332,7 +317,7 @@ fn integrate_engine(
             "bias_hypotheses with smooth: a Gaussian sum has no single forward history to smooth",
         ));
     }
-    Ok(options.engine(EngineSettings {
+    Ok(EngineSettings {
         filter,
         output_interval_s: match output_rate_hz {
             Some(r) => interval_of_rate("output_rate_hz", r).map_err(refused)?,
@@ -340,7 +325,7 @@ fn integrate_engine(
         },
         smooth,
         ..d
-    }))
+    })
 }
 
 /// Solution epochs as columns: `t_ns`, `t_s`, the trajectory CSV's (lat_deg .. yaw_deg), the
@@ -437,15 +422,13 @@ pub fn integrate<'py>(
     }
     .options()?;
     let temperature = temperature_of(model_temperature_c, operating_temperature_c, select)?;
-    let settings = RunSettings {
+    let settings = RunSettings::of_options(
+        &options,
         temperature,
-        scheduling: temperature.scheduling(scheduling_of(schedule)),
-        compensation: compensation_of(compensation),
-        gauss_markov: options.gauss_markov,
-        engine: integrate_engine(&options, filter, output_rate_hz, smooth)?,
-        outages: outages_of(outages, OutageSpec::None)?,
-        process_noise_scale: options.process_noise_scale,
-    };
+        (scheduling_of(schedule), compensation_of(compensation)),
+        integrate_engine(&options, filter, output_rate_hz, smooth)?,
+        outages_of(outages, OutageSpec::None)?,
+    );
     let files = Files {
         imu,
         gnss,
@@ -537,7 +520,7 @@ fn evaluate_result<'py>(
 
 /// The tournament's options besides the files.
 struct TournamentKeywords {
-    operating_temperature_c: Option<f64>,
+    temperature: ModelTemperature,
     options: RunOptions,
     filters: Vec<FilterKind>,
     outages: OutageSpec,
@@ -552,7 +535,7 @@ struct TournamentKeywords {
 /// at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
+#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
 pub fn evaluate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -560,6 +543,7 @@ pub fn evaluate<'py>(
     reference: PathBuf,
     bank: Option<PathBuf>,
     profile: Option<PathBuf>,
+    model_temperature_c: Option<f64>,
     operating_temperature_c: Option<f64>,
     model: Option<String>,
     filter: &str,
@@ -568,6 +552,7 @@ pub fn evaluate<'py>(
     seed: u64,
     lever_arm_m: Option<[f64; 3]>,
     baseline: Option<[f64; 3]>,
+    initial_from: Option<PathBuf>,
     covariance_rate_hz: Option<f64>,
     velocity_sd_m_s: Option<Vec<f64>>,
     gate_probability: Option<f64>,
@@ -601,9 +586,7 @@ pub fn evaluate<'py>(
     }
     .options()?;
     let keywords = TournamentKeywords {
-        operating_temperature_c: operating_temperature_c
-            .map(|t| finite("operating_temperature_c", t))
-            .transpose()?,
+        temperature: temperature_of(model_temperature_c, operating_temperature_c, None)?,
         options,
         filters: filters_of(filter)?,
         outages: outages_of(outages, DEFAULT_OUTAGES)?,
@@ -617,17 +600,20 @@ pub fn evaluate<'py>(
         gnss,
         noise: (bank, profile),
     };
-    let extra = (reference, datasheet, truth);
+    let extra = (reference, initial_from, datasheet, truth);
     let outcome = py.detach(|| tournament_of_files(&files, extra, &keywords))?;
     let out = evaluate_result(py, &outcome)?;
     out.set_item("run_options", to_python(py, &keywords.options)?)?;
     Ok(out)
 }
 
+/// The tournament's files beside the records: reference, initial_from, datasheet, truth.
+type TournamentFiles = (PathBuf, Option<PathBuf>, Option<PathBuf>, Option<PathBuf>);
+
 /// Reads the files, makes the scenario and runs the tournament (without the GIL).
 fn tournament_of_files(
     files: &Files,
-    (reference, datasheet, truth): (PathBuf, Option<PathBuf>, Option<PathBuf>),
+    (reference, initial_from, datasheet, truth): TournamentFiles,
     k: &TournamentKeywords,
 ) -> PyResult<TournamentOutcome> {
     let scale = ScaleFactorPrior::default();
@@ -636,8 +622,12 @@ fn tournament_of_files(
         .map_err(error)?;
     let records = files.read()?;
     let points = read_trajectory_file(&reference, Strictness::Strict).map_err(error)?;
-    let operating_c = operating_temperature_c(k.operating_temperature_c, &records.series)
+    let operating_c = operating_temperature_c(k.temperature.given_c(), &records.series)
         .map_err(|_| no_temperature(&files.imu))?;
+    let start = (initial_from.as_deref())
+        .map(|p| read_trajectory_file(p, Strictness::Strict))
+        .transpose()
+        .map_err(error)?;
     let plan = RecordPlan {
         oracle: truth.as_ref(),
         ..RecordPlan::calibrated(records.noise.model().thermal(), k.compensation)
@@ -654,6 +644,13 @@ fn tournament_of_files(
         plan,
     )
     .map_err(refused)?;
+    let main = match &start {
+        Some(points) => main.started(Start::Reference(points)).map_err(|e| {
+            let prefix = files.prefix(e.input(), &records, initial_from.as_deref());
+            refusal(e.to_string(), e.input(), prefix)
+        })?,
+        None => main,
+    };
     let profile = datasheet.as_deref().map(read_profile).transpose()?;
     let named = |e| {
         error(format!(

@@ -137,6 +137,36 @@ def test_evaluate_takes_the_run_keywords_of_integrate_as_the_cli_does(binary, da
     assert run["run_options"] == ours["run_options"]
 
 
+def test_evaluate_takes_the_model_temperature_and_the_start_as_the_cli_does(binary, data, tmp_path):
+    """model_temperature_c and initial_from are evaluate's --model-temperature-c and --initial-from:
+    the candidates at one temperature stand there, and every run starts from that trajectory (here
+    integrate's solution, not the reference)."""
+    outages = "35+20,80+20"
+    start = tmp_path / "start.csv"
+    cli(binary, "integrate", "--imu", data["imu"], "--gnss", data["gnss"], "--bank", data["bank"],
+        "--lever-arm-m", "0.3,0,-2.5", "--out", start)
+    out = tmp_path / "evaluation"
+    cli(binary, "evaluate", "--imu", data["imu"], "--gnss", data["gnss"], "--reference",
+        data["reference"], "--bank", data["bank"], "--outages", outages, "--filter", "ekf",
+        "--lever-arm-m", "0.3,0,-2.5", "--model-temperature-c", 25, "--initial-from", start,
+        "--out", out)
+    document = json.loads((out / "evaluation.json").read_text())
+    ours = thermonav.evaluate(data["imu"], data["gnss"], data["reference"], bank=data["bank"],
+                              outages=outages, filter="ekf", lever_arm_m=LEVER_ARM,
+                              model_temperature_c=25, initial_from=start)
+    assert ours.operating_temperature_c == document["operating_temperature_c"] == 25.0
+    assert [m.rms_horizontal_m for m in ours.models] == [
+        m["rms_horizontal_m"] for m in document["models"]]
+    from_reference = thermonav.evaluate(data["imu"], data["gnss"], data["reference"],
+                                        bank=data["bank"], outages=outages, filter="ekf",
+                                        lever_arm_m=LEVER_ARM, model_temperature_c=25)
+    assert [m.rms_horizontal_m for m in from_reference.models] != [
+        m.rms_horizontal_m for m in ours.models]
+    with pytest.raises(ThermonavError, match="model_temperature_c"):
+        thermonav.evaluate(data["imu"], data["gnss"], data["reference"], bank=data["bank"],
+                           model_temperature_c=25, operating_temperature_c=20)
+
+
 def test_a_bad_imu_file_names_its_line(data, tmp_path):
     bad = tmp_path / "imu.csv"
     lines = data["imu"].read_text().splitlines()

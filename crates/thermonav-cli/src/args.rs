@@ -113,7 +113,7 @@ pub enum Command {
     Integrate(IntegrateArgs),
     /// The temperature-model tournament: every bank model through the filter, GNSS outages,
     /// errors against a reference, ranking and its Monte Carlo significance.
-    Evaluate(EvaluateArgs),
+    Evaluate(Box<EvaluateArgs>),
     /// Convert a foreign file (RTKLIB .pos, NMEA, KF-GINS, raw IMU + .tag, PX4 ULog, ROS bags,
     /// ArduPilot DataFlash) to a canonical CSV.
     Convert(ConvertArgs),
@@ -324,10 +324,48 @@ pub enum FilterArg {
 #[derive(Debug, Args)]
 pub struct RunOptionArgs {
     /// The sensor's operating temperature, °C: integrate selects its model there with
-    /// --select, evaluate stands its interpolated candidate there. Without it (or integrate's
+    /// --select, evaluate stands its interpolated candidate there. Without it (or
     /// --model-temperature-c), the mean of the IMU file's temp_c column.
     #[arg(long, allow_hyphen_values = true)]
     pub operating_temperature_c: Option<f64>,
+    /// Use the bank's model at this temperature, °C (the paper's "model of temperature T"):
+    /// integrate runs the entry nearest it, fixed; evaluate's candidates that stand at one
+    /// temperature (interpolated, compensated entry, profile) stand there, beside the entries
+    /// at their own, and its --estimate-time-offset runs with integrate's model.
+    #[arg(
+        long,
+        conflicts_with = "operating_temperature_c",
+        allow_hyphen_values = true
+    )]
+    pub model_temperature_c: Option<f64>,
+    /// How to select the model at the operating temperature (integrate's run; in evaluate, the
+    /// run --estimate-time-offset searches with: the tournament runs the nearest entries and
+    /// the interpolated model as candidates of their own).
+    #[arg(long, value_enum, default_value_t = Selection::default().into())]
+    pub select: SelectArg,
+    /// Start from this trajectory's state at the first GNSS epoch instead of aligning from GNSS
+    /// and the accelerometers (in evaluate, instead of starting from --reference, or aligning
+    /// when it holds positions only): a trajectory CSV or a KF-GINS .nav, one with attitude.
+    #[arg(long)]
+    pub initial_from: Option<PathBuf>,
+    /// Do not level the start and take the gyro biases from the platform standing still at
+    /// the record's start (by default done when the fixes stay put for 5 s or more before the
+    /// alignment fix; the run's report says so). Only a run that aligns from GNSS is levelled:
+    /// one started from --initial-from (or from evaluate's --reference with attitude) is not.
+    #[arg(long)]
+    pub no_static_alignment: bool,
+    /// Estimate the IMU-GNSS time offset (added to the IMU times, as convert
+    /// --time-offset-s) that maximises the innovations' likelihood over the run, within
+    /// ±--time-offset-bracket-s, and run at it when the data determine it (otherwise at the
+    /// times as given, with a warning); reported with its interval. Reads the record whole.
+    /// In evaluate the offset is estimated once, with the run integrate makes with the same
+    /// options (the likelihood is one model's), and every candidate runs on the record
+    /// shifted by it, so that the models are compared on the same data; not with --shard.
+    #[arg(long)]
+    pub estimate_time_offset: bool,
+    /// Half-width of the offsets --estimate-time-offset searches, s (at most 10).
+    #[arg(long, default_value_t = TimeOffsetSearch::default().bracket_s)]
+    pub time_offset_bracket_s: f64,
     /// Which Gauss-Markov family of the bank drives the bias states.
     #[arg(long, value_enum, default_value_t = run_options().gauss_markov.into())]
     pub model: GmSourceArg,
@@ -402,18 +440,6 @@ pub struct IntegrateArgs {
     /// calibration of --bank is replaced. Refused when the two differ in channels or units.
     #[arg(long)]
     pub thermal_from: Option<PathBuf>,
-    /// Use the bank's model at this temperature, °C (the paper's "model of temperature T").
-    /// Integrate only: a tournament's candidates are the models at their own temperatures.
-    #[arg(
-        long,
-        conflicts_with = "operating_temperature_c",
-        allow_hyphen_values = true
-    )]
-    pub model_temperature_c: Option<f64>,
-    /// How to select the model at the operating temperature. Integrate only: a tournament
-    /// runs the nearest entries and the interpolated model as candidates of their own.
-    #[arg(long, value_enum, default_value_t = Selection::default().into())]
-    pub select: SelectArg,
     /// The filter (evaluate's --filter takes ukf, ekf or both).
     #[arg(long, value_enum, default_value_t = FilterArg::Ekf)]
     pub filter: FilterArg,
@@ -423,21 +449,10 @@ pub struct IntegrateArgs {
     /// spread:COUNT,DURATION (seconds on the files' t_s scale).
     #[arg(long, default_value = "none")]
     pub outages: OutageSpec,
-    /// Start from this reference's state at the first GNSS epoch instead of aligning from GNSS
-    /// and the accelerometers: a trajectory CSV or a KF-GINS .nav (one with attitude; evaluate
-    /// starts from a --reference that has one).
-    #[arg(long)]
-    pub initial_from: Option<PathBuf>,
-    /// Solution output rate, Hz. Integrate only: it shapes the solution file; a tournament
-    /// scores its errors at the default rate.
+    /// Solution output rate, Hz. Integrate only: it samples the solution file, not the run; a
+    /// tournament scores its errors at the default rate.
     #[arg(long, default_value_t = 1.0 / engine().output_interval_s)]
     pub output_rate_hz: f64,
-    /// Do not level the start and take the gyro biases from the platform standing still at
-    /// the record's start (by default done when the fixes stay put for 5 s or more before the
-    /// alignment fix; the run's report says so). Integrate only: a tournament starts every
-    /// run from the reference, aligning none.
-    #[arg(long)]
-    pub no_static_alignment: bool,
     /// One model for the whole run (at the mean or given temperature) instead of the model at
     /// the IMU's temp_c at every covariance step. A given --model-temperature-c or
     /// --operating-temperature-c also fixes the model.
@@ -445,6 +460,8 @@ pub struct IntegrateArgs {
     pub no_schedule: bool,
     /// Also run the RTS smoother (EKF only) and write the smoothed trajectory and its
     /// states beside the solution, as STEM.smoothed.csv and STEM.smoothed.states.csv.
+    /// Integrate only: the forward run is unchanged (a tournament scores a smoothed
+    /// trajectory given as evaluate --solution).
     #[arg(long)]
     pub smooth: bool,
     /// Read the whole IMU record and keep the whole solution in memory before writing
@@ -452,17 +469,6 @@ pub struct IntegrateArgs {
     /// and memory comparisons.
     #[arg(long, hide = true)]
     pub in_memory: bool,
-    /// Estimate the IMU-GNSS time offset (added to the IMU times, as convert
-    /// --time-offset-s) that maximises the innovations' likelihood over the run, within
-    /// ±--time-offset-bracket-s, and run at it; reported with its sd. Reads the record whole.
-    /// Integrate only: the likelihood is one model's, and a tournament whose candidates ran at
-    /// offsets of their own would not compare models on the same data (shift the record with
-    /// convert --time-offset-s to evaluate at an offset).
-    #[arg(long)]
-    pub estimate_time_offset: bool,
-    /// Half-width of the offsets --estimate-time-offset searches, s.
-    #[arg(long, default_value_t = TimeOffsetSearch::default().bracket_s)]
-    pub time_offset_bracket_s: f64,
     /// Do not subtract the bank's thermal bias calibration bias(T) from the IMU samples.
     #[arg(long)]
     pub no_compensation: bool,

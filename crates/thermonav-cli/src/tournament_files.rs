@@ -5,7 +5,7 @@
 
 use crate::failure::{Classify, Failure};
 use crate::inputs::operating_temperature;
-use crate::reference_input::{check_overlap, read_reference, record_span};
+use crate::reference_input::{check_overlap, read_reference, read_start_reference, record_span};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -24,8 +24,11 @@ use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
 use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::outage::{Outage, OutageSpec};
-use thermonav::nav::run::RunInput;
+use thermonav::nav::run::{NoiseModel, RunInput, RunSettings, Start};
 use thermonav::nav::run_options::RunOptions;
+use thermonav::nav::time_offset::{
+    TimeOffsetEstimate, TimeOffsetSearch, estimate_time_offset, shifted,
+};
 use thermonav::trajectory::{ReferenceContent, TrajectoryPoint};
 use thermonav_io::{
     ImuOptions, Strictness, WriteError, read_gnss_file, read_imu_file_with, write_atomically,
@@ -46,6 +49,10 @@ pub struct EvaluationFile {
     /// their runs themselves).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub run_options: Option<RunOptions>,
+    /// The IMU-GNSS time offset every candidate ran at (`--estimate-time-offset`, as
+    /// `integrate --json` reports its own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_offset: Option<TimeOffsetEstimate>,
     /// This file.
     pub report_file: PathBuf,
 }
@@ -57,10 +64,45 @@ pub struct Echo {
     pub imu_options: ImuOptions,
     /// The run options of every candidate's run.
     pub run_options: Option<RunOptions>,
+    /// The time offset every candidate ran at, when estimated.
+    pub time_offset: Option<TimeOffsetEstimate>,
 }
 
-/// The echo as evaluation.json writes it: the rotation's text and the run options.
-pub type EchoText = (Option<String>, Option<RunOptions>);
+/// The echo as evaluation.json writes it: the rotation's text, the run options and the time
+/// offset.
+#[derive(Debug, Clone, Default)]
+pub struct EchoText {
+    /// The `--imu-rotation`, as text.
+    pub imu_rotation: Option<String>,
+    /// The run options of every candidate's run.
+    pub run_options: Option<RunOptions>,
+    /// The time offset every candidate ran at, when estimated.
+    pub time_offset: Option<TimeOffsetEstimate>,
+}
+
+/// How the runs of a tournament from files start and on which record, beside the reference:
+/// the trajectory they start from (`--initial-from`) and the IMU-GNSS time-offset search
+/// (`--estimate-time-offset`) with the run it is made with. The default: from the reference
+/// (aligned when it holds positions only), on the record as read.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StartPlan<'a> {
+    /// The trajectory every run starts from instead of the reference.
+    pub initial_from: Option<&'a Path>,
+    /// The search, the run it searches with and that run's noise model.
+    pub time_offset: Option<(&'a TimeOffsetSearch, &'a RunSettings, NoiseModel<'a>)>,
+}
+
+/// A tournament's scenario from files: the scenario, the operating temperature and the time
+/// offset its record was shifted by, when estimated.
+#[derive(Debug)]
+pub struct FileScenario {
+    /// The scenario.
+    pub scenario: Scenario,
+    /// The operating temperature, °C (given, or the IMU's mean temp_c).
+    pub operating_temperature_c: f64,
+    /// The estimated IMU-GNSS time offset (the record shifted by its applied offset).
+    pub time_offset: Option<TimeOffsetEstimate>,
+}
 
 /// The scenario of the files (start from the reference at the first fix, default initial
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
@@ -75,23 +117,80 @@ pub fn scenario_from_files(
     operating_temperature_c: Option<f64>,
     records: RecordPlan,
 ) -> Result<(Scenario, f64), Failure> {
+    let settings = (engine, outages, operating_temperature_c);
+    let made = scenario_from_files_with(files, settings, records, StartPlan::default())?;
+    Ok((made.scenario, made.operating_temperature_c))
+}
+
+/// [`scenario_from_files`] with the runs started and the record shifted as `plan` says: from
+/// `--initial-from`'s trajectory (refused without attitude, as integrate refuses it), and on
+/// the record shifted by the time offset estimated with the plan's run, started as every
+/// candidate starts.
+pub fn scenario_from_files_with(
+    files: &ScenarioFiles,
+    (engine, outages, operating_temperature_c): (EngineSettings, &OutageSpec, Option<f64>),
+    records: RecordPlan,
+    plan: StartPlan,
+) -> Result<FileScenario, Failure> {
     let series = read_imu_file_with(&files.imu, Strictness::Strict, &files.imu_options).data()?;
     let gnss = read_gnss_file(&files.gnss, Strictness::Strict).data()?;
     let reference = read_reference(&files.reference)?;
     let run = (record_span(&series), files.imu.as_path());
     check_overlap((&reference, &files.reference), run)?;
     let operating_c = operating_temperature(operating_temperature_c, &series, &files.imu)?;
+    let initial = (plan.initial_from.map(|p| read_start_reference(p, run))).transpose()?;
     let content = reference.content();
+    let start = match (&initial, content) {
+        (Some(points), _) => Some(Start::Reference(points)),
+        (None, ReferenceContent::PositionOnly) => Some(Start::Align),
+        (None, ReferenceContent::Full) => None,
+    };
+    let searched = start.unwrap_or(Start::Reference(&reference.points));
+    let time_offset = (plan.time_offset)
+        .map(|search| offset_of((&series, &gnss), searched, search, files))
+        .transpose()?;
+    let series = match &time_offset {
+        Some(estimate) => shifted(&series, estimate.applied_offset_s),
+        None => series,
+    };
     let scenario =
         scenario_of_records(&series, gnss, reference.points, (&engine, outages), records)
+            .and_then(|s| started(s, content, start))
             .map_err(|e| scenario_failure(e, files))?;
+    Ok(FileScenario {
+        scenario,
+        operating_temperature_c: operating_c,
+        time_offset,
+    })
+}
+
+/// The scenario scored as the reference's `content` allows, its runs started by `start`
+/// (`None`: from the reference).
+fn started(
+    scenario: Scenario,
+    content: ReferenceContent,
+    start: Option<Start>,
+) -> Result<Scenario, ScenarioError> {
     let scenario = match content {
         ReferenceContent::Full => scenario,
-        ReferenceContent::PositionOnly => scenario
-            .with_position_only_reference()
-            .map_err(|e| scenario_failure(e, files))?,
+        ReferenceContent::PositionOnly => scenario.scoring_positions_only(),
     };
-    Ok((scenario, operating_c))
+    match start {
+        Some(start) => scenario.started(start),
+        None => Ok(scenario),
+    }
+}
+
+/// The IMU-GNSS time offset of the record, searched with the plan's run from `start` (as
+/// `integrate --estimate-time-offset` searches), errors naming the file they are about.
+fn offset_of(
+    (series, gnss): (&ImuSeries, &[GnssFix]),
+    start: Start,
+    (search, run, noise): (&TimeOffsetSearch, &RunSettings, NoiseModel),
+    files: &ScenarioFiles,
+) -> Result<TimeOffsetEstimate, Failure> {
+    estimate_time_offset(series, gnss, noise, start, run, search)
+        .map_err(|e| scenario_failure(ScenarioError::Run(e), files))
 }
 
 /// A refused scenario, naming the file (or the option) it is about.
@@ -150,10 +249,11 @@ pub fn run_and_write(
         .map_err(|e| anyhow!("{e}"))
         .data()?;
     bar.finish_and_clear();
-    let text = (
-        crate::settings::imu::rotation_text(&echo.imu_options),
-        echo.run_options.clone(),
-    );
+    let text = EchoText {
+        imu_rotation: crate::settings::imu::rotation_text(&echo.imu_options),
+        run_options: echo.run_options.clone(),
+        time_offset: echo.time_offset.clone(),
+    };
     write_outcome((outcome.report, &outcome.main), outside, (out, text))
 }
 
@@ -184,7 +284,7 @@ pub fn write_outside_only(
 ) -> Result<EvaluationFile, Failure> {
     let report = TournamentReport::outside_only(outages, outside, content);
     let errors: Vec<_> = outside_errors(outside).collect();
-    write_evaluation(report, &errors, (out, (None, None)))
+    write_evaluation(report, &errors, (out, EchoText::default()))
 }
 
 /// The error-CSV names and errors of outside solutions.
@@ -203,7 +303,7 @@ fn outside_errors(
 fn write_evaluation(
     mut report: TournamentReport,
     errors: &[(String, Option<&[Vec<EpochError>]>)],
-    (out, (imu_rotation, run_options)): (&Path, EchoText),
+    (out, echo): (&Path, EchoText),
 ) -> Result<EvaluationFile, Failure> {
     // Every number is checked before the first file is written: a report that cannot be
     // written leaves no error table behind.
@@ -221,8 +321,9 @@ fn write_evaluation(
     }
     let file = EvaluationFile {
         report,
-        imu_rotation,
-        run_options,
+        imu_rotation: echo.imu_rotation,
+        run_options: echo.run_options,
+        time_offset: echo.time_offset,
         report_file: out.join("evaluation.json"),
     };
     // The folder exists already when an error CSV was written, not when every run failed.
@@ -319,6 +420,18 @@ pub fn print_tournament_table(file: &EvaluationFile) {
     }
     if let Some(not_scored) = r.reference.not_scored {
         println!("\nnot scored: {not_scored}");
+    }
+    if let Some(t) = &file.time_offset {
+        println!(
+            "\nevery run on the IMU record shifted by {:+.1} ms, the time offset estimated ({}) in {} runs over ±{:.0} ms",
+            1e3 * t.applied_offset_s,
+            match t.applied {
+                true => "applied",
+                false => "not determined, not applied",
+            },
+            t.runs,
+            1e3 * t.bracket_s[1]
+        );
     }
     if r.models.iter().any(|m| m.filter.is_none()) {
         println!(

@@ -6,7 +6,7 @@ use crate::args::EvaluateMergeArgs;
 use crate::failure::{Classify, Failure};
 use crate::settings::navigation::{EvaluateSettings, FilterRun, NoiseSource};
 use crate::settings::paths::Io;
-use crate::tournament_files::{EvaluationFile, write_outcome};
+use crate::tournament_files::{EchoText, EvaluationFile, write_outcome};
 use anyhow::anyhow;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -97,6 +97,7 @@ fn fingerprint(s: &EvaluateSettings, run: &FilterRun) -> Result<BTreeMap<String,
         ("--reference", Some(&run.files.reference)),
         (noise_name, Some(noise)),
         ("--thermal-from", run.thermal_from.as_ref()),
+        ("--initial-from", run.initial_from.as_ref()),
         ("--truth", s.truth.as_ref()),
         ("--datasheet", s.datasheet.as_ref()),
     ];
@@ -122,7 +123,7 @@ fn settings_text(s: &EvaluateSettings, run: &FilterRun) -> String {
         s.scheduling,
         s.compensation,
         s.options,
-        s.operating_temperature_c,
+        s.temperature,
         s.filters,
         s.outages,
         s.extra_replicates,
@@ -173,9 +174,14 @@ pub fn merge(args: &EvaluateMergeArgs) -> Result<EvaluationFile, Failure> {
         .check()?;
     let read: Vec<(String, ShardFile)> = files.iter().map(read_shard).collect::<Result<_, _>>()?;
     // The fingerprint (checked by the merge) makes the shards' rotation and options one.
+    // A sharded run estimates no time offset (refused with --shard).
     let echo = match read.first() {
-        Some((_, f)) => (f.imu_rotation.clone(), f.run_options.clone()),
-        None => (None, None),
+        Some((_, f)) => EchoText {
+            imu_rotation: f.imu_rotation.clone(),
+            run_options: f.run_options.clone(),
+            time_offset: None,
+        },
+        None => EchoText::default(),
     };
     let shards: Vec<(String, TournamentShard)> =
         read.into_iter().map(|(n, f)| (n, f.tournament)).collect();

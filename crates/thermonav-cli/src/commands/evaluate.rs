@@ -11,8 +11,8 @@ use crate::reference_input::{read_reference, span_of};
 use crate::report::print_json;
 use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use crate::tournament_files::{
-    Echo, EvaluationFile, RecordPlan, check_some_model_ran, print_tournament_table, run_and_write,
-    scenario_from_files, write_outside_only,
+    Echo, EvaluationFile, FileScenario, RecordPlan, StartPlan, check_some_model_ran,
+    print_tournament_table, run_and_write, scenario_from_files_with, write_outside_only,
 };
 use crate::tournament_shards;
 use anyhow::anyhow;
@@ -69,7 +69,7 @@ fn run_shard(
     shard: Shard,
     json: bool,
 ) -> Result<(), Failure> {
-    let (tournament, main) = prepare(s, run)?;
+    let (tournament, FileScenario { scenario: main, .. }) = prepare(s, run)?;
     let replicates = replicates_of(s);
     let parts = (&tournament, &main, &replicates);
     let written = tournament_shards::run_and_write_shard(parts, shard, (s, run))?;
@@ -101,23 +101,27 @@ fn run_filters(
     run: &FilterRun,
     solutions: &[Solution],
 ) -> Result<EvaluationFile, Failure> {
-    let (tournament, main) = prepare(s, run)?;
+    let (tournament, made) = prepare(s, run)?;
+    if let Some(warning) = made.time_offset.as_ref().and_then(|t| t.warning.as_deref()) {
+        eprintln!("warning: {warning}");
+    }
+    let main = &made.scenario;
     let gnss_sd = GnssSdUse::of(&main.gnss, main.settings.default_position_sd_m);
     if gnss_sd.source != GnssSdSource::File {
         eprintln!("note: GNSS position sd: {}", gnss_sd.words());
     }
-    let outside = score_all(solutions, main.reference(), windows(&main))?;
+    let outside = score_all(solutions, main.reference(), windows(main))?;
     run_and_write(
         &tournament,
-        &main,
+        main,
         &replicates_of(s),
         &outside,
-        (&s.out, &echo(s, run)),
+        (&s.out, &echo(s, run, &made)),
     )
 }
 
 /// The tournament of `s` and its main scenario, from the files.
-fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenario), Failure> {
+fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, FileScenario), Failure> {
     let noise = load_noise(&run.noise, run.thermal_from.as_deref())?;
     let scale = ScaleFactorPrior::default();
     let truth = read_truth(s.truth.as_deref(), &scale)?;
@@ -126,16 +130,17 @@ fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenari
         ..RecordPlan::calibrated(noise.thermal(), s.compensation)
     };
     let engine = s.options.engine(EngineSettings::default());
-    let (main, operating_c) = scenario_from_files(
-        &run.files,
-        engine,
-        &s.outages,
-        s.operating_temperature_c,
-        records,
-    )?;
+    let integrate_run = s.integrate_run();
+    let start = StartPlan {
+        initial_from: run.initial_from.as_deref(),
+        time_offset: (s.time_offset_search.as_ref()).map(|t| (t, &integrate_run, noise.model())),
+    };
+    let settings = (engine, &s.outages, s.temperature.given_c());
+    let made = scenario_from_files_with(&run.files, settings, records, start)?;
+    let (main, operating_c) = (&made.scenario, made.operating_temperature_c);
     let plan = TournamentPlan {
         noise: noise.source(),
-        thermal: ThermalOptions::of_scenario(&main, s.scheduling, s.compensation),
+        thermal: ThermalOptions::of_scenario(main, s.scheduling, s.compensation),
         operating_temperature_c: operating_c,
         source: s.options.gauss_markov,
         filters: s.filters.clone(),
@@ -144,17 +149,17 @@ fn prepare(s: &EvaluateSettings, run: &FilterRun) -> Result<(Tournament, Scenari
         oracle: truth.as_ref(),
     };
     let tournament = Tournament::new(&plan).map_err(|e| anyhow!("{e}")).data()?;
-    Ok((
-        tournament.with_process_noise_scale(s.options.process_noise_scale),
-        main,
-    ))
+    let scaled = tournament.with_process_noise_scale(s.options.process_noise_scale);
+    Ok((scaled, made))
 }
 
-/// What evaluation.json repeats of the command line: the IMU's rotation and the run options.
-fn echo(s: &EvaluateSettings, run: &FilterRun) -> Echo {
+/// What evaluation.json repeats of the command line: the IMU's rotation, the run options and
+/// the time offset the record was shifted by.
+fn echo(s: &EvaluateSettings, run: &FilterRun, made: &FileScenario) -> Echo {
     Echo {
         imu_options: run.files.imu_options,
         run_options: Some(s.options.clone()),
+        time_offset: made.time_offset.clone(),
     }
 }
 

@@ -1,7 +1,7 @@
 //! Settings of `integrate` and `evaluate`.
 
+use super::antenna_geometry;
 use super::paths::Io;
-use super::{antenna_geometry, finite, positive};
 use crate::args::{EvaluateArgs, IntegrateArgs, RunOptionArgs};
 use crate::failure::Failure;
 use anyhow::anyhow;
@@ -138,12 +138,13 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
     };
     let noise = noise_source(&args.bank, &args.profile)?;
     let options = run_options(&args.run)?;
-    let temperature = model_temperature(args)?;
+    let temperature = model_temperature(&args.run)?;
+    let time_offset_search = time_offset_search(&args.run)?;
     let io = Io::new()
         .input("--imu", &args.imu)
         .input("--gnss", &args.gnss);
     let io = with_noise(io, &noise).optional_inputs([
-        ("--initial-from", args.initial_from.as_ref()),
+        ("--initial-from", args.run.initial_from.as_ref()),
         ("--thermal-from", args.thermal_from.as_ref()),
     ]);
     let io = outputs
@@ -156,39 +157,33 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
         imu_options: super::imu::rotation_only(&args.rotation),
         gnss: args.gnss.clone(),
         noise,
-        run: RunSettings {
-            scheduling: scheduling_of(args.no_schedule, &temperature),
-            compensation: compensation_of(args.no_compensation),
+        run: RunSettings::of_options(
+            &options,
             temperature,
-            gauss_markov: options.gauss_markov,
-            engine: integrate_engine(args, &options)?,
-            outages: args.outages.clone(),
-            process_noise_scale: options.process_noise_scale,
-        },
-        initial_from: args.initial_from.clone(),
+            (
+                scheduling_of(args.no_schedule),
+                compensation_of(args.no_compensation),
+            ),
+            integrate_engine(args, &options)?,
+            args.outages.clone(),
+        ),
+        initial_from: args.run.initial_from.clone(),
         thermal_from: args.thermal_from.clone(),
         outputs,
         in_memory: args.in_memory,
-        time_offset_search: time_offset_search(args)?,
+        time_offset_search,
     })
 }
 
-/// `--estimate-time-offset` with its bracket (positive, at most 10 s: a larger offset is a
-/// clock-scale error, not a delay).
-fn time_offset_search(args: &IntegrateArgs) -> Result<Option<TimeOffsetSearch>, Failure> {
-    if !args.estimate_time_offset {
-        return Ok(None);
+/// `--estimate-time-offset` with its bracket, checked by the library's
+/// [`TimeOffsetSearch::with_bracket`].
+fn time_offset_search(args: &RunOptionArgs) -> Result<Option<TimeOffsetSearch>, Failure> {
+    match args.estimate_time_offset {
+        true => TimeOffsetSearch::with_bracket(args.time_offset_bracket_s)
+            .map(Some)
+            .map_err(usage),
+        false => Ok(None),
     }
-    let bracket_s = positive("--time-offset-bracket-s", args.time_offset_bracket_s)?;
-    if bracket_s > 10.0 {
-        return Err(Failure::Usage(anyhow!(
-            "--time-offset-bracket-s: {bracket_s} s is beyond 10 s"
-        )));
-    }
-    Ok(Some(TimeOffsetSearch {
-        bracket_s,
-        ..TimeOffsetSearch::default()
-    }))
 }
 
 fn noise_source(bank: &Option<PathBuf>, profile: &Option<PathBuf>) -> Result<NoiseSource, Failure> {
@@ -220,11 +215,12 @@ fn noise_path(noise: &NoiseSource) -> &Path {
     }
 }
 
-/// Scheduling by default; fixed when turned off or when a temperature names one model.
-fn scheduling_of(no_schedule: bool, temperature: &ModelTemperature) -> Scheduling {
+/// Scheduling by default (integrate's run fixes its model when a temperature names one:
+/// [`RunSettings::of_options`]), unless turned off.
+fn scheduling_of(no_schedule: bool) -> Scheduling {
     match no_schedule {
         true => Scheduling::Fixed,
-        false => temperature.scheduling(Scheduling::default()),
+        false => Scheduling::default(),
     }
 }
 
@@ -236,21 +232,11 @@ fn compensation_of(no_compensation: bool) -> Compensation {
     }
 }
 
-fn model_temperature(args: &IntegrateArgs) -> Result<ModelTemperature, Failure> {
-    if let Some(t) = args.model_temperature_c {
-        return Ok(ModelTemperature::Fixed(finite("--model-temperature-c", t)?));
-    }
-    Ok(ModelTemperature::Operating {
-        given_c: operating_temperature(&args.run)?,
-        selection: args.select.into(),
-    })
-}
-
-/// `--operating-temperature-c`, when given.
-fn operating_temperature(args: &RunOptionArgs) -> Result<Option<f64>, Failure> {
-    (args.operating_temperature_c)
-        .map(|t| finite("--operating-temperature-c", t))
-        .transpose()
+/// `--model-temperature-c`, `--operating-temperature-c` and `--select`, checked by the
+/// library's [`ModelTemperature::of`].
+fn model_temperature(args: &RunOptionArgs) -> Result<ModelTemperature, Failure> {
+    let (model, operating) = (args.model_temperature_c, args.operating_temperature_c);
+    ModelTemperature::of(model, operating, args.select.into()).map_err(usage)
 }
 
 /// The run options of `integrate` and `evaluate`, resolved the one way for both: shaped here,
@@ -272,6 +258,10 @@ pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
         covariance_interval_s: interval_of_rate("covariance_rate_hz", args.covariance_rate_hz)
             .map_err(usage)?,
         bias_hypotheses: bias_hypotheses_of(args.bias_hypotheses).map_err(usage)?,
+        static_alignment: match args.no_static_alignment {
+            true => StaticAlignment::Off,
+            false => StaticAlignment::default(),
+        },
     };
     options.validate().map_err(usage)?;
     Ok(options)
@@ -282,25 +272,21 @@ fn usage(e: RunOptionError) -> Failure {
     Failure::Usage(anyhow!("{}", e.as_flag()))
 }
 
-/// `integrate`'s engine: the run options with its filter, output rate, smoother and static
-/// alignment.
+/// `integrate`'s own engine settings, beside the run options': its filter, output rate and
+/// smoother.
 fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<EngineSettings, Failure> {
     if options.bias_hypotheses.is_some() && args.smooth {
         return Err(Failure::Usage(anyhow!(
             "--bias-hypotheses with --smooth: a Gaussian sum has no single forward history to smooth"
         )));
     }
-    Ok(options.engine(EngineSettings {
+    Ok(EngineSettings {
         filter: args.filter.into(),
         output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz)
             .map_err(usage)?,
         smooth: args.smooth,
-        static_alignment: match args.no_static_alignment {
-            true => StaticAlignment::Off,
-            false => StaticAlignment::WhenStill,
-        },
         ..EngineSettings::default()
-    }))
+    })
 }
 
 /// The three input files of a tournament.
@@ -325,6 +311,8 @@ pub struct FilterRun {
     pub noise: NoiseSource,
     /// `--thermal-from`: the bank whose thermal calibration joins the noise models.
     pub thermal_from: Option<PathBuf>,
+    /// `--initial-from`: the trajectory every run starts from instead of the reference.
+    pub initial_from: Option<PathBuf>,
 }
 
 /// One outside solution to score.
@@ -353,8 +341,13 @@ pub struct EvaluateSettings {
     pub compensation: Compensation,
     /// How every candidate's run goes.
     pub options: RunOptions,
-    /// Operating temperature, °C (default: the IMU's mean temp_c).
-    pub operating_temperature_c: Option<f64>,
+    /// The model temperature: where the candidates that stand at one temperature stand (the
+    /// temperature given, or the IMU's mean temp_c), and the model of the run the time offset
+    /// is searched with.
+    pub temperature: ModelTemperature,
+    /// `--estimate-time-offset`: how the IMU-GNSS offset is searched for, once, before the
+    /// tournament.
+    pub time_offset_search: Option<TimeOffsetSearch>,
     /// Filters, in report order.
     pub filters: Vec<FilterKind>,
     /// Outages as given.
@@ -371,6 +364,25 @@ pub struct EvaluateSettings {
     pub out: PathBuf,
     /// The slice of the runs to run (`--shard`), when not all.
     pub shard: Option<Shard>,
+}
+
+impl EvaluateSettings {
+    /// The run `integrate` makes with these options and outages (with the one filter of
+    /// `--filter`, or integrate's default when both run): the run the time offset is searched
+    /// with.
+    pub fn integrate_run(&self) -> RunSettings {
+        let filter = match self.filters.as_slice() {
+            [only] => *only,
+            _ => EngineSettings::default().filter,
+        };
+        let base = EngineSettings {
+            filter,
+            ..EngineSettings::default()
+        };
+        let switches = (self.scheduling, self.compensation);
+        let outages = self.outages.clone();
+        RunSettings::of_options(&self.options, self.temperature, switches, base, outages)
+    }
 }
 
 /// The outages of `evaluate`: as given, required with outside solutions (their solver had its
@@ -406,6 +418,7 @@ fn filter_run(args: &EvaluateArgs, reference: &Path) -> Result<Option<FilterRun>
         files,
         noise,
         thermal_from: args.thermal_from.clone(),
+        initial_from: args.run.initial_from.clone(),
     }))
 }
 
@@ -448,13 +461,11 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         run: filter_run(args, &reference)?,
         reference,
         solutions: outside_inputs(args)?,
-        scheduling: match args.no_schedule {
-            true => Scheduling::Fixed,
-            false => Scheduling::default(),
-        },
+        scheduling: scheduling_of(args.no_schedule),
         compensation: compensation_of(args.no_compensation),
         options: run_options(&args.run)?,
-        operating_temperature_c: operating_temperature(&args.run)?,
+        temperature: model_temperature(&args.run)?,
+        time_offset_search: time_offset_search(&args.run)?,
         filters: args.filter.kinds(),
         outages: evaluate_outages(args)?,
         extra_replicates: replicates(args.monte_carlo)? - 1,
@@ -476,6 +487,7 @@ fn evaluate_io(s: &EvaluateSettings) -> Io {
             ("--datasheet", s.datasheet.as_ref()),
             ("--truth", s.truth.as_ref()),
             ("--thermal-from", run.thermal_from.as_ref()),
+            ("--initial-from", run.initial_from.as_ref()),
         ]),
         None => Io::new()
             .input("--reference", &s.reference)
@@ -520,6 +532,11 @@ fn shard_of(args: &EvaluateArgs) -> Result<Option<Shard>, Failure> {
     if !args.solution.is_empty() {
         return Err(Failure::Usage(anyhow!(
             "--shard with --solution: outside solutions are scored only by an unsharded run"
+        )));
+    }
+    if args.run.estimate_time_offset {
+        return Err(Failure::Usage(anyhow!(
+            "--shard with --estimate-time-offset: estimate the offset once (integrate --estimate-time-offset), shift the record by it (convert --time-offset-s), and shard the tournament on the shifted record"
         )));
     }
     let index = std::env::var(SHARD_INDEX_VARIABLE).ok();

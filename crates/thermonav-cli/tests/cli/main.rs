@@ -2,6 +2,7 @@
 
 mod bad_input;
 mod bag_folders;
+mod bank_and_record;
 mod bank_export;
 mod commands;
 mod convert;
@@ -10,6 +11,7 @@ mod convert_ros;
 mod convert_ulog;
 mod denoise;
 mod frictions;
+mod gmwm_defaults;
 mod lot;
 mod modelling;
 mod navigation;
@@ -23,6 +25,7 @@ mod references;
 mod reliability;
 mod report_page;
 mod run_options;
+mod run_parity;
 mod runaway;
 mod shapes;
 mod shards;
@@ -34,6 +37,7 @@ mod thermal_sweeps;
 mod thermal_ulog;
 #[path = "../../../thermonav-io/tests/it/ulog_writer.rs"]
 mod ulog_writer;
+mod usage_first;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -214,19 +214,26 @@ fn both_refuse_a_bad_option_alike() {
         &["--gate-probability", "1.5"],
         &["--bias-hypotheses", "4"],
     ];
-    let missing = "/nonexistent/file.csv";
     for option in cases {
-        let mut integrate = vec!["integrate", "--imu", missing, "--gnss", missing];
-        integrate.extend(["--bank", missing, "--out", "/nonexistent/out.csv"]);
-        let mut evaluate = vec!["evaluate", "--imu", missing, "--gnss", missing];
-        evaluate.extend(["--reference", missing, "--bank", missing]);
-        evaluate.extend(["--out", "/nonexistent/out"]);
-        let [(a, _, a_err), (b, _, b_err)] = [integrate, evaluate].map(|mut args| {
-            args.extend(option);
-            outcome(&thermonav(&args))
-        });
-        assert_eq!((a, b), (2, 2), "{option:?}: {a_err} / {b_err}");
-        assert_eq!(a_err, b_err, "{option:?}");
-        assert!(a_err.contains(option[0]), "{option:?}: {a_err}");
+        let error = refused_alike(option);
+        assert!(error.contains(option[0]), "{option:?}: {error}");
     }
+}
+
+/// The usage error (exit 2) that `integrate` and `evaluate` both give for `option`, with files
+/// that do not exist (so it came before any was read); asserts that the two say the same.
+pub(crate) fn refused_alike(option: &[&str]) -> String {
+    let missing = "/nonexistent/file.csv";
+    let mut integrate = vec!["integrate", "--imu", missing, "--gnss", missing];
+    integrate.extend(["--bank", missing, "--out", "/nonexistent/out.csv"]);
+    let mut evaluate = vec!["evaluate", "--imu", missing, "--gnss", missing];
+    evaluate.extend(["--reference", missing, "--bank", missing]);
+    evaluate.extend(["--out", "/nonexistent/out"]);
+    let [(a, _, a_err), (b, _, b_err)] = [integrate, evaluate].map(|mut args| {
+        args.extend(option);
+        outcome(&thermonav(&args))
+    });
+    assert_eq!((a, b), (2, 2), "{option:?}: {a_err} / {b_err}");
+    assert_eq!(a_err, b_err, "{option:?}");
+    a_err
 }

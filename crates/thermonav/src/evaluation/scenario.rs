@@ -1,8 +1,10 @@
 //! A tournament's [`Scenario`] from records already read: the IMU record compensated under a
 //! plan beside the raw one (and with the truth's bias subtracted for the oracle), the outages
 //! laid over the data, the reference checked to cover them, the inputs checked, and the start
-//! taken from the reference at the first fix. What `thermonav evaluate` and the Python
-//! package's `evaluate` both do between reading their files and running the tournament.
+//! taken from the reference at the first fix (or, with [`Scenario::started`], as `integrate`
+//! starts: aligned from GNSS, or from another trajectory). What `thermonav evaluate` and the
+//! Python package's `evaluate` both do between reading their files and running the
+//! tournament.
 
 use super::metrics::{MetricsError, Reference, check_reference_covers};
 use super::oracle::{OracleError, TrueModel};
@@ -58,22 +60,32 @@ impl Scenario {
         }
     }
 
-    /// The scenario against a reference of positions only: every run starts from the
-    /// alignment `integrate` makes (GNSS heading or course over ground, levelled from a still
-    /// start), not from the reference's attitude, which it does not hold, and no heading is
-    /// scored.
+    /// The scenario against a reference of positions only: no heading is scored. Its runs
+    /// still start from the reference's point until [`Scenario::started`] starts them
+    /// otherwise (aligned, since such a reference holds no attitude).
+    pub fn scoring_positions_only(self) -> Self {
+        Self {
+            reference_content: ReferenceContent::PositionOnly,
+            ..self
+        }
+    }
+
+    /// The scenario with every run started as `start` says, as `integrate` starts its run:
+    /// aligned from GNSS ([`Start::Align`]: GNSS heading or course over ground, levelled from
+    /// a still start as the settings' static alignment says), or from a trajectory's point at
+    /// the first fix ([`Start::Reference`], `integrate --initial-from`); the initial
+    /// covariance is the default one, tightened by a still start.
     ///
     /// # Errors
-    /// [`ScenarioError::Run`] when the data cannot be aligned.
-    pub fn with_position_only_reference(self) -> Result<Self, ScenarioError> {
-        let found = initial_estimate(Start::Align, &self.increments, &self.gnss, &self.settings)
+    /// [`ScenarioError::Run`] when the data cannot be aligned or the trajectory is empty.
+    pub fn started(self, start: Start) -> Result<Self, ScenarioError> {
+        let found = initial_estimate(start, &self.increments, &self.gnss, &self.settings)
             .map_err(ScenarioError::Run)?;
         Ok(Self {
             initial: found.initial,
             initial_covariance: found
                 .uncertainty(InitialUncertainty::default())
                 .covariance(),
-            reference_content: ReferenceContent::PositionOnly,
             ..self
         })
     }

@@ -25,7 +25,7 @@ use super::error_state::Estimate;
 use super::measurement::AntennaGeometry;
 use super::navigate::run_scheduled;
 use super::outage::{OutageError, OutageSpec};
-use super::run_options::{DEFAULT_PROCESS_NOISE_SCALE, RunOptions};
+use super::run_options::{DEFAULT_PROCESS_NOISE_SCALE, RunOptionError, RunOptions, finite};
 use super::schedule::{
     Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,
     Scheduling, TemperatureTrack, compensate_record,
@@ -73,6 +73,41 @@ impl Default for ModelTemperature {
 }
 
 impl ModelTemperature {
+    /// The model temperature of a run's options (the same for `integrate`, `evaluate` and the
+    /// Python package): the model of `model_temperature_c` (the nearest entry), or the model
+    /// for the operating temperature (`operating_temperature_c`, or the record's mean temp_c)
+    /// selected by `selection`.
+    ///
+    /// # Errors
+    /// A temperature that is not finite, or both given.
+    pub fn of(
+        model_temperature_c: Option<f64>,
+        operating_temperature_c: Option<f64>,
+        selection: Selection,
+    ) -> Result<Self, RunOptionError> {
+        match (model_temperature_c, operating_temperature_c) {
+            (Some(t), Some(_)) => Err(RunOptionError {
+                name: "model_temperature_c",
+                value: t.to_string(),
+                expected: "give it or the operating temperature, not both".into(),
+            }),
+            (Some(t), None) => Ok(Self::Fixed(finite("model_temperature_c", t)?)),
+            (None, given) => Ok(Self::Operating {
+                given_c: (given.map(|t| finite("operating_temperature_c", t))).transpose()?,
+                selection,
+            }),
+        }
+    }
+
+    /// The temperature given, °C: the fixed model's, or the operating temperature when
+    /// given (`None`: the record's mean temp_c stands in).
+    pub fn given_c(&self) -> Option<f64> {
+        match self {
+            ModelTemperature::Fixed(t) => Some(*t),
+            ModelTemperature::Operating { given_c, .. } => *given_c,
+        }
+    }
+
     /// The bank selection rule (nearest for a fixed model).
     pub fn selection(&self) -> Selection {
         match self {
@@ -148,6 +183,29 @@ impl Default for RunSettings {
 }
 
 impl RunSettings {
+    /// The settings of a run with `options` and the model of `temperature`: scheduled by the
+    /// record's temperature as `scheduling` asks while the temperature follows the record
+    /// ([`ModelTemperature::scheduling`]), compensated as `compensation` says, the filter's
+    /// settings `base`'s (its kind, output rate, smoothing) with the options', and `outages`.
+    /// What `integrate` runs, and what `evaluate` estimates the time offset with.
+    pub fn of_options(
+        options: &RunOptions,
+        temperature: ModelTemperature,
+        (scheduling, compensation): (Scheduling, Compensation),
+        base: EngineSettings,
+        outages: OutageSpec,
+    ) -> Self {
+        Self {
+            temperature,
+            scheduling: temperature.scheduling(scheduling),
+            compensation,
+            gauss_markov: options.gauss_markov,
+            engine: options.engine(base),
+            outages,
+            process_noise_scale: options.process_noise_scale,
+        }
+    }
+
     /// The options that decide how the filter runs (see [`RunOptions`]).
     pub fn options(&self) -> RunOptions {
         RunOptions::of_engine(&self.engine, self.gauss_markov, self.process_noise_scale)
@@ -369,12 +427,9 @@ fn profile_model(
     profile: &SensorProfile,
     mean_temperature_c: Option<f64>,
 ) -> (ModelResult, BankChoice) {
-    let temperature_c = match settings.temperature {
-        ModelTemperature::Fixed(t) => Some(t),
-        ModelTemperature::Operating { given_c, .. } => given_c,
-    }
-    .or(mean_temperature_c)
-    .unwrap_or(profile.reference_temperature_c);
+    let temperature_c = (settings.temperature.given_c())
+        .or(mean_temperature_c)
+        .unwrap_or(profile.reference_temperature_c);
     let model = profile.stochastic_model(temperature_c, &ScaleFactorPrior::default());
     let choice = BankChoice {
         temperature_c,
@@ -753,4 +808,49 @@ pub struct RunOutcome {
     pub bias_source: InitialBiasSource,
     /// Wall time of the filter, s.
     pub processing_s: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_model_temperature_is_resolved_and_checked_once() {
+        let linear = Selection::Linear;
+        assert_eq!(
+            ModelTemperature::of(Some(25.0), None, linear).unwrap(),
+            ModelTemperature::Fixed(25.0)
+        );
+        let operating = ModelTemperature::of(None, Some(17.0), linear).unwrap();
+        assert_eq!(operating.given_c(), Some(17.0));
+        assert_eq!(operating.selection(), linear);
+        assert_eq!(
+            ModelTemperature::of(None, None, linear).unwrap().given_c(),
+            None
+        );
+        let refused = |m, o| ModelTemperature::of(m, o, linear).unwrap_err().name;
+        assert_eq!(refused(Some(f64::NAN), None), "model_temperature_c");
+        assert_eq!(
+            refused(None, Some(f64::INFINITY)),
+            "operating_temperature_c"
+        );
+        assert_eq!(refused(Some(1.0), Some(2.0)), "model_temperature_c");
+    }
+
+    #[test]
+    fn a_named_temperature_fixes_the_model() {
+        let options = RunOptions::default();
+        let settings = |temperature| {
+            let switches = (Scheduling::ByTemperature, Compensation::Off);
+            let base = EngineSettings::default();
+            RunSettings::of_options(&options, temperature, switches, base, OutageSpec::None)
+        };
+        let fixed = settings(ModelTemperature::Fixed(25.0));
+        assert_eq!(fixed.scheduling, Scheduling::Fixed);
+        assert_eq!(fixed.compensation, Compensation::Off);
+        let followed = settings(ModelTemperature::default());
+        assert_eq!(followed.scheduling, Scheduling::ByTemperature);
+        assert_eq!(followed.engine, EngineSettings::default());
+        assert_eq!(followed.options(), options);
+    }
 }

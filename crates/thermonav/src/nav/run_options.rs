@@ -1,13 +1,18 @@
 //! The options that decide how one filter run goes, beside its data, its noise model and its
 //! outages: the Gauss-Markov family, the white-noise scale, the GNSS velocity noise, the
 //! innovation gate, the measurements used, the antennas, the longest IMU gap, the covariance
-//! step and the Gaussian sum over the z-gyro bias. `thermonav integrate` runs one filter with
-//! them and `thermonav evaluate` runs every candidate of its tournament with them, so that a
-//! tournament can be tuned as a run is; their defaults are written here once (from
-//! [`EngineSettings::default`] and [`DEFAULT_PROCESS_NOISE_SCALE`]).
+//! step, the Gaussian sum over the z-gyro bias and the static alignment of an aligned start.
+//! `thermonav integrate` runs one filter with them and `thermonav evaluate` runs every
+//! candidate of its tournament with them, so that a tournament can be tuned as a run is; their
+//! defaults are written here once (from [`EngineSettings::default`] and
+//! [`DEFAULT_PROCESS_NOISE_SCALE`]). The model's temperature is
+//! [`super::run::ModelTemperature::of`]'s, and the IMU-GNSS time-offset search
+//! [`super::time_offset::TimeOffsetSearch::with_bracket`]'s, checked there for both commands
+//! and the Python package.
 
 use super::engine::{Aiding, BiasHypotheses, EngineSettings};
 use super::measurement::AntennaGeometry;
+use super::static_alignment::StaticAlignment;
 use crate::stoch::bank::GaussMarkovSource;
 use serde::{Deserialize, Serialize};
 
@@ -39,6 +44,10 @@ pub struct RunOptions {
     pub covariance_interval_s: f64,
     /// The Gaussian sum over the z-gyro bias prior (`None`: one filter).
     pub bias_hypotheses: Option<BiasHypotheses>,
+    /// Whether a run aligned from GNSS is levelled, and its gyro biases taken, from the
+    /// platform standing still at the record's start (a run started from a trajectory takes
+    /// its attitude from it).
+    pub static_alignment: StaticAlignment,
 }
 
 impl Default for RunOptions {
@@ -162,6 +171,17 @@ pub fn interval_of_rate(name: &'static str, rate_hz: f64) -> Result<f64, RunOpti
     }
 }
 
+/// `value` when it is finite (a temperature, °C).
+///
+/// # Errors
+/// [`RunOptionError`] naming `name`.
+pub fn finite(name: &'static str, value: f64) -> Result<f64, RunOptionError> {
+    match value.is_finite() {
+        true => Ok(value),
+        false => Err(RunOptionError::new(name, value, "expected a finite number")),
+    }
+}
+
 /// The Gaussian sum of `members` over the z-gyro bias (1: one filter, `None`).
 ///
 /// # Errors
@@ -225,11 +245,12 @@ impl RunOptions {
             max_imu_gap_s: engine.max_imu_gap_s,
             covariance_interval_s: engine.covariance_interval_s,
             bias_hypotheses: engine.bias_hypotheses,
+            static_alignment: engine.static_alignment,
         }
     }
 
-    /// `base` with these options' filter settings (the filter kind, outages, output rate,
-    /// smoothing and static alignment are `base`'s).
+    /// `base` with these options' filter settings (the filter kind, outages, output rate and
+    /// smoothing are `base`'s).
     pub fn engine(&self, base: EngineSettings) -> EngineSettings {
         EngineSettings {
             velocity_sd_m_s: self.velocity_sd_m_s,
@@ -240,6 +261,7 @@ impl RunOptions {
             max_imu_gap_s: self.max_imu_gap_s,
             covariance_interval_s: self.covariance_interval_s,
             bias_hypotheses: self.bias_hypotheses,
+            static_alignment: self.static_alignment,
             ..base
         }
     }
@@ -309,6 +331,12 @@ mod tests {
         assert_eq!(interval_of_rate("output_rate_hz", 10.0).unwrap(), 0.1);
         assert!(interval_of_rate("output_rate_hz", 1e9).is_err());
         assert_eq!(bias_hypotheses_of(1).unwrap(), None);
+        assert_eq!(
+            finite("model_temperature_c", f64::NAN)
+                .unwrap_err()
+                .as_flag(),
+            "--model-temperature-c NaN: expected a finite number"
+        );
     }
 
     #[test]
@@ -320,5 +348,14 @@ mod tests {
         );
         assert_eq!(options.gauss_markov, GaussMarkovSource::IrregularMl);
         assert_eq!(options.process_noise_scale, 1.0);
+        assert_eq!(options.static_alignment, StaticAlignment::WhenStill);
+        let off = RunOptions {
+            static_alignment: StaticAlignment::Off,
+            ..RunOptions::default()
+        };
+        assert_eq!(
+            off.engine(EngineSettings::default()).static_alignment,
+            StaticAlignment::Off
+        );
     }
 }
