@@ -2,34 +2,19 @@
 //! handed to one function per subcommand.
 
 mod args;
-mod bank_building;
-mod bank_streaming;
-mod bank_tables;
+mod banks;
 mod campaign;
 mod commands;
 mod failure;
-mod figure_data;
 mod fir_design;
-mod html_ranking;
-mod html_report;
-mod html_summary;
-mod html_temperature;
+mod html;
 mod inputs;
-mod integration;
-mod integration_outcome;
-mod integration_stream;
-mod loaded_noise;
-mod noise_units;
-mod production_lot;
+mod navigation;
 mod progress;
-mod reference_input;
 mod report;
 mod settings;
-mod thermal_calibration;
+mod thermal;
 mod thermal_scenarios;
-mod thermal_sweeps;
-mod tournament_files;
-mod tournament_shards;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -18,16 +18,16 @@
 //! comparison states the replicates its measured effect needs for p < 0.01 at 80 % power
 //! ([`thermonav::evaluation::significance::pairs_for_power`]). (c) and the matrix shift the
 //! outages along one simulated survey (as `evaluate --monte-carlo` does).
-use crate::bank_building::{BankInputs, build_bank_reading};
+use crate::banks::building::{BankInputs, build_bank_reading};
 use crate::campaign::{ChamberTruth, run_chamber, true_model, with_thermal_lag};
 use crate::failure::{Classify, Failure};
 use crate::inputs::{TEMPERATURE_SENSITIVE_PROFILE, load_profile};
-use crate::settings::simulation::{ChamberSettings, chamber_settings};
-use crate::thermal_calibration::ThermalInputs;
-use crate::thermal_sweeps::calibrate_sweeps_alone;
-use crate::tournament_files::{
+use crate::navigation::tournament_files::{
     EvaluationFile, RecordPlan, run_and_write, scenario_imu, scenario_of,
 };
+use crate::settings::simulation::{ChamberSettings, chamber_settings};
+use crate::thermal::calibration::ThermalInputs;
+use crate::thermal::sweeps::calibrate_sweeps_alone;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -435,7 +435,7 @@ fn held_out_check(bank: &ModelBank, record: &Path, out: &Path) -> Result<HeldOut
         .as_ref()
         .ok_or_else(|| Failure::Data(anyhow!("the demo's bank has no thermal calibration")))?;
     let read = (&Default::default(), &Default::default());
-    let series = crate::thermal_calibration::sweep_series(record, 0, read)?.series;
+    let series = crate::thermal::calibration::sweep_series(record, 0, read)?.series;
     let checks = check_record(calibration, &series, HELD_OUT_BLOCK_S, None)
         .map_err(|e| anyhow!("{}: {e}", record.display()))
         .data()?;
@@ -927,7 +927,7 @@ pub fn print_thermal_scenarios(s: &ThermalScenarios) {
             "\n{} on the {} ({} power-ons in the chamber):",
             scenario.name, s.profile, s.power_ons
         );
-        crate::tournament_files::print_tournament_table(&scenario.tournament);
+        crate::navigation::tournament_files::print_tournament_table(&scenario.tournament);
         let verdict = if scenario.claim.holds {
             "HOLDS"
         } else {

@@ -2,8 +2,8 @@
 //! Allan family (`--kind`).
 
 use crate::args::AllanArgs;
+use crate::banks::noise_units::{TermsJson, terms_json, terms_line};
 use crate::failure::{Classify, Failure};
-use crate::noise_units::{TermsJson, terms_json, terms_line};
 use crate::report::print_json;
 use crate::settings::analysis::{AllanSettings, resolve_allan};
 use anyhow::anyhow;

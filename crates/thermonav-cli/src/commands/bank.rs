@@ -3,7 +3,7 @@
 //! model at a temperature as another tool's noise configuration.
 
 use crate::args::{BankExportArgs, BankShowArgs, ExportKind};
-use crate::bank_tables::{print_bank_table, significant};
+use crate::banks::tables::{print_bank_table, significant};
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::{print_json, print_rows};

@@ -1,13 +1,13 @@
 //! `thermonav characterize`: the temperature model bank from static records.
 
 use crate::args::CharacterizeArgs;
-use crate::bank_building::build_job_bank;
-use crate::bank_tables::print_bank_table;
+use crate::banks::building::build_job_bank;
+use crate::banks::production_lot::characterize_lot;
+use crate::banks::tables::print_bank_table;
 use crate::failure::Failure;
-use crate::production_lot::characterize_lot;
 use crate::report::print_json;
 use crate::settings::characterization::{CharacterizeJob, characterize};
-use crate::thermal_calibration::missing_reason;
+use crate::thermal::calibration::missing_reason;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -38,7 +38,7 @@ pub fn run(args: &CompensateArgs) -> Result<(), Failure> {
         .output("sidecar", &sidecar_path)
         .check()?;
     let calibration = read_thermal_calibration(&args.bank)?;
-    let mut series = crate::thermal_calibration::sweep_series(
+    let mut series = crate::thermal::calibration::sweep_series(
         &args.record,
         args.instance,
         (

@@ -10,12 +10,16 @@
 //!    over simulation seeds (new IMU errors and GNSS noise per replicate) for significance.
 
 use crate::args::DemoArgs;
-use crate::bank_building::build_bank;
-use crate::bank_tables::show_estimate;
+use crate::banks::building::build_bank;
+use crate::banks::tables::show_estimate;
 use crate::campaign::{VesselFiles, create_folder, run_chamber, simulate_vessel_files, vessel_run};
 use crate::failure::{Classify, Failure};
-use crate::integration::integrate;
-use crate::integration_outcome::Summary as IntegrateSummary;
+use crate::navigation::integration::integrate;
+use crate::navigation::outcome::Summary as IntegrateSummary;
+use crate::navigation::tournament_files::{
+    EvaluationFile, RecordPlan, print_tournament_table, run_and_write, scenario_from_files,
+    scenario_imu, scenario_of,
+};
 use crate::report::print_json;
 use crate::settings::navigation::{
     IntegrateSettings, ModelTemperature, NoiseSource, ScenarioFiles, SolutionFiles,
@@ -23,10 +27,6 @@ use crate::settings::navigation::{
 use crate::settings::simulation::{VehicleSettings, VesselSettings, chamber_settings};
 use crate::thermal_scenarios::{
     ScenarioPlan, ThermalScenarios, print_thermal_scenarios, run_thermal_scenarios,
-};
-use crate::tournament_files::{
-    EvaluationFile, RecordPlan, print_tournament_table, run_and_write, scenario_from_files,
-    scenario_imu, scenario_of,
 };
 use anyhow::anyhow;
 use serde::Serialize;
@@ -202,7 +202,7 @@ pub fn run(args: &DemoArgs) -> Result<(), Failure> {
         started,
     );
     write_json_atomically(args.out.join("demo.json"), &summary).data()?;
-    let report = crate::html_report::write_report(&args.out)?;
+    let report = crate::html::report::write_report(&args.out)?;
     say(args, &format!("report: {}", report.display()));
     if args.json {
         return print_json(&summary);

@@ -5,16 +5,16 @@
 //! candidates with the same metrics, or alone when no IMU is given.
 
 use crate::args::{EvaluateAction, EvaluateArgs};
+use crate::banks::loaded_noise::load_noise;
 use crate::failure::{Classify, Failure};
-use crate::loaded_noise::load_noise;
-use crate::reference_input::{read_reference, span_of};
-use crate::report::print_json;
-use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
-use crate::tournament_files::{
+use crate::navigation::reference_input::{read_reference, span_of};
+use crate::navigation::tournament_files::{
     Echo, EvaluationFile, FileScenario, RecordPlan, StartPlan, check_some_model_ran,
     print_tournament_table, run_and_write, scenario_from_files_with, write_outside_only,
 };
-use crate::tournament_shards;
+use crate::navigation::tournament_shards;
+use crate::report::print_json;
+use crate::settings::navigation::{EvaluateSettings, FilterRun, OutsideInput};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model as datasheet_model_of};

@@ -4,8 +4,8 @@
 
 use crate::args::IntegrateArgs;
 use crate::failure::Failure;
-use crate::integration::integrate;
-use crate::integration_outcome::Summary;
+use crate::navigation::integration::integrate;
+use crate::navigation::outcome::Summary;
 use crate::report::{print_json, print_rows};
 use thermonav::nav::report::{FinalJson, InnovationJson, RunReport};
 use thermonav::nav::time_offset::{IntervalEnd, TimeOffsetEstimate};

@@ -6,6 +6,6 @@ use crate::failure::Failure;
 /// Runs `lot`.
 pub fn run(args: &LotArgs) -> Result<(), Failure> {
     match &args.action {
-        LotAction::Summarize(summarize) => crate::production_lot::run_summarize(summarize),
+        LotAction::Summarize(summarize) => crate::banks::production_lot::run_summarize(summarize),
     }
 }

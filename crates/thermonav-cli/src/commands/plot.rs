@@ -2,7 +2,7 @@
 
 use crate::args::{BagTopicArgs, MetricArg, PlotArgs};
 use crate::failure::{Classify, Failure};
-use crate::figure_data::{innovations_of, outage_errors, rms_series};
+use crate::html::figure_data::{innovations_of, outage_errors, rms_series};
 use crate::inputs::{read_bank, read_imu_input, read_rates, thermal_calibration_of};
 use crate::settings::imu::topics;
 use crate::settings::plot::{
@@ -294,7 +294,7 @@ fn thermal_check_svg(
 ) -> Result<String, Failure> {
     let calibration = crate::inputs::read_thermal_calibration(&args.input)?;
     let read = (&ImuOptions::default(), &topics(&args.topics));
-    let series = crate::thermal_calibration::sweep_series(record, 0, read)?.series;
+    let series = crate::thermal::calibration::sweep_series(record, 0, read)?.series;
     let checks =
         thermonav::stoch::thermal::check::check_record(&calibration, &series, block_s, None)
             .map_err(|e| anyhow!("{}: {e}", record.display()))
@@ -389,7 +389,7 @@ fn drawn_autocovariance(channel: Channel, gamma: &[f64], dt_s: f64) -> Autocovar
 
 /// The trajectory in north/east metres from its first point, with the `--outages` windows.
 fn trajectory_svg(args: &PlotArgs) -> Result<String, Failure> {
-    let points = crate::reference_input::read_reference(&args.input)?.points;
+    let points = crate::navigation::reference_input::read_reference(&args.input)?.points;
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
         return Err(Failure::Data(anyhow!(
             "{}: no trajectory point",

@@ -6,7 +6,7 @@ use crate::failure::Failure;
 
 /// Runs `report`.
 pub fn run(args: &ReportArgs) -> Result<(), Failure> {
-    let path = crate::html_report::write_report(&args.dir)?;
+    let path = crate::html::report::write_report(&args.dir)?;
     println!("report written: {}", path.display());
     Ok(())
 }

@@ -30,7 +30,7 @@ pub fn run(args: &BankCheckArgs) -> Result<(), Failure> {
         .input("RECORD", &args.record)
         .check()?;
     let calibration = read_thermal_calibration(&args.bank)?;
-    let record = crate::thermal_calibration::sweep_series(
+    let record = crate::thermal::calibration::sweep_series(
         &args.record,
         args.instance,
         (

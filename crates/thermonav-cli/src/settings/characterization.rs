@@ -3,7 +3,7 @@
 use super::paths::Io;
 use crate::args::{CharacterizeArgs, DenoiseArg, ReadingArg};
 use crate::failure::Failure;
-use crate::thermal_calibration::ThermalInputs;
+use crate::thermal::calibration::ThermalInputs;
 use anyhow::anyhow;
 use std::path::PathBuf;
 use thermonav::signal::wavelet::denoise::WaveletDenoise;

@@ -790,3 +790,32 @@ fn outages_before_clock_time_data_suggest_rel() {
     let (status, _, stderr) = run("rel:every:40,10,30,3");
     assert_eq!(status, 0, "{stderr}");
 }
+
+// Issue 38 row 18: `integrate` without a noise model listed `--bank` alone as required, though
+// `--profile` serves as well; the usage error now names both as the one choice, and giving
+// both is refused.
+#[test]
+fn integrate_without_a_noise_model_asks_for_a_bank_or_a_profile() {
+    let (status, _, stderr) = outcome(&thermonav(&["integrate"]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(
+        stderr.contains("<--bank <BANK>|--profile <PROFILE>>"),
+        "{stderr}"
+    );
+    let both = [
+        "integrate",
+        "--imu",
+        "a.csv",
+        "--gnss",
+        "b.csv",
+        "--out",
+        "c.csv",
+        "--bank",
+        "x.json",
+        "--profile",
+        "y.toml",
+    ];
+    let (status, _, stderr) = outcome(&thermonav(&both));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("cannot be used with"), "{stderr}");
+}

@@ -3,7 +3,7 @@
 //! thermal calibration on a sweep it was not fitted to.
 
 use crate::failure::{Classify, Failure};
-use crate::html_ranking::ranking_table;
+use crate::html::ranking::ranking_table;
 use anyhow::anyhow;
 use serde_json::Value;
 use std::path::Path;

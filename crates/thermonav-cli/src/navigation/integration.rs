@@ -3,10 +3,10 @@
 //! solution trajectory, its state and innovation files, and returns the summary. Shared by
 //! `integrate` and `demo`; the run itself is the library's [`thermonav::nav::run`].
 
+use crate::banks::loaded_noise::{LoadedNoise, load_noise};
 use crate::failure::{Classify, Failure};
-use crate::integration_outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
-use crate::loaded_noise::{LoadedNoise, load_noise};
-use crate::reference_input::record_span;
+use crate::navigation::outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
+use crate::navigation::reference_input::record_span;
 use crate::settings::navigation::{IntegrateSettings, SolutionFiles};
 use thermonav::nav::report::RunReport;
 use thermonav::nav::run::{PreparedRun, RunError, RunOutcome, Start, prepare};
@@ -26,10 +26,10 @@ pub fn integrate(settings: &IntegrateSettings) -> Result<Summary, Failure> {
     // The offset search runs the filter many times on the record read once.
     let survey = match settings.in_memory || settings.time_offset_search.is_some() {
         true => None,
-        false => Some(crate::integration_stream::survey(settings)?),
+        false => Some(crate::navigation::stream::survey(settings)?),
     };
     let mut summary = match survey.filter(|s| is_streamable(noise.model(), &settings.run, s)) {
-        Some(survey) => crate::integration_stream::integrate(settings, &noise, &survey),
+        Some(survey) => crate::navigation::stream::integrate(settings, &noise, &survey),
         None => integrate_in_memory(settings, &noise),
     }?;
     summary.record_notes = notes;
@@ -47,7 +47,9 @@ fn integrate_in_memory(
     let reference = match &settings.initial_from {
         Some(path) => {
             let run = (record_span(&series), settings.imu.as_path());
-            Some(crate::reference_input::read_start_reference(path, run)?)
+            Some(crate::navigation::reference_input::read_start_reference(
+                path, run,
+            )?)
         }
         None => None,
     };

@@ -2,11 +2,11 @@
 //! to run), the reference trajectory read for its one starting point, and the solution, state
 //! and innovation files written as the filter goes ([`SolutionFilesWriter`], temporary files
 //! renamed at the end; a failed run leaves none). The run is the library's
-//! [`thermonav::nav::stream`]; [`crate::integration`] chooses it when the run allows.
+//! [`thermonav::nav::stream`]; [`crate::navigation::integration`] chooses it when the run allows.
 
+use crate::banks::loaded_noise::LoadedNoise;
 use crate::failure::{Classify, Failure};
-use crate::integration_outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
-use crate::loaded_noise::LoadedNoise;
+use crate::navigation::outcome::{ImuReading, Summary, run_failure, summarize, write_epochs};
 use crate::settings::navigation::IntegrateSettings;
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
@@ -121,7 +121,7 @@ fn stream_failure(error: StreamRunError<ReadError>, settings: &IntegrateSettings
 
 /// Whether the reference at `path` is our trajectory CSV (read row by row below).
 fn is_trajectory_csv(path: &std::path::Path) -> Result<bool, Failure> {
-    let kind = crate::reference_input::reference_kind(path)?;
+    let kind = crate::navigation::reference_input::reference_kind(path)?;
     Ok(kind == ReferenceKind::TrajectoryCsv)
 }
 
@@ -140,7 +140,7 @@ fn starting_point(
     if !is_trajectory_csv(path)? {
         // A .nav is read whole (the run picks its point); a position-only kind is refused.
         let run = (survey.increment_span(), settings.imu.as_path());
-        return crate::reference_input::read_start_reference(path, run).map(Some);
+        return crate::navigation::reference_input::read_start_reference(path, run).map(Some);
     }
     let at: Option<Timestamp> = gnss
         .first()
@@ -158,7 +158,7 @@ fn starting_point(
     if let Some(span) = first.map(|p| p.time).zip(last) {
         let reference = (span, ReferenceKind::TrajectoryCsv, path.as_path());
         let run = (survey.increment_span(), settings.imu.as_path());
-        crate::reference_input::check_span_overlap(reference, run)?;
+        crate::navigation::reference_input::check_span_overlap(reference, run)?;
     }
     Ok(Some(chosen.or(first).into_iter().collect()))
 }

@@ -1,10 +1,10 @@
 //! What an `integrate` run gives back, whether it read the IMU record as a stream
-//! ([`crate::integration_stream`]) or whole ([`crate::integration`]): the summary it reports, the
+//! ([`crate::navigation::stream`]) or whole ([`crate::navigation::integration`]): the summary it reports, the
 //! solution files it writes, and a refused run's failure naming the file or option it is about.
 
+use crate::banks::loaded_noise::RecordNote;
 use crate::failure::{Classify, Failure};
 use crate::inputs::{no_temperature, prefix};
-use crate::loaded_noise::RecordNote;
 use crate::settings::navigation::{IntegrateSettings, NoiseSource, SolutionFiles};
 use anyhow::anyhow;
 use serde::Serialize;

@@ -2,7 +2,7 @@
 //! label, filter and five outage metrics (the mean and its 95 % interval when replicated). Shared
 //! by the HTML report's navigation section and its temperature scenarios.
 
-use crate::figure_data::{number, text};
+use crate::html::figure_data::{number, text};
 use serde_json::Value;
 use thermonav_plot::html::{Block, Table};
 

@@ -2,7 +2,7 @@
 //! the paired difference it rests on (mean, 95 % interval, p) and the one figure that shows
 //! it; all read from what the run wrote (evaluation.json, demo.json), nothing recomputed.
 
-use crate::figure_data::{number, rms_series, text};
+use crate::html::figure_data::{number, rms_series, text};
 use serde_json::Value;
 use thermonav_plot::figures::claims::{Lead, LeadSeries, paired_leads_figure};
 use thermonav_plot::figures::navigation::rms_versus_temperature_figure;
@@ -121,7 +121,7 @@ fn tournament_finding(e: &Value, sources: &SummarySources) -> Finding {
         )),
         evidence,
         figure: Some(tournament_figure(e)),
-        details: section_starting(sources.sections, crate::html_ranking::NAVIGATION_HEADING),
+        details: section_starting(sources.sections, crate::html::ranking::NAVIGATION_HEADING),
     }
 }
 
@@ -221,7 +221,7 @@ fn claim_finding(scenario: &Value, sections: &[Section]) -> Finding {
         figure: Some(claim_figure(scenario, comparisons)),
         details: section_starting(
             sections,
-            &format!("{}{name}", crate::html_temperature::SCENARIO_HEADING),
+            &format!("{}{name}", crate::html::temperature::SCENARIO_HEADING),
         ),
     }
 }
@@ -317,8 +317,8 @@ fn matrix_finding(m: &Value, sections: &[Section]) -> Finding {
         statement: "Every fixed bank model on surveys at every bank temperature: is the model made at the survey's temperature the best one?".into(),
         verdict: None,
         evidence: format!("Best model per survey temperature: {}.", best.join(", ")),
-        figure: Some(crate::html_temperature::matrix_figure(m)),
-        details: section_starting(sections, crate::html_temperature::MATRIX_HEADING),
+        figure: Some(crate::html::temperature::matrix_figure(m)),
+        details: section_starting(sections, crate::html::temperature::MATRIX_HEADING),
     }
 }
 

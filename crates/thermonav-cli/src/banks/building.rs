@@ -1,11 +1,11 @@
 //! Model banks from static records: each file characterised whole in memory or streamed in
-//! pieces (see [`crate::bank_streaming`]), the files in parallel, the bank written atomically.
+//! pieces (see [`crate::banks::streaming`]), the files in parallel, the bank written atomically.
 
 use crate::args::ReadingArg;
-use crate::bank_streaming::{characterize_streaming, streams};
+use crate::banks::streaming::{characterize_streaming, streams};
 use crate::failure::{Classify, Failure};
 use crate::settings::characterization::BankJob;
-use crate::thermal_calibration::{ThermalInputs, calibrate_bank};
+use crate::thermal::calibration::{ThermalInputs, calibrate_bank};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::imu::ImuSeries;
@@ -130,7 +130,7 @@ pub fn build_bank_reading(
     use rayon::prelude::*;
     let (files, temperatures) = (inputs.files, inputs.temperatures);
     if files.is_empty() {
-        let calibration = crate::thermal_sweeps::calibrate_sweeps_alone(inputs.thermal)?;
+        let calibration = crate::thermal::sweeps::calibrate_sweeps_alone(inputs.thermal)?;
         let bank = ModelBank::thermal_only(calibration);
         write_json_atomically(out, &bank).data()?;
         return Ok(bank);

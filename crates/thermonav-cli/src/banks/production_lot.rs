@@ -3,12 +3,12 @@
 //! separate jobs wrote, e.g. a Slurm array with `--unit-index $SLURM_ARRAY_TASK_ID`).
 
 use crate::args::{LotSummarizeArgs, ReadingArg};
-use crate::bank_building::{BankInputs, build_bank_reading};
+use crate::banks::building::{BankInputs, build_bank_reading};
 use crate::failure::{Classify, Failure};
 use crate::inputs::read_bank;
 use crate::report::print_json;
 use crate::settings::characterization::{LotJob, UnitChoice};
-use crate::thermal_calibration::ThermalInputs;
+use crate::thermal::calibration::ThermalInputs;
 use anyhow::anyhow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

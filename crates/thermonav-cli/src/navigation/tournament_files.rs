@@ -5,7 +5,9 @@
 
 use crate::failure::{Classify, Failure};
 use crate::inputs::operating_temperature;
-use crate::reference_input::{check_overlap, read_reference, read_start_reference, record_span};
+use crate::navigation::reference_input::{
+    check_overlap, read_reference, read_start_reference, record_span,
+};
 use crate::settings::navigation::ScenarioFiles;
 use anyhow::anyhow;
 use serde::Serialize;
@@ -108,7 +110,7 @@ pub struct FileScenario {
 /// covariance, `engine`'s settings with the outages of `outages`, the record compensated
 /// under `records` beside the raw one, and with the truth's bias subtracted for the oracle)
 /// and the operating temperature (given, or the IMU's mean temp_c). The reference may be any
-/// kind [`crate::reference_input`] reads; one of positions only is checked to overlap the
+/// kind [`crate::navigation::reference_input`] reads; one of positions only is checked to overlap the
 /// IMU record, and the runs then start aligned from GNSS and score no heading.
 pub fn scenario_from_files(
     files: &ScenarioFiles,

@@ -5,9 +5,9 @@
 //! and its significance, what was run and how to reproduce it.
 
 use crate::failure::{Classify, Failure};
-use crate::figure_data::{innovations_of, number, outage_errors, rms_series, text};
-use crate::html_ranking::{NAVIGATION_HEADING, not_scored_note, ranking_table};
-use crate::html_summary::{SummarySources, findings};
+use crate::html::figure_data::{innovations_of, number, outage_errors, rms_series, text};
+use crate::html::ranking::{NAVIGATION_HEADING, not_scored_note, ranking_table};
+use crate::html::summary::{SummarySources, findings};
 use crate::inputs::read_bank;
 use anyhow::anyhow;
 use serde_json::Value;
@@ -41,8 +41,8 @@ pub fn write_report(dir: &Path) -> Result<std::path::PathBuf, Failure> {
         sections.push(navigation_section(dir, &dir.join("evaluation"), e)?);
     }
     if let Some(d) = &demo {
-        sections.extend(crate::html_temperature::temperature_sections(d));
-        sections.extend(crate::html_temperature::held_out_check_section(dir, d)?);
+        sections.extend(crate::html::temperature::temperature_sections(d));
+        sections.extend(crate::html::temperature::held_out_check_section(dir, d)?);
     }
     let summary = findings(&SummarySources {
         evaluation: evaluation.as_ref(),
@@ -386,7 +386,7 @@ fn innovations_block(dir: &Path) -> Result<Option<Block>, Failure> {
 /// The reference trajectory in north/east metres from its first point, thinned to about 4000
 /// points.
 fn trajectory_of(path: &Path) -> Result<Trajectory, Failure> {
-    let points = crate::reference_input::read_reference(path)?.points;
+    let points = crate::navigation::reference_input::read_reference(path)?.points;
     let origin = points
         .first()
         .map(geodetic)

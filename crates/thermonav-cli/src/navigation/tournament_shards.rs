@@ -4,9 +4,9 @@
 
 use crate::args::EvaluateMergeArgs;
 use crate::failure::{Classify, Failure};
+use crate::navigation::tournament_files::{EchoText, EvaluationFile, write_outcome};
 use crate::settings::navigation::{EvaluateSettings, FilterRun, NoiseSource};
 use crate::settings::paths::Io;
-use crate::tournament_files::{EchoText, EvaluationFile, write_outcome};
 use anyhow::anyhow;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

@@ -3,7 +3,7 @@
 //! and each channel's model chosen on held-out legs (`stoch::thermal::sweep_model`).
 
 use crate::failure::Failure;
-use crate::thermal_calibration::{Sweep, ThermalInputs, common_devices, sweep_series};
+use crate::thermal::calibration::{Sweep, ThermalInputs, common_devices, sweep_series};
 use anyhow::anyhow;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
