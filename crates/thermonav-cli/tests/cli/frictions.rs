@@ -819,3 +819,17 @@ fn integrate_without_a_noise_model_asks_for_a_bank_or_a_profile() {
     assert_eq!(status, 2, "{stderr}");
     assert!(stderr.contains("cannot be used with"), "{stderr}");
 }
+
+// Issue 38 row 18: `inspect --help` called its file "the IMU CSV", though inspect reads GNSS
+// and reference CSVs too (chosen by the header), and says so in its own description.
+#[test]
+fn inspect_help_names_every_csv_it_reads() {
+    let (status, stdout, stderr) = outcome(&thermonav(&["inspect", "--help"]));
+    assert_eq!(status, 0, "{stderr}");
+    let file = (stdout.lines())
+        .find(|l| l.trim_start().starts_with("<FILE>"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    for kind in ["IMU", "GNSS", "reference"] {
+        assert!(file.contains(kind), "{file}");
+    }
+}

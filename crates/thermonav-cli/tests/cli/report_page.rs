@@ -70,6 +70,13 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
     let out = dir.path().join("demo");
     let (status, _, stderr) = outcome(&thermonav(&["demo", "--quick", "--out", arg(&out)]));
     assert_eq!(status, 0, "{stderr}");
+    // Issue 38 row 18: the steps counted 1/4 ... 4/4 and then 5/5; now each of the five once,
+    // in order, out of the same total.
+    let steps: Vec<&str> = (stderr.lines())
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|w| w.len() == 3 && w.as_bytes()[1] == b'/')
+        .collect();
+    assert_eq!(steps, ["1/5", "2/5", "3/5", "4/5", "5/5"], "{stderr}");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
 
     // The summary comes first: before the contents, the first section and every figure
