@@ -224,20 +224,6 @@ fn temperature_of(
     ModelTemperature::of(model_temperature_c, operating_temperature_c, selection).map_err(refused)
 }
 
-fn scheduling_of(schedule: bool) -> Scheduling {
-    match schedule {
-        true => Scheduling::default(),
-        false => Scheduling::Fixed,
-    }
-}
-
-fn compensation_of(compensation: bool) -> Compensation {
-    match compensation {
-        true => Compensation::default(),
-        false => Compensation::Off,
-    }
-}
-
 /// The run options of `integrate` and `evaluate` (the CLI's, with the same names: rates in
 /// Hz, sd in m/s), each `None` for the library's default ([`RunOptions::default`]).
 struct RunKeywords {
@@ -425,7 +411,7 @@ pub fn integrate<'py>(
     let settings = RunSettings::of_options(
         &options,
         temperature,
-        (scheduling_of(schedule), compensation_of(compensation)),
+        (Scheduling::when(schedule), Compensation::when(compensation)),
         integrate_engine(&options, filter, output_rate_hz, smooth)?,
         outages_of(outages, OutageSpec::None)?,
     );
@@ -592,8 +578,8 @@ pub fn evaluate<'py>(
         outages: outages_of(outages, DEFAULT_OUTAGES)?,
         extra_replicates: monte_carlo - 1,
         seed,
-        scheduling: scheduling_of(schedule),
-        compensation: compensation_of(compensation),
+        scheduling: Scheduling::when(schedule),
+        compensation: Compensation::when(compensation),
     };
     let files = Files {
         imu,

@@ -161,8 +161,8 @@ pub fn integrate(args: &IntegrateArgs) -> Result<IntegrateSettings, Failure> {
             &options,
             temperature,
             (
-                scheduling_of(args.no_schedule),
-                compensation_of(args.no_compensation),
+                Scheduling::when(!args.no_schedule),
+                Compensation::when(!args.no_compensation),
             ),
             integrate_engine(args, &options)?,
             args.outages.clone(),
@@ -212,23 +212,6 @@ fn with_noise(io: Io, noise: &NoiseSource) -> Io {
 fn noise_path(noise: &NoiseSource) -> &Path {
     match noise {
         NoiseSource::Bank(p) | NoiseSource::Profile(p) => p,
-    }
-}
-
-/// Scheduling by default (integrate's run fixes its model when a temperature names one:
-/// [`RunSettings::of_options`]), unless turned off.
-fn scheduling_of(no_schedule: bool) -> Scheduling {
-    match no_schedule {
-        true => Scheduling::Fixed,
-        false => Scheduling::default(),
-    }
-}
-
-/// Compensation by default (when the bank holds a calibration), unless turned off.
-fn compensation_of(no_compensation: bool) -> Compensation {
-    match no_compensation {
-        true => Compensation::Off,
-        false => Compensation::default(),
     }
 }
 
@@ -461,8 +444,8 @@ pub fn evaluate(args: &EvaluateArgs) -> Result<EvaluateSettings, Failure> {
         run: filter_run(args, &reference)?,
         reference,
         solutions: outside_inputs(args)?,
-        scheduling: scheduling_of(args.no_schedule),
-        compensation: compensation_of(args.no_compensation),
+        scheduling: Scheduling::when(!args.no_schedule),
+        compensation: Compensation::when(!args.no_compensation),
         options: run_options(&args.run)?,
         temperature: model_temperature(&args.run)?,
         time_offset_search: time_offset_search(&args.run)?,

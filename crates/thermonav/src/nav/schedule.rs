@@ -46,6 +46,28 @@ pub enum Compensation {
     Off,
 }
 
+impl Scheduling {
+    /// The default, scheduling by temperature, when `enabled`; else one model for the run
+    /// (the CLI's `--no-schedule`, Python's `schedule=False`).
+    pub fn when(enabled: bool) -> Self {
+        match enabled {
+            true => Self::default(),
+            false => Self::Fixed,
+        }
+    }
+}
+
+impl Compensation {
+    /// The default, compensating when the bank holds a calibration, when `enabled`; else off
+    /// (the CLI's `--no-compensation`, Python's `compensation=False`).
+    pub fn when(enabled: bool) -> Self {
+        match enabled {
+            true => Self::default(),
+            false => Self::Off,
+        }
+    }
+}
+
 /// Why a schedule cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ScheduleError {
