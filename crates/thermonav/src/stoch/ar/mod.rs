@@ -92,11 +92,11 @@ pub struct ArModel {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ArError {
     /// Order zero.
-    #[error("the AR order must be 1 to {MAX_AR_ORDER}, not 0")]
+    #[error("the AR order must be from 1 to {MAX_AR_ORDER}, not 0")]
     ZeroOrder,
     /// An order above [`MAX_AR_ORDER`].
     #[error(
-        "AR order {order} is not 1 to {MAX_AR_ORDER}: the least-squares and Burg fits cost samples × order², so order 500 on 60 000 samples took 45 s; the inertial noise models of this method use orders below 10"
+        "AR order {order} is outside the range from 1 to {MAX_AR_ORDER}: the least-squares and Burg fits cost samples × order², so order 500 on 60 000 samples took 45 s; the inertial noise models of this method use orders below 10"
     )]
     OrderTooHigh {
         /// The order asked for.
