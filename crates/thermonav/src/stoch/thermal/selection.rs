@@ -5,6 +5,7 @@
 use super::legs::LegDirection;
 use crate::imu::Channel;
 use serde::{Deserialize, Serialize};
+use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
 
 /// One block of a sweep.
@@ -144,6 +145,22 @@ pub struct PredictionSpread {
     pub rule: ChoiceRule,
     /// Legs the choice saw.
     pub legs: usize,
+    /// Degrees of freedom of the spread's estimate, the held-out residuals' count shrunk by
+    /// their autocorrelation (`None` in banks written before 2026-12-06: the normal quantile).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub effective_dof: Option<f64>,
+}
+
+impl PredictionSpread {
+    /// The 95 % band's multiple: Student's t at 0.975 with [`PredictionSpread::effective_dof`]
+    /// degrees of freedom (the spread is estimated from few effectively independent
+    /// residuals), or the normal quantile without them.
+    pub fn band_quantile(&self) -> f64 {
+        let normal = 1.959_963_984_540_054;
+        self.effective_dof
+            .and_then(|dof| StudentsT::new(0.0, 1.0, dof).ok())
+            .map_or(normal, |t| t.inverse_cdf(0.975))
+    }
 }
 
 /// The model selection of a channel calibrated from sweeps.

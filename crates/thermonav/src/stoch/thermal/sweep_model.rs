@@ -48,7 +48,10 @@
 //! record it chose curves that made unseen legs worse than no compensation.
 //!
 //! # Band
-//! A prediction's 95 % band is ±1.96·sqrt(s_shape² + s_level² + se(T)² + s_offset² + s_n²): s_shape
+//! A prediction's 95 % band is ±t·sqrt(s_shape² + s_level² + se(T)² + s_offset² + s_n²), t
+//! Student's quantile at 0.975 with the spread's effective degrees of freedom (the held-out
+//! residuals less one per fold, shrunk by their lag-1 autocorrelation ρ within folds to
+//! ν(1 − ρ)/(1 + ρ): a spread measured on few, slowly varying legs is itself uncertain): s_shape
 //! the held-out residuals' sd about their folds' means (for stretches of one leg, about their
 //! power-on's fitted offset, as they are scored: within one leg a stretch's level is the leg's
 //! shape, so the band without the offset keeps it, and there is no s_level), s_level the sd of
@@ -418,6 +421,9 @@ struct HeldOut {
     /// Σ (r − centre)² over the folds, the centre as the fold's score takes it.
     scored_ss: f64,
     residuals: usize,
+    /// Σ d_k·d_{k+1} of neighbouring residuals' deviations d (about the centre the score
+    /// takes) within each fold: with `scored_ss`, their lag-1 autocorrelation.
+    scored_cross: f64,
     /// r̄_fold − offset of its power-on in the fold's fit, where that power-on kept other
     /// folds.
     levels: Vec<f64>,
@@ -452,6 +458,7 @@ fn held_out(
         shape_ss: 0.0,
         scored_ss: 0.0,
         residuals: 0,
+        scored_cross: 0.0,
         levels: Vec::new(),
     };
     for &label in &labels {
@@ -487,6 +494,10 @@ fn held_out(
             _ => mean,
         };
         let scored: f64 = r.iter().map(|x| (x - centre).powi(2)).sum();
+        out.scored_cross += r
+            .windows(2)
+            .map(|w| (w[0] - centre) * (w[1] - centre))
+            .sum::<f64>();
         out.fold_mean_squares.push(scored / r.len() as f64);
         out.shape_ss += ss;
         out.scored_ss += scored;
@@ -508,12 +519,14 @@ impl HeldOut {
     /// shape, so under [`ChoiceRule::LeaveOneSegmentOut`] the shape spread is the scored one
     /// (about the power-on's offset) and there is no separate level spread.
     fn spread(&self, rule: ChoiceRule, legs: usize) -> PredictionSpread {
+        let effective_dof = Some(self.effective_dof());
         if rule == ChoiceRule::LeaveOneSegmentOut {
             return PredictionSpread {
                 shape_sd: (self.scored_ss / self.residuals.max(1) as f64).sqrt(),
                 level_sd: None,
                 rule,
                 legs,
+                effective_dof,
             };
         }
         let dof = self
@@ -528,7 +541,20 @@ impl HeldOut {
             level_sd,
             rule,
             legs,
+            effective_dof,
         }
+    }
+
+    /// The degrees of freedom of the spread's estimate: the held-out residuals less one per
+    /// fold, shrunk by their lag-1 autocorrelation ρ (within folds, clamped to 0..0.99) to
+    /// ν(1 − ρ)/(1 + ρ), as τ's interval does (module docs, "Band"); at least 1.
+    fn effective_dof(&self) -> f64 {
+        let rho = match self.scored_ss > 0.0 {
+            true => (self.scored_cross / self.scored_ss).clamp(0.0, 0.99),
+            false => 0.0,
+        };
+        let dof = self.residuals.saturating_sub(self.fold_mean_squares.len()) as f64;
+        (dof * (1.0 - rho) / (1.0 + rho)).max(1.0)
     }
 }
 
@@ -842,11 +868,15 @@ impl ChannelCalibration {
         } else {
             0.0
         };
+        let z = self
+            .selection
+            .as_ref()
+            .map_or(BAND_Z, |s| s.spread.band_quantile());
         Prediction {
             value: curve.value_at(inside) + offset,
-            band_half_width: BAND_Z * (shape * shape + level * level + se2 + offset_var).sqrt()
+            band_half_width: z * (shape * shape + level * level + se2 + offset_var).sqrt()
                 + widening,
-            band_half_width_offset_removed: BAND_Z * (shape * shape + se2).sqrt() + widening,
+            band_half_width_offset_removed: z * (shape * shape + se2).sqrt() + widening,
             clamped,
         }
     }
@@ -1001,6 +1031,36 @@ mod tests {
         assert!(!lag_identifiable(&all));
         let fit = fit_candidate(&all, Channel::Gx, ORDER_2_LAG).unwrap();
         assert_eq!(fit.tau_s, 0.0);
+    }
+
+    #[test]
+    fn the_band_widens_by_students_t_on_autocorrelated_residuals() {
+        // 32 held-out residuals in 2 folds, Σd² = 10: with Σ d_k·d_{k+1} = 5 (ρ = 0.5) the
+        // 30 degrees of freedom shrink to 30·0.5/1.5 = 10; a negative sum counts as ρ = 0.
+        let held_out = |cross: f64| HeldOut {
+            fold_mean_squares: vec![0.3, 0.35],
+            shape_ss: 10.0,
+            scored_ss: 10.0,
+            residuals: 32,
+            scored_cross: cross,
+            levels: Vec::new(),
+        };
+        assert!((held_out(5.0).effective_dof() - 10.0).abs() < 1e-12);
+        assert_eq!(held_out(-3.0).effective_dof(), 30.0);
+        let spread = |dof: Option<f64>| PredictionSpread {
+            shape_sd: 1.0,
+            level_sd: None,
+            rule: ChoiceRule::LeaveOneLegOut,
+            legs: 2,
+            effective_dof: dof,
+        };
+        // Closed forms of t at 0.975: tan(0.475π) with 1 degree of freedom, 0.95/√(2·0.975·0.025)
+        // with 2; the normal quantile without a count (banks written before it was kept).
+        let t1 = (0.475 * std::f64::consts::PI).tan();
+        let t2 = 0.95 / (2.0 * 0.975 * 0.025_f64).sqrt();
+        assert!((spread(Some(1.0)).band_quantile() - t1).abs() < 1e-6 * t1);
+        assert!((spread(Some(2.0)).band_quantile() - t2).abs() < 1e-6 * t2);
+        assert!((spread(None).band_quantile() - BAND_Z).abs() < 1e-15);
     }
 
     #[test]
