@@ -10,7 +10,7 @@ use thermonav::imu::{Channel, ImuSeries, Sensor};
 use thermonav::stoch::gmwm::{BootstrapSettings, ModelSpec};
 use thermonav_io::gmwm::{
     AbsentJson, CandidateJson, GmwmChannelJson as ChannelJson, MergedJson, ParameterJson,
-    WaveletVarianceJson, candidates_of, gmwm_channel_json, interval_method,
+    WaveletVarianceJson, gmwm_channel_json, interval_method,
 };
 use thermonav_io::noise_terms::term_units;
 
@@ -37,34 +37,22 @@ struct Job(f64, Vec<ModelSpec>, BootstrapSettings);
 
 /// Runs `gmwm`.
 pub fn run(args: &GmwmArgs) -> Result<(), Failure> {
-    let candidates = candidates(&args.model)?;
-    let settings = settings(args)?;
+    let settings = crate::settings::gmwm::resolve(args)?;
     let read = (
         &Default::default(),
         &crate::settings::imu::topics(&args.topics),
     );
     let (series, rate_hz) = crate::inputs::read_rates(&args.file, "GMWM", read)?;
-    let doc = document(args, &series, Job(rate_hz, candidates, settings))?;
+    let doc = document(
+        args,
+        &series,
+        Job(rate_hz, settings.candidates, settings.bootstrap),
+    )?;
     if args.json {
         return print_json(&doc);
     }
     print_text(&doc);
     Ok(())
-}
-
-/// The bootstrap's settings, checked before any file is read.
-fn settings(args: &GmwmArgs) -> Result<BootstrapSettings, Failure> {
-    let mut settings = BootstrapSettings::default();
-    (settings.replicates, settings.seed) = (args.replicates, args.seed);
-    settings
-        .validate()
-        .map_err(|e| Failure::Usage(anyhow!("--{e}")))?;
-    Ok(settings)
-}
-
-/// The candidates of `--model`: the automatic list or the one model given.
-fn candidates(model: &str) -> Result<Vec<ModelSpec>, Failure> {
-    candidates_of(model).map_err(|e| Failure::Usage(anyhow!("--model {model}: {e}")))
 }
 
 fn channels(args: &GmwmArgs, series: &ImuSeries, job: &Job) -> Result<Channels, Failure> {

@@ -7,6 +7,7 @@
 pub mod analysis;
 pub mod bank;
 pub mod characterization;
+pub mod gmwm;
 pub mod imu;
 pub mod navigation;
 pub mod paths;

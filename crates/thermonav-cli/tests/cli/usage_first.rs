@@ -147,3 +147,12 @@ fn bank_refuses_bad_options_before_reading() {
         refused_before_reading(d, &export(extra), option);
     }
 }
+
+#[test]
+fn gmwm_refuses_an_unknown_model_before_reading() {
+    // Its --replicates: tests/cli/runaway.rs.
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("missing.csv");
+    let d = dir.path();
+    refused_before_reading(d, &["gmwm", arg(&input), "--model", "wn+xx"], "--model");
+}
