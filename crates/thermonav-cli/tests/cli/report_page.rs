@@ -79,7 +79,10 @@ fn the_demo_report_opens_with_the_claims_verdicts_and_stays_self_contained() {
     assert_eq!(steps, ["1/5", "2/5", "3/5", "4/5", "5/5"], "{stderr}");
     // The quick demo's survey runs at its chamber records' rate (100 Hz), so the bank's model
     // is used at the rate it was made at and no rate note is printed (it was, at 200 Hz).
-    assert!(!stderr.contains("the bank was made from records at"), "{stderr}");
+    assert!(
+        !stderr.contains("the bank was made from records at"),
+        "{stderr}"
+    );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
 
     // The summary comes first: before the contents, the first section and every figure
