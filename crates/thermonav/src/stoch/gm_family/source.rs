@@ -263,3 +263,113 @@ impl<'de> Visitor<'de> for ModelsVisitor {
         Ok(models)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(tc: f64) -> GaussMarkovEstimate {
+        GaussMarkovEstimate::Model {
+            correlation_time_s: tc,
+            sigma: 0.5,
+            ci95_correlation_time_s: [Some(1.0), None],
+        }
+    }
+
+    #[test]
+    fn every_family_has_its_own_names_and_is_found_by_them() {
+        let all: Vec<GaussMarkovSource> = GaussMarkovSource::all().collect();
+        assert_eq!(all.len(), FAMILIES.len());
+        for (i, a) in all.iter().enumerate() {
+            assert_eq!(GaussMarkovSource::from_name(a.name()), Some(*a));
+            assert_eq!(a.index(), i);
+            for b in &all[i + 1..] {
+                assert!(a.name() != b.name() && a.cli_name() != b.cli_name());
+                assert!(a.label() != b.label() && a != b);
+            }
+        }
+        assert_eq!(GaussMarkovSource::from_name("irregular-ml"), None);
+    }
+
+    #[test]
+    fn the_command_line_lists_the_default_first() {
+        let listed: Vec<&str> = GaussMarkovSource::in_listing_order()
+            .map(GaussMarkovSource::cli_name)
+            .collect();
+        assert_eq!(listed, ["irregular-ml", "ar-based", "acf-fit", "gmwm"]);
+        assert_eq!(
+            GaussMarkovSource::default(),
+            GaussMarkovSource::IRREGULAR_ML
+        );
+    }
+
+    #[test]
+    fn a_source_is_written_by_its_name_and_debug_keeps_the_old_variant_names() {
+        let text = serde_json::to_string(&GaussMarkovSource::ACF_FIT).unwrap();
+        assert_eq!(text, "\"acf_fit\"");
+        let back: GaussMarkovSource = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, GaussMarkovSource::ACF_FIT);
+        let unknown = serde_json::from_str::<GaussMarkovSource>("\"ml\"").unwrap_err();
+        assert!(
+            unknown.to_string().starts_with(
+                "unknown variant `ml`, expected one of `ar_based`, `irregular_ml`, `acf_fit`, `gmwm`"
+            ),
+            "{unknown}"
+        );
+        assert_eq!(
+            format!("{:?}", GaussMarkovSource::IRREGULAR_ML),
+            "IrregularMl"
+        );
+        assert_eq!(format!("{:?}", GaussMarkovSource::GMWM), "Gmwm");
+    }
+
+    #[test]
+    fn models_are_written_in_the_bank_order_without_an_absent_family() {
+        let models = GaussMarkovModels::default()
+            .with(GaussMarkovSource::ACF_FIT, model(3.0))
+            .with(GaussMarkovSource::IRREGULAR_ML, model(2.0))
+            .with(GaussMarkovSource::AR_BASED, model(1.0));
+        let text = serde_json::to_string(&models).unwrap();
+        let keys: Vec<usize> = ["\"ar_based\"", "\"irregular_ml\"", "\"acf_fit\""]
+            .iter()
+            .map(|k| text.find(k).unwrap())
+            .collect();
+        assert!(keys.is_sorted(), "{text}");
+        assert!(!text.contains("gmwm"), "{text}");
+        let back: GaussMarkovModels = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, models);
+        // An optional family written as null, and a key of no family, read as before.
+        let with_null = format!("{},\"gmwm\":null,\"later\":1}}", &text[..text.len() - 1]);
+        assert_eq!(
+            serde_json::from_str::<GaussMarkovModels>(&with_null).unwrap(),
+            models
+        );
+    }
+
+    #[test]
+    fn a_family_every_bank_has_must_be_there_once() {
+        let only_ml = r#"{"irregular_ml": {"status": "no_equivalent", "reason": "r"}}"#;
+        let missing = serde_json::from_str::<GaussMarkovModels>(only_ml).unwrap_err();
+        assert!(
+            missing.to_string().starts_with("missing field `ar_based`"),
+            "{missing}"
+        );
+        let twice = r#"{"gmwm": null, "gmwm": null}"#;
+        let twice = serde_json::from_str::<GaussMarkovModels>(twice).unwrap_err();
+        assert!(
+            twice.to_string().starts_with("duplicate field `gmwm`"),
+            "{twice}"
+        );
+    }
+
+    #[test]
+    fn an_absent_family_reads_as_its_reason() {
+        let models = GaussMarkovModels::default();
+        assert_eq!(models.estimate(GaussMarkovSource::GMWM), None);
+        let GaussMarkovEstimate::NoEquivalent { reason } = models.get(GaussMarkovSource::GMWM)
+        else {
+            panic!("an absent family has no model");
+        };
+        assert!(reason.contains("--gmwm off"), "{reason}");
+    }
+}
