@@ -23,7 +23,7 @@ pub use source::{GaussMarkovModels, GaussMarkovSource};
 
 /// Every family, in the order the bank writes them (the command line lists the default
 /// first, then the others in this order).
-pub static FAMILIES: [&dyn GaussMarkovFamily; 4] = [
+pub static FAMILIES: &[&dyn GaussMarkovFamily] = &[
     &ar_based::ArBased,
     &irregular_ml::IrregularMl,
     &acf_fit::AcfFit,
