@@ -11,8 +11,9 @@ use pyo3::types::{PyDict, PyString};
 use thermonav::stoch::ar::order::{Criterion, DEFAULT_AUTO_MAX_ORDER, Order, fit_ar_order};
 use thermonav::stoch::ar::{ArMethod, ArModel, MAX_AR_ORDER, fit_ar};
 use thermonav::stoch::bank::GaussMarkovEstimate;
-use thermonav::stoch::characterize::{acf_model, ar1_estimate, estimate};
-use thermonav::stoch::gauss_markov::{LagWindow, ar_based};
+use thermonav::stoch::gauss_markov::LagWindow;
+use thermonav::stoch::gm_family::acf_fit::acf_model;
+use thermonav::stoch::gm_family::ar_based::from_ar1;
 use thermonav::stoch::noisy_gauss_markov::fit_noisy_gauss_markov;
 
 /// The estimator called `name` (yule-walker, burg, covariance, modified-covariance).
@@ -54,7 +55,7 @@ fn order_of(order: &Bound<'_, PyAny>, max_order: usize) -> PyResult<Order> {
 /// The AR-based Gauss-Markov model of an AR(1) fit (the paper's eqs 8-10), with its c₁, as
 /// `thermonav ar --json`'s `gauss_markov`.
 fn ar_based_model<'py>(py: Python<'py>, ar1: &ArModel, dt_s: f64) -> PyResult<Bound<'py, PyAny>> {
-    let model = to_python(py, &estimate(ar_based(&ar1_estimate(ar1, dt_s))))?;
+    let model = to_python(py, &from_ar1(ar1, dt_s))?;
     model.set_item("c1", ar1.coefficients[0])?;
     Ok(model)
 }

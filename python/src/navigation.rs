@@ -154,12 +154,9 @@ fn gauss_markov_of(model: Option<&str>) -> PyResult<GaussMarkovSource> {
     let Some(model) = model else {
         return Ok(GaussMarkovSource::default());
     };
-    let names = [
-        ("irregular_ml", GaussMarkovSource::IrregularMl),
-        ("ar_based", GaussMarkovSource::ArBased),
-        ("acf_fit", GaussMarkovSource::AcfFit),
-        ("gmwm", GaussMarkovSource::Gmwm),
-    ];
+    let names: Vec<(&str, GaussMarkovSource)> = GaussMarkovSource::in_listing_order()
+        .map(|s| (s.name(), s))
+        .collect();
     choice("model", model, &names)
 }
 

@@ -14,7 +14,7 @@ mod common;
 use common::{bias, bias_unit, density, density_unit};
 use std::time::Instant;
 use thermonav::imu::Channel;
-use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -64,7 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let instability = model.allan.bias_instability.map_or("-".into(), |b| {
                 format!("{:.3} {}", bias(channel, b), bias_unit(channel))
             });
-            let (ml, interval) = match &model.gauss_markov.irregular_ml {
+            let (ml, interval) = match model.gauss_markov.get(GaussMarkovSource::IRREGULAR_ML) {
                 GaussMarkovEstimate::Model {
                     correlation_time_s,
                     ci95_correlation_time_s: [low, high],
@@ -85,8 +85,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!(
                 "  {t:>5}  {:>3}  {white:>15}  {instability:>14}  {true_tc:>5.0} s  {ml:>7}  {interval:>24}  {:>11}  {:>10}",
                 channel.name(),
-                tc_text(&model.gauss_markov.ar_based),
-                tc_text(&model.gauss_markov.acf_fit)
+                tc_text(model.gauss_markov.get(GaussMarkovSource::AR_BASED)),
+                tc_text(model.gauss_markov.get(GaussMarkovSource::ACF_FIT))
             );
         }
         if t == 20.0 {

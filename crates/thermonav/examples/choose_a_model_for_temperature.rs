@@ -42,7 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         source,
     };
     let chosen =
-        ImuStochasticModel::from_bank(&bank, &choice(GaussMarkovSource::IrregularMl), &scale)?;
+        ImuStochasticModel::from_bank(&bank, &choice(GaussMarkovSource::IRREGULAR_ML), &scale)?;
     let truth = profile.stochastic_model(SURVEY_C, &scale)?;
     println!(
         "\nThe model the filter carries at {SURVEY_C} °C (exact-likelihood family, linear), and the sensor's truth:"
@@ -76,7 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("  √(0.12² + q²/(12 f_s)) = 0.131 m/s/√h for q = 1 mg at f_s = 10 Hz.");
 
-    let paper = ImuStochasticModel::from_bank(&bank, &choice(GaussMarkovSource::ArBased), &scale)?;
+    let paper = ImuStochasticModel::from_bank(&bank, &choice(GaussMarkovSource::AR_BASED), &scale)?;
     let sheet = DatasheetValues::adis16364().model(&scale);
     println!("\nOther ways to fill the same slots, gyro x and accelerometer x at {SURVEY_C} °C:");
     for (name, model) in [
@@ -96,7 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let refused = bank.select(
         f64::NAN,
         Channel::Gx,
-        GaussMarkovSource::IrregularMl,
+        GaussMarkovSource::IRREGULAR_ML,
         Selection::Linear,
     );
     if let Err(e) = refused {
@@ -122,7 +122,7 @@ fn selection_table(
         "  {:>6}  {:>28}  {:>44}  {:>19}",
         "T_op_C", "nearest entry: Tc, σ", "linear: from, Tc, σ", "simulated truth"
     );
-    let source = GaussMarkovSource::IrregularMl;
+    let source = GaussMarkovSource::IRREGULAR_ML;
     for t in OPERATING_C {
         let nearest = bank.select(t, channel, source, Selection::Nearest)?;
         let linear = bank.select(t, channel, source, Selection::Linear)?;

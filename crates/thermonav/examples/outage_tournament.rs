@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (candidates, excluded) = tournament_candidates(
         &bank,
         SURVEY_C,
-        GaussMarkovSource::IrregularMl,
+        GaussMarkovSource::IRREGULAR_ML,
         &scale,
         Some(&DatasheetValues::adis16364().model(&scale)),
     );

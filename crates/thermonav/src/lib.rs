@@ -78,7 +78,7 @@
 //! let choice = BankChoice {
 //!     temperature_c: 17.0,
 //!     selection: Selection::Linear,
-//!     source: GaussMarkovSource::IrregularMl, // exact likelihood of Gauss-Markov + white noise
+//!     source: GaussMarkovSource::IRREGULAR_ML, // exact likelihood of Gauss-Markov + white noise
 //! };
 //! let model = ImuStochasticModel::from_bank(&bank, &choice, &ScaleFactorPrior::default())?;
 //! let gx = bank.select(17.0, Channel::Gx, choice.source, choice.selection)?;

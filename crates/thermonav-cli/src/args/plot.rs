@@ -75,7 +75,7 @@ pub struct PlotArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub temperature_c: Option<f64>,
     /// Gauss-Markov families drawn (correlation-time).
-    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [GmSourceArg::IrregularMl, GmSourceArg::ArBased, GmSourceArg::AcfFit])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = GmSourceArg::always_fitted())]
     pub families: Vec<GmSourceArg>,
     /// The channel (autocorrelation: default gx; thermal-bias: default every calibrated one).
     #[arg(long)]

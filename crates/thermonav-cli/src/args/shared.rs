@@ -1,7 +1,9 @@
 //! Argument types and help texts that several commands share.
 
+use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
+use std::sync::LazyLock;
 use thermonav::mounting::Mounting;
 use thermonav::nav::run_options::RunOptions;
 use thermonav::nav::time_offset::TimeOffsetSearch;
@@ -134,17 +136,37 @@ pub enum SelectArg {
     Linear,
 }
 
-/// Gauss-Markov model families in the bank.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum GmSourceArg {
-    /// Exact likelihood of Gauss-Markov + white noise on the irregular timestamps.
-    IrregularMl,
-    /// The paper's AR(1)-based model.
-    ArBased,
-    /// The classical fit to the autocorrelation.
-    AcfFit,
-    /// The bias state of the GMWM composite, with the composite's white noise.
-    Gmwm,
+/// Gauss-Markov model families in the bank: the values and their help come from the
+/// library's registry (`thermonav::stoch::gm_family`), the default first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GmSourceArg(pub GaussMarkovSource);
+
+/// Every registered family, as the command line lists them.
+static GM_SOURCES: LazyLock<Vec<GmSourceArg>> = LazyLock::new(|| {
+    GaussMarkovSource::in_listing_order()
+        .map(GmSourceArg)
+        .collect()
+});
+
+impl GmSourceArg {
+    /// The families every bank has, as the command line lists them (plot's default).
+    pub fn always_fitted() -> Vec<Self> {
+        GM_SOURCES
+            .iter()
+            .copied()
+            .filter(|s| s.0.always_fitted())
+            .collect()
+    }
+}
+
+impl ValueEnum for GmSourceArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &GM_SOURCES
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.cli_name()).help(self.0.help()))
+    }
 }
 
 /// How a record is de-noised (`filter --method`, `characterize --denoise`).
@@ -192,25 +214,15 @@ pub struct SampleRateArgs {
     pub rate_hz: Option<f64>,
 }
 
-impl From<GmSourceArg> for thermonav::stoch::bank::GaussMarkovSource {
+impl From<GmSourceArg> for GaussMarkovSource {
     fn from(m: GmSourceArg) -> Self {
-        match m {
-            GmSourceArg::IrregularMl => Self::IrregularMl,
-            GmSourceArg::ArBased => Self::ArBased,
-            GmSourceArg::AcfFit => Self::AcfFit,
-            GmSourceArg::Gmwm => Self::Gmwm,
-        }
+        m.0
     }
 }
 
 impl From<GaussMarkovSource> for GmSourceArg {
     fn from(m: GaussMarkovSource) -> Self {
-        match m {
-            GaussMarkovSource::IrregularMl => Self::IrregularMl,
-            GaussMarkovSource::ArBased => Self::ArBased,
-            GaussMarkovSource::AcfFit => Self::AcfFit,
-            GaussMarkovSource::Gmwm => Self::Gmwm,
-        }
+        Self(m)
     }
 }
 

@@ -289,8 +289,8 @@ fn summarize_written_banks(manifest: &LotManifest, dir: &Path) -> Result<LotSumm
 
 /// The quantities of the table (the JSON has every family and Allan term).
 const TABLE_QUANTITIES: [Quantity; 4] = [
-    Quantity::CorrelationTime(GaussMarkovSource::IrregularMl),
-    Quantity::Sigma(GaussMarkovSource::IrregularMl),
+    Quantity::CorrelationTime(GaussMarkovSource::IRREGULAR_ML),
+    Quantity::Sigma(GaussMarkovSource::IRREGULAR_ML),
     Quantity::WhiteNoiseDensity,
     Quantity::BiasInstability,
 ];

@@ -2,7 +2,9 @@
 //! and its thermal calibration per channel in deg/h and mg.
 
 use thermonav::imu::{Channel, SampleKind, Sensor};
-use thermonav::stoch::bank::{AllanSummary, ChannelModel, GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::bank::{
+    AllanSummary, ChannelModel, GaussMarkovEstimate, GaussMarkovSource, ModelBank,
+};
 use thermonav::stoch::thermal::sweep_model::{ChoiceRule, HeldOutSelection};
 use thermonav::stoch::thermal::{
     CalibrationSummary, ChannelCalibration, ScaleFactorCalibration, ThermalCalibration,
@@ -65,9 +67,9 @@ pub fn print_bank_table(bank: &ModelBank) {
                 "{:>7.1} {:<4} {:>28} {:>28} {:>16}",
                 e.temperature_c,
                 c.name(),
-                show_estimate(&g.irregular_ml),
-                show_estimate(&g.ar_based),
-                show_estimate(&g.acf_fit)
+                show_estimate(g.get(GaussMarkovSource::IRREGULAR_ML)),
+                show_estimate(g.get(GaussMarkovSource::AR_BASED)),
+                show_estimate(g.get(GaussMarkovSource::ACF_FIT))
             );
         }
     }
@@ -107,7 +109,7 @@ fn noise_term_cells(sensor: Sensor, m: &ChannelModel) -> [String; 4] {
         (Some(v), _) => term_cell("", Some(v), b),
         (None, bound) => term_cell("<=", bound, b),
     };
-    let sigma = match &m.gauss_markov.irregular_ml {
+    let sigma = match m.gauss_markov.get(GaussMarkovSource::IRREGULAR_ML) {
         GaussMarkovEstimate::Model { sigma, .. } => {
             let unit = DisplayUnits::Navigation.rate_unit(sensor);
             format!(

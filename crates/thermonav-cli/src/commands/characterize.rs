@@ -12,7 +12,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use thermonav::imu::{Channel, Sensor};
-use thermonav::stoch::bank::{GaussMarkovEstimate, ModelBank};
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource, ModelBank};
 use thermonav::stoch::thermal::sweep_model::ChoiceRule;
 use thermonav::stoch::thermal::{CalibrationSummary, ChannelCalibration, ThermalCalibration};
 
@@ -225,9 +225,9 @@ fn summarize<'a>(bank: &'a ModelBank, out: &Path) -> Summary<'a> {
                     .map(|(c, m)| ChannelSummary {
                         channel: c.name(),
                         unit: &m.unit,
-                        irregular_ml: &m.gauss_markov.irregular_ml,
-                        ar_based: &m.gauss_markov.ar_based,
-                        acf_fit: &m.gauss_markov.acf_fit,
+                        irregular_ml: m.gauss_markov.get(GaussMarkovSource::IRREGULAR_ML),
+                        ar_based: m.gauss_markov.get(GaussMarkovSource::AR_BASED),
+                        acf_fit: m.gauss_markov.get(GaussMarkovSource::ACF_FIT),
                         white_noise_density: m.allan.white_noise_density,
                     })
                     .collect(),

@@ -572,10 +572,10 @@ fn recovery_row(
         temperature_c,
         channel: channel.name(),
         true_correlation_time_s: true_tc,
-        irregular_ml: g.irregular_ml.clone(),
-        ar_based: g.ar_based.clone(),
-        acf_fit: g.acf_fit.clone(),
-        truth_inside_ml_interval: covers(&g.irregular_ml, true_tc),
+        irregular_ml: g.get(GaussMarkovSource::IRREGULAR_ML).clone(),
+        ar_based: g.get(GaussMarkovSource::AR_BASED).clone(),
+        acf_fit: g.get(GaussMarkovSource::ACF_FIT).clone(),
+        truth_inside_ml_interval: covers(g.get(GaussMarkovSource::IRREGULAR_ML), true_tc),
     }
 }
 

@@ -243,13 +243,11 @@ fn thermal_figure(calibration: &ThermalCalibration) -> Block {
     )
 }
 
-/// The bias correlation time against temperature for the three Gauss-Markov estimators.
+/// The bias correlation time against temperature for the Gauss-Markov families every bank has.
 fn correlation_figure(bank: &ModelBank) -> Block {
-    let families = [
-        GaussMarkovSource::IrregularMl,
-        GaussMarkovSource::ArBased,
-        GaussMarkovSource::AcfFit,
-    ];
+    let families: Vec<GaussMarkovSource> = GaussMarkovSource::in_listing_order()
+        .filter(|s| s.always_fitted())
+        .collect();
     figure(
         correlation_time_figure(
             "Bias correlation time against temperature",

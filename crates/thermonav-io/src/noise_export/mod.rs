@@ -442,20 +442,10 @@ pub fn provenance(format: NoiseFormat, noise: &ImuNoise, options: &ExportOptions
             "at {} degC: {}; Gauss-Markov model {}; record rate {} Hz",
             noise.temperature_c,
             placement_words(noise.placement),
-            source_name(noise.source),
+            noise.source.cli_name(),
             noise.sample_rate_hz
         ),
     ]
-}
-
-/// The Gauss-Markov family as the command line names it.
-pub fn source_name(source: GaussMarkovSource) -> &'static str {
-    match source {
-        GaussMarkovSource::ArBased => "ar-based",
-        GaussMarkovSource::IrregularMl => "irregular-ml",
-        GaussMarkovSource::AcfFit => "acf-fit",
-        GaussMarkovSource::Gmwm => "gmwm",
-    }
 }
 
 /// Where the values come from, in words.

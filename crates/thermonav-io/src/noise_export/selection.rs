@@ -389,10 +389,9 @@ fn entry_noise(
         );
         absent.insert(Term::RateRandomWalkAtMost, reason);
     }
-    let white_noise_density = match (source, &model.gmwm) {
-        (GaussMarkovSource::Gmwm, Some(gmwm)) => Some(gmwm.white_noise_density),
-        _ => allan.white_noise_density,
-    };
+    let white_noise_density = model
+        .white_noise_density(source)
+        .or(allan.white_noise_density);
     let noise = ChannelNoise {
         white_noise_density,
         bias_instability: allan.bias_instability,

@@ -121,16 +121,6 @@ fn family_shape(index: usize) -> Shape {
     ][index % 4]
 }
 
-/// The legend name of a Gauss-Markov family.
-pub fn family_label(source: GaussMarkovSource) -> &'static str {
-    match source {
-        GaussMarkovSource::ArBased => "AR(1)-based",
-        GaussMarkovSource::IrregularMl => "exact ML (irregular t)",
-        GaussMarkovSource::AcfFit => "autocorrelation fit",
-        GaussMarkovSource::Gmwm => "GMWM bias state",
-    }
-}
-
 /// The series of a bank: per channel and per requested family, the entries that have a model.
 pub fn correlation_time_series(
     bank: &ModelBank,
@@ -161,7 +151,7 @@ pub fn correlation_time_series(
             if !points.is_empty() {
                 all.push(CorrelationTimeSeries {
                     channel,
-                    family: family_label(source).to_owned(),
+                    family: source.label().to_owned(),
                     points,
                 });
             }

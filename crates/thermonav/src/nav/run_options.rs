@@ -346,7 +346,7 @@ mod tests {
             options.engine(EngineSettings::default()),
             EngineSettings::default()
         );
-        assert_eq!(options.gauss_markov, GaussMarkovSource::IrregularMl);
+        assert_eq!(options.gauss_markov, GaussMarkovSource::IRREGULAR_ML);
         assert_eq!(options.process_noise_scale, 1.0);
         assert_eq!(options.static_alignment, StaticAlignment::WhenStill);
         let off = RunOptions {

@@ -376,10 +376,7 @@ fn white_density(
     channel: Channel,
     source: GaussMarkovSource,
 ) -> Result<f64, SensorModelError> {
-    let density = |m: &ChannelModel| match source {
-        GaussMarkovSource::Gmwm => m.gmwm.as_ref().map(|g| g.white_noise_density),
-        _ => m.allan.white_noise_density,
-    };
+    let density = |m: &ChannelModel| m.white_noise_density(source);
     let at = |temperature_c: f64| {
         bank.entries
             .iter()

@@ -1,9 +1,10 @@
 //! The temperature model bank: one entry per temperature point, per channel, saved as JSON.
 //!
 //! An entry records how the static record was pre-processed (filter, decimation), the Allan
-//! curve and its noise terms (from the unfiltered data), the chosen AR model, and the three
-//! Gauss-Markov models: AR-based (the paper's), exact maximum likelihood on the irregular
-//! timestamps, and the classical fit to the autocorrelation. The bank is a file-format contract:
+//! curve and its noise terms (from the unfiltered data), the chosen AR model, and the
+//! Gauss-Markov model of each family ([`crate::stoch::gm_family`]: AR-based, the paper's; exact
+//! maximum likelihood on the irregular timestamps; the classical fit to the autocorrelation;
+//! the bias state of the GMWM composite, when fitted). The bank is a file-format contract:
 //! its types are plain summaries, independent of the estimators' internal types, and carry a
 //! `version`.
 //!
@@ -13,6 +14,7 @@
 //! holds the end value outside the covered range (reported as [`Placement::Clamped`]).
 
 use crate::imu::Channel;
+pub use crate::stoch::gm_family::{GaussMarkovEstimate, GaussMarkovModels, GaussMarkovSource};
 use crate::stoch::gmwm::Fold;
 use crate::stoch::thermal::{RecordMean, ThermalCalibration};
 use serde::{Deserialize, Serialize};
@@ -117,17 +119,27 @@ pub struct ChannelModel {
     pub allan: AllanSummary,
     /// The chosen AR model of the conditioned series.
     pub ar: ArSummary,
-    /// The three Gauss-Markov models.
+    /// The Gauss-Markov model of each family.
     pub gauss_markov: GaussMarkovModels,
     /// The composite model fitted to the whole wavelet variance (GMWM), when fitted.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gmwm: Option<GmwmSummary>,
 }
 
+impl ChannelModel {
+    /// The white-noise density the filter takes beside the bias state of `source`
+    /// ([`crate::stoch::gm_family::GaussMarkovFamily::white_noise_density`]): the Allan
+    /// curve's N, or the GMWM composite's mapped density with the GMWM bias state.
+    pub fn white_noise_density(&self, source: GaussMarkovSource) -> Option<f64> {
+        let composite = self.gmwm.as_ref().map(|g| g.white_noise_density);
+        (source.family()).white_noise_density(self.allan.white_noise_density, composite)
+    }
+}
+
 /// A composite noise model fitted to the raw record's Haar wavelet variance by GMWM
 /// ([`crate::stoch::gmwm`]), and what the filter takes from it
 /// ([`crate::stoch::gmwm::map_to_filter_states`]); its bias state is
-/// [`GaussMarkovModels::gmwm`].
+/// the `gmwm` family of [`GaussMarkovModels`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GmwmSummary {
     /// The composite (`wn+rw+2gm`, ...).
@@ -188,65 +200,6 @@ pub struct ArSummary {
     pub noise_variance: f64,
     /// Sampling interval the model was fitted at, s.
     pub dt_s: f64,
-}
-
-/// The Gauss-Markov models of one channel.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct GaussMarkovModels {
-    /// AR(1)-based (the paper's equations 8-10).
-    pub ar_based: GaussMarkovEstimate,
-    /// Exact maximum likelihood with each step's own dt.
-    pub irregular_ml: GaussMarkovEstimate,
-    /// Classical fit of σ² exp(−τ/Tc) to the autocorrelation.
-    pub acf_fit: GaussMarkovEstimate,
-    /// The bias state mapped from the GMWM composite ([`ChannelModel::gmwm`]), when fitted.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub gmwm: Option<GaussMarkovEstimate>,
-}
-
-/// What [`GaussMarkovModels::get`] gives for a bank without a GMWM fit.
-static NO_GMWM: std::sync::LazyLock<GaussMarkovEstimate> =
-    std::sync::LazyLock::new(|| GaussMarkovEstimate::NoEquivalent {
-        reason: "the bank has no GMWM model (characterized with --gmwm off, or before GMWM \
-                 entered the bank)"
-            .into(),
-    });
-
-/// Which of the Gauss-Markov models to use (the default: the exact likelihood on the
-/// irregular timestamps, see DESIGN.md).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GaussMarkovSource {
-    /// AR(1)-based (the paper's).
-    ArBased,
-    /// Exact maximum likelihood on the irregular timestamps.
-    #[default]
-    IrregularMl,
-    /// Fit to the autocorrelation.
-    AcfFit,
-    /// The bias state of the GMWM composite (and its white noise, see
-    /// [`crate::stoch::gmwm::map_to_filter_states`]).
-    Gmwm,
-}
-
-/// A Gauss-Markov estimate, or the reason there is none.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "status", rename_all = "snake_case")]
-pub enum GaussMarkovEstimate {
-    /// A first-order Gauss-Markov model.
-    Model {
-        /// Correlation time Tc, s.
-        correlation_time_s: f64,
-        /// Standard deviation σ, channel unit.
-        sigma: f64,
-        /// 95 % interval of Tc, s; `None` for an unbounded side.
-        ci95_correlation_time_s: [Option<f64>; 2],
-    },
-    /// No Gauss-Markov equivalent (e.g. AR c₁ ≥ 1: random walk or drift).
-    NoEquivalent {
-        /// Why, in words.
-        reason: String,
-    },
 }
 
 /// How to pick a model for an operating temperature (the default: the nearest entry).
@@ -591,18 +544,6 @@ impl ModelBank {
     }
 }
 
-impl GaussMarkovModels {
-    /// The estimate of one source.
-    pub fn get(&self, source: GaussMarkovSource) -> &GaussMarkovEstimate {
-        match source {
-            GaussMarkovSource::ArBased => &self.ar_based,
-            GaussMarkovSource::IrregularMl => &self.irregular_ml,
-            GaussMarkovSource::AcfFit => &self.acf_fit,
-            GaussMarkovSource::Gmwm => self.gmwm.as_ref().unwrap_or(&NO_GMWM),
-        }
-    }
-}
-
 /// The two temperatures around `t` (strictly inside the range) and the upper weight.
 fn bracket(temps: &[f64], t: f64) -> Placement {
     let upper = temps.partition_point(|&x| x <= t).min(temps.len() - 1);
@@ -671,14 +612,15 @@ mod tests {
                 noise_variance: 1e-6,
                 dt_s: 0.1,
             },
-            gauss_markov: GaussMarkovModels {
-                ar_based: gm(tc, sigma),
-                irregular_ml: gm(tc * 2.0, sigma),
-                acf_fit: GaussMarkovEstimate::NoEquivalent {
-                    reason: "c1 >= 1".into(),
-                },
-                gmwm: None,
-            },
+            gauss_markov: GaussMarkovModels::default()
+                .with(GaussMarkovSource::AR_BASED, gm(tc, sigma))
+                .with(GaussMarkovSource::IRREGULAR_ML, gm(tc * 2.0, sigma))
+                .with(
+                    GaussMarkovSource::ACF_FIT,
+                    GaussMarkovEstimate::NoEquivalent {
+                        reason: "c1 >= 1".into(),
+                    },
+                ),
             gmwm: None,
         };
         TemperatureEntry {
@@ -707,7 +649,7 @@ mod tests {
     }
 
     fn pick(t: f64, selection: Selection) -> Result<SelectedModel, BankError> {
-        bank().select(t, Channel::Gx, GaussMarkovSource::ArBased, selection)
+        bank().select(t, Channel::Gx, GaussMarkovSource::AR_BASED, selection)
     }
 
     #[test]
@@ -781,14 +723,14 @@ mod tests {
         let acf = b.select(
             20.0,
             Channel::Gx,
-            GaussMarkovSource::AcfFit,
+            GaussMarkovSource::ACF_FIT,
             Selection::Nearest,
         );
         assert!(matches!(acf, Err(BankError::NoModel { .. })));
         let gy = b.select(
             20.0,
             Channel::Gy,
-            GaussMarkovSource::ArBased,
+            GaussMarkovSource::AR_BASED,
             Selection::Nearest,
         );
         assert!(matches!(gy, Err(BankError::MissingChannel { .. })));

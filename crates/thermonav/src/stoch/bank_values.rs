@@ -3,8 +3,8 @@
 //! filter as a wrong model (or a NaN) rather than as an error naming the value.
 
 use super::bank::{
-    AllanSummary, ArSummary, BankError, ChannelModel, GaussMarkovEstimate, Preprocessing,
-    TemperatureEntry,
+    AllanSummary, ArSummary, BankError, ChannelModel, GaussMarkovEstimate, GaussMarkovSource,
+    Preprocessing, TemperatureEntry,
 };
 use crate::imu::Channel;
 
@@ -116,10 +116,12 @@ fn check_preprocessing(place: Place, p: &Preprocessing) -> Result<(), BankError>
 fn check_channel(place: Place, model: &ChannelModel) -> Result<(), BankError> {
     check_allan(place, &model.allan)?;
     check_ar(place, &model.ar)?;
-    let gm = &model.gauss_markov;
-    check_gauss_markov(place, "gauss_markov.ar_based", &gm.ar_based)?;
-    check_gauss_markov(place, "gauss_markov.irregular_ml", &gm.irregular_ml)?;
-    check_gauss_markov(place, "gauss_markov.acf_fit", &gm.acf_fit)
+    GaussMarkovSource::all()
+        .filter(|s| s.always_fitted())
+        .try_for_each(|s| {
+            let field = format!("gauss_markov.{}", s.name());
+            check_gauss_markov(place, &field, model.gauss_markov.get(s))
+        })
 }
 
 fn check_allan(place: Place, allan: &AllanSummary) -> Result<(), BankError> {

@@ -9,35 +9,34 @@
 //!    ([`filter_and_decimate`]), taps/factor multiplications per input sample. Or, with
 //!    [`Denoiser::Wavelet`], the paper's alternative: wavelet shrinkage of the whole record at
 //!    its own rate ([`denoise`]), then every factor-th sample (in memory only).
-//! 3. On the conditioned series: the chosen AR model, the AR(1) fit and its AR-based
-//!    Gauss-Markov model (the paper's), and the classical fit to the autocorrelation.
+//! 3. On the conditioned series: the chosen AR model; then each Gauss-Markov family of
+//!    [`crate::stoch::gm_family`] fitted by its own module: the AR(1) fit and its AR-based
+//!    model (the paper's), and the classical fit to the autocorrelation.
 //! 4. On block means of the raw record with their actual times: the exact Gauss-Markov +
-//!    white-noise maximum likelihood ([`fit_noisy_gauss_markov`]), which models the white noise
-//!    the other two mistake for decorrelation.
+//!    white-noise maximum likelihood ([`crate::stoch::noisy_gauss_markov`]), which models the
+//!    white noise the other two mistake for decorrelation; with GMWM, the composite fitted to
+//!    the raw record's wavelet variance and its bias state.
 //!
 //! Defaults (state them when reporting): octave Allan grid at 0.683 confidence; Kaiser 60 dB,
 //! cut-off 0.4 Hz, transition 0.2 Hz, modelling rate 1 Hz; AR by Burg with the order chosen by
 //! BIC up to 4; ACF fit up to the first zero crossing; ML on 0.5 s block means.
 
-use super::acf::{Demean, autocovariance};
 use super::allan::{
     AllanCurve, AllanIntervals, DEFAULT_CONFIDENCE, TauGrid, confidence_intervals, overlapping_adev,
 };
 use super::ar::order::{Criterion, Order, fit_ar_order};
-use super::ar::{ArMethod, ArModel, fit_ar};
+use super::ar::{ArMethod, ArModel};
 use super::bank::{
-    AllanSummary, ArSummary, ChannelModel, FilterSummary, GaussMarkovEstimate, GaussMarkovModels,
-    GmwmSummary, Preprocessing, TemperatureEntry, WaveletSummary,
+    AllanSummary, ArSummary, ChannelModel, FilterSummary, GmwmSummary, Preprocessing,
+    TemperatureEntry, WaveletSummary,
 };
-use super::gauss_markov::{
-    Ar1Estimate, GaussMarkovOutcome, LagWindow, ar_based, fit_autocovariance,
-};
+use super::gauss_markov::LagWindow;
+use super::gm_family::{FitInputs, GaussMarkovEstimate, GaussMarkovModels};
 use super::gmwm::{
     ModelSpec, TauBand, auto_candidates, fit_from_first_adequate_scale, map_to_filter_states,
     physical_parameters,
 };
 use super::noise_terms::{Bound, NoiseTerms, TermReading, fit_noise_terms};
-use super::noisy_gauss_markov::{NoisyGaussMarkovOutcome, fit_noisy_gauss_markov};
 use super::thermal::record_mean;
 use super::wavelet_variance::from_allan_curve;
 use crate::imu::{Channel, ImuSeries, SampleKind};
@@ -395,22 +394,24 @@ pub(crate) fn channel_report(
     let terms = fit_noise_terms(&allan, &limits);
     let chosen = fit_ar_order(&conditioned, settings.ar_order, settings.ar_method)
         .map_err(|e| fail(e.to_string()))?;
-    let ar1 = fit_ar(&conditioned, 1, settings.ar_method).map_err(|e| fail(e.to_string()))?;
-    let acf = acf_model(&conditioned, dt_s, settings.acf_window);
-    let ml = block_ml(&block_times_s, &block_means);
     let gmwm = settings
         .gmwm
         .and_then(|spec| gmwm_summary(&allan, spec, settings.gmwm_band));
+    let gauss_markov = GaussMarkovModels::fit(&FitInputs {
+        conditioned: &conditioned,
+        dt_s,
+        ar_method: settings.ar_method,
+        acf_window: settings.acf_window,
+        block_times_s: &block_times_s,
+        block_means: &block_means,
+        gmwm_bias: gmwm.as_ref().map(|(_, bias)| bias),
+    })
+    .map_err(fail)?;
     let model = ChannelModel {
         unit: channel.si_unit(SampleKind::Rates).to_string(),
         allan: allan_summary(&allan, &terms),
         ar: ar_summary(&chosen, dt_s),
-        gauss_markov: GaussMarkovModels {
-            ar_based: estimate(ar_based(&ar1_estimate(&ar1, dt_s))),
-            irregular_ml: ml,
-            acf_fit: acf,
-            gmwm: gmwm.as_ref().map(|(_, bias)| bias.clone()),
-        },
+        gauss_markov,
         gmwm: gmwm.map(|(summary, _)| summary),
     };
     Ok(ChannelReport {
@@ -498,23 +499,6 @@ fn absent_terms(terms: &NoiseTerms) -> BTreeMap<String, String> {
     .collect()
 }
 
-/// Exact GM + white likelihood on block means of the raw record at their mean times.
-fn block_ml(times_s: &[f64], means: &[f64]) -> GaussMarkovEstimate {
-    match fit_noisy_gauss_markov(times_s, means) {
-        Ok(NoisyGaussMarkovOutcome::Model(fit)) => GaussMarkovEstimate::Model {
-            correlation_time_s: fit.correlation_time_s,
-            sigma: fit.sigma,
-            ci95_correlation_time_s: fit.ci95_correlation_time_s,
-        },
-        Ok(NoisyGaussMarkovOutcome::NoEquivalent { reason }) => {
-            GaussMarkovEstimate::NoEquivalent { reason }
-        }
-        Err(e) => GaussMarkovEstimate::NoEquivalent {
-            reason: e.to_string(),
-        },
-    }
-}
-
 struct Context<'a> {
     conditioning: &'a Conditioning,
     times_s: &'a [f64],
@@ -567,51 +551,11 @@ fn block_means(values: &[f64], per_block: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The AR(1) fit `ar1` of a series sampled every `dt_s` seconds, as the input of
-/// [`ar_based`].
-pub fn ar1_estimate(ar1: &ArModel, dt_s: f64) -> Ar1Estimate {
-    Ar1Estimate {
-        c1: ar1.coefficients[0],
-        c1_std_error: ar1.std_errors[0],
-        innovation_variance: ar1.noise_variance,
-        dt_s,
-    }
-}
-
 fn ar_summary(model: &ArModel, dt_s: f64) -> ArSummary {
     ArSummary {
         method: model.method.name().to_string(),
         coefficients: model.coefficients.clone(),
         noise_variance: model.noise_variance,
         dt_s,
-    }
-}
-
-/// A Gauss-Markov outcome as the bank keeps it.
-pub fn estimate(outcome: GaussMarkovOutcome) -> GaussMarkovEstimate {
-    match outcome {
-        GaussMarkovOutcome::Model {
-            model,
-            ci95_correlation_time_s,
-        } => GaussMarkovEstimate::Model {
-            correlation_time_s: model.correlation_time_s,
-            sigma: model.sigma,
-            ci95_correlation_time_s,
-        },
-        GaussMarkovOutcome::NoEquivalent { reason } => GaussMarkovEstimate::NoEquivalent { reason },
-    }
-}
-
-/// The classical fit of σ² exp(−τ/Tc) to the autocovariance of `conditioned` (sampled every
-/// `dt_s` seconds, lags up to a quarter of its length), as the bank's `acf_fit`.
-pub fn acf_model(conditioned: &[f64], dt_s: f64, window: LagWindow) -> GaussMarkovEstimate {
-    let max_lag = (conditioned.len() / 4)
-        .max(2)
-        .min(conditioned.len().saturating_sub(1));
-    match autocovariance(conditioned, max_lag, Demean::Subtract) {
-        Ok(gamma) => estimate(fit_autocovariance(&gamma, dt_s, window)),
-        Err(e) => GaussMarkovEstimate::NoEquivalent {
-            reason: e.to_string(),
-        },
     }
 }

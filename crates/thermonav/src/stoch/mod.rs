@@ -9,6 +9,7 @@ pub mod bank;
 pub mod bank_values;
 pub mod characterize;
 pub mod gauss_markov;
+pub mod gm_family;
 pub mod gmwm;
 pub mod lot;
 pub mod noise_terms;

@@ -6,7 +6,7 @@ use thermonav::imu::Channel;
 use thermonav::sensor::adis16364_like;
 use thermonav::sim::chamber::{ChamberRun, ChamberWander, calgary, simulate_chamber_run};
 use thermonav::sim::clock::SampleClock;
-use thermonav::stoch::bank::GaussMarkovEstimate;
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 
 // Three temperatures whose correlation times (20-375 s) are short against a 2-hour record at
@@ -45,7 +45,9 @@ fn characterising_a_simulated_campaign_recovers_the_true_correlation_times() {
             if let GaussMarkovEstimate::Model {
                 ci95_correlation_time_s: [lo, hi],
                 ..
-            } = &entry.channels[&channel].gauss_markov.irregular_ml
+            } = entry.channels[&channel]
+                .gauss_markov
+                .get(GaussMarkovSource::IRREGULAR_ML)
             {
                 covered +=
                     usize::from(lo.is_none_or(|l| l <= truth) && hi.is_none_or(|h| truth <= h));

@@ -10,7 +10,7 @@ use thermonav::stoch::allan::{
     CiSettings, StreamingAllan, StreamingAllanSettings, TauGrid, confidence_intervals,
     overlapping_adev,
 };
-use thermonav::stoch::bank::GaussMarkovEstimate;
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 use thermonav::stoch::streaming::{StreamingCharacterizer, StreamingSettings};
 
@@ -168,15 +168,18 @@ fn streaming_characterisation_equals_the_in_memory_one() {
     assert_eq!(entry.preprocessing, memory.preprocessing);
     for channel in Channel::ALL {
         let (a, b) = (&entry.channels[&channel], &memory.channels[&channel]);
-        assert_eq!(a.gauss_markov.irregular_ml, b.gauss_markov.irregular_ml);
+        assert_eq!(
+            a.gauss_markov.get(GaussMarkovSource::IRREGULAR_ML),
+            b.gauss_markov.get(GaussMarkovSource::IRREGULAR_ML)
+        );
         assert!(same_estimate(
-            &a.gauss_markov.ar_based,
-            &b.gauss_markov.ar_based,
+            a.gauss_markov.get(GaussMarkovSource::AR_BASED),
+            b.gauss_markov.get(GaussMarkovSource::AR_BASED),
             1e-9
         ));
         assert!(same_estimate(
-            &a.gauss_markov.acf_fit,
-            &b.gauss_markov.acf_fit,
+            a.gauss_markov.get(GaussMarkovSource::ACF_FIT),
+            b.gauss_markov.get(GaussMarkovSource::ACF_FIT),
             1e-9
         ));
         assert_eq!(a.ar.coefficients.len(), b.ar.coefficients.len());
