@@ -453,7 +453,7 @@ pub fn print_tournament_table(file: &EvaluationFile) {
 /// " at T °C (SOURCE models)" when our filters ran.
 fn conditions(r: &TournamentReport) -> String {
     match (r.operating_temperature_c, r.gauss_markov_source) {
-        (Some(t), Some(source)) => format!(" at {t:.1} °C ({source:?} models)"),
+        (Some(t), Some(source)) => format!(" at {t:.1} °C ({} models)", source.cli_name()),
         _ => String::new(),
     }
 }
