@@ -25,13 +25,14 @@ use thermonav::nav::run::{
     prepare,
 };
 use thermonav::nav::run_options::{
-    RunOptionError, RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
+    RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
 };
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::nav::solution::SolutionEpoch;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::sensor::SensorProfile;
+use thermonav::setting::SettingError;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::solution::{state_column_names, state_values};
@@ -127,14 +128,6 @@ fn refusal(message: String, input: RunInput, prefix: String) -> PyErr {
         RunInput::Settings => error(format!("outages: {message}")),
         _ => error(format!("{prefix}{message}")),
     }
-}
-
-/// A record without temp_c and no temperature given.
-fn no_temperature(imu: &Path) -> PyErr {
-    error(format!(
-        "{}: no temp_c column; give the temperature (model_temperature_c or operating_temperature_c)",
-        imu.display()
-    ))
 }
 
 /// One of `names` (the CLI's value names), else an error naming `what`.
@@ -280,7 +273,7 @@ impl RunKeywords {
 }
 
 /// A run option's refusal, in the keyword's name (the library's words).
-fn refused(e: RunOptionError) -> PyErr {
+fn refused(e: SettingError) -> PyErr {
     error(e.to_string())
 }
 
@@ -440,13 +433,12 @@ fn run_files(
         .transpose()
         .map_err(error)?;
     let start = reference.as_deref().map_or(Start::Align, Start::Reference);
-    let refused = |e: RunError| match e {
-        RunError::NoTemperature => no_temperature(&files.imu),
-        e => refusal(
+    let refused = |e: RunError| {
+        refusal(
             e.to_string(),
             e.input(),
             files.prefix(e.input(), &records, initial_from),
-        ),
+        )
     };
     let noise = records.noise.model();
     let prepared = prepare(
@@ -609,7 +601,7 @@ fn tournament_of_files(
     let records = files.read()?;
     let points = read_trajectory_file(&reference, Strictness::Strict).map_err(error)?;
     let operating_c = operating_temperature_c(k.temperature.given_c(), &records.series)
-        .map_err(|_| no_temperature(&files.imu))?;
+        .map_err(|e| error(format!("{}: {e}", files.imu.display())))?;
     let start = (initial_from.as_deref())
         .map(|p| read_trajectory_file(p, Strictness::Strict))
         .transpose()
