@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model};
 use thermonav::evaluation::experiment::{
-    CandidateSource, DEFAULT_OUTAGES, Replicates, Tournament, TournamentOutcome, TournamentPlan,
+    CandidateSource, DEFAULT_MONTE_CARLO, DEFAULT_OUTAGES, Replicates, Tournament, TournamentOutcome, TournamentPlan,
 };
 use thermonav::evaluation::metrics::EpochError;
 use thermonav::evaluation::oracle::TrueModel;
@@ -352,7 +352,7 @@ fn integrate_result<'py>(
 /// `thermonav.integrate`). A keyword left at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select=None, model=None, filter="ekf", outages=None, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, smooth=false))]
+#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select=None, model=None, filter=EngineSettings::default().filter.name(), outages=None, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, smooth=false))]
 pub fn integrate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -513,7 +513,7 @@ struct TournamentKeywords {
 /// at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
+#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=DEFAULT_MONTE_CARLO, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
 pub fn evaluate<'py>(
     py: Python<'py>,
     imu: PathBuf,

@@ -229,6 +229,18 @@ pub enum GaussMarkovSource {
     Gmwm,
 }
 
+impl GaussMarkovSource {
+    /// The snake_case name of the family, as in the bank (and Python's `family`, `model`).
+    pub fn name(self) -> &'static str {
+        match self {
+            GaussMarkovSource::IrregularMl => "irregular_ml",
+            GaussMarkovSource::ArBased => "ar_based",
+            GaussMarkovSource::AcfFit => "acf_fit",
+            GaussMarkovSource::Gmwm => "gmwm",
+        }
+    }
+}
+
 /// A Gauss-Markov estimate, or the reason there is none.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "status", rename_all = "snake_case")]
@@ -626,6 +638,14 @@ fn lerp(a: f64, b: f64, weight: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_familys_name_is_its_name_in_the_bank() {
+        use GaussMarkovSource::*;
+        for family in [ArBased, IrregularMl, AcfFit, Gmwm] {
+            assert_eq!(serde_json::to_value(family).unwrap(), family.name());
+        }
+    }
 
     #[test]
     fn an_operating_temperature_must_be_finite() {

@@ -181,8 +181,8 @@ impl Quantity {
             Sensor::Accelerometer => ("m_s2", "m_s_per_sqrt_s", "m_s2_per_sqrt_s"),
         };
         match self {
-            Quantity::CorrelationTime(f) => format!("{}_correlation_time_s", family_name(f)),
-            Quantity::Sigma(f) => format!("{}_sigma_{rate}", family_name(f)),
+            Quantity::CorrelationTime(f) => format!("{}_correlation_time_s", f.name()),
+            Quantity::Sigma(f) => format!("{}_sigma_{rate}", f.name()),
             Quantity::WhiteNoiseDensity => format!("white_noise_density_{density}"),
             Quantity::BiasInstability => format!("bias_instability_{rate}"),
             Quantity::RateRandomWalk => format!("rate_random_walk_{walk}"),
@@ -207,16 +207,6 @@ impl Quantity {
             Quantity::RateRandomWalk => model.allan.rate_random_walk,
         };
         value.filter(|v| v.is_finite())
-    }
-}
-
-/// The snake_case name of a Gauss-Markov family, as in the bank.
-fn family_name(family: GaussMarkovSource) -> &'static str {
-    match family {
-        GaussMarkovSource::IrregularMl => "irregular_ml",
-        GaussMarkovSource::ArBased => "ar_based",
-        GaussMarkovSource::AcfFit => "acf_fit",
-        GaussMarkovSource::Gmwm => "gmwm",
     }
 }
 
