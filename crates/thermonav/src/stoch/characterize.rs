@@ -101,7 +101,8 @@ impl std::fmt::Display for GmwmChoice {
     }
 }
 
-/// The composite `characterize` fits by default: the automatic choice. A fixed `wn+rw+2gm`
+/// The composite `characterize`, `thermonav gmwm` and Python's `gmwm` fit by default: the
+/// automatic choice. A fixed `wn+rw+2gm`
 /// split one slow process into a 1-3 s process and a random walk on the demo's 30-minute
 /// records; the criterion picks `wn+gm` there and the richer composites on the real runs.
 pub const DEFAULT_GMWM: GmwmChoice = GmwmChoice::Auto;
