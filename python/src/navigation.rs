@@ -11,7 +11,8 @@ use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model};
 use thermonav::evaluation::experiment::{
-    CandidateSource, DEFAULT_MONTE_CARLO, DEFAULT_OUTAGES, Replicates, Tournament, TournamentOutcome, TournamentPlan,
+    CandidateSource, DEFAULT_MONTE_CARLO, DEFAULT_OUTAGES, Replicates, Tournament,
+    TournamentOutcome, TournamentPlan,
 };
 use thermonav::evaluation::metrics::EpochError;
 use thermonav::evaluation::oracle::TrueModel;
@@ -147,12 +148,8 @@ fn gauss_markov_of(model: Option<&str>) -> PyResult<GaussMarkovSource> {
     let Some(model) = model else {
         return Ok(GaussMarkovSource::default());
     };
-    let names = [
-        ("irregular_ml", GaussMarkovSource::IrregularMl),
-        ("ar_based", GaussMarkovSource::ArBased),
-        ("acf_fit", GaussMarkovSource::AcfFit),
-        ("gmwm", GaussMarkovSource::Gmwm),
-    ];
+    use GaussMarkovSource::{AcfFit, ArBased, Gmwm, IrregularMl};
+    let names = [IrregularMl, ArBased, AcfFit, Gmwm].map(|family| (family.name(), family));
     choice("model", model, &names)
 }
 

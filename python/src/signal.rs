@@ -14,7 +14,6 @@ use thermonav::signal::zero_phase::{
     ZeroPhaseMode, decimation_edge_samples, filter_for_mode, filter_zero_phase,
 };
 
-
 /// The Kaiser design of a specification; a bad one is named as the library says.
 fn design(
     fs_hz: f64,
