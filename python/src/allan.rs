@@ -61,7 +61,7 @@ fn adev_with_limits(
 /// Allan deviation of rate samples `x` taken at `rate_hz` (module docs of the Python package:
 /// `thermonav.allan`).
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, taus=None, kind="adev", confidence=DEFAULT_CONFIDENCE, limits=true))]
+#[pyo3(signature = (x, rate_hz, taus=None, kind=DeviationKind::default().name(), confidence=DEFAULT_CONFIDENCE, limits=true))]
 pub fn allan<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,

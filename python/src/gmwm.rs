@@ -8,6 +8,7 @@ use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use serde::Serialize;
 use thermonav::rng::DEFAULT_SEED;
+use thermonav::stoch::characterize::DEFAULT_GMWM;
 use thermonav::stoch::gmwm::BootstrapSettings;
 use thermonav_io::gmwm::{
     DEFAULT_REPLICATES, GmwmChannelJson, candidates_of, gmwm_channel_json, interval_method,
@@ -27,17 +28,19 @@ struct Fit<'a> {
 /// The GMWM fit of rate samples `x` at `rate_hz` (module docs of the Python package:
 /// `thermonav.gmwm`).
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, model="auto", sensor="gyro", replicates=DEFAULT_REPLICATES, seed=DEFAULT_SEED))]
+#[pyo3(signature = (x, rate_hz, model=None, sensor="gyro", replicates=DEFAULT_REPLICATES, seed=DEFAULT_SEED))]
 pub fn gmwm<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,
     rate_hz: f64,
-    model: &str,
+    model: Option<&str>,
     sensor: &str,
     replicates: usize,
     seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let sensor = sensor_of(sensor)?;
+    let model = model.map_or_else(|| DEFAULT_GMWM.to_string(), str::to_string);
+    let model = model.as_str();
     let candidates = candidates_of(model).map_err(|e| error(format!("model {model}: {e}")))?;
     let settings = BootstrapSettings {
         replicates,

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use thermonav::stoch::ar::order::{Criterion, DEFAULT_AUTO_MAX_ORDER, Order, fit_ar_order};
 use thermonav::stoch::ar::{ArMethod, ArModel, MAX_AR_ORDER, fit_ar};
-use thermonav::stoch::bank::GaussMarkovEstimate;
+use thermonav::stoch::bank::{GaussMarkovEstimate, GaussMarkovSource};
 use thermonav::stoch::gauss_markov::LagWindow;
 use thermonav::stoch::gm_family::acf_fit::acf_model;
 use thermonav::stoch::gm_family::ar_based::from_ar1;
@@ -62,7 +62,7 @@ fn ar_based_model<'py>(py: Python<'py>, ar1: &ArModel, dt_s: f64) -> PyResult<Bo
 
 /// An AR model of `x` (module docs of the Python package: `thermonav.ar`).
 #[pyfunction]
-#[pyo3(signature = (x, method="burg", order=None, max_order=DEFAULT_AUTO_MAX_ORDER, dt_s=None))]
+#[pyo3(signature = (x, method=ArMethod::default().name(), order=None, max_order=DEFAULT_AUTO_MAX_ORDER, dt_s=None))]
 pub fn ar<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,
@@ -102,7 +102,7 @@ pub fn ar<'py>(
 /// A first-order Gauss-Markov model of samples `x` at times `t_s` (module docs of the Python
 /// package: `thermonav.gauss_markov`).
 #[pyfunction]
-#[pyo3(signature = (t_s, x, family="irregular_ml", method="burg"))]
+#[pyo3(signature = (t_s, x, family=GaussMarkovSource::default().name(), method=ArMethod::default().name()))]
 pub fn gauss_markov<'py>(
     py: Python<'py>,
     t_s: PyReadonlyArray1<'py, f64>,

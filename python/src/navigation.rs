@@ -11,7 +11,8 @@ use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 use thermonav::evaluation::candidates::{ThermalOptions, datasheet_model};
 use thermonav::evaluation::experiment::{
-    CandidateSource, DEFAULT_OUTAGES, Replicates, Tournament, TournamentOutcome, TournamentPlan,
+    CandidateSource, DEFAULT_MONTE_CARLO, DEFAULT_OUTAGES, Replicates, Tournament,
+    TournamentOutcome, TournamentPlan,
 };
 use thermonav::evaluation::metrics::EpochError;
 use thermonav::evaluation::oracle::TrueModel;
@@ -25,13 +26,14 @@ use thermonav::nav::run::{
     prepare,
 };
 use thermonav::nav::run_options::{
-    RunOptionError, RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
+    RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
 };
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::sensor_model::ScaleFactorPrior;
 use thermonav::nav::solution::SolutionEpoch;
 use thermonav::rng::DEFAULT_SEED;
 use thermonav::sensor::SensorProfile;
+use thermonav::setting::SettingError;
 use thermonav::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use thermonav::trajectory::TrajectoryPoint;
 use thermonav_io::solution::{state_column_names, state_values};
@@ -127,14 +129,6 @@ fn refusal(message: String, input: RunInput, prefix: String) -> PyErr {
         RunInput::Settings => error(format!("outages: {message}")),
         _ => error(format!("{prefix}{message}")),
     }
-}
-
-/// A record without temp_c and no temperature given.
-fn no_temperature(imu: &Path) -> PyErr {
-    error(format!(
-        "{}: no temp_c column; give the temperature (model_temperature_c or operating_temperature_c)",
-        imu.display()
-    ))
 }
 
 /// One of `names` (the CLI's value names), else an error naming `what`.
@@ -277,7 +271,7 @@ impl RunKeywords {
 }
 
 /// A run option's refusal, in the keyword's name (the library's words).
-fn refused(e: RunOptionError) -> PyErr {
+fn refused(e: SettingError) -> PyErr {
     error(e.to_string())
 }
 
@@ -356,7 +350,7 @@ fn integrate_result<'py>(
 /// `thermonav.integrate`). A keyword left at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select=None, model=None, filter="ekf", outages=None, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, smooth=false))]
+#[pyo3(signature = (imu, gnss, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, select=None, model=None, filter=EngineSettings::default().filter.name(), outages=None, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, output_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, smooth=false))]
 pub fn integrate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -437,13 +431,12 @@ fn run_files(
         .transpose()
         .map_err(error)?;
     let start = reference.as_deref().map_or(Start::Align, Start::Reference);
-    let refused = |e: RunError| match e {
-        RunError::NoTemperature => no_temperature(&files.imu),
-        e => refusal(
+    let refused = |e: RunError| {
+        refusal(
             e.to_string(),
             e.input(),
             files.prefix(e.input(), &records, initial_from),
-        ),
+        )
     };
     let noise = records.noise.model();
     let prepared = prepare(
@@ -518,7 +511,7 @@ struct TournamentKeywords {
 /// at `None` takes the library's default.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
-#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=1, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
+#[pyo3(signature = (imu, gnss, reference, bank=None, profile=None, *, model_temperature_c=None, operating_temperature_c=None, model=None, filter="both", outages=None, monte_carlo=DEFAULT_MONTE_CARLO, seed=DEFAULT_SEED, lever_arm_m=None, baseline=None, initial_from=None, covariance_rate_hz=None, velocity_sd_m_s=None, gate_probability=None, gate_window=None, max_imu_gap_s=None, process_noise_scale=None, bias_hypotheses=None, velocity=None, heading=None, schedule=true, compensation=true, datasheet=None, truth=None))]
 pub fn evaluate<'py>(
     py: Python<'py>,
     imu: PathBuf,
@@ -606,7 +599,7 @@ fn tournament_of_files(
     let records = files.read()?;
     let points = read_trajectory_file(&reference, Strictness::Strict).map_err(error)?;
     let operating_c = operating_temperature_c(k.temperature.given_c(), &records.series)
-        .map_err(|_| no_temperature(&files.imu))?;
+        .map_err(|e| error(format!("{}: {e}", files.imu.display())))?;
     let start = (initial_from.as_deref())
         .map(|p| read_trajectory_file(p, Strictness::Strict))
         .transpose()

@@ -7,15 +7,12 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use thermonav::signal::decimate::{check_anti_alias, decimate_valid, decimation_factor};
-use thermonav::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
+use thermonav::signal::kaiser::{
+    DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ, FirFilter, KaiserSpec, design_kaiser_lowpass,
+};
 use thermonav::signal::zero_phase::{
     ZeroPhaseMode, decimation_edge_samples, filter_for_mode, filter_zero_phase,
 };
-
-/// Transition width unless given, Hz, as `thermonav fir` and `filter`.
-const DEFAULT_TRANSITION_HZ: f64 = 1.0;
-/// Attenuation unless given, dB, as `thermonav fir` and `filter`.
-const DEFAULT_RIPPLE_DB: f64 = 60.0;
 
 /// The Kaiser design of a specification; a bad one is named as the library says.
 fn design(
@@ -31,13 +28,11 @@ fn design(
 
 /// The mode called `name`: "zero-phase" (one pass, delay removed) or "filtfilt".
 fn mode_of(name: &str) -> PyResult<ZeroPhaseMode> {
-    match name {
-        "zero-phase" => Ok(ZeroPhaseMode::DelayCompensated),
-        "filtfilt" => Ok(ZeroPhaseMode::ForwardBackward),
-        other => Err(error(format!(
-            "mode {other:?}: expected \"zero-phase\" or \"filtfilt\""
-        ))),
-    }
+    ZeroPhaseMode::from_name(name).ok_or_else(|| {
+        error(format!(
+            "mode {name:?}: expected \"zero-phase\" or \"filtfilt\""
+        ))
+    })
 }
 
 /// A Kaiser-window low-pass design, tap for tap SciPy's `kaiserord` + `firwin`.
@@ -75,7 +70,7 @@ fn mode_filter(
 
 /// `x` low-passed without phase shift (same length; SciPy's `filtfilt` with `mode="filtfilt"`).
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, cutoff_hz, transition_hz=DEFAULT_TRANSITION_HZ, ripple_db=DEFAULT_RIPPLE_DB, mode="zero-phase"))]
+#[pyo3(signature = (x, rate_hz, cutoff_hz, transition_hz=DEFAULT_TRANSITION_HZ, ripple_db=DEFAULT_RIPPLE_DB, mode=ZeroPhaseMode::default().name()))]
 pub fn zero_phase<'py>(
     py: Python<'py>,
     x: PyReadonlyArray1<'py, f64>,
@@ -96,7 +91,7 @@ pub fn zero_phase<'py>(
 
 /// `x` low-passed and decimated to `to_hz`, as `thermonav filter --decimate-to-hz`.
 #[pyfunction]
-#[pyo3(signature = (x, rate_hz, to_hz, cutoff_hz, transition_hz=DEFAULT_TRANSITION_HZ, ripple_db=DEFAULT_RIPPLE_DB, mode="zero-phase"))]
+#[pyo3(signature = (x, rate_hz, to_hz, cutoff_hz, transition_hz=DEFAULT_TRANSITION_HZ, ripple_db=DEFAULT_RIPPLE_DB, mode=ZeroPhaseMode::default().name()))]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments, one per CLI option
 pub fn decimate<'py>(
     py: Python<'py>,

@@ -202,6 +202,20 @@ def test_bad_inputs_and_settings_are_named(data, tmp_path):
         thermonav.integrate(imu, empty, bank=data["bank"])
 
 
+def test_a_record_without_temperature_asks_for_one_by_its_keyword(data, tmp_path):
+    # The library's message, the settings spelt as Python's keywords (the CLI's as its options).
+    rows = [line.rsplit(",", 1)[0] for line in data["imu"].read_text().splitlines()]
+    assert rows[0].endswith("az_m_s2")
+    imu = tmp_path / "imu_no_temp.csv"
+    imu.write_text("\n".join(rows) + "\n")
+    message = (r"imu_no_temp\.csv: no temp_c column; give the temperature "
+               r"\(model_temperature_c or operating_temperature_c\)")
+    with pytest.raises(ThermonavError, match=message):
+        thermonav.integrate(imu, data["gnss"], bank=data["bank"])
+    with pytest.raises(ThermonavError, match=message):
+        thermonav.evaluate(imu, data["gnss"], data["reference"], bank=data["bank"])
+
+
 def test_integrate_and_gmwm_let_other_threads_run(data):
     import threading
     import time

@@ -35,6 +35,14 @@ impl fmt::Display for Failure {
     }
 }
 
+/// A setting the library refused (out of its range) is bad usage, said in the command line's
+/// words: `--rate-hz 0: expected a positive number`.
+impl From<thermonav::setting::SettingError> for Failure {
+    fn from(e: thermonav::setting::SettingError) -> Self {
+        Failure::Usage(anyhow::anyhow!("{}", e.as_flag()))
+    }
+}
+
 /// The error and its causes joined by ": " (anyhow's `{:#}`), leaving out a cause whose text
 /// the message already holds (an error that prints its source, as a write error prints the
 /// system's reason, would otherwise say it twice).

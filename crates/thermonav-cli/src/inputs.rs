@@ -5,7 +5,7 @@ use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::Path;
 use thermonav::imu::{ImuSeries, SampleKind};
-use thermonav::nav::run::operating_temperature_c;
+use thermonav::nav::run::{RunError, operating_temperature_c};
 use thermonav::sensor::{SensorProfile, adis16364_like, temperature_sensitive};
 use thermonav::signal::timestamps::interval_stats;
 use thermonav::stoch::bank::ModelBank;
@@ -271,12 +271,11 @@ pub fn operating_temperature(
     operating_temperature_c(given, series).map_err(|_| no_temperature(imu))
 }
 
-/// A record without temp_c and no temperature given: a usage error naming the options.
+/// A record without temp_c and no temperature given: a usage error naming the options (the
+/// library's [`RunError::no_temperature`] in the command line's words).
 pub(crate) fn no_temperature(imu: &Path) -> Failure {
-    Failure::Usage(anyhow!(
-        "{}no temp_c column; give the temperature (--model-temperature-c or --operating-temperature-c)",
-        prefix(imu)
-    ))
+    let message = RunError::no_temperature(thermonav::setting::flag);
+    Failure::Usage(anyhow!("{}{message}", prefix(imu)))
 }
 
 /// `PATH: `, the start of a message about a file.

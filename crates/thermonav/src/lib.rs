@@ -181,6 +181,8 @@
 //! - [`rng`]: named, seeded random streams (simulation, Monte Carlo evaluation, tests).
 //! - [`sensor`]: sensor profiles (noise figures, temperature dependence, the data-sheet
 //!   ADIS16364-like profile) and the stochastic model they imply.
+//! - [`setting`]: one setting checked against its range (positive, finite), refused with an
+//!   error naming it: the checks the CLI and the Python package share.
 //! - [`sim`]: seeded simulation of IMU errors and thermal-chamber campaigns.
 
 pub mod evaluation;
@@ -195,6 +197,7 @@ pub mod nav;
 pub mod optimise;
 pub mod rng;
 pub mod sensor;
+pub mod setting;
 pub mod signal;
 pub mod sim;
 pub mod statistics;

@@ -39,7 +39,7 @@ pub struct AllanArgs {
     /// terms), mdev (modified Allan), hdev / ohdev (Hadamard, non-overlapping / overlapping),
     /// tdev (time deviation, rate unit times s) or totdev (total); all but adev come without
     /// limits or terms.
-    #[arg(long, default_value = "adev")]
+    #[arg(long, default_value_t = DeviationKind::default())]
     pub kind: DeviationKind,
     /// Print one JSON document instead of text.
     #[arg(long)]

@@ -1,10 +1,10 @@
 //! Arguments of `thermonav characterize`.
 
 use super::shared::{BagTopicArgs, DenoiseArg, ImuRotationArgs, SampleRateArgs, wavelet_default};
-use crate::thermal::calibration::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use thermonav::stoch::characterize::{CharacterizeSettings, DEFAULT_GMWM};
+use thermonav::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 
 fn conditioning() -> CharacterizeSettings {
     CharacterizeSettings::default()

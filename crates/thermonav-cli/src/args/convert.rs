@@ -98,7 +98,7 @@ pub struct ConvertArgs {
     #[arg(long)]
     pub gps_week: Option<u32>,
     /// nmea, px4-ulog: GPST minus UTC, s.
-    #[arg(long, default_value_t = 18)]
+    #[arg(long, default_value_t = thermonav_io::gpst::GPST_MINUS_UTC_S)]
     pub leap_seconds: i64,
     /// nmea: UTC date of the first epoch (YYYY-MM-DD) when the log has no RMC sentence.
     #[arg(long)]

@@ -3,7 +3,7 @@
 use super::shared::{ImuRotationArgs, RunOptionArgs, with_default};
 use clap::{Args, Subcommand, ValueEnum};
 use std::path::PathBuf;
-use thermonav::evaluation::experiment::DEFAULT_OUTAGES;
+use thermonav::evaluation::experiment::{DEFAULT_MONTE_CARLO, DEFAULT_OUTAGES};
 use thermonav::nav::outage::OutageSpec;
 use thermonav::rng::DEFAULT_SEED;
 
@@ -90,7 +90,7 @@ pub struct EvaluateArgs {
     #[arg(long, help = with_default("Outages: spread:COUNT,DURATION, START+DURATION[,...] or every:FIRST,DURATION,PERIOD,COUNT, in seconds on the files' t_s scale; after rel: (rel:265+10) in seconds from the first IMU sample (from the reference's first point when no IMU is given). Required with --solution", DEFAULT_OUTAGES))]
     pub outages: Option<OutageSpec>,
     /// Monte Carlo replicates over shifted outage start times (1 = no Monte Carlo).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = DEFAULT_MONTE_CARLO)]
     pub monte_carlo: usize,
     /// Seed of the outage shifts.
     #[arg(long, default_value_t = DEFAULT_SEED)]

@@ -1,23 +1,13 @@
 //! Arguments of `thermonav filter`.
 
-use super::shared::{
-    DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ, DenoiseArg, wavelet_default, with_default,
-};
+use super::shared::{DenoiseArg, wavelet_default, with_default};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
+use thermonav::signal::kaiser::{DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ};
 use thermonav::signal::wavelet::daubechies::Daubechies;
 use thermonav::signal::wavelet::threshold::{ThresholdRule, Thresholding};
 use thermonav::signal::wavelet::transform::ExtensionMode;
-
-/// The command-line name of a value.
-fn value_name(value: impl ValueEnum) -> String {
-    value
-        .to_possible_value()
-        .map_or_else(String::new, |v| v.get_name().to_string())
-}
-
-/// Zero-phase mode of `filter`.
-pub const DEFAULT_FILTER_MODE: ModeArg = ModeArg::ZeroPhase;
+use thermonav::signal::zero_phase::ZeroPhaseMode;
 
 /// How the filter's delay is removed.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -89,7 +79,7 @@ pub struct FilterKaiserArgs {
     pub transition_hz: Option<f64>,
     #[arg(long, allow_negative_numbers = true, help = with_default("Kaiser: stop-band attenuation and pass-band ripple, dB (positive)", DEFAULT_RIPPLE_DB))]
     pub ripple_db: Option<f64>,
-    #[arg(long, value_enum, help = with_default("Kaiser: zero-phase mode", value_name(DEFAULT_FILTER_MODE)))]
+    #[arg(long, value_enum, help = with_default("Kaiser: zero-phase mode", ZeroPhaseMode::default().name()))]
     pub mode: Option<ModeArg>,
     /// Kaiser: decimate to this rate after filtering, Hz (must divide the input rate).
     #[arg(long)]
@@ -144,11 +134,25 @@ impl From<ExtensionArg> for ExtensionMode {
     }
 }
 
-impl From<ModeArg> for thermonav::signal::zero_phase::ZeroPhaseMode {
+impl From<ModeArg> for ZeroPhaseMode {
     fn from(m: ModeArg) -> Self {
         match m {
             ModeArg::ZeroPhase => Self::DelayCompensated,
             ModeArg::Filtfilt => Self::ForwardBackward,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_mode_is_called_as_the_library_calls_it() {
+        for mode in ModeArg::value_variants() {
+            let name = mode.to_possible_value().unwrap().get_name().to_string();
+            assert_eq!(ZeroPhaseMode::from(*mode).name(), name);
+            assert_eq!(ZeroPhaseMode::from_name(&name), Some((*mode).into()));
         }
     }
 }

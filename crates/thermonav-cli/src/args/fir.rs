@@ -1,7 +1,7 @@
 //! Arguments of `thermonav fir`.
 
-use super::shared::{DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ};
 use clap::Args;
+use thermonav::signal::kaiser::{DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ};
 
 /// Kaiser low-pass specification shared by `fir` and `filter`.
 #[derive(Debug, Args, Clone, Copy)]

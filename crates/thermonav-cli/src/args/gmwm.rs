@@ -4,6 +4,7 @@ use super::shared::BagTopicArgs;
 use clap::Args;
 use std::path::PathBuf;
 use thermonav::rng::DEFAULT_SEED;
+use thermonav::stoch::characterize::DEFAULT_GMWM;
 
 /// Arguments of `gmwm`.
 #[derive(Debug, Args)]
@@ -15,7 +16,7 @@ pub struct GmwmArgs {
     pub topics: BagTopicArgs,
     /// The composite, e.g. wn+rw+2gm or wn+qn+gm (wn, qn, rw, dr, gm, kgm), or auto: the
     /// candidate with the smallest Wavelet Information Criterion.
-    #[arg(long, default_value = "auto")]
+    #[arg(long, default_value_t = DEFAULT_GMWM.to_string())]
     pub model: String,
     /// Parametric-bootstrap replicates for the parameters' intervals and the WIC, 10 to 1000
     /// (each simulates and refits the whole record once); 0, the default: no intervals, the

@@ -3,7 +3,7 @@
 use super::shared::{ImuRotationArgs, RunOptionArgs};
 use clap::{ArgGroup, Args, ValueEnum};
 use std::path::PathBuf;
-use thermonav::nav::engine::EngineSettings;
+use thermonav::nav::engine::{EngineSettings, FilterKind};
 use thermonav::nav::outage::OutageSpec;
 
 fn engine() -> EngineSettings {
@@ -45,7 +45,7 @@ pub struct IntegrateArgs {
     #[arg(long)]
     pub thermal_from: Option<PathBuf>,
     /// The filter (evaluate's --filter takes ukf, ekf or both).
-    #[arg(long, value_enum, default_value_t = FilterArg::Ekf)]
+    #[arg(long, value_enum, default_value_t = engine().filter.into())]
     pub filter: FilterArg,
     #[command(flatten)]
     pub run: RunOptionArgs,
@@ -84,11 +84,20 @@ pub struct IntegrateArgs {
     pub json: bool,
 }
 
-impl From<FilterArg> for thermonav::nav::engine::FilterKind {
+impl From<FilterArg> for FilterKind {
     fn from(f: FilterArg) -> Self {
         match f {
             FilterArg::Ekf => Self::Ekf,
             FilterArg::Ukf => Self::Ukf,
+        }
+    }
+}
+
+impl From<FilterKind> for FilterArg {
+    fn from(f: FilterKind) -> Self {
+        match f {
+            FilterKind::Ekf => Self::Ekf,
+            FilterKind::Ukf => Self::Ukf,
         }
     }
 }

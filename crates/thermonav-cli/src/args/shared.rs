@@ -23,12 +23,6 @@ pub(super) fn with_default(text: &str, default: impl std::fmt::Display) -> Strin
     format!("{text} [default: {default}]")
 }
 
-/// Kaiser transition width of `fir` and `filter`, Hz.
-pub const DEFAULT_TRANSITION_HZ: f64 = 1.0;
-
-/// Kaiser attenuation of `fir` and `filter`, dB.
-pub const DEFAULT_RIPPLE_DB: f64 = 60.0;
-
 /// The options that decide how one filter run goes, the same in `integrate` (its one run)
 /// and `evaluate` (every candidate's run): resolved by `settings::navigation::run_options`
 /// into the library's `RunOptions`, whose defaults these are.

@@ -2,7 +2,7 @@
 //! pieces (see [`crate::banks::streaming`]), the files in parallel, the bank written atomically.
 
 use crate::args::ReadingArg;
-use crate::banks::streaming::{characterize_streaming, streams};
+use crate::banks::streaming::{characterize_streaming, streams, temperature_of};
 use crate::failure::{Classify, Failure};
 use crate::settings::characterization::BankJob;
 use crate::thermal::calibration::{ThermalInputs, calibrate_bank};
@@ -13,20 +13,6 @@ use thermonav::stoch::bank::{ModelBank, TemperatureEntry};
 use thermonav::stoch::characterize::{CharacterizeSettings, characterize};
 use thermonav_io::ros::extract::TopicNames;
 use thermonav_io::{FileSplit, ImuOptions, write_json_atomically};
-
-/// The temperature of a record: given, or the mean of its temp_c column.
-fn temperature_of(path: &Path, series: &ImuSeries, given: Option<f64>) -> Result<f64, Failure> {
-    if let Some(t) = given {
-        return Ok(t);
-    }
-    let mean = series.mean_temperature_c().ok_or_else(|| {
-        Failure::Usage(anyhow!(
-            "{}: no temp_c column; give the temperature with --temperature-c",
-            path.display()
-        ))
-    })?;
-    crate::inputs::recorded_temperature(path, mean)
-}
 
 /// Characterises one file, read as `imu` says (a bag's topics as `topics` choose), whole in
 /// memory or streamed as `reading` says; the entry records the mounting.
@@ -57,7 +43,7 @@ fn characterize_in_memory(
     (name, imu, spares): (&str, (&ImuOptions, &TopicNames), &SpareSeries),
 ) -> Result<TemperatureEntry, Failure> {
     let series = crate::inputs::read_imu_input_into(path, imu, spares.take())?;
-    let temperature_c = temperature_of(path, &series, given)?;
+    let temperature_c = temperature_of(given, series.mean_temperature_c(), path)?;
     let (entry, _) = characterize(&series, temperature_c, name, settings)
         .map_err(|e| anyhow!("{}: {e}", path.display()))
         .data()?;

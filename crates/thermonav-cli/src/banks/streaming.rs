@@ -149,8 +149,13 @@ fn check_has_rows(stream: &StreamingCharacterizer, path: &Path) -> Result<(), Fa
     Ok(())
 }
 
-/// The record's temperature: `--temperature-c`, else the mean of its `temp_c` column.
-fn temperature_of(given: Option<f64>, mean: Option<f64>, path: &Path) -> Result<f64, Failure> {
+/// The record's temperature: `--temperature-c`, else the mean of its `temp_c` column (a record
+/// read whole or streamed).
+pub(crate) fn temperature_of(
+    given: Option<f64>,
+    mean: Option<f64>,
+    path: &Path,
+) -> Result<f64, Failure> {
     match (given, mean) {
         (Some(t), _) => Ok(t),
         (None, Some(mean)) => crate::inputs::recorded_temperature(path, mean),

@@ -15,6 +15,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use thermonav::gnss::GnssFix;
 use thermonav::imu::ImuSeries;
+use thermonav::setting::positive;
 use thermonav::time::Duration;
 use thermonav_io::kf_gins::{read_kf_gins_gnss_file, read_kf_gins_imu_file, read_kf_gins_nav_file};
 use thermonav_io::nmea::{NmeaSettings, read_nmea_file};
@@ -294,15 +295,9 @@ fn gpst_minus_utc(args: &ConvertArgs) -> Result<Duration, Failure> {
 
 /// The NMEA reader's settings: `--leap-seconds`, `--date`, `--heading-sd-deg`, `--level-velocity`.
 fn nmea_settings(args: &ConvertArgs, strictness: Strictness) -> Result<NmeaSettings, Failure> {
-    let heading_sd_rad = match args.heading_sd_deg {
-        Some(sd) if !(sd.is_finite() && sd > 0.0) => {
-            return Err(anyhow!(
-                "--heading-sd-deg must be a positive number, not {sd}"
-            ))
-            .usage();
-        }
-        sd => sd.map(f64::to_radians),
-    };
+    let heading_sd_rad = (args.heading_sd_deg)
+        .map(|sd| positive("heading_sd_deg", sd).map(f64::to_radians))
+        .transpose()?;
     let gpst_minus_utc = gpst_minus_utc(args)?;
     Ok(NmeaSettings {
         strictness,

@@ -1,7 +1,6 @@
 //! `thermonav filter`: de-noise every channel (the Kaiser low-pass, optionally decimated, or
 //! wavelet shrinkage), record what was done.
 
-use crate::args::ModeArg;
 use crate::failure::{Classify, Failure};
 use crate::fir_design::{FirDesign, describe};
 use crate::report::{print_json, print_rows};
@@ -113,16 +112,16 @@ pub fn run(args: &crate::args::FilterArgs) -> Result<(), Failure> {
 /// The Kaiser path: design at the file's rate (or --fs-hz), filter, decimate.
 fn run_kaiser(plan: &KaiserPlan, x: &ImuSeries, rate_hz: f64) -> Result<Conditioned, Failure> {
     let (filter, factor) = plan.design_at(rate_hz)?;
-    let filtered = filter_series(x, &filter, plan.mode.into(), factor).data()?;
+    let filtered = filter_series(x, &filter, plan.mode, factor).data()?;
     Ok((filtered, kaiser_record(plan, &filter, factor)))
 }
 
 fn kaiser_record(plan: &KaiserPlan, filter: &FirFilter, factor: usize) -> MethodRecord {
     MethodRecord::Kaiser(KaiserRecord {
-        mode: mode_name(plan.mode),
+        mode: plan.mode.name(),
         filter: describe(filter, &plan.kaiser),
         decimation_factor: factor,
-        edge_samples_dropped: decimation_edge_samples(filter, plan.mode.into(), factor),
+        edge_samples_dropped: decimation_edge_samples(filter, plan.mode, factor),
     })
 }
 
@@ -182,14 +181,6 @@ fn warn_about_gaps(input: &Path, gap_count: usize) {
             input.display(),
             gap_count
         );
-    }
-}
-
-/// The name of `--mode` as the record gives it.
-fn mode_name(mode: ModeArg) -> &'static str {
-    match mode {
-        ModeArg::ZeroPhase => "zero-phase",
-        ModeArg::Filtfilt => "filtfilt",
     }
 }
 

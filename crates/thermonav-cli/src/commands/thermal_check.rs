@@ -9,6 +9,7 @@ use anyhow::anyhow;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use thermonav::imu::Channel;
+use thermonav::setting::positive;
 use thermonav::stoch::thermal::check::{ChannelCheck, check_record};
 use thermonav_io::ImuOptions;
 use thermonav_plot::figures::DisplayUnits;
@@ -24,7 +25,7 @@ struct CheckDocument {
 
 /// Runs `bank check`.
 pub fn run(args: &BankCheckArgs) -> Result<(), Failure> {
-    crate::settings::positive("--block-s", args.block_s)?;
+    positive("block_s", args.block_s)?;
     Io::new()
         .input("BANK", &args.bank)
         .input("RECORD", &args.record)

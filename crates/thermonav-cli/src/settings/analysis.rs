@@ -5,17 +5,17 @@
 
 use super::paths::Io;
 use crate::args::{
-    AllanArgs, ArArgs, ConvertArgs, DEFAULT_FILTER_MODE, DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ,
-    DenoiseArg, FilterArgs, FilterKaiserArgs, KaiserArgs, ModeArg, WaveletArgs,
+    AllanArgs, ArArgs, ConvertArgs, DenoiseArg, FilterArgs, FilterKaiserArgs, KaiserArgs,
+    WaveletArgs,
 };
 use crate::failure::Failure;
 use crate::fir_design::design;
 use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::signal::decimate::{check_anti_alias, decimation_factor};
-use thermonav::signal::kaiser::{FirFilter, KaiserSpec};
+use thermonav::signal::kaiser::{DEFAULT_RIPPLE_DB, DEFAULT_TRANSITION_HZ, FirFilter, KaiserSpec};
 use thermonav::signal::wavelet::denoise::{DecompositionLevel, WaveletDenoise};
-use thermonav::signal::zero_phase::filter_for_mode;
+use thermonav::signal::zero_phase::{ZeroPhaseMode, filter_for_mode};
 use thermonav::stoch::allan::{CiSettings, DeviationKind, TauGrid};
 use thermonav::stoch::ar::ArMethod;
 use thermonav::stoch::ar::order::{Criterion, Order};
@@ -37,7 +37,7 @@ pub struct KaiserPlan {
     /// The low-pass specification.
     pub kaiser: KaiserArgs,
     /// Zero-phase mode.
-    pub mode: ModeArg,
+    pub mode: ZeroPhaseMode,
     /// Decimated rate, Hz.
     pub decimate_to_hz: Option<f64>,
     /// Design rate, Hz (default: the file's nominal rate).
@@ -51,7 +51,7 @@ impl KaiserPlan {
     /// `--fs-hz` is given, the command after reading the file's rate otherwise.
     pub fn design_at(&self, file_rate_hz: f64) -> Result<(FirFilter, usize), Failure> {
         let (spec, designed) = design(self.fs_hz.unwrap_or(file_rate_hz), &self.kaiser)?;
-        let filter = filter_for_mode(designed, &spec, self.mode.into());
+        let filter = filter_for_mode(designed, &spec, self.mode);
         let factor = match self.decimate_to_hz {
             None => 1,
             Some(target_hz) => decimation_factor(filter.sample_rate_hz(), target_hz)
@@ -122,7 +122,7 @@ fn kaiser_plan(args: &FilterArgs) -> Result<KaiserPlan, Failure> {
 fn kaiser_settings(k: &FilterKaiserArgs) -> Result<KaiserPlan, Failure> {
     Ok(KaiserPlan {
         kaiser: kaiser_spec(k)?,
-        mode: k.mode.unwrap_or(DEFAULT_FILTER_MODE),
+        mode: k.mode.map_or_else(ZeroPhaseMode::default, Into::into),
         decimate_to_hz: k.decimate_to_hz,
         fs_hz: k.fs_hz,
     })

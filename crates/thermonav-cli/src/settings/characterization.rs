@@ -6,6 +6,7 @@ use crate::failure::Failure;
 use crate::thermal::calibration::ThermalInputs;
 use anyhow::anyhow;
 use std::path::PathBuf;
+use thermonav::setting::positive;
 use thermonav::signal::wavelet::denoise::WaveletDenoise;
 use thermonav::sim::chamber::Site;
 use thermonav::stoch::characterize::{CharacterizeSettings, Denoiser, GmwmChoice};
@@ -141,7 +142,7 @@ fn thermal_inputs(args: &CharacterizeArgs) -> Result<ThermalInputs, Failure> {
         sweeps: args.sweep.iter().map(|s| s.0.clone()).collect(),
         sweep_block_s: args
             .sweep_block_s
-            .map(|b| super::positive("--sweep-block-s", b))
+            .map(|b| positive("sweep_block_s", b))
             .transpose()?,
         sweep_instance: args.sweep_instance,
         site: chamber_site(args)?,
@@ -181,9 +182,9 @@ fn unit_choice(args: &CharacterizeArgs) -> UnitChoice {
 
 fn conditioning(args: &CharacterizeArgs) -> Result<CharacterizeSettings, Failure> {
     Ok(CharacterizeSettings {
-        cutoff_hz: super::positive("--cutoff-hz", args.cutoff_hz)?,
-        transition_hz: super::positive("--transition-hz", args.transition_hz)?,
-        modelling_rate_hz: super::positive("--modelling-rate-hz", args.modelling_rate_hz)?,
+        cutoff_hz: positive("cutoff_hz", args.cutoff_hz)?,
+        transition_hz: positive("transition_hz", args.transition_hz)?,
+        modelling_rate_hz: positive("modelling_rate_hz", args.modelling_rate_hz)?,
         denoise: denoiser(args.denoise),
         gmwm: gmwm_model(&args.gmwm)?,
         ..CharacterizeSettings::default()

@@ -7,6 +7,7 @@
 
 use crate::args::{BagTopicArgs, ImuRotationArgs, SampleRateArgs};
 use crate::failure::Failure;
+use thermonav::setting::positive;
 use thermonav_io::ros::extract::TopicNames;
 use thermonav_io::{ChannelRule, ImuOptions};
 
@@ -23,7 +24,7 @@ pub fn rotation_only(rotation: &ImuRotationArgs) -> ImuOptions {
 /// any subset of the channels.
 pub fn options(rotation: &ImuRotationArgs, rate: &SampleRateArgs) -> Result<ImuOptions, Failure> {
     let rate_hz = match rate.rate_hz {
-        Some(hz) => Some(super::positive("--rate-hz", hz)?),
+        Some(hz) => Some(positive("rate_hz", hz)?),
         None => None,
     };
     Ok(ImuOptions {

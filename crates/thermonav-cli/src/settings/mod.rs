@@ -1,7 +1,8 @@
 //! Settings: the command line resolved once into validated, typed values before any file is
 //! read. A command's `resolve` refuses bad usage (exit 2) up front, and refuses an output that
 //! would overwrite one of the command's inputs; what is left for the command is to load, run,
-//! write and print. Defaults are the library's (`Default` impls and constants), which clap
+//! write and print. A value out of its range is refused by the library's check
+//! ([`thermonav::setting`]), whose error becomes a usage error naming the option. Defaults are the library's (`Default` impls and constants), which clap
 //! shows in `--help`.
 
 pub mod analysis;
@@ -17,28 +18,6 @@ pub mod simulation;
 use crate::failure::Failure;
 use anyhow::anyhow;
 use thermonav::nav::measurement::AntennaGeometry;
-
-/// `value` when it is a finite positive number, else a usage error naming the option.
-pub fn positive(name: &str, value: f64) -> Result<f64, Failure> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Failure::Usage(anyhow!(
-            "{name} {value} must be a positive number"
-        )))
-    }
-}
-
-/// `value` when it is finite, else a usage error naming the option.
-pub fn finite(name: &str, value: f64) -> Result<f64, Failure> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(Failure::Usage(anyhow!(
-            "{name} {value} is not a finite number"
-        )))
-    }
-}
 
 /// Three finite numbers, else a usage error naming the option.
 pub fn triple(name: &str, values: &[f64]) -> Result<[f64; 3], Failure> {

@@ -11,7 +11,7 @@ use thermonav::evaluation::shard::Shard;
 use thermonav::nav::engine::{Aiding, EngineSettings, FilterKind};
 use thermonav::nav::outage::OutageSpec;
 use thermonav::nav::run_options::{
-    RunOptionError, RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
+    RunOptions, bias_hypotheses_of, gate_of, interval_of_rate, velocity_sd_of,
 };
 use thermonav::nav::schedule::{Compensation, Scheduling};
 use thermonav::nav::static_alignment::StaticAlignment;
@@ -181,7 +181,7 @@ fn time_offset_search(args: &RunOptionArgs) -> Result<Option<TimeOffsetSearch>, 
     match args.estimate_time_offset {
         true => TimeOffsetSearch::with_bracket(args.time_offset_bracket_s)
             .map(Some)
-            .map_err(usage),
+            .map_err(Failure::from),
         false => Ok(None),
     }
 }
@@ -219,7 +219,7 @@ fn noise_path(noise: &NoiseSource) -> &Path {
 /// library's [`ModelTemperature::of`].
 fn model_temperature(args: &RunOptionArgs) -> Result<ModelTemperature, Failure> {
     let (model, operating) = (args.model_temperature_c, args.operating_temperature_c);
-    ModelTemperature::of(model, operating, args.select.into()).map_err(usage)
+    Ok(ModelTemperature::of(model, operating, args.select.into())?)
 }
 
 /// The run options of `integrate` and `evaluate`, resolved the one way for both: shaped here,
@@ -228,8 +228,8 @@ pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
     let options = RunOptions {
         gauss_markov: args.model.into(),
         process_noise_scale: args.process_noise_scale,
-        velocity_sd_m_s: velocity_sd_of(&args.velocity_sd_m_s).map_err(usage)?,
-        gate_probability: gate_of(args.gate_probability).map_err(usage)?,
+        velocity_sd_m_s: velocity_sd_of(&args.velocity_sd_m_s)?,
+        gate_probability: gate_of(args.gate_probability)?,
         gate_window: args.gate_window,
         aiding: Aiding {
             position: true,
@@ -238,21 +238,15 @@ pub fn run_options(args: &RunOptionArgs) -> Result<RunOptions, Failure> {
         },
         geometry: antenna_geometry(&args.lever_arm_m, &args.baseline)?,
         max_imu_gap_s: args.max_imu_gap_s,
-        covariance_interval_s: interval_of_rate("covariance_rate_hz", args.covariance_rate_hz)
-            .map_err(usage)?,
-        bias_hypotheses: bias_hypotheses_of(args.bias_hypotheses).map_err(usage)?,
+        covariance_interval_s: interval_of_rate("covariance_rate_hz", args.covariance_rate_hz)?,
+        bias_hypotheses: bias_hypotheses_of(args.bias_hypotheses)?,
         static_alignment: match args.no_static_alignment {
             true => StaticAlignment::Off,
             false => StaticAlignment::default(),
         },
     };
-    options.validate().map_err(usage)?;
+    options.validate()?;
     Ok(options)
-}
-
-/// A run option's refusal as a usage error, in the command line's words.
-fn usage(e: RunOptionError) -> Failure {
-    Failure::Usage(anyhow!("{}", e.as_flag()))
 }
 
 /// `integrate`'s own engine settings, beside the run options': its filter, output rate and
@@ -265,8 +259,7 @@ fn integrate_engine(args: &IntegrateArgs, options: &RunOptions) -> Result<Engine
     }
     Ok(EngineSettings {
         filter: args.filter.into(),
-        output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz)
-            .map_err(usage)?,
+        output_interval_s: interval_of_rate("output_rate_hz", args.output_rate_hz)?,
         smooth: args.smooth,
         ..EngineSettings::default()
     })

@@ -10,6 +10,7 @@ use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use thermonav::imu::Channel;
 use thermonav::nav::outage::{OutageSpec, Outages};
+use thermonav::setting::positive;
 use thermonav::stoch::bank::ModelBank;
 use thermonav::time::Timestamp;
 use thermonav_plot::figures::DisplayUnits;
@@ -102,7 +103,7 @@ fn figure(args: &PlotArgs) -> Result<Figure, Failure> {
         PlotKind::CorrelationTime => Figure::CorrelationTime,
         PlotKind::Autocorrelation => Figure::Autocorrelation {
             channel: channel.unwrap_or(Channel::Gx),
-            max_lag_s: super::positive("--max-lag-s", args.max_lag_s)?,
+            max_lag_s: positive("max_lag_s", args.max_lag_s)?,
         },
         PlotKind::Trajectory => Figure::Trajectory,
         PlotKind::OutageErrors => Figure::OutageErrors,
@@ -111,7 +112,7 @@ fn figure(args: &PlotArgs) -> Result<Figure, Failure> {
         PlotKind::ThermalBias => Figure::ThermalBias { channel },
         PlotKind::ThermalCheck => Figure::ThermalCheck {
             record: thermal_check_record(args)?,
-            block_s: super::positive("--block-s", args.block_s)?,
+            block_s: positive("block_s", args.block_s)?,
             channel,
         },
     })

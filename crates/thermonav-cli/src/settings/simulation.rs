@@ -5,6 +5,7 @@ use crate::args::{ChamberArgs, GnssHeadingArg, VesselArgs};
 use crate::failure::{Classify, Failure};
 use anyhow::anyhow;
 use std::path::PathBuf;
+use thermonav::setting::{finite, positive};
 use thermonav::sim::chamber::{CampaignSettings, Ramp};
 use thermonav::sim::clock::SampleClock;
 use thermonav::sim::temperature_program::TemperatureProgram;
@@ -227,7 +228,7 @@ pub const MAX_ROVER_SPEED_M_S: f64 = 30.0;
 /// `--speed-m-s`, `--gnss-*`, `--gyro-bias-deg-h` and `--time-offset-s`, checked.
 fn vehicle(args: &VesselArgs) -> Result<VehicleSettings, Failure> {
     let speed = args.speed_m_s.map(rover_speed_m_s).transpose()?;
-    let time_offset_s = super::finite("--time-offset-s", args.time_offset_s)?;
+    let time_offset_s = finite("time_offset_s", args.time_offset_s)?;
     if time_offset_s.abs() > MAX_TIME_OFFSET_S {
         return Err(Failure::Usage(anyhow!(
             "--time-offset-s {time_offset_s}: give at most {MAX_TIME_OFFSET_S} s either way"
@@ -292,7 +293,7 @@ fn gnss_settings(args: &VesselArgs) -> Result<GnssSettings, Failure> {
 /// Resolves `simulate vessel`.
 pub fn vessel(args: &VesselArgs) -> Result<VesselSettings, Failure> {
     let survey = SurveySettings {
-        temperature_c: super::finite("--temperature-c", args.temperature_c)?,
+        temperature_c: finite("temperature_c", args.temperature_c)?,
         duration_s: args.duration_s,
         ..SurveySettings::default()
     };
@@ -341,12 +342,8 @@ pub fn survey_temperature(
             temperature_c: survey.temperature_c,
         });
     };
-    let start_c = super::finite("--warm-up-from-c", start_c)?;
-    if !(time_constant_s.is_finite() && time_constant_s > 0.0) {
-        return Err(Failure::Usage(anyhow!(
-            "--warm-up-time-constant-s {time_constant_s} must be positive"
-        )));
-    }
+    let start_c = finite("warm_up_from_c", start_c)?;
+    let time_constant_s = positive("warm_up_time_constant_s", time_constant_s)?;
     Ok(SurveyTemperature::WarmUp {
         start_c,
         settled_c: survey.temperature_c,

@@ -20,17 +20,9 @@ use thermonav_io::ulog::px4::{default_gpst_minus_utc, raw_sensor_series, time_sc
 use thermonav_io::ulog::read_ulog_file;
 use thermonav_io::{ImuOptions, Strictness, read_imu_file_with};
 
-pub use thermonav::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
-
-fn default_site() -> Site {
-    Site {
-        latitude_rad: DEFAULT_SITE_LATITUDE_DEG.to_radians(),
-        height_m: DEFAULT_SITE_HEIGHT_M,
-    }
-}
-
-/// What a thermal calibration is fitted to beyond the bank's own records.
-#[derive(Debug, Clone)]
+/// What a thermal calibration is fitted to beyond the bank's own records (by default none,
+/// at the library's default site).
+#[derive(Debug, Clone, Default)]
 pub struct ThermalInputs {
     /// Further power-ons, each a list of static records.
     pub power_ons: Vec<Vec<PathBuf>>,
@@ -48,20 +40,6 @@ pub struct ThermalInputs {
     pub imu: ImuOptions,
     /// The topics of the records that are ROS bags.
     pub topics: TopicNames,
-}
-
-impl Default for ThermalInputs {
-    fn default() -> Self {
-        Self {
-            power_ons: Vec::new(),
-            sweeps: Vec::new(),
-            sweep_block_s: None,
-            sweep_instance: 0,
-            site: default_site(),
-            imu: ImuOptions::default(),
-            topics: TopicNames::default(),
-        }
-    }
 }
 
 impl ThermalInputs {

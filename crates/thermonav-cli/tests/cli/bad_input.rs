@@ -750,7 +750,7 @@ fn bad_rotations_and_rates_are_refused_with_the_reason() {
     refused(
         &["allan", arg(&imu), "--rate-hz", "0"],
         2,
-        "--rate-hz 0 must be a positive number",
+        "--rate-hz 0: expected a positive number",
     );
     let untimed = write_file(
         dir.path(),

@@ -194,7 +194,10 @@ fn model_temperature_c() {
     args.extend(["--out", arg(&out)]);
     let (status, _, stderr) = outcome(&thermonav(&args));
     assert_eq!(status, 2, "{stderr}");
-    assert!(stderr.contains("--model-temperature-c"), "{stderr}");
+    // The library's words (Python's say `model_temperature_c or operating_temperature_c`).
+    let message = "imu_no_temp.csv: no temp_c column; give the temperature \
+                   (--model-temperature-c or --operating-temperature-c)";
+    assert!(stderr.contains(message), "{stderr}");
     assert!(!out.exists());
     // With temp_c and without the option, the candidates stand at the record's 17 °C.
     data.imu = with_temperature;

@@ -156,3 +156,41 @@ fn gmwm_refuses_an_unknown_model_before_reading() {
     let d = dir.path();
     refused_before_reading(d, &["gmwm", arg(&input), "--model", "wn+xx"], "--model");
 }
+
+/// A value out of the range the library's one check ([`thermonav::setting`]) allows is
+/// refused in the command line's words, naming the option and the value, whichever command
+/// reads it.
+#[test]
+fn settings_out_of_range_are_refused_naming_the_option_before_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let missing = |name: &str| arg(&d.join(name)).to_string();
+    let (imu, bank, out) = (
+        missing("missing.csv"),
+        missing("missing.json"),
+        missing("o"),
+    );
+    let (positive, finite) = ("expected a positive number", "expected a finite number");
+    let characterize = ["characterize", &imu, "--temperature-c", "20", "--out", &out];
+    let sweep = ["characterize", "--sweep", &imu, "--out", &out];
+    let nmea = ["convert", &imu, "--format", "nmea", "--out", &out];
+    let vessel = ["simulate", "vessel", "--out", &out];
+    let warm_up = [&vessel[..], &["--warm-up-from-c", "0"]].concat();
+    let cases: [(&[&str], &str, &str, &str); 10] = [
+        (&["allan", &imu], "--rate-hz", "0", positive),
+        (&characterize, "--cutoff-hz", "0", positive),
+        (&characterize, "--transition-hz", "-1", positive),
+        (&characterize, "--modelling-rate-hz", "inf", positive),
+        (&sweep, "--sweep-block-s", "0", positive),
+        (&["bank", "check", &bank, &imu], "--block-s", "0", positive),
+        (&nmea, "--heading-sd-deg", "0", positive),
+        (&warm_up, "--warm-up-time-constant-s", "0", positive),
+        (&vessel, "--warm-up-from-c", "NaN", finite),
+        (&vessel, "--time-offset-s", "inf", finite),
+    ];
+    for (command, option, value, expected) in cases {
+        let setting = format!("{option}={value}");
+        let args = [command, &[setting.as_str()]].concat();
+        refused_before_reading(d, &args, &format!("{option} {value}: {expected}"));
+    }
+}

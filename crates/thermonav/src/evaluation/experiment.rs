@@ -25,6 +25,10 @@ use crate::stoch::bank::{GaussMarkovSource, ModelBank};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
+/// The replicates of a tournament unless asked for more: one run of every candidate through
+/// every filter, no Monte Carlo (`evaluate --monte-carlo`, Python's `monte_carlo`).
+pub const DEFAULT_MONTE_CARLO: usize = 1;
+
 /// The most replicates a tournament runs (each is a run of every candidate through every
 /// filter: 1000 replicates of the demo's 28 runs take hours already).
 pub const MAX_REPLICATES: usize = 1000;

@@ -25,7 +25,7 @@ use super::error_state::Estimate;
 use super::measurement::AntennaGeometry;
 use super::navigate::run_scheduled;
 use super::outage::{OutageError, OutageSpec};
-use super::run_options::{DEFAULT_PROCESS_NOISE_SCALE, RunOptionError, RunOptions, finite};
+use super::run_options::{DEFAULT_PROCESS_NOISE_SCALE, RunOptions};
 use super::schedule::{
     Compensation, CompensationOutcome, ModelGrid, ModelSchedule, ScheduleError, ScheduleSummary,
     Scheduling, TemperatureTrack, compensate_record,
@@ -40,6 +40,7 @@ use crate::gnss::GnssFix;
 use crate::imu::{Channel, ImuSeries};
 use crate::ins::state::{Increment, NavState};
 use crate::sensor::SensorProfile;
+use crate::setting::{SettingError, finite};
 use crate::stoch::bank::{GaussMarkovSource, ModelBank, Selection};
 use crate::stoch::thermal::ThermalCalibration;
 use crate::time::Timestamp;
@@ -84,9 +85,9 @@ impl ModelTemperature {
         model_temperature_c: Option<f64>,
         operating_temperature_c: Option<f64>,
         selection: Selection,
-    ) -> Result<Self, RunOptionError> {
+    ) -> Result<Self, SettingError> {
         match (model_temperature_c, operating_temperature_c) {
-            (Some(t), Some(_)) => Err(RunOptionError {
+            (Some(t), Some(_)) => Err(SettingError {
                 name: "model_temperature_c",
                 value: t.to_string(),
                 expected: "give it or the operating temperature, not both".into(),
@@ -263,7 +264,7 @@ pub enum RunError {
     #[error(transparent)]
     TemperatureTrack(ScheduleError),
     /// No operating temperature given and none in the record.
-    #[error("no temp_c column; give the temperature")]
+    #[error("{}", RunError::no_temperature(str::to_string))]
     NoTemperature,
     /// Fewer than two IMU samples.
     #[error("at least two IMU samples are needed")]
@@ -282,7 +283,18 @@ pub enum RunError {
     Nav(NavError),
 }
 
+/// The settings that give a run its temperature when its record has none (°C), named as
+/// Python's keywords.
+pub const TEMPERATURE_SETTINGS: [&str; 2] = ["model_temperature_c", "operating_temperature_c"];
+
 impl RunError {
+    /// What [`RunError::NoTemperature`] says, with [`TEMPERATURE_SETTINGS`] spelt by `spell`
+    /// (the identity for Python's keywords, [`crate::setting::flag`] for the CLI's options).
+    pub fn no_temperature(spell: impl Fn(&str) -> String) -> String {
+        let [model, operating] = TEMPERATURE_SETTINGS.map(spell);
+        format!("no temp_c column; give the temperature ({model} or {operating})")
+    }
+
     /// The input the error is about.
     pub fn input(&self) -> RunInput {
         match self {

@@ -8,11 +8,12 @@
 //! [`DEFAULT_PROCESS_NOISE_SCALE`]). The model's temperature is
 //! [`super::run::ModelTemperature::of`]'s, and the IMU-GNSS time-offset search
 //! [`super::time_offset::TimeOffsetSearch::with_bracket`]'s, checked there for both commands
-//! and the Python package.
+//! and the Python package. A refusal is a [`SettingError`] naming the option.
 
 use super::engine::{Aiding, BiasHypotheses, EngineSettings};
 use super::measurement::AntennaGeometry;
 use super::static_alignment::StaticAlignment;
+use crate::setting::{SettingError, positive};
 use crate::stoch::bank::GaussMarkovSource;
 use serde::{Deserialize, Serialize};
 
@@ -66,65 +67,17 @@ impl Default for RunOptions {
 /// kept a run busy for minutes stepping through empty output times).
 pub const MAX_RATE_HZ: f64 = 5000.0;
 
-/// A run option out of its range: its name (Python's keyword; the CLI's flag is the same with
-/// dashes), the value given and what was expected.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{name} {value}: {expected}")]
-pub struct RunOptionError {
-    /// The option, snake_case (`process_noise_scale`).
-    pub name: &'static str,
-    /// The value given, as text.
-    pub value: String,
-    /// What was expected.
-    pub expected: String,
-}
-
-impl RunOptionError {
-    fn new(name: &'static str, value: impl std::fmt::Display, expected: impl Into<String>) -> Self {
-        Self {
-            name,
-            value: value.to_string(),
-            expected: expected.into(),
-        }
-    }
-
-    /// The refusal in the command line's words (`--process-noise-scale 0: ...`).
-    pub fn as_flag(&self) -> String {
-        format!(
-            "--{} {}: {}",
-            self.name.replace('_', "-"),
-            self.value,
-            self.expected
-        )
-    }
-}
-
-/// `value` when it is finite and positive.
-///
-/// # Errors
-/// [`RunOptionError`] naming `name`.
-pub fn positive(name: &'static str, value: f64) -> Result<f64, RunOptionError> {
-    match value.is_finite() && value > 0.0 {
-        true => Ok(value),
-        false => Err(RunOptionError::new(
-            name,
-            value,
-            "expected a positive number",
-        )),
-    }
-}
-
 /// The GNSS velocity sd from one value (every axis) or three (north, east, down), m/s.
 ///
 /// # Errors
 /// Another count of values, or one that is not positive.
-pub fn velocity_sd_of(values: &[f64]) -> Result<[f64; 3], RunOptionError> {
+pub fn velocity_sd_of(values: &[f64]) -> Result<[f64; 3], SettingError> {
     let sd = match values {
         [v] => [*v; 3],
         [n, e, d] => [*n, *e, *d],
         _ => {
             let given: Vec<String> = values.iter().map(f64::to_string).collect();
-            return Err(RunOptionError::new(
+            return Err(SettingError::new(
                 "velocity_sd_m_s",
                 given.join(","),
                 "expected one value or three (north, east, down)",
@@ -141,11 +94,11 @@ pub fn velocity_sd_of(values: &[f64]) -> Result<[f64; 3], RunOptionError> {
 ///
 /// # Errors
 /// A probability outside (0, 1].
-pub fn gate_of(probability: f64) -> Result<Option<f64>, RunOptionError> {
+pub fn gate_of(probability: f64) -> Result<Option<f64>, SettingError> {
     match probability {
         1.0 => Ok(None),
         p if p > 0.0 && p < 1.0 => Ok(Some(p)),
-        p => Err(RunOptionError::new(
+        p => Err(SettingError::new(
             "gate_probability",
             p,
             "expected a probability in (0, 1], 1 meaning no gate",
@@ -158,10 +111,10 @@ pub fn gate_of(probability: f64) -> Result<Option<f64>, RunOptionError> {
 ///
 /// # Errors
 /// A rate that is not positive or above [`MAX_RATE_HZ`].
-pub fn interval_of_rate(name: &'static str, rate_hz: f64) -> Result<f64, RunOptionError> {
+pub fn interval_of_rate(name: &'static str, rate_hz: f64) -> Result<f64, SettingError> {
     match positive(name, rate_hz)? {
         r if r <= MAX_RATE_HZ => Ok(1.0 / r),
-        r => Err(RunOptionError::new(
+        r => Err(SettingError::new(
             name,
             r,
             format!(
@@ -171,22 +124,11 @@ pub fn interval_of_rate(name: &'static str, rate_hz: f64) -> Result<f64, RunOpti
     }
 }
 
-/// `value` when it is finite (a temperature, °C).
-///
-/// # Errors
-/// [`RunOptionError`] naming `name`.
-pub fn finite(name: &'static str, value: f64) -> Result<f64, RunOptionError> {
-    match value.is_finite() {
-        true => Ok(value),
-        false => Err(RunOptionError::new(name, value, "expected a finite number")),
-    }
-}
-
 /// The Gaussian sum of `members` over the z-gyro bias (1: one filter, `None`).
 ///
 /// # Errors
 /// A count that [`BiasHypotheses::split`] refuses.
-pub fn bias_hypotheses_of(members: usize) -> Result<Option<BiasHypotheses>, RunOptionError> {
+pub fn bias_hypotheses_of(members: usize) -> Result<Option<BiasHypotheses>, SettingError> {
     if members == 1 {
         return Ok(None);
     }
@@ -196,11 +138,7 @@ pub fn bias_hypotheses_of(members: usize) -> Result<Option<BiasHypotheses>, RunO
     };
     match hypotheses.split() {
         Ok(_) => Ok(Some(hypotheses)),
-        Err(e) => Err(RunOptionError::new(
-            "bias_hypotheses",
-            members,
-            e.to_string(),
-        )),
+        Err(e) => Err(SettingError::new("bias_hypotheses", members, e.to_string())),
     }
 }
 
@@ -210,7 +148,7 @@ impl RunOptions {
     ///
     /// # Errors
     /// The first option out of range, named.
-    pub fn validate(&self) -> Result<(), RunOptionError> {
+    pub fn validate(&self) -> Result<(), SettingError> {
         positive("process_noise_scale", self.process_noise_scale)?;
         for v in self.velocity_sd_m_s {
             positive("velocity_sd_m_s", v)?;
@@ -332,7 +270,7 @@ mod tests {
         assert!(interval_of_rate("output_rate_hz", 1e9).is_err());
         assert_eq!(bias_hypotheses_of(1).unwrap(), None);
         assert_eq!(
-            finite("model_temperature_c", f64::NAN)
+            crate::setting::finite("model_temperature_c", f64::NAN)
                 .unwrap_err()
                 .as_flag(),
             "--model-temperature-c NaN: expected a finite number"

@@ -56,11 +56,11 @@
 //! Gaussian sum alike).
 
 use super::run::{NoiseModel, RunError, RunSettings, Start, prepare};
-use super::run_options::{RunOptionError, positive};
 use super::solution::InnovationRecord;
 use crate::gnss::GnssFix;
 use crate::imu::ImuSeries;
 use crate::optimise::golden_section::golden_section_maximum;
+use crate::setting::{SettingError, positive};
 use crate::time::Duration;
 use serde::Serialize;
 
@@ -97,14 +97,14 @@ impl TimeOffsetSearch {
     /// # Errors
     /// A bracket that is not positive or beyond [`MAX_BRACKET_S`], named
     /// `time_offset_bracket_s`.
-    pub fn with_bracket(bracket_s: f64) -> Result<Self, RunOptionError> {
+    pub fn with_bracket(bracket_s: f64) -> Result<Self, SettingError> {
         const NAME: &str = "time_offset_bracket_s";
         match positive(NAME, bracket_s)? {
             b if b <= MAX_BRACKET_S => Ok(Self {
                 bracket_s: b,
                 ..Self::default()
             }),
-            b => Err(RunOptionError {
+            b => Err(SettingError {
                 name: NAME,
                 value: b.to_string(),
                 expected: format!(

@@ -11,6 +11,14 @@
 
 use super::SignalError;
 
+/// The transition width of a design that is not given one, Hz (`thermonav fir` and `filter`,
+/// Python's `fir`, `zero_phase` and `decimate`).
+pub const DEFAULT_TRANSITION_HZ: f64 = 1.0;
+
+/// The stop-band attenuation and pass-band ripple of a design that is not given one, dB (the
+/// commands and functions of [`DEFAULT_TRANSITION_HZ`], and characterisation's conditioning).
+pub const DEFAULT_RIPPLE_DB: f64 = 60.0;
+
 /// A validated Kaiser low-pass specification.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KaiserSpec {

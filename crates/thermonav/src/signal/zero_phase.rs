@@ -17,13 +17,33 @@ use super::SignalError;
 use super::convolution::convolve;
 use super::kaiser::{FirFilter, KaiserSpec};
 
-/// How the delay of the filter is removed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How the delay of the filter is removed (the default: one pass, for `thermonav filter` and
+/// Python's `zero_phase` and `decimate`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum ZeroPhaseMode {
     /// One pass, output advanced by the group delay.
+    #[default]
     DelayCompensated,
     /// Forward and backward passes (SciPy `filtfilt`).
     ForwardBackward,
+}
+
+impl ZeroPhaseMode {
+    /// The mode's name on the command line, in Python and in the records: `zero-phase` (one
+    /// pass, delay removed) or `filtfilt`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ZeroPhaseMode::DelayCompensated => "zero-phase",
+            ZeroPhaseMode::ForwardBackward => "filtfilt",
+        }
+    }
+
+    /// The mode called `name` ([`ZeroPhaseMode::name`]), if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::DelayCompensated, Self::ForwardBackward]
+            .into_iter()
+            .find(|m| m.name() == name)
+    }
 }
 
 /// Half-width of the zero-phase response in samples: an output within this many samples of an

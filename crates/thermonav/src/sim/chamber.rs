@@ -24,6 +24,7 @@ use crate::geo::{gravity::gravity_ned, wgs84::earth_rate_ned};
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::rng::{SimRng, named_rng};
 use crate::sensor::{ChannelProfile, ProfileError, SensorProfile};
+use crate::stoch::thermal::{DEFAULT_SITE_HEIGHT_M, DEFAULT_SITE_LATITUDE_DEG};
 use crate::time::Timestamp;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -35,6 +36,17 @@ pub struct Site {
     pub latitude_rad: f64,
     /// Ellipsoidal height, m.
     pub height_m: f64,
+}
+
+impl Default for Site {
+    /// The site a thermal calibration assumes unless given ([`DEFAULT_SITE_LATITUDE_DEG`],
+    /// [`DEFAULT_SITE_HEIGHT_M`]).
+    fn default() -> Self {
+        Self {
+            latitude_rad: DEFAULT_SITE_LATITUDE_DEG.to_radians(),
+            height_m: DEFAULT_SITE_HEIGHT_M,
+        }
+    }
 }
 
 /// Slow wander of the chamber temperature around its set point.

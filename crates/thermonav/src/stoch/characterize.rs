@@ -42,10 +42,11 @@ use super::wavelet_variance::from_allan_curve;
 use crate::imu::{Channel, ImuSeries, SampleKind};
 use crate::signal::SignalError;
 use crate::signal::decimate::{check_anti_alias, decimate, decimation_factor};
-use crate::signal::kaiser::{FirFilter, KaiserSpec, design_kaiser_lowpass};
+use crate::signal::kaiser::{DEFAULT_RIPPLE_DB, FirFilter, KaiserSpec, design_kaiser_lowpass};
 use crate::signal::streaming_decimate::filter_and_decimate;
 use crate::signal::timestamps::interval_stats;
 use crate::signal::wavelet::denoise::{WaveletDenoise, denoise};
+use crate::signal::zero_phase::ZeroPhaseMode;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -99,7 +100,8 @@ impl std::fmt::Display for GmwmChoice {
     }
 }
 
-/// The composite `characterize` fits by default: the automatic choice. A fixed `wn+rw+2gm`
+/// The composite `characterize`, `thermonav gmwm` and Python's `gmwm` fit by default: the
+/// automatic choice. A fixed `wn+rw+2gm`
 /// split one slow process into a 1-3 s process and a random walk on the demo's 30-minute
 /// records; the criterion picks `wn+gm` there and the richer composites on the real runs.
 pub const DEFAULT_GMWM: GmwmChoice = GmwmChoice::Auto;
@@ -122,9 +124,9 @@ impl Default for CharacterizeSettings {
             ci_level: DEFAULT_CONFIDENCE,
             cutoff_hz: 0.4,
             transition_hz: 0.2,
-            ripple_db: 60.0,
+            ripple_db: DEFAULT_RIPPLE_DB,
             modelling_rate_hz: 1.0,
-            ar_method: ArMethod::Burg,
+            ar_method: ArMethod::default(),
             ar_order: Order::Auto {
                 criterion: Criterion::Bic,
                 max_order: 4,
@@ -349,7 +351,7 @@ impl Conditioning {
                     ripple_db: settings.ripple_db,
                     num_taps: self.filter.num_taps(),
                     beta: self.filter.beta(),
-                    mode: "zero-phase".into(),
+                    mode: ZeroPhaseMode::DelayCompensated.name().into(),
                 }),
                 wavelet: None,
                 decimation_factor: self.factor,

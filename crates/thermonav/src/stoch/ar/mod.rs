@@ -28,12 +28,14 @@ pub use levinson::levinson_durbin;
 use super::acf::{AcfError, Demean, lagged_products_about_mean};
 use nalgebra::DMatrix;
 
-/// The four estimators.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The four estimators (the default: Burg, for `thermonav ar`, Python's `ar` and
+/// `gauss_markov`, and characterisation's AR-based model).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum ArMethod {
     /// Yule-Walker (biased autocovariance + Levinson-Durbin).
     YuleWalker,
     /// Burg.
+    #[default]
     Burg,
     /// Covariance method (forward least squares).
     Covariance,
