@@ -349,7 +349,7 @@ def gmwm(
     rate_hz: float,
     model: str = "auto",
     sensor: str = "gyro",
-    replicates: int = 100,
+    replicates: int = 0,
     seed: int = 2009,
 ) -> GmwmFit:
     """The GMWM fit of rate samples ``x`` (SI: rad/s or m/s^2) at ``rate_hz`` (Hz): the model
@@ -357,8 +357,9 @@ def gmwm(
 
     ``model``: "auto" (every automatic candidate, the lowest WIC chosen) or one model such as
     "wn+gm", "wn+rw", "qn+wn+rw+2gm". ``sensor``: "gyro", "accelerometer" or a channel name
-    (names the parameters' units). ``replicates`` (at least 10) and ``seed``: the parametric
-    bootstrap of the intervals, on the CLI's named random streams. As one channel of
+    (names the parameters' units). ``replicates`` (0, the default: no bootstrap and no
+    intervals, candidates ranked by the asymptotic WIC; or 10 to 1000) and ``seed``: the
+    parametric bootstrap of the intervals, on the CLI's named random streams. As one channel of
     ``thermonav gmwm FILE --json``.
     """
 
