@@ -299,14 +299,24 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
         plan.replicates,
         ReplicateKind::NewSimulations,
     );
-    let b = survey.tournament(constant.clone(), fixed, &out.join("temperature_matters"))?;
     let thermal = (
         Scheduling::ByTemperature,
         Compensation::WhenCalibrated,
         plan.warming_replicates,
         ReplicateKind::ShiftedOutages,
     );
-    let c = survey.tournament(warming.clone(), thermal, &out.join("warming_survey"))?;
+    // (b) and (c) are independent (their own seeds, folders and records): run side by side,
+    // so that one fills the cores the other's last replicates leave idle. Their two progress
+    // bars would draw over each other, so both are hidden meanwhile (the step line says what
+    // runs).
+    let quiet = crate::progress::is_quiet();
+    crate::progress::set_quiet(true);
+    let (b, c) = rayon::join(
+        || survey.tournament(constant.clone(), fixed, &out.join("temperature_matters")),
+        || survey.tournament(warming.clone(), thermal, &out.join("warming_survey")),
+    );
+    crate::progress::set_quiet(quiet);
+    let (b, c) = (b?, c?);
     let matrix = survey.matrix(&out.join("matrix"))?;
     Ok(ThermalScenarios {
         profile: profile.name.clone(),
