@@ -292,31 +292,7 @@ pub fn run_thermal_scenarios(plan: &ScenarioPlan, out: &Path) -> Result<ThermalS
         bank: &bank,
         plan,
     };
-    // At one temperature the scheduled and compensated candidates add nothing to (b)'s claim.
-    let fixed = (
-        Scheduling::Fixed,
-        Compensation::Off,
-        plan.replicates,
-        ReplicateKind::NewSimulations,
-    );
-    let thermal = (
-        Scheduling::ByTemperature,
-        Compensation::WhenCalibrated,
-        plan.warming_replicates,
-        ReplicateKind::ShiftedOutages,
-    );
-    // (b) and (c) are independent (their own seeds, folders and records): run side by side,
-    // so that one fills the cores the other's last replicates leave idle. Their two progress
-    // bars would draw over each other, so both are hidden meanwhile (the step line says what
-    // runs).
-    let quiet = crate::progress::is_quiet();
-    crate::progress::set_quiet(true);
-    let (b, c) = rayon::join(
-        || survey.tournament(constant.clone(), fixed, &out.join("temperature_matters")),
-        || survey.tournament(warming.clone(), thermal, &out.join("warming_survey")),
-    );
-    crate::progress::set_quiet(quiet);
-    let (b, c) = (b?, c?);
+    let (b, c) = survey.claims_b_and_c((&constant, &warming), out)?;
     let matrix = survey.matrix(&out.join("matrix"))?;
     Ok(ThermalScenarios {
         profile: profile.name.clone(),
@@ -544,6 +520,39 @@ impl Survey<'_> {
             &[],
             (out, &Default::default()),
         )
+    }
+
+    /// The tournaments of claims (b), on a survey at `constant`, and (c), on one at `warming`.
+    /// They are independent (their own seeds, folders and records), so they run side by side
+    /// and one fills the cores the other's last replicates leave idle. Their two progress bars
+    /// would draw over each other, so both are hidden meanwhile (the step line says what runs).
+    fn claims_b_and_c(
+        &self,
+        (constant, warming): (&SurveyTemperature, &SurveyTemperature),
+        out: &Path,
+    ) -> Result<(EvaluationFile, EvaluationFile), Failure> {
+        // At one temperature the scheduled and compensated candidates add nothing to (b)'s
+        // claim.
+        let fixed = (
+            Scheduling::Fixed,
+            Compensation::Off,
+            self.plan.replicates,
+            ReplicateKind::NewSimulations,
+        );
+        let thermal = (
+            Scheduling::ByTemperature,
+            Compensation::WhenCalibrated,
+            self.plan.warming_replicates,
+            ReplicateKind::ShiftedOutages,
+        );
+        let quiet = crate::progress::is_quiet();
+        crate::progress::set_quiet(true);
+        let (b, c) = rayon::join(
+            || self.tournament(constant.clone(), fixed, &out.join("temperature_matters")),
+            || self.tournament(warming.clone(), thermal, &out.join("warming_survey")),
+        );
+        crate::progress::set_quiet(quiet);
+        Ok((b?, c?))
     }
 
     /// The plan of a scenario's tournament: the bank's candidates (and the oracle's), EKF.
