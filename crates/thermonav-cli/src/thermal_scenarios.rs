@@ -359,12 +359,17 @@ fn campaign_bank(
     };
     let program = sweep(|t| matches!(t, ChamberTemperature::Program(_)))?;
     let ramp = sweep(|t| matches!(t, ChamberTemperature::Ramp(_)))?;
-    let static_bank = set_point_bank(&chamber, &truth, bank)?;
-    let lag = calibrate_sweeps_alone(&ThermalInputs {
+    // The set points' bank and the program's calibration are independent: side by side.
+    let sweeps = ThermalInputs {
         sweeps: vec![vec![program]],
         site: calgary(),
         ..ThermalInputs::default()
-    })?;
+    };
+    let (static_bank, lag) = rayon::join(
+        || set_point_bank(&chamber, &truth, bank),
+        || calibrate_sweeps_alone(&sweeps),
+    );
+    let (static_bank, lag) = (static_bank?, lag?);
     let joined = static_bank
         .with_thermal_from(lag)
         .map_err(|e| anyhow!("the chamber program's calibration: {e}"))
