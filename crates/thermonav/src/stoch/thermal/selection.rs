@@ -151,15 +151,18 @@ pub struct PredictionSpread {
     pub effective_dof: Option<f64>,
 }
 
+/// Two-sided 95 % quantile of the normal distribution: the band's multiple without a count of
+/// degrees of freedom (and for curves not chosen on held-out legs).
+pub(super) const BAND_Z: f64 = 1.959_963_984_540_054;
+
 impl PredictionSpread {
     /// The 95 % band's multiple: Student's t at 0.975 with [`PredictionSpread::effective_dof`]
     /// degrees of freedom (the spread is estimated from few effectively independent
     /// residuals), or the normal quantile without them.
     pub fn band_quantile(&self) -> f64 {
-        let normal = 1.959_963_984_540_054;
         self.effective_dof
             .and_then(|dof| StudentsT::new(0.0, 1.0, dof).ok())
-            .map_or(normal, |t| t.inverse_cdf(0.975))
+            .map_or(BAND_Z, |t| t.inverse_cdf(0.975))
     }
 }
 

@@ -70,6 +70,7 @@
 
 use super::calibration::calibrate_channel;
 use super::legs::{Leg, RATE_WINDOW_S, find_legs, lagged_temperatures, temperature_rates};
+use super::selection::BAND_Z;
 pub use super::selection::{
     Candidate, CandidateScore, ChoiceRule, HeldOutSelection, PredictionSpread, SweepBlock,
     SweepLeg, ThermalLag,
@@ -96,9 +97,6 @@ pub const MIN_SWEEP_BLOCKS: usize = 3;
 
 /// Smallest temperature range a sweep must cover, °C.
 pub const MIN_SWEEP_RANGE_C: f64 = 2.0;
-
-/// Two-sided 95 % quantile of the normal distribution: the band's multiple.
-const BAND_Z: f64 = 1.959_963_984_540_054;
 
 /// One piece of a sweep, as plain columns: time (s), temperature (°C) and the channels.
 #[derive(Debug, Clone, Copy)]
