@@ -19,6 +19,8 @@ const VESSEL: [&str; 4] = ["--outages", "60+30,150+30", "--lever-arm-m", "0.3,0,
 const ROVER: [&str; 2] = ["--outages", "80+20,150+20"];
 /// integrate's model fixed at the bank's 25 °C entry; evaluate's candidate of that entry.
 const ENTRY_25: [&str; 2] = ["--model-temperature-c", "25"];
+/// The model at 25 °C, fixed: the candidate `integrate --model-temperature-c 25` runs.
+const FIXED_25: [&str; 3] = ["--model-temperature-c", "25", "--no-schedule"];
 const ENTRY_25_LABEL: &str = "bank 25.0 °C";
 
 /// The record, the fixes, the reference and the bank of one test.
@@ -171,8 +173,7 @@ fn model_temperature_c() {
     let start = ["--initial-from", arg(&data.reference)];
     let (run, solution) = integrate(&data, d, "fixed", &[&start[..], &ENTRY_25].concat());
     assert_eq!(run["model"]["temperature_c"], 25.0);
-    let option = [&ENTRY_25[..], &["--no-schedule"]].concat();
-    let evaluation = evaluate(&data, (d, "ev"), &data.reference, &solution, &option);
+    let evaluation = evaluate(&data, (d, "ev"), &data.reference, &solution, &FIXED_25);
     assert_same_run(&evaluation, ENTRY_25_LABEL, "--model-temperature-c 25");
     assert_eq!(evaluation["operating_temperature_c"], 25.0);
     rms(&evaluation, "interpolated 25.0 °C");
@@ -308,6 +309,19 @@ fn no_static_alignment() {
     assert_eq!(levelled["run_options"]["static_alignment"], "when_still");
 }
 
+/// `integrate` from the reference's point with the 25 °C model and the time-offset `option`,
+/// and `evaluate` of the same with `option`: both report the same offset search and run the
+/// same filter. Returns integrate's JSON and its solution.
+fn time_offset_runs(data: &Data, d: &Path, option: &[&str]) -> (Value, PathBuf) {
+    let start = ["--initial-from", arg(&data.reference)];
+    let (run, solution) = integrate(data, d, "run", &[&start[..], &ENTRY_25, option].concat());
+    let with_option = [&FIXED_25[..], option].concat();
+    let evaluation = evaluate(data, (d, "ev"), &data.reference, &solution, &with_option);
+    assert_eq!(evaluation["time_offset"], run["time_offset"]);
+    assert_same_run(&evaluation, ENTRY_25_LABEL, &option.join(" "));
+    (run, solution)
+}
+
 // --estimate-time-offset: evaluate estimates the offset once with integrate's run (the same
 // estimate, to the last bit) and runs every candidate on the record shifted by it; without
 // the option the candidate runs on the record as read.
@@ -316,27 +330,16 @@ fn estimate_time_offset() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let data = vessel(d);
-    let start = ["--initial-from", arg(&data.reference)];
-    let option = ["--estimate-time-offset"];
-    let (run, solution) = integrate(
-        &data,
-        d,
-        "shifted",
-        &[&start[..], &ENTRY_25, &option].concat(),
-    );
+    let (run, solution) = time_offset_runs(&data, d, &["--estimate-time-offset"]);
     let offset = run["time_offset"]["time_offset_s"].as_f64().unwrap();
     assert!(offset.abs() > 0.01, "{offset}");
-    let fixed = [&ENTRY_25[..], &["--no-schedule"]].concat();
-    let evaluation = evaluate(
+    let unshifted = evaluate(
         &data,
-        (d, "ev"),
+        (d, "unshifted"),
         &data.reference,
         &solution,
-        &[&fixed[..], &option].concat(),
+        &FIXED_25,
     );
-    assert_eq!(evaluation["time_offset"], run["time_offset"]);
-    assert_same_run(&evaluation, ENTRY_25_LABEL, "--estimate-time-offset");
-    let unshifted = evaluate(&data, (d, "unshifted"), &data.reference, &solution, &fixed);
     assert!(unshifted.get("time_offset").is_none());
     assert_other_run(&unshifted, ENTRY_25_LABEL, "without --estimate-time-offset");
 }
@@ -348,29 +351,13 @@ fn time_offset_bracket_s() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let data = vessel(d);
-    let start = ["--initial-from", arg(&data.reference)];
     let option = ["--estimate-time-offset", "--time-offset-bracket-s", "0.3"];
-    let (run, solution) = integrate(
-        &data,
-        d,
-        "narrow",
-        &[&start[..], &ENTRY_25, &option].concat(),
-    );
+    let (run, solution) = time_offset_runs(&data, d, &option);
     assert_eq!(
         run["time_offset"]["bracket_s"],
         serde_json::json!([-0.3, 0.3])
     );
-    let fixed = [&ENTRY_25[..], &["--no-schedule"]].concat();
-    let evaluation = evaluate(
-        &data,
-        (d, "ev"),
-        &data.reference,
-        &solution,
-        &[&fixed[..], &option].concat(),
-    );
-    assert_eq!(evaluation["time_offset"], run["time_offset"]);
-    assert_same_run(&evaluation, ENTRY_25_LABEL, "--time-offset-bracket-s 0.3");
-    let wide = [&fixed[..], &["--estimate-time-offset"]].concat();
+    let wide = [&FIXED_25[..], &["--estimate-time-offset"]].concat();
     let default = evaluate(&data, (d, "wide"), &data.reference, &solution, &wide);
     assert_eq!(
         default["time_offset"]["bracket_s"],
