@@ -81,8 +81,8 @@ fn scenario_plan(quick: bool, seed: u64) -> ScenarioPlan {
         power_ons: 4,
         repeat_duration_s: 300.0,
         survey_s: 1800.0,
-        // The quick surveys sample at 25 Hz: half the filter steps of (b)'s and (c)'s 17
-        // surveys, the same noise densities (the profile's are per √Hz).
+        // The quick surveys sample at 25 Hz: half the filter steps in every survey of (b) and
+        // (c), the same noise densities (the profile's are per √Hz).
         survey_rate_hz: if quick { 25.0 } else { 50.0 },
         outages: DEFAULT_OUTAGES,
         // (b)'s replicates are new surveys: its lead over the far models (66-73 m at 50 Hz)
