@@ -37,7 +37,11 @@
 //! candidate's score is the mean over folds. The choice follows the one-standard-error rule, paired across folds: the simplest
 //! candidate (fewest terms: order, plus one for the lag; T alone first on a tie) whose mean
 //! excess over the best candidate's fold scores is within the standard error of that excess,
-//! or within [`MIN_RELATIVE_GAIN`] of the best score. So a term that does not predict
+//! or within [`MIN_RELATIVE_GAIN`] of the best score. The excess of a fold is the log of the
+//! ratio of the two fold scores, not their difference: folds differ in scale by orders of
+//! magnitude (a fold that no candidate predicts, such as two cooling legs predicting a
+//! heating one, where no lag can be fitted), and differences would let that one fold's
+//! spread hide a clear gain on every other fold. So a term that does not predict
 //! unseen legs is not used, and a channel where nothing clearly beats order 0 is left
 //! uncompensated. A lag whose fit to every block runs to the search limit is not identified,
 //! and the choice is made again without it. The best candidate in T alone, by the same rule,
@@ -604,20 +608,28 @@ fn one_standard_error_choice(
         .map(|(k, _, _)| *k)
 }
 
-/// True when `h`'s mean excess over `best` across the folds is at most its standard error.
+/// True when `h`'s mean excess over `best` across the folds (the log ratio of their fold
+/// scores) is at most its standard error, or at most ln(1 + [`MIN_RELATIVE_GAIN`]).
 fn within_one_standard_error(h: &HeldOut, best: &HeldOut) -> bool {
     let d: Vec<f64> = (h.fold_mean_squares.iter())
         .zip(&best.fold_mean_squares)
-        .map(|(a, b)| a - b)
+        .map(|(a, b)| log_ratio(*a, *b))
         .collect();
     let f = d.len() as f64;
     let mean = d.iter().sum::<f64>() / f;
-    let floor = MIN_RELATIVE_GAIN * best.score();
+    let floor = MIN_RELATIVE_GAIN.ln_1p();
     if d.len() < 2 {
         return mean <= floor;
     }
     let var = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (f - 1.0);
     mean <= (var / f).sqrt().max(floor)
+}
+
+/// ln(a/b) of two fold mean squares, each lifted by a trillionth of the larger so that an
+/// exact fit (0) compares as a large finite ratio.
+fn log_ratio(a: f64, b: f64) -> f64 {
+    let lift = 1e-12 * a.max(b).max(f64::MIN_POSITIVE);
+    ((a + lift) / (b + lift)).ln()
 }
 
 /// A more complex candidate must lower the held-out mean square by more than this fraction
@@ -950,6 +962,36 @@ mod tests {
             t0 += duration;
         }
         blocks
+    }
+
+    fn held_out_of(fold_mean_squares: &[f64]) -> HeldOut {
+        HeldOut {
+            fold_mean_squares: fold_mean_squares.to_vec(),
+            shape_ss: 0.0,
+            scored_ss: 0.0,
+            residuals: 0,
+            scored_cross: 0.0,
+            levels: Vec::new(),
+        }
+    }
+
+    // The folds of a simulated lagging unit (thermal_lag_units, ±2 °C/min, seed 5, ax): the
+    // lag model predicts two folds to the noise (mean squares 6.4e-8 and 9.0e-8) where order 0
+    // is 250 and 30,000 times worse, while the third fold (two cooling legs, where no lag can
+    // be fitted) is predicted badly by both, order 0 a little less badly. Closed form: the
+    // folds' excesses in mean square are 1.62e-5, −3.1e-4 and 2.66e-3, mean 7.9e-4 under its
+    // standard error 9.4e-4, so order 0 would pass as "as good"; their log ratios are 5.54,
+    // −0.44 and 10.30, mean 5.13 over its standard error 3.11, so it does not.
+    #[test]
+    fn a_fold_every_candidate_predicts_badly_does_not_make_order_0_as_good() {
+        let lag = held_out_of(&[6.4e-8, 8.7e-4, 9.0e-8]);
+        let order_0 = held_out_of(&[1.63e-5, 5.6e-4, 2.665e-3]);
+        assert!(!within_one_standard_error(&order_0, &lag));
+        assert!(within_one_standard_error(&lag, &lag));
+        // ln(a/b) for ordinary values; an exact fit compares as a large finite ratio.
+        assert!((log_ratio(2.0, 1.0) - std::f64::consts::LN_2).abs() < 1e-11);
+        let exact = log_ratio(1e-6, 0.0);
+        assert!(exact.is_finite() && (exact - 12.0 * std::f64::consts::LN_10).abs() < 1e-6);
     }
 
     #[test]
