@@ -189,7 +189,7 @@ fn print_held_out_choice(calibration: &ThermalCalibration) {
 }
 
 /// What a choice made within one leg cannot see.
-const WITHIN_LEGS_NOTE: &str = "note: where the blocks were left out a fifth at a time (one leg, or legs that share no temperature), the choice and the band see only the spread within those legs: a leg that runs the other way may differ by the loop a thermal lag draws, which one leg cannot show (on the CATS record such bands covered 6-98 % of an unseen leg's 30 s blocks); check the calibration on another record with `thermonav bank check`";
+const WITHIN_LEGS_NOTE: &str = "note: where the blocks were left out a fifth at a time (one leg, or legs that share no temperature), the choice and the band see only the spread within those legs: a leg that runs the other way may differ by the loop a thermal lag draws or by a drift with time, which one leg cannot show (on the CATS record such bands covered 20-100 % of an unseen leg's 30 s blocks); check the calibration on another record with `thermonav bank check`";
 
 /// One channel's chosen model, its held-out RMS against order 0, and its band's spread.
 fn held_out_line(
