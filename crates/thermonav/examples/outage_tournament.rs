@@ -17,7 +17,7 @@ use thermonav::evaluation::candidates::{DatasheetValues, tournament_candidates};
 use thermonav::evaluation::metrics::Metric;
 use thermonav::evaluation::scenario::Scenario;
 use thermonav::evaluation::tournament::{ModelResult, run_tournament, summarize_replicates};
-use thermonav::nav::alignment::{InitialUncertainty, align_from_gnss, uncorrected};
+use thermonav::nav::alignment::{align_from_gnss, uncorrected};
 use thermonav::nav::engine::{EngineSettings, FilterKind, increments_from_series};
 use thermonav::nav::measurement::AntennaGeometry;
 use thermonav::nav::outage::Outages;
@@ -188,7 +188,7 @@ fn survey(
             .collect(),
         reference_content: Default::default(),
         initial: uncorrected(start.nav),
-        initial_covariance: InitialUncertainty::default().covariance(),
+        still_start: None,
         settings,
     })
 }

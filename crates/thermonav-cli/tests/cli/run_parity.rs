@@ -392,3 +392,105 @@ fn both_refuse_a_bad_option_alike() {
         "{stderr}"
     );
 }
+
+/// `integrate` and `evaluate` on `data` with `noise` (a profile, or a bank with its options)
+/// and `option`: integrate writes `dir/NAME.csv`, which evaluate (EKF) scores as the outside
+/// solution "integrate" beside its candidates. Integrate's JSON and the evaluation.
+fn noise_pair(
+    data: &Data,
+    (dir, name): (&Path, &str),
+    noise: &[&str],
+    option: &[&str],
+) -> (Value, Value) {
+    let solution = dir.join(format!("{name}.csv"));
+    let files = ["--imu", arg(&data.imu), "--gnss", arg(&data.gnss)];
+    let mut args = vec!["integrate"];
+    args.extend(files);
+    args.extend(["--out", arg(&solution), "--json"]);
+    args.extend(data.common.iter().chain(noise).chain(option));
+    let run = json_of(&args);
+    let out = dir.join(format!("{name}_ev"));
+    let mut args = vec!["evaluate"];
+    args.extend(files);
+    args.extend(["--reference", arg(&data.reference), "--filter", "ekf"]);
+    args.extend([
+        "--solution",
+        arg(&solution),
+        "--solution-label",
+        "integrate",
+    ]);
+    args.extend(["--out", arg(&out), "--json"]);
+    args.extend(data.common.iter().chain(noise).chain(option));
+    (run, json_of(&args))
+}
+
+// A profile's candidate starts from integrate's initial uncertainty: the profile's turn-on and
+// power-on bias sds with its Gauss-Markov σ (integrate's initial_bias_sd source
+// "profile_turn_on"), not the built-in 1 °/s and 10 mg. So `evaluate --profile`'s fixed
+// candidate at the record's 17 °C is `integrate --profile --no-schedule`'s run; its scheduled
+// candidate, integrate's scheduled run. Before, every candidate started from the built-in
+// sds, and neither was.
+#[test]
+fn a_profile_candidate_starts_as_integrate_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let data = vessel(d);
+    let start = ["--initial-from", arg(&data.reference)];
+    let profile = ["--profile", "builtin:temperature-sensitive"];
+    let fixed = [&start[..], &["--no-schedule"]].concat();
+    let (run, evaluation) = noise_pair(&data, (d, "fixed"), &profile, &fixed);
+    assert_eq!(run["initial_bias_sd"]["source"], "profile_turn_on");
+    assert_same_run(&evaluation, "profile 17.0 °C", "--profile, fixed");
+    let (run, evaluation) = noise_pair(&data, (d, "scheduled"), &profile, &start);
+    assert_eq!(run["initial_bias_sd"]["source"], "profile_turn_on");
+    assert_same_run(&evaluation, "profile scheduled", "--profile, scheduled");
+}
+
+/// The bank of three power-ons of the vessel's unit at 10 and 25 °C (the vessel's chamber
+/// campaign, repeated): its thermal calibration holds a spread between power-ons.
+fn bank_of_three_power_ons(dir: &Path) -> PathBuf {
+    let chamber = dir.join("power_ons");
+    let mut args = vec!["simulate", "chamber", "--out", arg(&chamber)];
+    args.extend(["--temperatures-c", "10,25", "--duration-s", "600"]);
+    args.extend([
+        "--rate-hz",
+        "50",
+        "--seed",
+        "3",
+        "--power-ons",
+        "3",
+        "--json",
+    ]);
+    json_of(&args);
+    let record = |folder: &str, t: u32| chamber.join(folder).join(format!("imu_{t}C.csv"));
+    let pieces = |folder: &str| {
+        let [a, b] = [10, 25].map(|t| record(folder, t).to_string_lossy().into_owned());
+        format!("{a},{b}")
+    };
+    let (second, third) = (pieces("power_on_2"), pieces("power_on_3"));
+    let bank = dir.join("bank_power_ons.json");
+    let [first_10, first_25] = [10, 25].map(|t| record("", t));
+    let mut args = vec!["characterize", arg(&first_10), arg(&first_25)];
+    args.extend(["--power-on", &second, "--power-on", &third]);
+    args.extend(["--out", arg(&bank), "--json"]);
+    json_of(&args);
+    bank
+}
+
+// On the record compensated with a bank's thermal calibration that holds a spread between
+// power-ons, integrate starts its biases from that spread with the Gauss-Markov σ
+// ("bank_power_on_spread"), and so does the tournament's compensated candidate: the entry
+// nearest the record's 17 °C (measured at 10.1 °C), fixed, is `integrate --no-schedule`'s
+// compensated run.
+#[test]
+fn a_compensated_candidate_starts_as_integrate_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let data = vessel(d);
+    let bank_path = bank_of_three_power_ons(d);
+    let bank = ["--bank", arg(&bank_path)];
+    let option = ["--initial-from", arg(&data.reference), "--no-schedule"];
+    let (run, evaluation) = noise_pair(&data, (d, "compensated"), &bank, &option);
+    assert_eq!(run["initial_bias_sd"]["source"], "bank_power_on_spread");
+    assert_same_run(&evaluation, "bank 10.1 °C compensated", "compensated");
+}

@@ -25,6 +25,8 @@
 pub use crate::sensor::DatasheetValues;
 
 use super::oracle::TrueModel;
+use crate::nav::alignment::InitialUncertainty;
+use crate::nav::run::{NoiseModel, initial_uncertainty_of};
 use crate::nav::schedule::{Compensation, ModelGrid, Scheduling, TemperatureRule};
 use crate::nav::sensor_model::{
     AxisModel, BankChoice, GaussMarkovParameters, ImuStochasticModel, ScaleFactorPrior,
@@ -112,6 +114,11 @@ pub struct Candidate {
     pub schedule: Option<Arc<ModelGrid>>,
     /// The record it runs on.
     pub record: Record,
+    /// Its initial uncertainty before a still start tightens it: what `integrate` starts
+    /// from with this model on this record ([`crate::nav::run::initial_uncertainty_of`]; set
+    /// for a tournament's plan by [`with_initial_uncertainty`], the default until then).
+    #[serde(skip)]
+    pub initial: InitialUncertainty,
 }
 
 impl Candidate {
@@ -123,6 +130,7 @@ impl Candidate {
             model,
             schedule: None,
             record: Record::Raw,
+            initial: InitialUncertainty::default(),
         }
     }
 
@@ -164,6 +172,17 @@ impl CandidateKind {
     /// True for the baselines that answer no temperature question (pooled, data sheet).
     pub fn is_baseline(self) -> bool {
         matches!(self, CandidateKind::Pooled | CandidateKind::Datasheet)
+    }
+}
+
+/// `candidates` with each one's [`Candidate::initial`]: what `integrate` starts from with its
+/// model, under `noise`, on its record (compensated with the noise model's thermal calibration
+/// for a compensated candidate and the oracle's, whose record holds the unit's own bias curve
+/// too).
+pub fn with_initial_uncertainty(candidates: &mut [Candidate], noise: NoiseModel) {
+    for candidate in candidates {
+        let compensated = candidate.record != Record::Raw;
+        candidate.initial = initial_uncertainty_of(noise, compensated, &candidate.model).0;
     }
 }
 
@@ -345,6 +364,7 @@ fn scheduled(
         model: *grid.model_at(operating_temperature_c),
         schedule: Some(Arc::clone(grid)),
         record,
+        initial: InitialUncertainty::default(),
     }
 }
 
@@ -413,6 +433,7 @@ pub fn oracle_candidates(
             model: *g.model_at(operating_temperature_c),
             schedule: Some(Arc::clone(g)),
             record,
+            initial: InitialUncertainty::default(),
         });
         field.push(label.into(), built);
     }

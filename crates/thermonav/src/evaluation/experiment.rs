@@ -8,7 +8,7 @@
 
 use super::candidates::{
     Candidate, CandidateKind, Excluded, ThermalOptions, oracle_candidates, profile_candidates,
-    thermal_candidates, tournament_candidates,
+    thermal_candidates, tournament_candidates, with_initial_uncertainty,
 };
 use super::oracle::TrueModel;
 use super::report::{FrameModel, ShardFrame, TournamentReport, outage_spans};
@@ -17,6 +17,7 @@ use super::shard::{Shard, ShardRun, TournamentShard, merge_shards, stored_run};
 use super::tournament::{ModelResult, run_selected};
 use crate::nav::engine::FilterKind;
 use crate::nav::outage::{OutageError, OutageSpec};
+use crate::nav::run::NoiseModel;
 use crate::nav::schedule::Compensation;
 use crate::nav::sensor_model::{ImuStochasticModel, ScaleFactorPrior};
 use crate::rng::named_rng;
@@ -372,6 +373,11 @@ fn plan_candidates(plan: &TournamentPlan) -> (Vec<Candidate>, Vec<Excluded>) {
         }));
         excluded.extend(left_out);
     }
+    let noise = match plan.noise {
+        CandidateSource::Bank(bank) => NoiseModel::Bank(bank),
+        CandidateSource::Profile(profile) => NoiseModel::Profile(profile),
+    };
+    with_initial_uncertainty(&mut candidates, noise);
     (candidates, excluded)
 }
 

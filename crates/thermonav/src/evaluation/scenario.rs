@@ -20,6 +20,7 @@ use crate::nav::run::{RunError, RunInput, Start, initial_estimate, with_outages}
 use crate::nav::schedule::{
     Compensation, CompensationOutcome, ScheduleError, TemperatureTrack, compensate_record,
 };
+use crate::nav::static_alignment::StillStart;
 use crate::stoch::thermal::ThermalCalibration;
 use crate::trajectory::{ReferenceContent, TrajectoryPoint};
 
@@ -45,13 +46,22 @@ pub struct Scenario {
     pub reference_content: ReferenceContent,
     /// Initial estimate.
     pub initial: Estimate,
-    /// Initial covariance.
-    pub initial_covariance: SystemMatrix,
+    /// The still span the runs' start was levelled from, which tightens every candidate's
+    /// initial uncertainty ([`Scenario::initial_covariance`]); `None` without one.
+    pub still_start: Option<StillStart>,
     /// Filter settings, outages included (the filter kind is set per run).
     pub settings: EngineSettings,
 }
 
 impl Scenario {
+    /// The initial covariance of a run from `prior` (a candidate's
+    /// [`super::candidates::Candidate::initial`]): tightened by the still start, as
+    /// `integrate` tightens its own.
+    pub fn initial_covariance(&self, prior: InitialUncertainty) -> SystemMatrix {
+        let tightened = self.still_start.map_or(prior, |s| s.tightened(prior));
+        tightened.covariance()
+    }
+
     /// The reference the runs are scored against.
     pub fn reference(&self) -> Reference<'_> {
         Reference {
@@ -73,8 +83,8 @@ impl Scenario {
     /// The scenario with every run started as `start` says, as `integrate` starts its run:
     /// aligned from GNSS ([`Start::Align`]: GNSS heading or course over ground, levelled from
     /// a still start as the settings' static alignment says), or from a trajectory's point at
-    /// the first fix ([`Start::Reference`], `integrate --initial-from`); the initial
-    /// covariance is the default one, tightened by a still start.
+    /// the first fix ([`Start::Reference`], `integrate --initial-from`); each candidate's
+    /// initial covariance is then tightened by a still start ([`Scenario::initial_covariance`]).
     ///
     /// # Errors
     /// [`ScenarioError::Run`] when the data cannot be aligned or the trajectory is empty.
@@ -83,9 +93,7 @@ impl Scenario {
             .map_err(ScenarioError::Run)?;
         Ok(Self {
             initial: found.initial,
-            initial_covariance: found
-                .uncertainty(InitialUncertainty::default())
-                .covariance(),
+            still_start: found.still_start,
             ..self
         })
     }
@@ -250,7 +258,7 @@ pub fn scenario_of(
         reference,
         reference_content: ReferenceContent::Full,
         initial: uncorrected(initial.nav_state()),
-        initial_covariance: InitialUncertainty::default().covariance(),
+        still_start: None,
         settings,
     })
 }

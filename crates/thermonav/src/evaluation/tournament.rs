@@ -93,7 +93,7 @@ fn run_one(scenario: &Scenario, candidate: &Candidate, filter: FilterKind) -> Mo
             increments,
             &scenario.gnss,
             scenario.initial,
-            scenario.initial_covariance,
+            scenario.initial_covariance(candidate.initial),
             schedule,
             &settings,
             &mut |_| {},

@@ -580,12 +580,25 @@ pub fn prepare(
     })
 }
 
-/// The initial uncertainty of a run: [`InitialUncertainty::default`] with the bias sds the
-/// noise model states ([`InitialBiasSource`]), axis by axis; an axis it says nothing about
-/// keeps the default.
+/// The initial uncertainty of a run: [`initial_uncertainty_of`] with the compensation's
+/// outcome.
 pub(super) fn initial_uncertainty(
     noise: NoiseModel,
     compensation: &CompensationOutcome,
+    model: &ImuStochasticModel,
+) -> (InitialUncertainty, InitialBiasSource) {
+    let applied = matches!(compensation, CompensationOutcome::Applied { .. });
+    initial_uncertainty_of(noise, applied, model)
+}
+
+/// The initial uncertainty of a run with `model` on a record compensated with the noise
+/// model's thermal calibration (`applied`) or not: [`InitialUncertainty::default`] with the
+/// bias sds the noise model states ([`InitialBiasSource`]), axis by axis; an axis it says
+/// nothing about keeps the default. `integrate` and every candidate of `evaluate` start from
+/// it, so that a candidate runs the run `integrate` makes with its model.
+pub fn initial_uncertainty_of(
+    noise: NoiseModel,
+    applied: bool,
     model: &ImuStochasticModel,
 ) -> (InitialUncertainty, InitialBiasSource) {
     let mut uncertainty = InitialUncertainty::default();
@@ -593,7 +606,6 @@ pub(super) fn initial_uncertainty(
         i @ 0..3 => model.gyro[i].bias.sigma,
         i => model.accel[i - 3].bias.sigma,
     };
-    let applied = matches!(compensation, CompensationOutcome::Applied { .. });
     let (stated, source): (Vec<_>, _) = match (noise, noise.thermal()) {
         (NoiseModel::Profile(p) | NoiseModel::ProfileWithThermal(p, _), _) if !applied => {
             let sd = |c: Channel| {
