@@ -85,6 +85,31 @@ pub enum ParameterTarget {
     ArdupilotTcal,
 }
 
+impl ParameterTarget {
+    /// Every target, in the order the command line lists them.
+    pub const ALL: [ParameterTarget; 2] = [ParameterTarget::Px4Tc, ParameterTarget::ArdupilotTcal];
+
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParameterTarget::Px4Tc => "px4-tc",
+            ParameterTarget::ArdupilotTcal => "ardupilot-tcal",
+        }
+    }
+
+    /// What it writes, in a line (the command line's help).
+    pub fn help(self) -> &'static str {
+        match self {
+            ParameterTarget::Px4Tc => {
+                "PX4 TC_* thermal compensation, a QGroundControl .params file"
+            }
+            ParameterTarget::ArdupilotTcal => {
+                "ArduPilot INS_TCAL1_* temperature calibration, a Mission Planner/MAVProxy .param file"
+            }
+        }
+    }
+}
+
 /// The two sensors of an IMU, each three channels sharing one temperature range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]

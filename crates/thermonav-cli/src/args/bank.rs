@@ -1,9 +1,13 @@
 //! Arguments of `thermonav bank`.
 
 use super::shared::{BagTopicArgs, GmSourceArg, SelectArg};
+use clap::builder::PossibleValue;
 use clap::{Args, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use std::sync::LazyLock;
 use thermonav::stoch::bank::{GaussMarkovSource, Selection};
+use thermonav_io::noise_export::NoiseFormat;
+use thermonav_io::thermal_parameters::ParameterTarget;
 
 /// Arguments of `bank`.
 #[derive(Debug, Args)]
@@ -51,56 +55,61 @@ pub struct BankCheckArgs {
     pub json: bool,
 }
 
-/// Export formats.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum ExportFormatArg {
-    /// PX4 TC_* thermal compensation, a QGroundControl .params file.
-    Px4Tc,
-    /// ArduPilot INS_TCAL1_* temperature calibration, a Mission Planner/MAVProxy .param file.
-    ArdupilotTcal,
-    /// Kalibr imu.yaml (noise densities and random walks, continuous).
-    Kalibr,
-    /// KF-GINS imunoise: block (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime).
-    KfGins,
-    /// OB_GINS imumodel: block (arw, vrw, gbstd, abstd, corrtime).
-    ObGins,
-    /// gnss-ins-sim imu_err dictionary (Python).
-    GnssInsSim,
-    /// PX4 EKF2_GYR/ACC(_B)_NOISE parameters, a QGroundControl .params file.
-    Px4Ekf2,
-    /// ArduPilot EK3_*_P_NSE parameters, a .parm file.
-    ArdupilotEk3,
-    /// MATLAB gyroparams/accelparams/imuSensor script.
-    Matlab,
-    /// ROS sensor_msgs/Imu covariances (YAML).
-    RosImuCovariance,
-}
-
 /// What an export format writes.
 #[derive(Debug, Clone, Copy)]
 pub enum ExportKind {
     /// The thermal calibration as autopilot parameters.
-    Thermal(thermonav_io::thermal_parameters::ParameterTarget),
+    Thermal(ParameterTarget),
     /// The noise model at a temperature.
-    Noise(thermonav_io::noise_export::NoiseFormat),
+    Noise(NoiseFormat),
+}
+
+impl ExportKind {
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ExportKind::Thermal(target) => target.name(),
+            ExportKind::Noise(format) => format.name(),
+        }
+    }
+
+    /// Its help on the command line.
+    pub fn help(self) -> &'static str {
+        match self {
+            ExportKind::Thermal(target) => target.help(),
+            ExportKind::Noise(format) => format.help(),
+        }
+    }
+}
+
+/// `bank export --format`: an export format, its names and help from thermonav-io (the
+/// autopilots' thermal targets first, then the noise formats).
+#[derive(Debug, Clone, Copy)]
+pub struct ExportFormatArg(pub ExportKind);
+
+static EXPORT_FORMATS: LazyLock<Vec<ExportFormatArg>> = LazyLock::new(|| {
+    let thermal = ParameterTarget::ALL.map(ExportKind::Thermal);
+    let noise = NoiseFormat::ALL.map(ExportKind::Noise);
+    thermal
+        .into_iter()
+        .chain(noise)
+        .map(ExportFormatArg)
+        .collect()
+});
+
+impl ValueEnum for ExportFormatArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &EXPORT_FORMATS
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.name()).help(self.0.help()))
+    }
 }
 
 impl From<ExportFormatArg> for ExportKind {
     fn from(format: ExportFormatArg) -> Self {
-        use thermonav_io::noise_export::NoiseFormat as N;
-        use thermonav_io::thermal_parameters::ParameterTarget as T;
-        match format {
-            ExportFormatArg::Px4Tc => Self::Thermal(T::Px4Tc),
-            ExportFormatArg::ArdupilotTcal => Self::Thermal(T::ArdupilotTcal),
-            ExportFormatArg::Kalibr => Self::Noise(N::Kalibr),
-            ExportFormatArg::KfGins => Self::Noise(N::KfGins),
-            ExportFormatArg::ObGins => Self::Noise(N::ObGins),
-            ExportFormatArg::GnssInsSim => Self::Noise(N::GnssInsSim),
-            ExportFormatArg::Px4Ekf2 => Self::Noise(N::Px4Ekf2),
-            ExportFormatArg::ArdupilotEk3 => Self::Noise(N::ArdupilotEk3),
-            ExportFormatArg::Matlab => Self::Noise(N::Matlab),
-            ExportFormatArg::RosImuCovariance => Self::Noise(N::RosImuCovariance),
-        }
+        format.0
     }
 }
 

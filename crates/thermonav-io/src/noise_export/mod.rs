@@ -83,6 +83,36 @@ pub enum NoiseFormat {
 }
 
 impl NoiseFormat {
+    /// Every format, in the order the command line lists them.
+    pub const ALL: [NoiseFormat; 8] = [
+        NoiseFormat::Kalibr,
+        NoiseFormat::KfGins,
+        NoiseFormat::ObGins,
+        NoiseFormat::GnssInsSim,
+        NoiseFormat::Px4Ekf2,
+        NoiseFormat::ArdupilotEk3,
+        NoiseFormat::Matlab,
+        NoiseFormat::RosImuCovariance,
+    ];
+
+    /// What it writes, in a line (the command line's help).
+    pub fn help(self) -> &'static str {
+        match self {
+            NoiseFormat::Kalibr => "Kalibr imu.yaml (noise densities and random walks, continuous)",
+            NoiseFormat::KfGins => {
+                "KF-GINS imunoise: block (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime)"
+            }
+            NoiseFormat::ObGins => "OB_GINS imumodel: block (arw, vrw, gbstd, abstd, corrtime)",
+            NoiseFormat::GnssInsSim => "gnss-ins-sim imu_err dictionary (Python)",
+            NoiseFormat::Px4Ekf2 => {
+                "PX4 EKF2_GYR/ACC(_B)_NOISE parameters, a QGroundControl .params file"
+            }
+            NoiseFormat::ArdupilotEk3 => "ArduPilot EK3_*_P_NSE parameters, a .parm file",
+            NoiseFormat::Matlab => "MATLAB gyroparams/accelparams/imuSensor script",
+            NoiseFormat::RosImuCovariance => "ROS sensor_msgs/Imu covariances (YAML)",
+        }
+    }
+
     /// Its name on the command line.
     pub fn name(self) -> &'static str {
         match self {
@@ -480,6 +510,20 @@ fn correlation_times_comment(noise: &ImuNoise) -> Result<String, NoiseExportErro
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // The command line's names are the formats' serialised (kebab-case) names, each listed
+    // once: serde derives those names from the variants independently of `name()`.
+    #[test]
+    fn every_format_is_listed_once_under_its_serialised_name() {
+        let names: Vec<&str> = NoiseFormat::ALL.iter().map(|f| f.name()).collect();
+        for (format, name) in NoiseFormat::ALL.iter().zip(&names) {
+            let serialised = serde_json::to_string(format).unwrap();
+            assert_eq!(serialised, format!("\"{name}\""));
+            assert!(!format.help().is_empty());
+        }
+        let distinct: std::collections::BTreeSet<_> = names.iter().collect();
+        assert_eq!(distinct.len(), names.len(), "{names:?}");
+    }
 
     #[test]
     fn float_text_reads_back_and_has_a_point_and_a_signed_exponent() {
