@@ -550,13 +550,12 @@ impl Survey<'_> {
             self.plan.warming_replicates,
             ReplicateKind::ShiftedOutages,
         );
-        let quiet = crate::progress::is_quiet();
-        crate::progress::set_quiet(true);
-        let (b, c) = rayon::join(
-            || self.tournament(constant.clone(), fixed, &out.join("temperature_matters")),
-            || self.tournament(warming.clone(), thermal, &out.join("warming_survey")),
-        );
-        crate::progress::set_quiet(quiet);
+        let (b, c) = crate::progress::stacked(|| {
+            rayon::join(
+                || self.tournament(constant.clone(), fixed, &out.join("temperature_matters")),
+                || self.tournament(warming.clone(), thermal, &out.join("warming_survey")),
+            )
+        });
         Ok((b?, c?))
     }
 
