@@ -2,10 +2,18 @@
 
 import gzip
 import os
+import sys
 from pathlib import Path
 
-import numpy as np
-import pytest
+# `python -m pytest` run from inside python/ puts that folder first on sys.path, where the
+# package's sources lie without their compiled `_native` module, so `import thermonav` would
+# fail there: the tests take the installed package (`pip install ./python`) wherever they are
+# run from.
+_SOURCES = Path(__file__).resolve().parents[1]
+sys.path[:] = [p for p in sys.path if Path(p or os.curdir).resolve() != _SOURCES]
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 SHARED = Path(os.environ.get("THERMONAV_SHARED", REPO.parent / "shared" / "data"))
