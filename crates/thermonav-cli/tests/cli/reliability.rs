@@ -509,28 +509,31 @@ fn positions_beyond_the_navigable_latitudes_are_refused() {
 // Issue 20: a bank edited by hand with a negative σ was read, and reported later as a bad
 // correlation time. Every value of every entry is checked on reading, and the message names
 // the entry, the channel and the field: the optional gmwm family's too (its σ reaches a run
-// with `--model gmwm`), which was read unchecked before.
+// with `--model gmwm`; it may be 0, a composite with no slow process), which was read
+// unchecked before.
 #[test]
 fn a_bank_value_that_cannot_be_is_named_on_reading() {
     let dir = tempfile::tempdir().unwrap();
     let (bank, _) = crate::navigation::inputs(dir.path());
     let text = std::fs::read_to_string(&bank).unwrap();
-    let gmwm_sigma = text.find("\"gmwm\"").expect("the bank holds gmwm models");
-    let (before_gmwm, from_gmwm) = text.split_at(gmwm_sigma);
-    let gmwm_spoiled = format!(
-        "{before_gmwm}{}",
-        from_gmwm.replacen("\"sigma\": ", "\"sigma\": -", 1)
-    );
-    for (field, spoiled) in [
-        ("gauss_markov.ar_based.sigma", "\"sigma\": -"),
-        ("ar.dt_s", "\"dt_s\": -"),
-        ("gauss_markov.gmwm.sigma", ""),
+    let spoil = |key: &str| text.replacen(key, &format!("{key}-"), 1);
+    let gmwm = text.find("\"gmwm\"").expect("the bank holds gmwm models");
+    let sigma = gmwm + text[gmwm..].find("\"sigma\": ").unwrap() + "\"sigma\": ".len();
+    let end = sigma + text[sigma..].find([',', '\n']).unwrap();
+    let gmwm_negative = format!("{}-1e-3{}", &text[..sigma], &text[end..]);
+    for (field, bad, expected) in [
+        (
+            "gauss_markov.ar_based.sigma",
+            spoil("\"sigma\": "),
+            "a finite number > 0",
+        ),
+        ("ar.dt_s", spoil("\"dt_s\": "), "a finite number > 0"),
+        (
+            "gauss_markov.gmwm.sigma",
+            gmwm_negative,
+            "a finite number >= 0",
+        ),
     ] {
-        let key = spoiled.trim_end_matches('-');
-        let bad = match spoiled {
-            "" => gmwm_spoiled.clone(),
-            _ => text.replacen(key, spoiled, 1),
-        };
         assert_ne!(bad, text);
         write_file(dir.path(), "spoiled.json", &bad);
         let (status, _, stderr) = run_in(dir.path(), "bank show @spoiled.json");
@@ -540,7 +543,7 @@ fn a_bank_value_that_cannot_be_is_named_on_reading() {
             stderr.contains(&format!("channel gx: {field} = -")),
             "{stderr}"
         );
-        assert!(stderr.contains("expected a finite number > 0"), "{stderr}");
+        assert!(stderr.contains(&format!("expected {expected}")), "{stderr}");
     }
 }
 

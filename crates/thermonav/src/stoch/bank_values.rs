@@ -122,7 +122,11 @@ fn check_channel(place: Place, model: &ChannelModel) -> Result<(), BankError> {
         .filter_map(|s| Some((s, model.gauss_markov.estimate(s)?)))
         .try_for_each(|(s, estimate)| {
             let field = format!("gauss_markov.{}", s.name());
-            check_gauss_markov(place, &field, estimate)
+            let sigma = match s.sigma_may_be_zero() {
+                true => ValueRule::NonNegative,
+                false => ValueRule::Positive,
+            };
+            check_gauss_markov(place, &field, estimate, sigma)
         })
 }
 
@@ -164,6 +168,7 @@ fn check_gauss_markov(
     place: Place,
     field: &str,
     estimate: &GaussMarkovEstimate,
+    sigma_rule: ValueRule,
 ) -> Result<(), BankError> {
     let GaussMarkovEstimate::Model {
         correlation_time_s,
@@ -175,7 +180,7 @@ fn check_gauss_markov(
     };
     let tc = format!("{field}.correlation_time_s");
     place.check(&tc, *correlation_time_s, ValueRule::Positive)?;
-    place.check(&format!("{field}.sigma"), *sigma, ValueRule::Positive)?;
+    place.check(&format!("{field}.sigma"), *sigma, sigma_rule)?;
     let bounds: Vec<f64> = ci95_correlation_time_s.iter().flatten().copied().collect();
     place.check_all(
         &format!("{field}.ci95_correlation_time_s"),

@@ -105,4 +105,10 @@ pub trait GaussMarkovFamily: Sync {
         let _ = composite;
         allan
     }
+
+    /// True when its model may have σ = 0 (no bias process), which a bank's value checks then
+    /// accept; false for the families whose fit always finds one.
+    fn sigma_may_be_zero(&self) -> bool {
+        false
+    }
 }

@@ -35,4 +35,10 @@ impl GaussMarkovFamily for Gmwm {
         let _ = allan;
         composite
     }
+
+    /// A composite with no process slower than the white-noise band (white noise alone, or
+    /// with a drift the mapping drops) maps to a bias state of σ = 0.
+    fn sigma_may_be_zero(&self) -> bool {
+        true
+    }
 }

@@ -57,6 +57,11 @@ impl GaussMarkovSource {
         self.0.when_absent().is_none()
     }
 
+    /// Whether its model may have σ = 0 ([`GaussMarkovFamily::sigma_may_be_zero`]).
+    pub fn sigma_may_be_zero(self) -> bool {
+        self.0.sigma_may_be_zero()
+    }
+
     /// Every registered family, in the bank's order.
     pub fn all() -> impl Iterator<Item = Self> {
         FAMILIES.iter().map(|&f| Self(f))
