@@ -51,7 +51,7 @@ pub fn show_estimate(e: &GaussMarkovEstimate) -> String {
 pub fn print_bank_table(bank: &ModelBank) {
     if bank.entries.is_empty() {
         println!(
-            "no noise models: a thermal calibration alone (from sweeps); `--thermal-from` joins it to another bank's noise models"
+            "no noise models: a thermal calibration alone (from sweeps, whose temperature never holds still, while the Allan, AR and Gauss-Markov fits take a record at one temperature); `--thermal-from` joins it to another bank's noise models"
         );
         bank.thermal.iter().for_each(print_thermal_table);
         return;
