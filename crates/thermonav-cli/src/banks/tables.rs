@@ -5,6 +5,8 @@ use thermonav::imu::{Channel, SampleKind, Sensor};
 use thermonav::stoch::bank::{
     AllanSummary, ChannelModel, GaussMarkovEstimate, GaussMarkovSource, ModelBank,
 };
+use thermonav::stoch::thermal::clock_drift::{ClockDrift, LegTrend, clock_drift};
+use thermonav::stoch::thermal::legs::LegDirection;
 use thermonav::stoch::thermal::sweep_model::{ChoiceRule, HeldOutSelection};
 use thermonav::stoch::thermal::{
     CalibrationSummary, ChannelCalibration, ScaleFactorCalibration, ThermalCalibration,
@@ -186,6 +188,37 @@ fn print_held_out_choice(calibration: &ThermalCalibration) {
     if within_legs {
         println!("{WITHIN_LEGS_NOTE}");
     }
+    for channel in Channel::ALL {
+        let blocks = (&calibration.sweep_blocks, &calibration.legs);
+        if let Some(drift) = clock_drift(blocks.0, blocks.1, channel) {
+            println!("{}", clock_drift_line(channel, &drift));
+        }
+    }
+}
+
+/// A channel that drifts with time ([`clock_drift`]), in deg/h or mg.
+fn clock_drift_line(channel: Channel, drift: &ClockDrift) -> String {
+    let unit = DisplayUnits::Navigation.rate_unit(channel.sensor());
+    let show = |si: f64| DisplayUnits::Navigation.rate(channel.sensor(), si);
+    let [a, b] = drift.legs;
+    let direction = |t: &LegTrend| match t.direction {
+        LegDirection::Warming => "warming",
+        LegDirection::Cooling => "cooling",
+    };
+    format!(
+        "note: {} follows the clock, not the temperature: {:+.3} ± {:.3} {unit} per °C on leg {} ({}), {:+.3} ± {:.3} on leg {} ({}), a change of {:+.3} and {:+.3} {unit} over them; no curve in temperature removes a drift with time",
+        channel.name(),
+        show(a.slope_per_c),
+        show(a.slope_half_width_per_c),
+        a.leg,
+        direction(&a),
+        show(b.slope_per_c),
+        show(b.slope_half_width_per_c),
+        b.leg,
+        direction(&b),
+        show(a.change),
+        show(b.change),
+    )
 }
 
 /// What a choice made within one leg cannot see.

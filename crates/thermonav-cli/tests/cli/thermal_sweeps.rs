@@ -638,3 +638,40 @@ fn check_says_when_a_calibration_makes_an_unseen_leg_worse() {
         }
     }
 }
+
+// CATS period P0 (a cool-down, then a day's warm-up, of one power-on): gx falls over time on
+// both legs, so its slope against temperature flips sign between them, and `bank show` says
+// it follows the clock; no other channel does. Oracle: `bench/thermal_peers/time_or_temperature.py`
+// (numpy, 300 s blocks): +29.1 ± 4.4 deg/h per °C cooling, −25.8 ± 1.0 warming; thermonav's
+// slopes on its own blocks must lie within those 95 % intervals.
+#[test]
+fn a_channel_that_drifts_with_time_is_named_on_a_real_record() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = dir.path().join("p0.csv");
+    write_cats_period(&sweep, 480.0, 92460.0);
+    let bank = dir.path().join("bank.json");
+    let (status, _, stderr) = characterize_sweeps(&[&sweep], &bank);
+    assert_eq!(status, 0, "{stderr}");
+    let (status, text, stderr) = outcome(&thermonav(&["bank", "show", arg(&bank)]));
+    assert_eq!(status, 0, "{stderr}");
+    let notes: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("follows the clock"))
+        .collect();
+    assert_eq!(notes.len(), 1, "{text}");
+    assert!(
+        notes[0].starts_with("note: gx follows the clock"),
+        "{}",
+        notes[0]
+    );
+    // "... +29.520 ± 4.608 deg/h per °C on leg 1 (cooling), -25.756 ± 2.560 on leg 2 ...":
+    // each slope is the word before a " ± ".
+    let parts: Vec<&str> = notes[0].split(" ± ").collect();
+    let slope = |k: usize| -> f64 {
+        let word = parts[k].split_whitespace().last().unwrap();
+        word.parse().unwrap()
+    };
+    let (cooling, warming) = (slope(0), slope(1));
+    assert!((cooling - 29.1).abs() <= 4.4, "{cooling}");
+    assert!((warming + 25.8).abs() <= 1.0, "{warming}");
+}

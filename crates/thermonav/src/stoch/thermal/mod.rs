@@ -65,6 +65,7 @@
 mod bank_calibration;
 mod calibration;
 pub mod check;
+pub mod clock_drift;
 pub mod join;
 pub mod legs;
 mod observations;
