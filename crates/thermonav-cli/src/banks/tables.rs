@@ -189,8 +189,7 @@ fn print_held_out_choice(calibration: &ThermalCalibration) {
         println!("{WITHIN_LEGS_NOTE}");
     }
     for channel in Channel::ALL {
-        let blocks = (&calibration.sweep_blocks, &calibration.legs);
-        if let Some(drift) = clock_drift(blocks.0, blocks.1, channel) {
+        if let Some(drift) = clock_drift(&calibration.sweep_blocks, &calibration.legs, channel) {
             println!("{}", clock_drift_line(channel, &drift));
         }
     }

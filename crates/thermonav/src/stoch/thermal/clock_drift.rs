@@ -10,6 +10,7 @@
 
 use super::legs::LegDirection;
 use super::selection::{BAND_Z, SweepBlock, SweepLeg};
+use super::sweep_model::{lag_one_autocorrelation, shrunk_by_autocorrelation};
 use crate::imu::Channel;
 use serde::Serialize;
 
@@ -63,13 +64,8 @@ fn leg_trend(blocks: &[&SweepBlock], channel: Channel, leg: &SweepLeg) -> Option
         .map(|p| p.1 - y_mean - slope * (p.0 - t_mean))
         .collect();
     let ss: f64 = residuals.iter().map(|r| r * r).sum();
-    let cross: f64 = residuals.windows(2).map(|w| w[0] * w[1]).sum();
-    let rho = if ss > 0.0 {
-        (cross / ss).clamp(0.0, 0.99)
-    } else {
-        0.0
-    };
-    let effective = n as f64 * (1.0 - rho) / (1.0 + rho);
+    let rho = lag_one_autocorrelation(&residuals);
+    let effective = shrunk_by_autocorrelation(n as f64, rho);
     let variance = ss / (n - 2) as f64 / sxx * (n as f64 / effective.max(1.0));
     Some(LegTrend {
         leg: leg.leg,

@@ -556,7 +556,7 @@ impl HeldOut {
             false => 0.0,
         };
         let dof = self.residuals.saturating_sub(self.fold_mean_squares.len()) as f64;
-        (dof * (1.0 - rho) / (1.0 + rho)).max(1.0)
+        shrunk_by_autocorrelation(dof, rho).max(1.0)
     }
 }
 
@@ -732,8 +732,14 @@ pub fn calibrate_channel_from_sweeps(
     Ok(calibration)
 }
 
+/// `count` values shrunk to the independent values they are worth, given their lag-1
+/// autocorrelation `rho`: count·(1 − ρ)/(1 + ρ) (the effective sample size of an AR(1) series).
+pub(super) fn shrunk_by_autocorrelation(count: f64, rho: f64) -> f64 {
+    count * (1.0 - rho) / (1.0 + rho)
+}
+
 /// Lag-1 autocorrelation of a series (0 for fewer than 3 values or none negative clamps).
-fn lag_one_autocorrelation(x: &[f64]) -> f64 {
+pub(super) fn lag_one_autocorrelation(x: &[f64]) -> f64 {
     if x.len() < 3 {
         return 0.0;
     }
@@ -767,7 +773,8 @@ fn tau_interval(
             .collect()
     };
     let rho = lag_one_autocorrelation(&residuals);
-    let dof = fit.calibration.bias.residual_degrees_of_freedom as f64 * (1.0 - rho) / (1.0 + rho);
+    let dof =
+        shrunk_by_autocorrelation(fit.calibration.bias.residual_degrees_of_freedom as f64, rho);
     let dof = dof.max(1.0);
     let f = FisherSnedecor::new(1.0, dof)
         .map(|d| d.inverse_cdf(0.95))
