@@ -75,9 +75,25 @@ fn json_of(args: &[&str]) -> Value {
     serde_json::from_str(&stdout).expect("stdout is one JSON document")
 }
 
+/// The bank of `data` on the raw record: the noise of every run but the tests' of noise.
+fn uncompensated_bank(data: &Data) -> [&str; 3] {
+    ["--bank", arg(&data.bank), "--no-compensation"]
+}
+
 /// `integrate` on `data` (uncompensated) with `option`, writing `dir/NAME.csv`: its JSON and
 /// its solution.
 fn integrate(data: &Data, dir: &Path, name: &str, option: &[&str]) -> (Value, PathBuf) {
+    integrate_with(data, (dir, name), &uncompensated_bank(data), option)
+}
+
+/// `integrate` on `data` with `noise` (a bank or a profile, with their options) and `option`,
+/// writing `dir/NAME.csv`: its JSON and its solution.
+fn integrate_with(
+    data: &Data,
+    (dir, name): (&Path, &str),
+    noise: &[&str],
+    option: &[&str],
+) -> (Value, PathBuf) {
     let solution = dir.join(format!("{name}.csv"));
     let mut args = vec![
         "integrate",
@@ -86,7 +102,7 @@ fn integrate(data: &Data, dir: &Path, name: &str, option: &[&str]) -> (Value, Pa
         "--gnss",
         arg(&data.gnss),
     ];
-    args.extend(["--bank", arg(&data.bank), "--no-compensation"]);
+    args.extend(noise);
     args.extend(["--out", arg(&solution), "--json"]);
     args.extend(data.common);
     args.extend(option);
@@ -97,9 +113,22 @@ fn integrate(data: &Data, dir: &Path, name: &str, option: &[&str]) -> (Value, Pa
 /// scoring `solution` as the outside solution "integrate", into `dir/NAME`.
 fn evaluate(
     data: &Data,
-    (dir, name): (&Path, &str),
+    out: (&Path, &str),
     reference: &Path,
     solution: &Path,
+    option: &[&str],
+) -> Value {
+    let noise = uncompensated_bank(data);
+    evaluate_with(data, out, (reference, solution), &noise, option)
+}
+
+/// `evaluate` (EKF) on `data` against `reference` with `noise` and `option`, scoring
+/// `solution` as the outside solution "integrate", into `dir/NAME`.
+fn evaluate_with(
+    data: &Data,
+    (dir, name): (&Path, &str),
+    (reference, solution): (&Path, &Path),
+    noise: &[&str],
     option: &[&str],
 ) -> Value {
     let out = dir.join(name);
@@ -110,8 +139,8 @@ fn evaluate(
         "--gnss",
         arg(&data.gnss),
     ];
-    args.extend(["--reference", arg(reference), "--bank", arg(&data.bank)]);
-    args.extend(["--filter", "ekf", "--no-compensation"]);
+    args.extend(["--reference", arg(reference), "--filter", "ekf"]);
+    args.extend(noise);
     args.extend(["--solution", arg(solution), "--solution-label", "integrate"]);
     args.extend(["--out", arg(&out), "--json"]);
     args.extend(data.common);
@@ -402,26 +431,10 @@ fn noise_pair(
     noise: &[&str],
     option: &[&str],
 ) -> (Value, Value) {
-    let solution = dir.join(format!("{name}.csv"));
-    let files = ["--imu", arg(&data.imu), "--gnss", arg(&data.gnss)];
-    let mut args = vec!["integrate"];
-    args.extend(files);
-    args.extend(["--out", arg(&solution), "--json"]);
-    args.extend(data.common.iter().chain(noise).chain(option));
-    let run = json_of(&args);
-    let out = dir.join(format!("{name}_ev"));
-    let mut args = vec!["evaluate"];
-    args.extend(files);
-    args.extend(["--reference", arg(&data.reference), "--filter", "ekf"]);
-    args.extend([
-        "--solution",
-        arg(&solution),
-        "--solution-label",
-        "integrate",
-    ]);
-    args.extend(["--out", arg(&out), "--json"]);
-    args.extend(data.common.iter().chain(noise).chain(option));
-    (run, json_of(&args))
+    let (run, solution) = integrate_with(data, (dir, name), noise, option);
+    let files = (data.reference.as_path(), solution.as_path());
+    let out = (dir, &*format!("{name}_ev"));
+    (run, evaluate_with(data, out, files, noise, option))
 }
 
 // A profile's candidate starts from integrate's initial uncertainty: the profile's turn-on and
